@@ -1,0 +1,224 @@
+#include "core/specimen_file.hpp"
+
+#include <H5Cpp.h>
+
+#include <numbers>
+
+#include "core/atomic_output.hpp"
+#include "core/input_error.hpp"
+#include "core/version.hpp"
+
+namespace cdem {
+
+double Container::area() const {
+  return shape == ContainerShape::Disc ? std::numbers::pi * 0.25 * width * width : width * height;
+}
+
+namespace {
+
+constexpr const char* kFormat = "cdem-specimen";
+constexpr int kFormatVersion = 1;
+
+template <class T>
+const H5::PredType& h5type();
+template <> const H5::PredType& h5type<double>() { return H5::PredType::NATIVE_DOUBLE; }
+template <> const H5::PredType& h5type<std::int32_t>() { return H5::PredType::NATIVE_INT32; }
+template <> const H5::PredType& h5type<std::int64_t>() { return H5::PredType::NATIVE_INT64; }
+template <> const H5::PredType& h5type<std::uint8_t>() { return H5::PredType::NATIVE_UINT8; }
+
+template <class T>
+void write_array(H5::Group& g, const char* name, const std::vector<T>& v, hsize_t cols = 1,
+                 const char* units = nullptr) {
+  hsize_t dims[2] = {cols == 1 ? v.size() : v.size() / cols, cols};
+  H5::DataSpace space(cols == 1 ? 1 : 2, dims);
+  H5::DataSet ds = g.createDataSet(name, h5type<T>(), space);
+  if (!v.empty()) ds.write(v.data(), h5type<T>());
+  if (units) {
+    H5::StrType st(H5::PredType::C_S1, H5T_VARIABLE);
+    ds.createAttribute("units", st, H5::DataSpace(H5S_SCALAR)).write(st, std::string(units));
+  }
+}
+
+void write_string_attr(H5::H5Object& o, const std::string& name, const std::string& value) {
+  H5::StrType st(H5::PredType::C_S1, H5T_VARIABLE);
+  o.createAttribute(name, st, H5::DataSpace(H5S_SCALAR)).write(st, value);
+}
+
+template <class T>
+void write_scalar_attr(H5::H5Object& o, const std::string& name, T value) {
+  o.createAttribute(name, h5type<T>(), H5::DataSpace(H5S_SCALAR)).write(h5type<T>(), &value);
+}
+
+struct Reader {
+  const std::filesystem::path& path;
+
+  [[noreturn]] void fail(const std::string& what, const std::string& why) const {
+    throw InputError(path.string(), what, why);
+  }
+
+  template <class T>
+  std::vector<T> array(const H5::Group& g, const std::string& name, std::size_t expect_rows,
+                       hsize_t cols = 1) const {
+    const std::string where = g.getObjName() + "/" + name;
+    if (!g.nameExists(name)) fail(where, "dataset missing; not a cdem specimen file?");
+    H5::DataSet ds = g.openDataSet(name);
+    H5::DataSpace sp = ds.getSpace();
+    hsize_t dims[2] = {0, 0};
+    const int rank = sp.getSimpleExtentNdims();
+    if (rank != (cols == 1 ? 1 : 2)) fail(where, "wrong rank");
+    sp.getSimpleExtentDims(dims);
+    if (cols != 1 && dims[1] != cols) fail(where, "wrong number of columns");
+    if (expect_rows != SIZE_MAX && dims[0] != expect_rows)
+      fail(where, "has " + std::to_string(dims[0]) + " rows, expected " +
+                      std::to_string(expect_rows));
+    std::vector<T> v(dims[0] * cols);
+    if (!v.empty()) ds.read(v.data(), h5type<T>());
+    return v;
+  }
+  std::string string_attr(const H5::H5Object& o, const std::string& name) const {
+    if (!o.attrExists(name)) fail(name, "attribute missing");
+    H5::Attribute a = o.openAttribute(name);
+    std::string s;
+    a.read(a.getStrType(), s);
+    return s;
+  }
+  template <class T>
+  T scalar_attr(const H5::H5Object& o, const std::string& name) const {
+    if (!o.attrExists(name)) fail(name, "attribute missing");
+    T v{};
+    o.openAttribute(name).read(h5type<T>(), &v);
+    return v;
+  }
+};
+
+}  // namespace
+
+void write_specimen(const Specimen& s, const std::filesystem::path& path) {
+  AtomicOutput out(path);
+  {
+    H5::H5File f(out.temp_path().string(), H5F_ACC_TRUNC);
+    write_string_attr(f, "format", kFormat);
+    write_scalar_attr<std::int32_t>(f, "format_version", kFormatVersion);
+    write_string_attr(f, "cdem_version", kVersion);
+    write_scalar_attr<double>(f, "mortar_density_kg_m3", s.mortar_density);
+    write_scalar_attr<double>(f, "aggregate_density_kg_m3", s.aggregate_density);
+    for (const auto& [k, v] : s.attributes) write_string_attr(f, k, v);
+
+    H5::Group c = f.createGroup("container");
+    write_string_attr(c, "shape", s.container.shape == ContainerShape::Disc ? "disc" : "rectangle");
+    write_scalar_attr<double>(c, "width_m", s.container.width);
+    write_scalar_attr<double>(c, "height_m", s.container.height);
+
+    H5::Group d = f.createGroup("discs");
+    write_array(d, "x", s.x, 1, "m");
+    write_array(d, "y", s.y, 1, "m");
+    write_array(d, "r", s.r, 1, "m");
+    std::vector<std::uint8_t> tag(s.disc_count());
+    for (std::size_t i = 0; i < tag.size(); ++i) tag[i] = static_cast<std::uint8_t>(s.tag(i));
+    write_array(d, "tag", tag);
+    H5::DataSet tag_ds = d.openDataSet("tag");
+    write_string_attr(tag_ds, "meaning", "0 = mortar, 1 = aggregate pebble");
+    write_array(d, "clump", s.clump);
+    write_array(d, "contact_active", s.contact_active);
+
+    H5::Group g = f.createGroup("clumps");
+    std::vector<double> centroid, mass, inertia, deq, vertices;
+    std::vector<std::int32_t> bin;
+    std::vector<std::int64_t> offset{0};
+    for (const Clump& k : s.clumps) {
+      centroid.insert(centroid.end(), {k.centroid.x(), k.centroid.y()});
+      mass.push_back(k.mass);
+      inertia.push_back(k.inertia);
+      deq.push_back(k.equivalent_diameter);
+      bin.push_back(k.bin);
+      for (const auto& v : k.vertices) vertices.insert(vertices.end(), {v.x(), v.y()});
+      offset.push_back(offset.back() + static_cast<std::int64_t>(k.vertices.size()));
+    }
+    write_array(g, "centroid", centroid, 2, "m");
+    write_array(g, "mass", mass, 1, "kg (per m thickness)");
+    write_array(g, "inertia", inertia, 1, "kg m^2 (per m thickness), about the centroid");
+    write_array(g, "equivalent_diameter", deq, 1, "m");
+    write_array(g, "bin", bin);
+    write_array(g, "vertex_offset", offset);
+    write_array(g, "vertices", vertices, 2, "m");
+    f.close();
+  }
+  out.commit();
+}
+
+Specimen read_specimen(const std::filesystem::path& path) {
+  Reader rd{path};
+  if (!std::filesystem::exists(path)) rd.fail("", "file not found");
+  H5::Exception::dontPrint();
+  try {
+    if (!H5::H5File::isHdf5(path.string())) rd.fail("", "not an HDF5 file (corrupt or wrong file)");
+    H5::H5File f(path.string(), H5F_ACC_RDONLY);
+    if (!f.attrExists("format") || rd.string_attr(f, "format") != kFormat)
+      rd.fail("format", "not a cdem specimen file");
+    const auto version = rd.scalar_attr<std::int32_t>(f, "format_version");
+    if (version != kFormatVersion)
+      rd.fail("format_version", "is " + std::to_string(version) + ", this cdem reads " +
+                                    std::to_string(kFormatVersion));
+    Specimen s;
+    s.mortar_density = rd.scalar_attr<double>(f, "mortar_density_kg_m3");
+    s.aggregate_density = rd.scalar_attr<double>(f, "aggregate_density_kg_m3");
+    for (int i = 0, n = f.getNumAttrs(); i < n; ++i) {
+      H5::Attribute a = f.openAttribute(static_cast<unsigned>(i));
+      if (a.getTypeClass() == H5T_STRING) {
+        std::string v;
+        a.read(a.getStrType(), v);
+        s.attributes[a.getName()] = v;
+      }
+    }
+    s.attributes.erase("format");
+    s.attributes.erase("cdem_version");
+
+    H5::Group c = f.openGroup("container");
+    const std::string shape = rd.string_attr(c, "shape");
+    if (shape != "rectangle" && shape != "disc") rd.fail("container/shape", "unknown shape '" + shape + "'");
+    s.container.shape = shape == "disc" ? ContainerShape::Disc : ContainerShape::Rectangle;
+    s.container.width = rd.scalar_attr<double>(c, "width_m");
+    s.container.height = rd.scalar_attr<double>(c, "height_m");
+
+    H5::Group d = f.openGroup("discs");
+    s.x = rd.array<double>(d, "x", SIZE_MAX);
+    const std::size_t n = s.x.size();
+    s.y = rd.array<double>(d, "y", n);
+    s.r = rd.array<double>(d, "r", n);
+    s.clump = rd.array<std::int32_t>(d, "clump", n);
+    s.contact_active = rd.array<std::uint8_t>(d, "contact_active", n);
+
+    H5::Group g = f.openGroup("clumps");
+    const auto mass = rd.array<double>(g, "mass", SIZE_MAX);
+    const std::size_t m = mass.size();
+    const auto centroid = rd.array<double>(g, "centroid", m, 2);
+    const auto inertia = rd.array<double>(g, "inertia", m);
+    const auto deq = rd.array<double>(g, "equivalent_diameter", m);
+    const auto bin = rd.array<std::int32_t>(g, "bin", m);
+    const auto offset = rd.array<std::int64_t>(g, "vertex_offset", m + 1);
+    const auto vertices = rd.array<double>(g, "vertices", SIZE_MAX, 2);
+    s.clumps.resize(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      Clump& cl = s.clumps[k];
+      cl.centroid = {centroid[2 * k], centroid[2 * k + 1]};
+      cl.mass = mass[k];
+      cl.inertia = inertia[k];
+      cl.equivalent_diameter = deq[k];
+      cl.bin = bin[k];
+      if (offset[k] < 0 || offset[k + 1] < offset[k] ||
+          static_cast<std::size_t>(offset[k + 1]) * 2 > vertices.size())
+        rd.fail("clumps/vertex_offset", "inconsistent with clumps/vertices");
+      for (auto v = offset[k]; v < offset[k + 1]; ++v)
+        cl.vertices.emplace_back(vertices[2 * v], vertices[2 * v + 1]);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.clump[i] < -1 || s.clump[i] >= static_cast<std::int32_t>(m))
+        rd.fail("discs/clump", "disc " + std::to_string(i) + " names clump " +
+                                   std::to_string(s.clump[i]) + " of " + std::to_string(m));
+    return s;
+  } catch (const H5::Exception& e) {
+    rd.fail("", "cannot read HDF5 file (" + e.getDetailMsg() + ")");
+  }
+}
+
+}  // namespace cdem

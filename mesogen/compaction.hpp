@@ -1,0 +1,37 @@
+#pragma once
+// Compaction of aggregates with rigid-body physics (Box2D 2.4), used when random placement
+// jams before the target content (SPEC 3.3).
+#include <string>
+#include <vector>
+
+#include "core/rng.hpp"
+#include "core/specimen.hpp"
+#include "mesogen/placement.hpp"
+
+namespace cdem::mesogen {
+
+struct CompactionControls {
+  double boundary_clearance = 0;  // m, as in placement
+  double min_gap = 0;             // m, as in placement
+  long max_steps = 200000;        // Box2D steps in all: the bound on effort
+};
+
+struct CompactionResult {
+  bool success = false;
+  // On success: every draw placed, inside the mould with clearance and pairwise separated by
+  // min_gap, as checked by inside_with_clearance and separated_by.
+  std::vector<PlacedAggregate> placed;
+  // Aggregate area / area of the smallest mould the aggregates were brought into (equals the
+  // target content on success).
+  double area_fraction_reached = 0;
+  long steps = 0;
+  std::string message;  // what happened, for the user
+};
+
+// Places all `draws` (largest first) in `mould`, starting from the partial random placement
+// `start`. Deterministic for a given Rng state.
+CompactionResult compact(const Container& mould, const std::vector<AggregateDraw>& draws,
+                         const PlacementResult& start, const CompactionControls& controls,
+                         Rng& rng);
+
+}  // namespace cdem::mesogen

@@ -1,0 +1,40 @@
+#pragma once
+// Mortar disc packing by radius expansion, relaxed to a small isotropic stress (SPEC 3.4).
+// The cycling itself is dem/'s; this file is the generator's recipe around it.
+#include <vector>
+
+#include "core/rng.hpp"
+#include "core/specimen.hpp"
+
+namespace cdem::mesogen {
+
+struct MortarPackingControls {
+  double r_mean = 0.5e-3;        // m, mean disc radius
+  double r_ratio = 2.5;          // R_max / R_min; radii uniform in [R_min, R_max]
+  double porosity = 0.12;        // nominal porosity n: sets the disc count and the expansion
+  double sigma0 = 0.1e6;         // Pa, isotropic stress the packing is brought to
+  double stress_tolerance = 0.05;// relative tolerance on sigma0
+  double emod = 16e9;            // Pa, E* of the (frictionless, linear) packing contacts
+  double density = 2000;         // kg/m3
+  long max_steps = 400000;       // bound on cycling effort
+};
+
+struct MortarPacking {
+  std::vector<double> x, y, r;   // m
+  long disc_count_formula = 0;   // floor(A (1 - n) / (pi R_mean^2))
+  double initial_porosity = 0;   // n0, at half radius
+  double expansion_factor = 0;   // m = sqrt((1 - n) / (1 - n0))
+  double porosity = 0;           // reached: 1 - sum(pi r^2) / A (overlaps not subtracted)
+  double mean_overlap = 0;       // m, over disc-disc contacts
+  double mean_overlap_ratio = 0; // mean of overlap / min(R1, R2)
+  double residual_stress = 0;    // Pa, mean isotropic stress, compression positive
+  double coordination_number = 0;// mean disc-disc contacts per disc
+  long floating_discs = 0;       // discs with fewer than 3 contacts
+  long steps = 0;                // DEM steps used
+  bool converged = false;        // stress within tolerance and forces balanced
+};
+
+// Throws RunError if the effort bound is reached without convergence (with the figures).
+MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& controls, Rng& rng);
+
+}  // namespace cdem::mesogen
