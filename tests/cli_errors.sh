@@ -1,3 +1,71 @@
 #!/usr/bin/env bash
-# Placeholder replaced below by the real checks.
-exit 0
+# Bad input to `cdem generate`: each case must exit non-zero, name the offending key (or file)
+# in its message, and leave no output file behind. Run by CTest with CDEM (the binary) and SRC
+# (the source tree) set.
+set -u
+: "${CDEM:?}" "${SRC:?}"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+base="$SRC/samples/c30_specimen.toml"
+failures=0
+passed=0
+
+# expect NAME EXPECTED_EXIT PATTERN FILE: run generate on FILE, check exit code, message, no output.
+expect() {
+  local name=$1 code=$2 pattern=$3 file=$4
+  local out="$work/$name.h5" err="$work/$name.err"
+  timeout 300 "$CDEM" generate "$file" -o "$out" --summary "$work/$name.json" \
+    --picture "$work/$name.png" -q 2>"$err"
+  local rc=$?
+  local leftovers
+  leftovers=$(ls "$work" | grep -E "^$name\.(h5|json|png)" || true)
+  if [ "$rc" -ne "$code" ]; then
+    echo "FAIL $name: exit $rc, expected $code"; cat "$err"; failures=$((failures + 1)); return
+  fi
+  if ! grep -q -- "$pattern" "$err"; then
+    echo "FAIL $name: message lacks '$pattern':"; cat "$err"; failures=$((failures + 1)); return
+  fi
+  if [ -n "$leftovers" ]; then
+    echo "FAIL $name: left output behind: $leftovers"; failures=$((failures + 1)); return
+  fi
+  echo "ok   $name: $(head -c 300 "$err")"
+  passed=$((passed + 1))
+}
+
+# variant NAME SED_EXPR: a copy of the C30 sample edited by sed.
+variant() { sed -e "$2" "$base" > "$work/$1.toml"; echo "$work/$1.toml"; }
+
+expect missing_key 2 "specimen.width" "$(variant missing_key '/^width_mm/d')"
+expect negative_size 2 "specimen.width_mm" "$(variant negative_size 's/^width_mm = 100/width_mm = -100/')"
+expect dmin_ge_dmax 2 "gradation.d_min" "$(variant dmin_ge_dmax 's/^d_min_mm = 5/d_min_mm = 15/')"
+expect pk_above_one 2 "gradation.p_k" "$(variant pk_above_one 's/^p_k = 0.75/p_k = 1.5/')"
+expect pk_zero 2 "(0, 1]" "$(variant pk_zero 's/^p_k = 0.75/p_k = 0/')"
+expect specimen_too_small 2 "gradation.d_max" "$(variant specimen_too_small 's/^width_mm = 100/width_mm = 12/')"
+expect unknown_gradation 2 "unknown value 'talbot'" "$(variant unknown_gradation 's/^type = "walraven"/type = "talbot"/')"
+expect misspelt_key 2 "unknown key" "$(variant misspelt_key 's/^porosity = 0.12/porosty = 0.12/')"
+expect bad_unit 2 "unknown unit" "$(variant bad_unit 's/^density_kg_m3 = 2000/density = "2000 furlongs"/')"
+expect toml_syntax 2 "TOML syntax error" "$(variant toml_syntax 's/^seed = 1/seed = = 1/')"
+expect not_a_file 1 "" "$work/does_not_exist.toml"
+
+# An unreachable content ends in bounded time, says what it reached, exits 3, writes nothing.
+cat > "$work/unreachable.toml" <<'TOML'
+seed = 5
+[specimen]
+shape = "rectangle"
+width_mm = 60
+height_mm = 60
+[gradation]
+type = "walraven"
+target_area_fraction = 0.95
+d_min_mm = 4
+d_max_mm = 12
+bins_mm = [4, 8, 12]
+[aggregates]
+compaction_max_steps = 20000
+[mortar]
+r_mean_mm = 0.5
+TOML
+expect unreachable 3 "reached" "$work/unreachable.toml"
+
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]
