@@ -1,0 +1,150 @@
+// End-to-end generation: bins, exact non-overlap, disc count, residual stress, file round trip.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "core/specimen_file.hpp"
+#include "exact_geometry.hpp"
+#include "mesogen/generate.hpp"
+#include "mesogen/gradation.hpp"
+
+namespace fs = std::filesystem;
+using namespace cdem;
+
+namespace {
+
+struct Generated {
+  Specimen specimen;
+  nlohmann::json summary;
+};
+
+Generated generate(const std::string& toml, const std::string& name, std::uint64_t seed = 11) {
+  const fs::path dir = fs::path(CDEM_BINARY_DIR) / "test_output";
+  fs::create_directories(dir);
+  const fs::path in = dir / (name + ".toml"), out = dir / (name + ".h5"),
+                 summary = dir / (name + ".json");
+  std::ofstream(in) << toml;
+  mesogen::GenerateRequest req{in, out, seed, summary, std::nullopt, false};
+  mesogen::run_generate(req);
+  Generated g{read_specimen(out), nlohmann::json::parse(std::ifstream(summary))};
+  return g;
+}
+
+const char* kSmall = R"(
+[specimen]
+shape = "rectangle"
+width_mm = 40
+height_mm = 60
+[gradation]
+type = "walraven"
+p_k = 0.75
+d_min_mm = 4
+d_max_mm = 10
+bins_mm = [4, 6, 8, 10]
+[aggregates]
+min_gap_mm = 0.4
+boundary_clearance_mm = 0.4
+[mortar]
+r_mean_mm = 0.4
+r_ratio = 2.0
+porosity = 0.12
+sigma0_MPa = 0.1
+)";
+
+void expect_valid_aggregates(const Specimen& s, double gap) {
+  for (std::size_t a = 0; a < s.clumps.size(); ++a) {
+    EXPECT_TRUE(test::exact_inside(s.clumps[a].vertices, s.container)) << "aggregate " << a;
+    for (std::size_t b = a + 1; b < s.clumps.size(); ++b) {
+      ASSERT_FALSE(test::exact_overlap(s.clumps[a].vertices, s.clumps[b].vertices))
+          << "aggregates " << a << " and " << b << " overlap";
+      EXPECT_GE(test::exact_squared_distance(s.clumps[a].vertices, s.clumps[b].vertices),
+                test::ExactKernel::FT(gap) * test::ExactKernel::FT(gap) * (1 - 1e-9));
+    }
+  }
+}
+
+}  // namespace
+
+TEST(Generate, SmallRectangleHoldsEveryPromise) {
+  const Generated g = generate(kSmall, "small_rect");
+  const Specimen& s = g.specimen;
+
+  // Bin counts are the SPEC 3.1 formula, recomputed here from the Walraven polynomial.
+  const double area = 40e-3 * 60e-3;
+  const double edges[] = {4e-3, 6e-3, 8e-3, 10e-3};
+  ASSERT_EQ(g.summary["bins"].size(), 3u);
+  long total = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double frac = mesogen::walraven_passing(edges[i + 1], 10e-3, 0.75) -
+                        mesogen::walraven_passing(edges[i], 10e-3, 0.75);
+    const double dm = 0.5 * (edges[i] + edges[i + 1]);
+    const long n = std::lround(frac * area / (std::numbers::pi * dm * dm / 4));
+    EXPECT_EQ(g.summary["bins"][i]["target_count"].get<long>(), n);
+    EXPECT_EQ(g.summary["bins"][i]["placed_count"].get<long>(), n);
+    total += n;
+  }
+  EXPECT_EQ(static_cast<long>(s.clumps.size()), total);
+  expect_valid_aggregates(s, 0.4e-3);
+
+  // Disc count: floor(A (1 - n) / (pi R_mean^2)).
+  const auto expected_discs =
+      static_cast<std::size_t>(std::floor(area * 0.88 / (std::numbers::pi * 0.4e-3 * 0.4e-3)));
+  EXPECT_EQ(s.disc_count(), expected_discs);
+  EXPECT_NEAR(g.summary["residual_stress_MPa"].get<double>(), 0.1, 0.02);
+
+  // Every disc whose centre is inside a polygon is its pebble; every other disc is mortar.
+  long pebbles = 0;
+  for (std::size_t i = 0; i < s.disc_count(); ++i) {
+    if (s.clump[i] < 0) continue;
+    ++pebbles;
+    const auto& poly = test::exact_polygon(s.clumps[s.clump[i]].vertices);
+    EXPECT_EQ(poly.bounded_side(test::ExactKernel::Point_2(s.x[i], s.y[i])),
+              CGAL::ON_BOUNDED_SIDE);
+  }
+  EXPECT_EQ(pebbles, g.summary["pebbles_kept"].get<long>() + g.summary["pebbles_dropped"].get<long>());
+
+  // Clump mass and inertia come from the polygon (density x area, density x polar moment).
+  for (const Clump& c : s.clumps) {
+    const double a = std::numbers::pi * c.equivalent_diameter * c.equivalent_diameter / 4;
+    EXPECT_NEAR(c.mass, 2650 * a, 1e-9 * c.mass);
+    EXPECT_GT(c.inertia, 0);
+  }
+}
+
+TEST(Generate, SameSeedSameSpecimenOtherSeedOther) {
+  const Generated a = generate(kSmall, "seed_a", 5), b = generate(kSmall, "seed_b", 5),
+                  c = generate(kSmall, "seed_c", 6);
+  EXPECT_EQ(a.specimen.x, b.specimen.x);
+  EXPECT_EQ(a.specimen.r, b.specimen.r);
+  EXPECT_EQ(a.specimen.clump, b.specimen.clump);
+  EXPECT_NE(a.specimen.x, c.specimen.x);
+}
+
+TEST(Generate, DiscSpecimenKeepsEverythingInside) {
+  const std::string toml = R"(
+[specimen]
+shape = "disc"
+diameter_mm = 50
+[gradation]
+type = "fuller"
+exponent = 0.45
+p_k = 0.7
+d_min_mm = 4
+d_max_mm = 10
+bin_count = 3
+[mortar]
+r_mean_mm = 0.4
+)";
+  const Generated g = generate(toml, "small_disc");
+  const Specimen& s = g.specimen;
+  EXPECT_EQ(s.container.shape, ContainerShape::Disc);
+  expect_valid_aggregates(s, 0.5e-3);
+  const double R = 25e-3;
+  for (std::size_t i = 0; i < s.disc_count(); ++i)
+    EXPECT_LT(std::hypot(s.x[i] - R, s.y[i] - R), R) << "disc " << i << " centre outside";
+}
