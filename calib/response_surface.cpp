@@ -203,6 +203,47 @@ Eigen::VectorXd ResponseSurface::natural_coefficients() const {
   return out;
 }
 
+LackOfFit ResponseSurface::lack_of_fit() const {
+  // Group runs by design point: sort the coded rows lexicographically, then split where
+  // consecutive rows differ.
+  constexpr double kSamePoint = 1e-9;
+  std::vector<int> order(static_cast<std::size_t>(runs_));
+  for (int r = 0; r < runs_; ++r) order[static_cast<std::size_t>(r)] = r;
+  auto less = [&](int a, int b) {
+    for (Eigen::Index j = 0; j < coded_x_.cols(); ++j) {
+      const double d = coded_x_(a, j) - coded_x_(b, j);
+      if (std::abs(d) > kSamePoint) return d < 0;
+    }
+    return false;
+  };
+  std::stable_sort(order.begin(), order.end(), less);
+  LackOfFit out;
+  int points = 0;
+  for (std::size_t begin = 0; begin < order.size();) {
+    std::size_t end = begin + 1;
+    while (end < order.size() && !less(order[begin], order[end])) ++end;
+    double mean = 0;
+    for (std::size_t i = begin; i < end; ++i) mean += y_(order[i]);
+    mean /= static_cast<double>(end - begin);
+    for (std::size_t i = begin; i < end; ++i) out.ss_pure_error += std::pow(y_(order[i]) - mean, 2);
+    out.df_pure_error += static_cast<int>(end - begin) - 1;
+    ++points;
+    begin = end;
+  }
+  out.df_lack_of_fit = points - static_cast<int>(terms_.size());
+  out.ss_lack_of_fit = std::max(0.0, rss_ - out.ss_pure_error);
+  out.available = out.df_pure_error > 0 && out.df_lack_of_fit > 0;
+  out.f = out.p = kNaN;
+  if (out.available) {
+    const double ms_pe = out.ss_pure_error / out.df_pure_error;
+    const double ms_lof = out.ss_lack_of_fit / out.df_lack_of_fit;
+    out.f =
+        ms_pe > 0 ? ms_lof / ms_pe : (ms_lof > 0 ? std::numeric_limits<double>::infinity() : kNaN);
+    out.p = f_upper_p(out.f, out.df_lack_of_fit, out.df_pure_error);
+  }
+  return out;
+}
+
 bool ResponseSurface::in_domain(const Eigen::VectorXd& x, double relative_slack) const {
   require(x.size() == factors(), "ResponseSurface::in_domain: x has ", x.size(), " entries for ",
           factors(), " factors");
@@ -254,6 +295,12 @@ std::string ResponseSurface::report() const {
   o << "R2 " << r_squared_ << ", adjusted R2 " << adjusted_r_squared_ << ", residual std error "
     << residual_std_error_ << "\n";
   o << "model F " << model_f_ << ", p " << model_p_ << "\n";
+  const LackOfFit lof = lack_of_fit();
+  if (lof.available)
+    o << "lack of fit F " << lof.f << " (df " << lof.df_lack_of_fit << ", " << lof.df_pure_error
+      << "), p " << lof.p << "\n";
+  else
+    o << "lack of fit: not testable (needs replicated runs and more distinct points than terms)\n";
   o << "domain of validity:\n";
   for (int i = 0; i < factors(); ++i)
     o << "  " << (factor_names_.empty() ? detail::numbered_name(i) : factor_names_[i]) << " in ["

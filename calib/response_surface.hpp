@@ -41,6 +41,21 @@ struct FactorSignificance {
   double p;
 };
 
+// Lack-of-fit test: with replicated runs (e.g. centre points run on independently generated
+// specimens) the residual splits into pure error (scatter between replicates, which no model can
+// remove) and lack of fit (what the model misses between distinct points). A significant F says
+// the model form is inadequate. Needs replicates (df_pure_error > 0) and more distinct points
+// than terms (df_lack_of_fit > 0); otherwise `available` is false and F, p are NaN.
+struct LackOfFit {
+  bool available = false;
+  double ss_pure_error = 0;
+  int df_pure_error = 0;
+  double ss_lack_of_fit = 0;
+  int df_lack_of_fit = 0;
+  double f = 0;
+  double p = 0;
+};
+
 struct SurfaceFitOptions {
   // Names of the factors, used in term names; default x1, x2, ...
   std::vector<std::string> factor_names;
@@ -82,6 +97,8 @@ class ResponseSurface {
   double model_f() const { return model_f_; }
   double model_p() const { return model_p_; }
   const Eigen::VectorXd& residuals() const { return residuals_; }
+  // Runs at the same design point (to 1e-9 of the coding half-width) count as replicates.
+  LackOfFit lack_of_fit() const;
 
   // Domain of validity: per-factor min/max of the fitted data. The polynomial is an interpolant
   // there; outside it is an extrapolation that the data do not support.

@@ -168,6 +168,53 @@ TEST(CalibResponseSurface, SignificanceReportsSortedByP) {
   EXPECT_LT(s.model_p(), 1e-6);
 }
 
+TEST(CalibResponseSurface, LackOfFitFromReplicates) {
+  // Five levels, three replicates each with offsets +d, 0, -d: pure error SS = 5 * 2 d^2 exactly.
+  const double d = 0.01;
+  const double levels[5] = {-1, -0.5, 0, 0.5, 1};
+  const double offsets[3] = {d, 0, -d};
+  Eigen::MatrixXd x(15, 1);
+  Eigen::VectorXd quadratic(15), cubic(15);
+  for (int l = 0; l < 5; ++l)
+    for (int r = 0; r < 3; ++r) {
+      const double v = levels[l];
+      x(3 * l + r, 0) = v;
+      quadratic(3 * l + r) = 1 + 2 * v + 3 * v * v + offsets[r];
+      cubic(3 * l + r) = 1 + 2 * v + 3 * v * v * v + offsets[r];
+    }
+  const auto adequate = ResponseSurface::fit(x, quadratic, SurfaceModel::kQuadratic);
+  const LackOfFit a = adequate.lack_of_fit();
+  ASSERT_TRUE(a.available);
+  EXPECT_EQ(a.df_pure_error, 10);
+  EXPECT_EQ(a.df_lack_of_fit, 2);
+  EXPECT_NEAR(a.ss_pure_error, 10 * d * d, 1e-15);
+  EXPECT_NEAR(a.ss_lack_of_fit, 0.0, 1e-15);
+  EXPECT_GT(a.p, 0.99);
+
+  const auto inadequate = ResponseSurface::fit(x, cubic, SurfaceModel::kQuadratic);
+  const LackOfFit b = inadequate.lack_of_fit();
+  ASSERT_TRUE(b.available);
+  EXPECT_NEAR(b.ss_pure_error, 10 * d * d, 1e-15);
+  EXPECT_NEAR(b.ss_pure_error + b.ss_lack_of_fit, inadequate.residual_sum_of_squares(), 1e-12);
+  // Lack of fit from the group means: sum over points of n (mean - prediction)^2.
+  double direct = 0;
+  for (double v : levels) {
+    const double mean = 1 + 2 * v + 3 * v * v * v;
+    direct += 3 * std::pow(mean - inadequate.predict(Eigen::VectorXd::Constant(1, v)), 2);
+  }
+  EXPECT_NEAR(b.ss_lack_of_fit, direct, 1e-12);
+  EXPECT_LT(b.p, 1e-6);
+  EXPECT_NE(inadequate.report().find("lack of fit F"), std::string::npos);
+
+  // A CCD with a single centre run has no replicates: no pure error, no test.
+  const Eigen::MatrixXd ccd = central_composite(2, {1, false, false});
+  const Eigen::VectorXd y = ccd.col(0).array().exp() + ccd.col(1).array();
+  const LackOfFit none = ResponseSurface::fit(ccd, y, SurfaceModel::kQuadratic).lack_of_fit();
+  EXPECT_FALSE(none.available);
+  EXPECT_EQ(none.df_pure_error, 0);
+  EXPECT_TRUE(std::isnan(none.p));
+}
+
 TEST(CalibResponseSurface, InterpolatingFitHasNoStatistics) {
   // Six runs, six quadratic terms in two factors: exact interpolation, nothing left to estimate
   // the error with.
