@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include <pagmo/algorithm.hpp>
@@ -92,6 +93,17 @@ void validate(const std::vector<InversionTarget>& targets, const Eigen::VectorXd
             " are not finite");
     require(lower(i) < upper(i), "invert: bounds of parameter ", i,
             " inverted or empty: lower = ", lower(i), ", upper = ", upper(i));
+  }
+  // One evaluation at the centre of the box catches a response that cannot take this x at all
+  // (e.g. a surface fitted on a different number of factors) before the optimiser hides it.
+  const Eigen::VectorXd centre = 0.5 * (lower + upper);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    try {
+      targets[i].response(centre);
+    } catch (const std::exception& e) {
+      detail::fail("invert: targets[", i, "] ('", targets[i].name, "') cannot be evaluated at ",
+                   lower.size(), " parameters: ", e.what());
+    }
   }
   require(options.population >= 8, "invert: population = ", options.population, " must be >= 8");
   require(options.generations >= 1, "invert: generations must be >= 1");

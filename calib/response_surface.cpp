@@ -105,9 +105,9 @@ ResponseSurface ResponseSurface::fit(const Eigen::MatrixXd& x, const Eigen::Vect
     upper = options.coding_upper;
   }
   for (int i = 0; i < k; ++i)
-    require(upper(i) > lower(i), "ResponseSurface::fit: factor ", i,
-            " has no range to code (lower = ", lower(i), ", upper = ", upper(i),
-            "); a factor constant in the data has no estimable effect");
+    require(std::isfinite(lower(i)) && std::isfinite(upper(i)) && upper(i) > lower(i),
+            "ResponseSurface::fit: factor ", i, " has no range to code (lower = ", lower(i),
+            ", upper = ", upper(i), "); a factor constant in the data has no estimable effect");
   s.centre_ = 0.5 * (lower + upper);
   s.half_width_ = 0.5 * (upper - lower);
 

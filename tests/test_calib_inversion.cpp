@@ -237,6 +237,11 @@ TEST(CalibInversion, BadInput) {
   targets = quadratic_targets();
   targets[0].response = nullptr;
   expect_message([&] { invert(targets, lower, upper); }, "no response function");
+  // A surface of three factors cannot be inverted over two parameters.
+  const Eigen::MatrixXd x3 = full_factorial_2level(3);
+  const auto s3 = ResponseSurface::fit(x3, x3.rowwise().sum(), SurfaceModel::kLinear);
+  expect_message([&] { invert({surface_target("E", s3, 1.0)}, lower, upper); },
+                 "targets[0] ('E') cannot be evaluated at 2 parameters");
   InversionOptions small;
   small.population = 5;
   expect_message([&] { invert(quadratic_targets(), lower, upper, small); }, "population = 5");
