@@ -88,7 +88,7 @@ Eigen::MatrixXd plackett_burman(int runs, int factors) {
 }
 
 Eigen::MatrixXd orthogonal_array_3level(int n) {
-  require(n >= 1 && n <= 8, "orthogonal_array_3level: n = ", n, " must be between 1 and 8");
+  require(n >= 1 && n <= 6, "orthogonal_array_3level: n = ", n, " must be between 1 and 6");
   // Columns as coefficient vectors over GF(3), in Taguchi's order (see header).
   std::vector<std::vector<int>> columns;
   for (int k = 0; k < n; ++k) {

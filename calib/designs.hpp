@@ -26,10 +26,10 @@ Eigen::MatrixXd full_factorial_2level(int k);
 // keeps only the first columns.
 Eigen::MatrixXd plackett_burman(int runs, int factors = -1);
 
-// Three-level orthogonal array L_{3^n}((3^n - 1) / 2 columns) built over GF(3): run u ranges over
-// GF(3)^n, column a over the nonzero vectors of GF(3)^n whose last nonzero entry is 1, and the
-// entry is the level a . u mod 3 (0, 1, 2 -> -1, 0, +1). Column order follows Taguchi's: each
-// new basic column e_k is followed by m * c + e_k (m = 1, 2) for every earlier column c, which
+// Three-level orthogonal array L_{3^n}((3^n - 1) / 2 columns), n = 1..6, built over GF(3): run u
+// ranges over GF(3)^n, column a over the nonzero vectors of GF(3)^n whose last nonzero entry is 1,
+// and the entry is the level a . u mod 3 (0, 1, 2 -> -1, 0, +1). Column order follows Taguchi's:
+// each new basic column e_k is followed by m * c + e_k (m = 1, 2) for every earlier column c, which
 // reproduces the published L9 table exactly. Strength 2: every pair of columns shows each of the
 // nine level pairs equally often.
 Eigen::MatrixXd orthogonal_array_3level(int n);
