@@ -1,6 +1,7 @@
 #pragma once
 // Compaction of aggregates with rigid-body physics (Box2D 2.4), used when random placement
 // jams before the target content (SPEC 3.3).
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct CompactionResult {
   // target content on success).
   double area_fraction_reached = 0;
   long steps = 0;
+  // Aggregates that failed the exact checks after the Box2D run and were placed again by
+  // random trials among the others (a handful at most, else the compaction fails).
+  std::size_t replaced = 0;
   std::string message;  // what happened, for the user
 };
 

@@ -122,7 +122,10 @@ TEST_P(RandomPlacement, NoOverlapAllInsideIndependentCheck) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Moulds, RandomPlacement,
-                         ::testing::Values(ContainerShape::Rectangle, ContainerShape::Disc));
+                         ::testing::Values(ContainerShape::Rectangle, ContainerShape::Disc),
+                         [](const auto& info) {
+                           return info.param == ContainerShape::Disc ? "Disc" : "Rectangle";
+                         });
 
 TEST(RandomPlacementLimits, BoundedTrialsAndDeterministic) {
   Container mould{ContainerShape::Rectangle, 0.05, 0.05};
