@@ -41,13 +41,15 @@ Outcome run(const Container& mould, double phi, std::uint64_t seed, long max_ste
   const auto t0 = std::chrono::steady_clock::now();
   out.result = compact(mould, out.draws, out.start, cc, shaking);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double random_area = 0;
+  for (const auto& p : out.start.placed) random_area += test::shoelace(p.vertices);
   std::printf(
       "[compaction] %s %.0f x %.0f mm, target %.3f: %s, reached %.3f, %ld steps, "
-      "%.2f s, %zu aggregates (%zu left by random placement)\n  %s\n",
+      "%.2f s, %zu aggregates (random placement: %zu left, content %.3f)\n  %s\n",
       mould.shape == ContainerShape::Disc ? "disc" : "rectangle", mould.width * 1e3,
       mould.height * 1e3, phi, out.result.success ? "success" : "failure",
       out.result.area_fraction_reached, out.result.steps, out.seconds, out.draws.size(),
-      out.start.unplaced.size(), out.result.message.c_str());
+      out.start.unplaced.size(), random_area / mould.area(), out.result.message.c_str());
   return out;
 }
 
