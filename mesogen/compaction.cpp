@@ -194,19 +194,56 @@ std::string fraction(double f) {
   return buf;
 }
 
-// Exact check of a final configuration: the aggregates that violate the clearance or the gap
-// (of a violating pair, the later draw, i.e. the smaller aggregate).
-std::vector<std::size_t> violators(const std::vector<PlacedAggregate>& placed,
-                                   const Container& mould, const CompactionControls& c) {
+}  // namespace
+
+RepairResult check_and_repair(const Container& mould, const std::vector<AggregateDraw>& draws,
+                              std::vector<PlacedAggregate> placed,
+                              const CompactionControls& controls, std::size_t max_replaced,
+                              Rng& rng) {
+  RepairResult out;
   std::set<std::size_t> bad;
   for (std::size_t k = 0; k < placed.size(); ++k)
-    if (!inside_with_clearance(placed[k].vertices, mould, c.boundary_clearance)) bad.insert(k);
-  for (const auto& [i, j] : pairs_closer_than(placed, c.min_gap))
+    if (!inside_with_clearance(placed[k].vertices, mould, controls.boundary_clearance))
+      bad.insert(k);
+  for (const auto& [i, j] : pairs_closer_than(placed, controls.min_gap))
     if (!bad.count(i) && !bad.count(j)) bad.insert(placed[i].draw > placed[j].draw ? i : j);
-  return {bad.begin(), bad.end()};
-}
+  out.violators = bad.size();
 
-}  // namespace
+  std::vector<PlacedAggregate> kept;
+  std::vector<std::size_t> redo;
+  for (std::size_t k = 0; k < placed.size(); ++k) {
+    if (bad.count(k)) {
+      redo.push_back(placed[k].draw);
+    } else {
+      out.valid_area += std::abs(signed_area(placed[k].vertices));
+      kept.push_back(std::move(placed[k]));
+    }
+  }
+  if (redo.size() > max_replaced) {
+    out.message = std::to_string(redo.size()) +
+                  " aggregates fail the exact clearance/gap checks, more than the " +
+                  std::to_string(max_replaced) + " that may be placed again";
+    return out;
+  }
+  std::sort(redo.begin(), redo.end());  // largest first
+  PlacementControls pc;
+  pc.min_gap = controls.min_gap;
+  pc.boundary_clearance = controls.boundary_clearance;
+  pc.max_trials_per_aggregate = kRepairTrials;
+  PlacementResult r = place_among(mould, draws, redo, std::move(kept), pc, rng);
+  for (std::size_t k = placed.size() - redo.size(); k < r.placed.size(); ++k)
+    out.valid_area += std::abs(signed_area(r.placed[k].vertices));
+  if (!r.unplaced.empty()) {
+    out.message = std::to_string(r.unplaced.size()) + " of the " + std::to_string(redo.size()) +
+                  " aggregates that failed the exact checks found no room again";
+    return out;
+  }
+  std::sort(r.placed.begin(), r.placed.end(),
+            [](const auto& a, const auto& b) { return a.draw < b.draw; });
+  out.placed = std::move(r.placed);
+  out.success = true;
+  return out;
+}
 
 CompactionResult compact(const Container& mould, const std::vector<AggregateDraw>& draws,
                          const PlacementResult& start, const CompactionControls& controls,
@@ -239,16 +276,18 @@ CompactionResult compact(const Container& mould, const std::vector<AggregateDraw
   CompactionResult result;
   const double target = aggregate_area / mould.area();
 
-  auto sorted_by_draw = [](std::vector<PlacedAggregate> v) {
-    std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.draw < b.draw; });
-    return v;
-  };
-  if (start.unplaced.empty() && violators(start.placed, mould, controls).empty()) {
-    result.success = true;
-    result.placed = sorted_by_draw(start.placed);
-    result.area_fraction_reached = target;
-    result.message = "all aggregates placed by random trials; no compaction needed";
-    return result;
+  const auto max_replaced = std::max<std::size_t>(
+      3, static_cast<std::size_t>(kRepairShare * static_cast<double>(draws.size())));
+  if (start.unplaced.empty()) {
+    RepairResult done = check_and_repair(mould, draws, start.placed, controls, max_replaced, rng);
+    if (done.success) {
+      result.success = true;
+      result.placed = std::move(done.placed);
+      result.replaced = done.violators;
+      result.area_fraction_reached = target;
+      result.message = "all aggregates placed by random trials; no compaction needed";
+      return result;
+    }
   }
 
   // Box2D frame: origin at the mould centre, L metres per unit.
@@ -432,56 +471,25 @@ CompactionResult compact(const Container& mould, const std::vector<AggregateDraw
     p.orientation = std::remainder(p.orientation + angle, 2 * std::numbers::pi);
   }
 
-  // The exact checks decide; a few violators are re-placed by random trials in the gaps.
-  const std::vector<std::size_t> bad = violators(final_state, mould, controls);
-  const auto repair_limit = std::max<std::size_t>(
-      3, static_cast<std::size_t>(kRepairShare * static_cast<double>(draws.size())));
-  if (!bad.empty()) {
-    if (bad.size() > repair_limit) {
-      result.area_fraction_reached = target;
-      result.message = "compaction reached the mould but " + std::to_string(bad.size()) +
-                       " aggregates fail the exact clearance/gap checks (more than the " +
-                       std::to_string(repair_limit) + " that may be re-placed)";
-      return result;
-    }
-    std::vector<PlacedAggregate> kept;
-    std::vector<std::size_t> redo;
-    for (std::size_t k = 0, b = 0; k < final_state.size(); ++k) {
-      if (b < bad.size() && bad[b] == k) {
-        redo.push_back(final_state[k].draw);
-        ++b;
-      } else {
-        kept.push_back(final_state[k]);
-      }
-    }
-    std::sort(redo.begin(), redo.end());  // largest first
-    PlacementControls pc;
-    pc.min_gap = controls.min_gap;
-    pc.boundary_clearance = controls.boundary_clearance;
-    pc.max_trials_per_aggregate = kRepairTrials;
-    PlacementResult r = place_among(mould, draws, redo, std::move(kept), pc, rng);
-    if (!r.unplaced.empty()) {
-      double placed_area = 0;
-      for (const auto& p : r.placed) placed_area += std::abs(signed_area(p.vertices));
-      result.area_fraction_reached = placed_area / mould.area();
-      result.message = "compaction reached the mould but " + std::to_string(r.unplaced.size()) +
-                       " of the aggregates that failed the exact checks found no room again; "
-                       "area fraction validly placed " +
-                       fraction(result.area_fraction_reached) + " of " + fraction(target);
-      return result;
-    }
-    result.replaced = redo.size();
-    final_state = std::move(r.placed);
+  // The exact checks decide; a few violators are placed again by random trials in the gaps.
+  RepairResult checked =
+      check_and_repair(mould, draws, std::move(final_state), controls, max_replaced, rng);
+  if (!checked.success) {
+    result.area_fraction_reached = checked.valid_area / mould.area();
+    result.message = "compaction reached the mould but " + checked.message +
+                     "; area fraction validly placed " + fraction(result.area_fraction_reached) +
+                     " of " + fraction(target);
+    return result;
   }
-
   result.success = true;
-  result.placed = sorted_by_draw(std::move(final_state));
+  result.placed = std::move(checked.placed);
+  result.replaced = checked.violators;
   result.area_fraction_reached = target;
-  result.message =
-      "compacted " + std::to_string(draws.size()) + " aggregates to area fraction " +
-      fraction(target) + " in " + std::to_string(result.steps) + " Box2D steps" +
-      (result.replaced ? "; " + std::to_string(result.replaced) + " re-placed after the exact check"
-                       : std::string());
+  result.message = "compacted " + std::to_string(draws.size()) + " aggregates to area fraction " +
+                   fraction(target) + " in " + std::to_string(result.steps) + " Box2D steps" +
+                   (result.replaced ? "; " + std::to_string(result.replaced) +
+                                          " placed again after the exact check"
+                                    : std::string());
   return result;
 }
 

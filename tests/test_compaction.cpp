@@ -174,6 +174,57 @@ TEST(Compaction, SameSeedSameResult) {
       << "another seed, another specimen";
 }
 
+// Moves an aggregate rigidly so that its centroid lands on `to`.
+void move_to(PlacedAggregate& p, const Eigen::Vector2d& to) {
+  const Eigen::Vector2d shift = to - p.centroid;
+  for (auto& v : p.vertices) v += shift;
+  p.centroid = to;
+}
+
+TEST(CheckAndRepair, ReplacesTheFewViolatorsExactly) {
+  const Container mould{ContainerShape::Rectangle, 0.1, 0.1};
+  Rng rng(11);
+  const auto draws = test::fuller_draws(mould.area(), 0.40, kEdges, rng);
+  PlacementControls pc;
+  pc.min_gap = 0.1e-3;
+  pc.boundary_clearance = 0.2e-3;
+  const PlacementResult valid = place_randomly(mould, draws, pc, rng);
+  ASSERT_TRUE(valid.unplaced.empty());
+  CompactionControls cc;
+  cc.min_gap = pc.min_gap;
+  cc.boundary_clearance = pc.boundary_clearance;
+
+  const RepairResult untouched = check_and_repair(mould, draws, valid.placed, cc, 3, rng);
+  ASSERT_TRUE(untouched.success);
+  EXPECT_EQ(untouched.violators, 0u);
+  for (std::size_t k = 0; k < draws.size(); ++k)
+    EXPECT_EQ(untouched.placed[k].vertices, valid.placed[k].vertices);
+
+  // The smallest aggregate dropped onto the largest, the next smallest across the left wall.
+  std::vector<PlacedAggregate> broken = valid.placed;
+  const std::size_t n = broken.size();
+  move_to(broken[n - 1], broken[0].centroid);
+  move_to(broken[n - 2], {0.0, 0.05});
+  ASSERT_GT(test::independent_check(broken, mould, cc.min_gap, cc.boundary_clearance).total(), 0);
+
+  const RepairResult refused = check_and_repair(mould, draws, broken, cc, 1, rng);
+  EXPECT_FALSE(refused.success);
+  EXPECT_EQ(refused.violators, 2u);
+  EXPECT_NE(refused.message.find("more than the 1"), std::string::npos) << refused.message;
+  EXPECT_LT(refused.valid_area, test::total_area(draws));
+
+  const RepairResult repaired = check_and_repair(mould, draws, broken, cc, 3, rng);
+  ASSERT_TRUE(repaired.success) << repaired.message;
+  EXPECT_EQ(repaired.violators, 2u);
+  ASSERT_EQ(repaired.placed.size(), draws.size());
+  for (std::size_t k = 0; k < draws.size(); ++k) EXPECT_EQ(repaired.placed[k].draw, k);
+  EXPECT_EQ(repaired.placed[0].vertices, valid.placed[0].vertices) << "the big one stays";
+  EXPECT_NEAR(repaired.valid_area, test::total_area(draws), 1e-12);
+  EXPECT_EQ(
+      test::independent_check(repaired.placed, mould, cc.min_gap, cc.boundary_clearance).total(),
+      0);
+}
+
 TEST(Compaction, RejectsInconsistentStart) {
   const Container mould{ContainerShape::Rectangle, 0.05, 0.05};
   Rng rng(1);
