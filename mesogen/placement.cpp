@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -172,6 +173,13 @@ class Grid {
   unsigned long query_ = 0;
 };
 
+// Cell size (m): the largest bounding-circle diameter (`largest` is a radius) plus the gap;
+// never zero, even for degenerate input.
+double grid_cell(const Box& domain, double largest, double gap) {
+  const double extent = std::max(domain.x1 - domain.x0, domain.y1 - domain.y0);
+  return std::max({2 * largest + gap, 1e-9 * extent, std::numeric_limits<double>::min()});
+}
+
 Box grown(Box b, double d) {
   return {b.x0 - d, b.y0 - d, b.x1 + d, b.y1 + d};
 }
@@ -284,7 +292,7 @@ PlacementResult place_among(const Container& mould, const std::vector<AggregateD
     largest = std::max(largest, bounding_radius(draws[i].shape, Eigen::Vector2d::Zero()));
   }
   const double slack = 1e-12 * std::max({domain.x1 - domain.x0, domain.y1 - domain.y0, largest});
-  Grid grid(domain, std::max(2 * largest + gap, 1e-9 * (domain.x1 - domain.x0)));
+  Grid grid(domain, grid_cell(domain, largest, gap));
   for (std::size_t k = 0; k < result.placed.size(); ++k)
     grid.insert(k, bbox(result.placed[k].vertices));
 
@@ -361,7 +369,7 @@ std::vector<std::pair<std::size_t, std::size_t>> pairs_closer_than(
     domain = unite(domain, boxes.back());
   }
   const double slack = 1e-12 * std::max({domain.x1 - domain.x0, domain.y1 - domain.y0, largest});
-  Grid grid(domain, std::max(2 * largest + gap, 1e-9 * (domain.x1 - domain.x0) + 1e-300));
+  Grid grid(domain, grid_cell(domain, largest, gap));
   for (std::size_t k = 0; k < polygons.size(); ++k) grid.insert(k, boxes[k]);
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     grid.for_each_near(grown(boxes[i], gap), [&](std::size_t j) {
