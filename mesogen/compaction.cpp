@@ -102,6 +102,55 @@ Polygon inflate(const Polygon& p, double r) {
   return out;
 }
 
+// Box2D welds vertices closer than half a linear slop and aborts on a polygon left with fewer
+// than three. Neighbours closer than one linear slop are therefore merged first, into the
+// intersection of the lines of the edges before and after them: the polygon stays convex and
+// still contains the original one. Only where that point would stick out (a needle tip made of
+// two close vertices) is the second vertex dropped, which gives up less than a linear slop,
+// well inside the cushion (and the exact check has the last word anyway).
+Polygon merge_close_vertices(Polygon p) {
+  const double tol = b2_linearSlop;
+  for (bool merged = true; merged && p.size() > 3;) {
+    merged = false;
+    const std::size_t n = p.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t j = (i + 1) % n;
+      if ((p[j] - p[i]).norm() >= tol) continue;
+      const Eigen::Vector2d& before = p[(i + n - 1) % n];
+      const Eigen::Vector2d& after = p[(j + 1) % n];
+      const Eigen::Vector2d d1 = p[i] - before, d2 = after - p[j];
+      const double cross = d1.x() * d2.y() - d1.y() * d2.x();
+      Eigen::Vector2d x = p[i];
+      if (cross > 0) {  // lines meet ahead of p[i]
+        const Eigen::Vector2d w = p[j] - before;
+        const Eigen::Vector2d meet = before + (w.x() * d2.y() - w.y() * d2.x()) / cross * d1;
+        if ((meet - p[i]).norm() <= 4 * tol) x = meet;
+      }
+      p[i] = x;
+      p.erase(p.begin() + static_cast<std::ptrdiff_t>(j));
+      merged = true;
+      break;
+    }
+  }
+  return p;
+}
+
+// Would b2PolygonShape::Set keep at least three vertices (it welds those closer than half a
+// linear slop and aborts otherwise) and a positive area?
+bool box2d_accepts(const std::vector<b2Vec2>& piece) {
+  const float weld = 0.5f * b2_linearSlop;
+  std::vector<b2Vec2> kept;
+  for (const b2Vec2& v : piece)
+    if (std::none_of(kept.begin(), kept.end(),
+                     [&](const b2Vec2& k) { return b2DistanceSquared(v, k) < weld * weld; }))
+      kept.push_back(v);
+  if (kept.size() < 3) return false;
+  float twice_area = 0;
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    twice_area += b2Cross(kept[i], kept[(i + 1) % kept.size()]);
+  return twice_area > 1e3f * b2_epsilon;
+}
+
 // Box2D polygons have at most b2_maxPolygonVertices vertices: a larger convex polygon is cut
 // into a fan of convex pieces around its first vertex, fixtures of one body.
 std::vector<std::vector<b2Vec2>> fan_pieces(const Polygon& p) {
@@ -380,7 +429,8 @@ CompactionResult compact(const Container& mould, const std::vector<AggregateDraw
     const Eigen::Vector2d at = (p.centroid - gas_centre) / L;
     def.position.Set(float(at.x()), float(at.y()));
     b2Body* body = world.CreateBody(&def);
-    for (const auto& piece : fan_pieces(inflate(local, inflation_u))) {
+    for (const auto& piece : fan_pieces(merge_close_vertices(inflate(local, inflation_u)))) {
+      if (!box2d_accepts(piece)) continue;  // a sliver of the fan; the exact check remains
       b2PolygonShape shape;
       shape.Set(piece.data(), static_cast<int>(piece.size()));
       b2FixtureDef fd;
@@ -388,6 +438,12 @@ CompactionResult compact(const Container& mould, const std::vector<AggregateDraw
       fd.density = 1;  // uniform: masses proportional to areas
       fd.friction = kFriction;
       body->CreateFixture(&fd);
+    }
+    if (!body->GetFixtureList()) {
+      result.message = "compaction impossible: aggregate " + std::to_string(p.draw) +
+                       " is too small for Box2D next to the largest one (" +
+                       mm(p.equivalent_diameter) + " against " + mm(largest) + ")";
+      return result;
     }
     bodies.push_back(body);
     body_radius_u.push_back(radius_u);

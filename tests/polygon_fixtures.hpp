@@ -32,12 +32,13 @@ inline double shoelace(const std::vector<Eigen::Vector2d>& p) {
   return 0.5 * a;
 }
 
-// Convex polygon with 4..6 random points on a circle, hulled, scaled to the area of the circle
-// of diameter d (m), CCW, centroid at the origin.
-inline std::vector<Eigen::Vector2d> random_convex(double d, Rng& rng) {
+// Convex polygon with min_n..max_n random points on a circle, hulled, scaled to the area of
+// the circle of diameter d (m), CCW, centroid at the origin.
+inline std::vector<Eigen::Vector2d> random_convex(double d, Rng& rng, int min_n = 4,
+                                                  int max_n = 6) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   for (;;) {
-    const int n = static_cast<int>(std::lround(4 + 2 * rng.uniform()));
+    const int n = static_cast<int>(std::lround(min_n + (max_n - min_n) * rng.uniform()));
     std::vector<K::Point_2> pts, hull;
     for (int i = 0; i < n; ++i) {
       const double t = 2 * std::numbers::pi * rng.uniform();
@@ -66,8 +67,8 @@ inline std::vector<Eigen::Vector2d> random_convex(double d, Rng& rng) {
 // from the bin-mean circle, diameters uniform in the bin, all sizes then scaled by a common
 // factor so the total is exactly phi * area. Sorted largest first.
 inline std::vector<mesogen::AggregateDraw> fuller_draws(double area, double phi,
-                                                        const std::vector<double>& edges,
-                                                        Rng& rng) {
+                                                        const std::vector<double>& edges, Rng& rng,
+                                                        int min_n = 4, int max_n = 6) {
   auto pc = [&](double d) {
     const double x = d / edges.back();
     return 1.065 * std::sqrt(x) - 0.053 * std::pow(x, 4) - 0.012 * std::pow(x, 6) -
@@ -83,7 +84,7 @@ inline std::vector<mesogen::AggregateDraw> fuller_draws(double area, double phi,
       mesogen::AggregateDraw d;
       d.equivalent_diameter = rng.uniform(edges[b], edges[b + 1]);
       d.bin = static_cast<int>(b);
-      d.shape = random_convex(d.equivalent_diameter, rng);
+      d.shape = random_convex(d.equivalent_diameter, rng, min_n, max_n);
       draws.push_back(std::move(d));
     }
   }

@@ -125,6 +125,30 @@ TEST(Compaction, ZeroAndLargeGaps) {
   EXPECT_GE(test::smallest_distance(wide.result.placed, 2e-3), 0.5e-3);
 }
 
+TEST(Compaction, RoundedGravelWithManyVertices) {
+  // 12-24 points on a circle: hulls above Box2D's 8 vertices, so every body is a fan of
+  // several fixtures.
+  const Container mould{ContainerShape::Rectangle, 0.06, 0.06};
+  Rng rng(17);
+  Rng shapes = rng.split();
+  const auto draws = test::fuller_draws(mould.area(), 0.70, kEdges, shapes, 12, 24);
+  std::size_t many = 0;
+  for (const auto& d : draws) many += d.shape.size() > 8;
+  EXPECT_GT(many, draws.size() / 2);
+  PlacementControls pc;
+  pc.min_gap = 0.1e-3;
+  pc.boundary_clearance = 0.2e-3;
+  pc.max_trials_per_aggregate = 500;
+  const PlacementResult start = place_randomly(mould, draws, pc, rng);
+  ASSERT_FALSE(start.unplaced.empty());
+  CompactionControls cc;
+  cc.min_gap = pc.min_gap;
+  cc.boundary_clearance = pc.boundary_clearance;
+  const CompactionResult r = compact(mould, draws, start, cc, rng);
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_EQ(test::independent_check(r.placed, mould, cc.min_gap, cc.boundary_clearance).total(), 0);
+}
+
 TEST(Compaction, NothingToDoWhenRandomPlacementSucceeded) {
   const Container mould{ContainerShape::Disc, 0.1, 0.1};
   const Outcome r = run(mould, 0.40, 43, 200000);
