@@ -2,6 +2,7 @@
 // Random sequential placement of aggregates, largest first (SPEC 3.3). Candidates are found
 // with a uniform grid; acceptance uses exact CGAL predicates.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,11 +24,13 @@ struct PlacedAggregate {
   Eigen::Vector2d centroid{0, 0};         // m
   double equivalent_diameter = 0;         // m
   int bin = 0;
+  std::size_t draw = 0;    // index of the AggregateDraw it was made from
+  double orientation = 0;  // rad, rotation applied to the draw's shape
 };
 
 struct PlacementControls {
-  double boundary_clearance = 0;    // m, minimum distance from every vertex/edge to the mould
-  double min_gap = 0;               // m, minimum distance between two aggregates
+  double boundary_clearance = 0;  // m, minimum distance from every vertex/edge to the mould
+  double min_gap = 0;             // m, minimum distance between two aggregates
   long max_trials_per_aggregate = 2000;
 };
 
@@ -41,6 +44,19 @@ struct PlacementResult {
 // aggregate.
 PlacementResult place_randomly(const Container& mould, const std::vector<AggregateDraw>& draws,
                                const PlacementControls& controls, Rng& rng);
+
+// The same random trials for the draws listed in `to_place` (in that order), among aggregates
+// that are already in the mould (`fixed`, kept as they are and returned first in `placed`).
+// Used to fill the gaps left after compaction and by the compaction's own start.
+PlacementResult place_among(const Container& mould, const std::vector<AggregateDraw>& draws,
+                            const std::vector<std::size_t>& to_place,
+                            std::vector<PlacedAggregate> fixed, const PlacementControls& controls,
+                            Rng& rng);
+
+// The pairs (i < j) of `polygons` that are not separated_by(gap), found through the spatial
+// grid, so the cost grows with the number of polygons, not its square.
+std::vector<std::pair<std::size_t, std::size_t>> pairs_closer_than(
+    const std::vector<PlacedAggregate>& polygons, double gap);
 
 // Exact tests (CGAL exact predicates).
 // Every point of the polygon at distance >= clearance from the mould boundary, inside it.
