@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/specimen_file.hpp"
-#include "exact_geometry.hpp"
+#include "polygon_fixtures.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/gradation.hpp"
 
@@ -56,16 +56,20 @@ porosity = 0.12
 sigma0_MPa = 0.1
 )";
 
-void expect_valid_aggregates(const Specimen& s, double gap) {
-  for (std::size_t a = 0; a < s.clumps.size(); ++a) {
-    EXPECT_TRUE(test::exact_inside(s.clumps[a].vertices, s.container)) << "aggregate " << a;
-    for (std::size_t b = a + 1; b < s.clumps.size(); ++b) {
-      ASSERT_FALSE(test::exact_overlap(s.clumps[a].vertices, s.clumps[b].vertices))
-          << "aggregates " << a << " and " << b << " overlap";
-      EXPECT_GE(test::exact_squared_distance(s.clumps[a].vertices, s.clumps[b].vertices),
-                test::ExactKernel::FT(gap) * test::ExactKernel::FT(gap) * (1 - 1e-9));
-    }
+// The independent exact checker of the placement tests, applied to the clumps as written.
+void expect_valid_aggregates(const Specimen& s, double gap, double clearance) {
+  std::vector<mesogen::PlacedAggregate> placed;
+  for (const Clump& c : s.clumps) {
+    mesogen::PlacedAggregate p;
+    p.vertices = c.vertices;
+    p.centroid = c.centroid;
+    p.equivalent_diameter = c.equivalent_diameter;
+    placed.push_back(p);
   }
+  const test::Violations v = test::independent_check(placed, s.container, gap, clearance);
+  EXPECT_EQ(v.outside, 0);
+  EXPECT_EQ(v.overlapping, 0);
+  EXPECT_EQ(v.too_close, 0);
 }
 
 }  // namespace
@@ -89,7 +93,7 @@ TEST(Generate, SmallRectangleHoldsEveryPromise) {
     total += n;
   }
   EXPECT_EQ(static_cast<long>(s.clumps.size()), total);
-  expect_valid_aggregates(s, 0.4e-3);
+  expect_valid_aggregates(s, 0.4e-3, 0.4e-3);
 
   // Disc count: floor(A (1 - n) / (pi R_mean^2)).
   const auto expected_discs =
@@ -102,9 +106,9 @@ TEST(Generate, SmallRectangleHoldsEveryPromise) {
   for (std::size_t i = 0; i < s.disc_count(); ++i) {
     if (s.clump[i] < 0) continue;
     ++pebbles;
-    const auto& poly = test::exact_polygon(s.clumps[s.clump[i]].vertices);
-    EXPECT_EQ(poly.bounded_side(test::ExactKernel::Point_2(s.x[i], s.y[i])),
-              CGAL::ON_BOUNDED_SIDE);
+    CGAL::Polygon_2<test::Epeck> poly;
+    for (const auto& v : s.clumps[s.clump[i]].vertices) poly.push_back({v.x(), v.y()});
+    EXPECT_EQ(poly.bounded_side({s.x[i], s.y[i]}), CGAL::ON_BOUNDED_SIDE);
   }
   EXPECT_EQ(pebbles, g.summary["pebbles_kept"].get<long>() + g.summary["pebbles_dropped"].get<long>());
 
@@ -143,7 +147,7 @@ r_mean_mm = 0.4
   const Generated g = generate(toml, "small_disc");
   const Specimen& s = g.specimen;
   EXPECT_EQ(s.container.shape, ContainerShape::Disc);
-  expect_valid_aggregates(s, 0.5e-3);
+  expect_valid_aggregates(s, 0.5e-3, 0.5e-3);
   const double R = 25e-3;
   for (std::size_t i = 0; i < s.disc_count(); ++i)
     EXPECT_LT(std::hypot(s.x[i] - R, s.y[i] - R), R) << "disc " << i << " centre outside";
