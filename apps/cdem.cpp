@@ -23,7 +23,12 @@ int main(int argc, char** argv) {
       cdem::apps::add_generate_command(app),
   };
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; every command-line mistake exits 1, whatever CLI11's code.
+    return app.exit(e) == 0 ? 0 : 1;
+  }
 
   try {
     for (const auto& action : actions) action();
