@@ -194,6 +194,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   dem::WorldSettings settings;
   settings.local_damping = 0.7;
   settings.density_scaling = true;
+  settings.threads = std::max(1, c.threads);
   // A wide skin while the discs travel far (expansion), a tight one for the servo phase.
   settings.skin = 0.5 * c.r_mean;
   const dem::LinearContact law{c.emod, 1.0, 0.0};
