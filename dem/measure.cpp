@@ -123,7 +123,7 @@ double unbalanced_force_ratio(const World& world) {
   for (const ContactForces* f : {&world.pair_forces, &world.wall_forces})
     for (std::size_t k = 0; k < f->normal.size(); ++k) {
       if (f->overlap[k] <= 0) continue;
-      sum_contact += std::hypot(f->fx[k], f->fy[k]);
+      sum_contact += std::sqrt(f->fx[k] * f->fx[k] + f->fy[k] * f->fy[k]);
       ++contacts;
     }
   if (contacts == 0 || sum_contact <= 0) return 0;

@@ -19,8 +19,8 @@ using std::numbers::pi;
 // Unbalanced-force ratio below which the expanded packing is considered calm.
 constexpr double kExpandedRatio = 2e-2;
 // Logarithmic decompression rates (fraction of the contact stress shed per cycle, affinely).
-constexpr double kFastDecompression = 2e-3;
-constexpr double kSlowDecompression = 1e-3;
+constexpr double kFastDecompression = 4e-3;
+constexpr double kSlowDecompression = 2e-3;
 constexpr double kFastDecompressionAbove = 100.0;  // x sigma0
 constexpr double kHoldGain = 0.5;     // fraction of the wall-stress error corrected per interval
 constexpr long kCheckEvery = 50;      // cycles between convergence checks
@@ -39,6 +39,9 @@ void check_controls(const Container& mould, const MortarPackingControls& c) {
   if (!(c.emod > 0)) bad("emod", "must be > 0");
   if (!(c.density > 0)) bad("density", "must be > 0");
   if (c.max_steps <= 0) bad("max_steps", "must be > 0");
+  if (!(c.local_damping >= 0 && c.local_damping < 1)) bad("local_damping", "must be in [0, 1)");
+  if (c.expansion_steps <= 0) bad("expansion_steps", "must be > 0");
+  if (c.wall_segments < 3) bad("wall_segments", "must be >= 3");
 }
 
 // Random sequential addition at half radius: uniform centres, each disc wholly inside the mould
@@ -192,7 +195,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   // one critical step. The packing is judged only in static equilibrium, which does not depend
   // on mass, so this changes the path to equilibrium but not the equilibrium reached.
   dem::WorldSettings settings;
-  settings.local_damping = 0.7;
+  settings.local_damping = c.local_damping;
   settings.density_scaling = true;
   settings.threads = std::max(1, c.threads);
   // A wide skin while the discs travel far (expansion), a tight one for the servo phase.
@@ -247,6 +250,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
           sigma > kFastDecompressionAbove * c.sigma0 ? kFastDecompression : kSlowDecompression;
       world.scale_radii(1.0 - fraction * sigma / stiffness);
       holding = sigma <= c.sigma0 + band;
+
     } else if (hold_rate != 0) {
       world.scale_radii(1.0 + hold_rate);
     }
