@@ -26,14 +26,15 @@ long disc_disc_kernel(const Discs& d, const NeighborList& list, ContactStates& s
   const std::int32_t* second = list.second.data();
   const double *x = d.x.data(), *y = d.y.data(), *r = d.r.data();
   const double *vx = d.vx.data(), *vy = d.vy.data(), *w = d.omega.data();
-  const DiscMaterial* material = d.material.data();
+  const std::uint8_t* contact_class = list.contact_class.data();
   double* shear = state.shear_force.data();
   double *fn_out = out.normal.data(), *ov_out = out.overlap.data();
   double *fx_out = out.fx.data(), *fy_out = out.fy.data();
   double *m1_out = out.moment1.data(), *m2_out = out.moment2.data();
   long bad = static_cast<long>(count);
   // Branch-free over touching / not touching (about half the candidates touch, so a branch
-  // would be mispredicted often): a pair apart gets zero force and loses its shear history.
+  // would be mispredicted often): a pair apart has zero normal force, so the Coulomb limit
+  // zeroes its shear force too (the history is forgotten when a contact opens).
 #pragma omp parallel for schedule(static) reduction(min : bad) num_threads(threads) if (threads > 1)
   for (std::size_t k = 0; k < count; ++k) {
     const std::int32_t i = first[k], j = second[k];
@@ -41,13 +42,13 @@ long disc_disc_kernel(const Discs& d, const NeighborList& list, ContactStates& s
     const double ri = r[i], rj = r[j], reach = ri + rj;
     const double dist = std::sqrt(dx * dx + dy * dy);
     const double overlap = reach - dist;
-    const bool touching = overlap > 0;
+    const double touching_overlap = std::max(overlap, 0.0);
     if (!(overlap <= guard * std::min(ri, rj))) bad = std::min(bad, static_cast<long>(k));
     const double inv = dist > 0 ? 1.0 / dist : 0.0;
     const double nx = dx * inv, ny = dy * inv;
-    const LinearContact& law = laws[static_cast<int>(material[i]) + static_cast<int>(material[j])];
+    const LinearContact& law = laws[contact_class[k]];
     const double kn = law.normal_stiffness(ri, rj);
-    const double fn = touching ? kn * overlap : 0.0;
+    const double fn = kn * touching_overlap;
     const double arm_i = ri - 0.5 * overlap, arm_j = rj - 0.5 * overlap;
     double fs = 0;
     if (law.mu > 0) {
@@ -55,11 +56,10 @@ long disc_disc_kernel(const Discs& d, const NeighborList& list, ContactStates& s
       const double vt = (vx[j] - vx[i]) * -ny + (vy[j] - vy[i]) * nx - arm_j * w[j] - arm_i * w[i];
       fs = coulomb_limit(linear_shear_increment(shear[k], law.shear_stiffness(kn), vt, dt), law.mu,
                          fn);
-      fs = touching ? fs : 0.0;
     }
     shear[k] = fs;
     fn_out[k] = fn;
-    ov_out[k] = touching ? overlap : 0.0;
+    ov_out[k] = touching_overlap;
     fx_out[k] = fn * nx - fs * ny;
     fy_out[k] = fn * ny + fs * nx;
     m1_out[k] = -arm_i * fs;

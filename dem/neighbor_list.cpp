@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dem/linear_contact.hpp"
+
 namespace cdem::dem {
 
 namespace {
@@ -114,6 +116,10 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
   std::swap(keys, new_keys_);
   std::swap(state, new_state_);
   split_keys(keys, first, second);
+  contact_class.resize(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    contact_class[k] = static_cast<std::uint8_t>(disc_pair_class(
+        static_cast<int>(discs.material[first[k]]), static_cast<int>(discs.material[second[k]])));
 
   // Disc-wall: the cells under each wall's box widened by the contact range.
   new_keys_.clear();

@@ -32,6 +32,7 @@ class NeighborList {
   // the persistent state aligned with them.
   std::vector<std::uint64_t> keys;
   std::vector<std::int32_t> first, second;
+  std::vector<std::uint8_t> contact_class;  // ContactClass of the pair (from the materials)
   ContactStates state;
   // Disc-wall candidates: keys (disc << 32 | wall) sorted ascending.
   std::vector<std::uint64_t> wall_keys;

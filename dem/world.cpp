@@ -233,7 +233,8 @@ void World::step() {
 double World::sum_body_force() const {
   double sum = 0;
   for (std::size_t b = 0; b < bodies.size(); ++b)
-    if (!bodies.prescribed[b]) sum += std::sqrt(bodies.fx[b] * bodies.fx[b] + bodies.fy[b] * bodies.fy[b]);
+    if (!bodies.prescribed[b])
+      sum += std::sqrt(bodies.fx[b] * bodies.fx[b] + bodies.fy[b] * bodies.fy[b]);
   return sum;
 }
 
