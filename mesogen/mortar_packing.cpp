@@ -243,14 +243,13 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   while (world.step_count() < c.max_steps) {
     world.step();
     const double sigma = world.last_force_pass().virial / (2.0 * area);
+    if (!holding) holding = sigma <= c.sigma0 + band;
     if (!holding) {
       if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
         stiffness = touching_stiffness(world, area);
       const double fraction =
           sigma > kFastDecompressionAbove * c.sigma0 ? kFastDecompression : kSlowDecompression;
-      world.scale_radii(1.0 - fraction * sigma / stiffness);
-      holding = sigma <= c.sigma0 + band;
-
+      if (stiffness > 0) world.scale_radii(1.0 - fraction * sigma / stiffness);
     } else if (hold_rate != 0) {
       world.scale_radii(1.0 + hold_rate);
     }
