@@ -56,8 +56,9 @@ class World {
     for (long s = 0; s < steps; ++s) step();
   }
 
-  // Multiplies every disc radius (and clump pebble offset is left alone: meant for free-disc
-  // packings) by `factor`; physical mass and inertia follow (r^2, r^4).
+  // Multiplies every disc radius by `factor` (radius expansion / radius servo of free-disc
+  // packings); the mass and inertia of free discs follow (r^2, r^4). Clump pebble offsets and
+  // clump inertias are left alone.
   void scale_radii(double factor);
   // Sets a body's velocity (m/s, rad/s) and carries it to its discs at once, so the next force
   // pass already sees it (prescribed motions, initial conditions).
@@ -69,7 +70,7 @@ class World {
   double time() const { return time_; }
   long step_count() const { return steps_; }
   const ForcePassResult& last_force_pass() const { return last_pass_; }
-  // sum over bodies of |F| of the last force pass (undamped resultants).
+  // Sum over free bodies of |F| of the last force pass (undamped resultants), N.
   double sum_body_force() const;
 
   WorldSettings settings;
