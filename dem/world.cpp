@@ -137,7 +137,9 @@ void World::update_time_step() {
   stiffness_.assign(nb, 0.0);
   rot_stiffness_.assign(nb, 0.0);
   const auto arm = [&](std::int32_t d) {
-    return std::hypot(discs.offset_x[d], discs.offset_y[d]) + discs.r[d];
+    return std::sqrt(discs.offset_x[d] * discs.offset_x[d] +
+                     discs.offset_y[d] * discs.offset_y[d]) +
+           discs.r[d];
   };
   for (std::size_t k = 0; k < neighbors.keys.size(); ++k) {
     const std::int32_t i = neighbors.first[k], j = neighbors.second[k];
