@@ -34,8 +34,8 @@ World jostling_discs(int threads) {
 TEST(Determinism, OneAndTwoThreadsGiveTheSameBits) {
   World one = jostling_discs(1);
   World two = jostling_discs(2);
-  one.cycle(300);
-  two.cycle(300);
+  one.cycle(150);
+  two.cycle(150);
   ASSERT_GT(one.last_force_pass().touching, 1000);
   EXPECT_EQ(one.discs.x, two.discs.x);
   EXPECT_EQ(one.discs.y, two.discs.y);
