@@ -32,16 +32,24 @@ void split_keys(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t
 
 }  // namespace
 
-bool NeighborList::needs_rebuild(const Discs& discs) const {
+bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls) const {
   const std::size_t n = discs.size();
-  if (x0_.size() != n) return true;
+  if (x0_.size() != n || wall_ax0_.size() != walls.size()) return true;
   double move2 = 0, grow = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double dx = discs.x[i] - x0_[i], dy = discs.y[i] - y0_[i];
     move2 = std::max(move2, dx * dx + dy * dy);
     grow = std::max(grow, discs.r[i] - r0_[i]);
   }
-  return std::sqrt(move2) + grow > 0.5 * skin;
+  double wall_move2 = 0;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const double dx = walls.ax[w] - wall_ax0_[w], dy = walls.ay[w] - wall_ay0_[w];
+    wall_move2 = std::max(wall_move2, dx * dx + dy * dy);
+  }
+  // A disc-disc gap closes by at most 2 (move + growth), a disc-wall gap by move + growth +
+  // wall move; either must stay below the skin.
+  const double disc = std::sqrt(move2) + grow;
+  return std::max(2.0 * disc, disc + std::sqrt(wall_move2)) > skin;
 }
 
 void NeighborList::build_grid(const Discs& discs) {
@@ -163,6 +171,8 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
   x0_ = discs.x;
   y0_ = discs.y;
   r0_ = discs.r;
+  wall_ax0_ = walls.ax;
+  wall_ay0_ = walls.ay;
   ++build_count;
 }
 

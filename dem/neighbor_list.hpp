@@ -1,6 +1,7 @@
 #pragma once
 // Contact detection: a uniform cell grid builds a Verlet list of candidate pairs (discs whose
-// gap is below the skin), kept until some disc has moved or grown by more than skin/2. Pairs are
+// gap is below the skin), kept until some disc has moved or grown by more than skin/2 (or a wall
+// has come that close). Pairs are
 // sorted by key (i < j), so the per-pair state (shear force now, bond state later) is carried
 // across a rebuild by merging the old and new sorted keys.
 #include <cstdint>
@@ -42,15 +43,16 @@ class NeighborList {
   double skin = 0;  // m, extra gap under which a pair is kept as a candidate
   long build_count = 0;
 
-  // True when a disc has moved or grown so much since the last build that a pair not in the list
-  // could be touching: max displacement + max radius growth > skin / 2.
-  bool needs_rebuild(const Discs& discs) const;
+  // True when a disc (or wall) has moved or a disc grown so much since the last build that a
+  // pair not in the list could be touching: 2 (max displacement + max radius growth) > skin, or
+  // that plus the largest wall displacement > skin for disc-wall pairs. Walls only translate.
+  bool needs_rebuild(const Discs& discs, const Walls& walls) const;
   void build(const Discs& discs, const Walls& walls);
 
  private:
   void build_grid(const Discs& discs);
-  // Reference positions and radii of the last build.
-  std::vector<double> x0_, y0_, r0_;
+  // Reference positions and radii of the last build (walls: first end point).
+  std::vector<double> x0_, y0_, r0_, wall_ax0_, wall_ay0_;
   // Cell grid (counting sort of the active discs by cell).
   double cell_ = 0, xmin_ = 0, ymin_ = 0;
   int nx_ = 0, ny_ = 0;

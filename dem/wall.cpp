@@ -20,6 +20,15 @@ double Walls::length(int w) const {
   return std::hypot(bx[w] - ax[w], by[w] - ay[w]);
 }
 
+void move_walls(Walls& walls, double dt) {
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    walls.ax[w] += dt * walls.vx[w];
+    walls.ay[w] += dt * walls.vy[w];
+    walls.bx[w] += dt * walls.vx[w];
+    walls.by[w] += dt * walls.vy[w];
+  }
+}
+
 void add_container_walls(Walls& walls, const Container& mould, int polygon_sides) {
   const double w = mould.width, h = mould.height;
   if (mould.shape == ContainerShape::Rectangle) {

@@ -33,6 +33,10 @@ inline double closest_on_segment(double ax, double ay, double bx, double by, dou
   return s;
 }
 
+// Translates every wall by its prescribed velocity over dt (same scheme as the discs: the
+// position at t + dt from the velocity of the step).
+void move_walls(Walls& walls, double dt);
+
 // The walls of a mould: a rectangle [0,W]x[0,H] gives 4 walls (bottom, right, top, left); a
 // disc gives a regular polygon of `polygon_sides` segments whose area equals the circle's, so
 // porosities computed with Container::area() match the space the discs actually have.

@@ -198,7 +198,7 @@ void World::fail(const std::string& what, long disc, const std::string& cause) c
 }
 
 void World::step() {
-  if (rebuild_pending_ || neighbors.needs_rebuild(discs)) rebuild();
+  if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls)) rebuild();
   last_pass_ =
       compute_contact_forces(discs, walls, neighbors, pair_forces, wall_forces, settings.laws, dt_,
                              settings.max_overlap_ratio, settings.threads);
@@ -228,6 +228,7 @@ void World::step() {
   if (bad >= 0)
     fail("has a non-finite position or velocity", bodies.first_disc[bad],
          "time step above the critical step, a zero mass or radius, or a non-finite input");
+  move_walls(walls, dt_);
   time_ += dt_;
   ++steps_;
 }

@@ -109,6 +109,31 @@ TEST(DiscWallImpact, ContactTimeAndRestitution) {
   EXPECT_NEAR(w.bodies.vy[0], 0.0, 1e-12);
 }
 
+TEST(DiscWallImpact, MovingWallKicksADiscAtRestToTwiceItsSpeed) {
+  // Elastic bounce seen from the wall's frame: the disc leaves at 2 v_wall. The wall's force
+  // impulse equals the disc's momentum change.
+  const double r = 0.8e-3;
+  const double m = kRho * pi * r * r;
+  const double tc = pi * std::sqrt(m / (2 * kE));
+  const double dt = tc / 5000;
+  const double v = 0.3;
+  WorldSettings s = undamped(dt);
+  s.skin = 1e-8;  // a thin skin, so the moving wall must trigger rebuilds to find the disc
+  World w(s);
+  const int wall = w.add_wall(0, -0.01, 0, 0.01);
+  w.walls.vx[wall] = v;
+  w.add_disc(r + 1000 * v * dt, 0, r, kRho);  // reached after 1,000 steps
+  double impulse = 0;
+  for (int n = 0; n < 8000; ++n) {
+    w.step();
+    impulse += -w.walls.fx[wall] * dt;  // force on the disc = -force on the wall
+  }
+  EXPECT_GT(w.neighbors.build_count, 1);
+  EXPECT_NEAR(w.bodies.vx[0] / (2 * v), 1.0, 1e-3);
+  EXPECT_NEAR(impulse / (m * 2 * v), 1.0, 1e-3);
+  EXPECT_NEAR(w.walls.ax[wall], v * w.time(), 1e-12);
+}
+
 TEST(DiscWallImpact, EndPointOfSegmentIsAContact) {
   // A disc dropping onto the end point of a segment is pushed away along the line from the
   // end point to its centre.
