@@ -40,8 +40,8 @@ long integrate(Bodies& b, Discs& d, double dt, double alpha, int threads) {
     b.x[k] += dt * b.vx[k];
     b.y[k] += dt * b.vy[k];
     b.theta[k] += dt * b.omega[k];
-    if (!std::isfinite(b.x[k] + b.y[k] + b.theta[k] + b.vx[k] + b.vy[k] + b.omega[k]))
-      bad = std::min(bad, static_cast<long>(k));
+    // Positions integrate the velocities, so a non-finite velocity shows in them already.
+    if (!std::isfinite(b.x[k] + b.y[k] + b.theta[k])) bad = std::min(bad, static_cast<long>(k));
     const std::int32_t first = b.first_disc[k];
     if (!b.is_clump[k]) {
       d.x[first] = b.x[k];
