@@ -4,9 +4,8 @@
 
 namespace cdem::dem {
 
-void gather_body_forces(Bodies& b, const Discs& d, int threads) {
+void gather_body_forces(Bodies& b, const Discs& d) {
   const std::size_t n = b.size();
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
   for (std::size_t k = 0; k < n; ++k) {
     const std::int32_t first = b.first_disc[k];
     if (!b.is_clump[k]) {
@@ -27,10 +26,9 @@ void gather_body_forces(Bodies& b, const Discs& d, int threads) {
   }
 }
 
-long integrate(Bodies& b, Discs& d, double dt, double alpha, int threads) {
+long integrate(Bodies& b, Discs& d, double dt, double alpha) {
   const std::size_t n = b.size();
   long bad = static_cast<long>(n);
-#pragma omp parallel for schedule(static) reduction(min : bad) num_threads(threads) if (threads > 1)
   for (std::size_t k = 0; k < n; ++k) {
     if (!b.prescribed[k]) {
       b.vx[k] += dt * b.inv_mass_dyn[k] * local_damping(b.fx[k], b.vx[k], alpha);

@@ -223,8 +223,8 @@ void World::step() {
          "time step too large for the contact stiffness (check the safety factor, fixed step or "
          "density scaling), a loading velocity far too high, or discs created overlapping");
   }
-  gather_body_forces(bodies, discs, settings.threads);
-  const long bad = integrate(bodies, discs, dt_, settings.local_damping, settings.threads);
+  gather_body_forces(bodies, discs);
+  const long bad = integrate(bodies, discs, dt_, settings.local_damping);
   if (bad >= 0)
     fail("has a non-finite position or velocity", bodies.first_disc[bad],
          "time step above the critical step, a zero mass or radius, or a non-finite input");

@@ -28,8 +28,8 @@ struct WorldSettings {
   double skin = 0;                 // m; 0 = 0.2 x the mean radius at the first build
   double max_overlap_ratio = 1.0;  // guard: overlap / min radius beyond which the run stops
   ContactLaws laws{};              // by ContactClass (M, ITZ, A, W)
-  // OpenMP threads for the pair kernel and the integration. Every sum runs in a fixed order
-  // whatever the count, so results are bitwise the same for any value.
+  // OpenMP threads for the disc-disc pair kernel (the one parallel loop of a cycle). Every sum
+  // runs in a fixed order whatever the count, so results are bitwise the same for any value.
   int threads = 1;
 };
 
