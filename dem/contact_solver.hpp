@@ -1,0 +1,48 @@
+#pragma once
+// The force pass: every candidate pair is evaluated with its contact law (one independent
+// kernel per pair, writing only that pair's slots), then the pair forces are scattered onto the
+// discs and walls in the fixed sorted pair order. The split keeps the result independent of the
+// number of threads: the kernel may run in parallel, the sums always run in the same order.
+#include <array>
+#include <vector>
+
+#include "dem/discs.hpp"
+#include "dem/linear_contact.hpp"
+#include "dem/neighbor_list.hpp"
+#include "dem/wall.hpp"
+
+namespace cdem::dem {
+
+// Per-pair results of the last force pass, aligned with the neighbour list (pairs that do not
+// touch hold zeros).
+struct ContactForces {
+  std::vector<double> normal;            // N, normal force, repulsive positive
+  std::vector<double> overlap;           // m, positive when touching
+  std::vector<double> fx, fy;            // N, force on the second disc (on the disc for walls)
+  std::vector<double> moment1, moment2;  // N m, about the centres of the first and second disc
+  std::vector<double> cx, cy;            // m, contact point (walls only)
+};
+
+struct ForcePassResult {
+  // Sum over touching contacts of (branch vector . force), the trace of the contact stress
+  // tensor times the area (N m). Disc-disc branch = centre to centre; disc-wall branch =
+  // centre to contact point.
+  double virial = 0;
+  long touching = 0;  // disc-disc contacts with overlap > 0
+  long touching_walls = 0;
+  // Guard: index of the first pair (or wall pair) whose overlap exceeds the allowed fraction of
+  // the smaller radius, -1 if none.
+  long bad_pair = -1, bad_wall_pair = -1;
+};
+
+using ContactLaws = std::array<LinearContact, kContactClassCount>;
+
+// Evaluates all contacts, updates the persistent shear state and fills forces, discs.fx/fy/
+// moment and the wall force sums. `max_overlap_ratio` is the instability-guard threshold;
+// `threads` > 1 runs the pair kernel with OpenMP (results do not depend on it).
+ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, NeighborList& list,
+                                       ContactForces& pair, ContactForces& wall_pair,
+                                       const ContactLaws& laws, double dt, double max_overlap_ratio,
+                                       int threads = 1);
+
+}  // namespace cdem::dem

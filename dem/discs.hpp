@@ -1,0 +1,27 @@
+#pragma once
+// Discs, structure of arrays laid out for the contact loop: everything a contact needs sits in
+// contiguous per-disc arrays (position, radius, velocity of the owning body carried to the disc),
+// so the pair kernel never looks at the bodies.
+#include <cstdint>
+#include <vector>
+
+namespace cdem::dem {
+
+// The material a disc belongs to; a pair's contact class follows from the two materials.
+enum class DiscMaterial : std::uint8_t { Mortar = 0, Aggregate = 1 };
+
+struct Discs {
+  std::vector<double> x, y;                // m, centre, world frame
+  std::vector<double> r;                   // m, radius
+  std::vector<double> vx, vy, omega;       // m/s, rad/s: velocity of the disc centre and spin
+  std::vector<double> offset_x, offset_y;  // m, centre in the body frame (0 for free discs)
+  std::vector<std::int32_t> body;          // owning body
+  std::vector<std::uint8_t> active;        // 0: never in contact detection (buried pebble)
+  std::vector<DiscMaterial> material;
+  // Force and moment (about the disc centre) from the contacts of the last force pass.
+  std::vector<double> fx, fy, moment;  // N, N m
+
+  std::size_t size() const { return x.size(); }
+};
+
+}  // namespace cdem::dem

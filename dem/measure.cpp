@@ -1,0 +1,176 @@
+#include "dem/measure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace cdem::dem {
+
+namespace {
+
+// Calls visit(contact point, branch vector, force on the second body) for every touching
+// contact; disc-wall branches run from the disc centre to the contact point and, the disc being
+// the second body, carry the sign that makes the sum compression positive.
+template <class Visit>
+void for_each_contact(const World& w, Visit&& visit) {
+  const Discs& d = w.discs;
+  const NeighborList& nl = w.neighbors;
+  for (std::size_t k = 0; k < w.pair_forces.normal.size(); ++k) {
+    if (w.pair_forces.overlap[k] <= 0) continue;
+    const std::int32_t i = nl.first[k], j = nl.second[k];
+    const double lx = d.x[j] - d.x[i], ly = d.y[j] - d.y[i];
+    const double len = std::hypot(lx, ly);
+    const double arm = d.r[i] - 0.5 * w.pair_forces.overlap[k];
+    const Eigen::Vector2d point(d.x[i] + lx * arm / len, d.y[i] + ly * arm / len);
+    visit(point, Eigen::Vector2d(lx, ly),
+          Eigen::Vector2d(w.pair_forces.fx[k], w.pair_forces.fy[k]));
+  }
+  for (std::size_t k = 0; k < w.wall_forces.normal.size(); ++k) {
+    if (w.wall_forces.overlap[k] <= 0) continue;
+    const std::int32_t i = nl.wall_disc[k];
+    const Eigen::Vector2d point(w.wall_forces.cx[k], w.wall_forces.cy[k]);
+    const Eigen::Vector2d branch(d.x[i] - point.x(), d.y[i] - point.y());
+    visit(point, branch, Eigen::Vector2d(w.wall_forces.fx[k], w.wall_forces.fy[k]));
+  }
+}
+
+}  // namespace
+
+Eigen::Matrix2d contact_stress(const World& world, double area) {
+  Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
+  for_each_contact(world, [&](const Eigen::Vector2d&, const Eigen::Vector2d& l,
+                              const Eigen::Vector2d& f) { s += l * f.transpose(); });
+  return s / area;
+}
+
+Eigen::Matrix2d contact_stress(const World& world, const Box& region) {
+  Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
+  for_each_contact(
+      world, [&](const Eigen::Vector2d& c, const Eigen::Vector2d& l, const Eigen::Vector2d& f) {
+        if (region.contains(c.x(), c.y())) s += l * f.transpose();
+      });
+  return s / region.area();
+}
+
+Eigen::Matrix2d wall_stress(const World& world, double area, const Eigen::Vector2d& origin) {
+  const Walls& w = world.walls;
+  Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    s(0, 0) += w.sxx[k] - origin.x() * w.fx[k];
+    s(0, 1) += w.sxy[k] - origin.x() * w.fy[k];
+    s(1, 0) += w.syx[k] - origin.y() * w.fx[k];
+    s(1, 1) += w.syy[k] - origin.y() * w.fy[k];
+  }
+  return s / area;
+}
+
+double wall_normal_stress(const World& world, int wall) {
+  const Walls& w = world.walls;
+  const double ex = w.bx[wall] - w.ax[wall], ey = w.by[wall] - w.ay[wall];
+  const double len = std::hypot(ex, ey);
+  // The force on the wall along either normal; discs on one side push it outward.
+  return std::abs(w.fx[wall] * -ey + w.fy[wall] * ex) / (len * len) / kThickness;
+}
+
+OverlapStatistics overlap_statistics(const World& world) {
+  OverlapStatistics o;
+  double sum = 0, sum_ratio = 0;
+  for (std::size_t k = 0; k < world.pair_forces.overlap.size(); ++k) {
+    const double ov = world.pair_forces.overlap[k];
+    if (ov <= 0) continue;
+    const double rmin =
+        std::min(world.discs.r[world.neighbors.first[k]], world.discs.r[world.neighbors.second[k]]);
+    ++o.contacts;
+    sum += ov;
+    sum_ratio += ov / rmin;
+    o.max_ratio = std::max(o.max_ratio, ov / rmin);
+  }
+  if (o.contacts) {
+    o.mean_overlap = sum / static_cast<double>(o.contacts);
+    o.mean_ratio = sum_ratio / static_cast<double>(o.contacts);
+  }
+  return o;
+}
+
+double coordination_number(const World& world) {
+  long active = 0;
+  for (auto a : world.discs.active) active += a ? 1 : 0;
+  if (!active) return 0;
+  long touching = 0;
+  for (double ov : world.pair_forces.overlap) touching += ov > 0 ? 1 : 0;
+  return 2.0 * static_cast<double>(touching) / static_cast<double>(active);
+}
+
+long floating_disc_count(const World& world, int min_contacts) {
+  std::vector<int> count(world.discs.size(), 0);
+  for (std::size_t k = 0; k < world.pair_forces.overlap.size(); ++k) {
+    if (world.pair_forces.overlap[k] <= 0) continue;
+    ++count[world.neighbors.first[k]];
+    ++count[world.neighbors.second[k]];
+  }
+  for (std::size_t k = 0; k < world.wall_forces.overlap.size(); ++k)
+    if (world.wall_forces.overlap[k] > 0) ++count[world.neighbors.wall_disc[k]];
+  long floating = 0;
+  for (std::size_t i = 0; i < world.discs.size(); ++i)
+    if (world.discs.active[i] && count[i] < min_contacts) ++floating;
+  return floating;
+}
+
+double unbalanced_force_ratio(const World& world) {
+  double sum_contact = 0;
+  long contacts = 0;
+  for (const ContactForces* f : {&world.pair_forces, &world.wall_forces})
+    for (std::size_t k = 0; k < f->normal.size(); ++k) {
+      if (f->overlap[k] <= 0) continue;
+      sum_contact += std::sqrt(f->fx[k] * f->fx[k] + f->fy[k] * f->fy[k]);
+      ++contacts;
+    }
+  if (contacts == 0 || sum_contact <= 0) return 0;
+  long free_bodies = 0;
+  for (auto pr : world.bodies.prescribed) free_bodies += pr ? 0 : 1;
+  if (!free_bodies) return 0;
+  const double mean_net = world.sum_body_force() / static_cast<double>(free_bodies);
+  return mean_net / (sum_contact / static_cast<double>(contacts));
+}
+
+double kinetic_energy(const World& world) {
+  const Bodies& b = world.bodies;
+  double e = 0;
+  for (std::size_t k = 0; k < b.size(); ++k)
+    e += 0.5 * (b.mass[k] * (b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]) +
+                b.inertia[k] * b.omega[k] * b.omega[k]);
+  return e;
+}
+
+double strain_energy(const World& world) {
+  const Discs& d = world.discs;
+  const ContactLaws& laws = world.settings.laws;
+  double e = 0;
+  for (std::size_t k = 0; k < world.pair_forces.normal.size(); ++k) {
+    if (world.pair_forces.overlap[k] <= 0) continue;
+    const std::int32_t i = world.neighbors.first[k], j = world.neighbors.second[k];
+    const LinearContact& law =
+        laws[static_cast<int>(d.material[i]) + static_cast<int>(d.material[j])];
+    const double kn = law.normal_stiffness(d.r[i], d.r[j]);
+    const double fn = world.pair_forces.normal[k], fs = world.neighbors.state.shear_force[k];
+    e += 0.5 * fn * fn / kn + 0.5 * fs * fs / law.shear_stiffness(kn);
+  }
+  const LinearContact& wl = laws[static_cast<int>(ContactClass::Wall)];
+  const double kn = wl.wall_normal_stiffness();
+  for (std::size_t k = 0; k < world.wall_forces.normal.size(); ++k) {
+    if (world.wall_forces.overlap[k] <= 0) continue;
+    const double fn = world.wall_forces.normal[k], fs = world.neighbors.wall_state.shear_force[k];
+    e += 0.5 * fn * fn / kn + 0.5 * fs * fs / wl.shear_stiffness(kn);
+  }
+  return e;
+}
+
+double porosity(const World& world, double area) {
+  double solid = 0;
+  for (std::size_t i = 0; i < world.discs.size(); ++i)
+    if (world.discs.active[i]) solid += std::numbers::pi * world.discs.r[i] * world.discs.r[i];
+  return 1.0 - solid / area;
+}
+
+}  // namespace cdem::dem

@@ -1,0 +1,179 @@
+#include "dem/neighbor_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dem/linear_contact.hpp"
+
+namespace cdem::dem {
+
+namespace {
+
+// Carries the state of keys present in both lists; new keys start from zero state.
+void merge_state(const std::vector<std::uint64_t>& old_keys, const ContactStates& old_state,
+                 const std::vector<std::uint64_t>& new_keys, ContactStates& new_state) {
+  new_state.resize(new_keys.size());
+  std::size_t o = 0;
+  for (std::size_t n = 0; n < new_keys.size(); ++n) {
+    while (o < old_keys.size() && old_keys[o] < new_keys[n]) ++o;
+    if (o < old_keys.size() && old_keys[o] == new_keys[n]) new_state.copy_from(n, old_state, o);
+  }
+}
+
+void split_keys(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& a,
+                std::vector<std::int32_t>& b) {
+  a.resize(keys.size());
+  b.resize(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    a[k] = static_cast<std::int32_t>(keys[k] >> 32);
+    b[k] = static_cast<std::int32_t>(keys[k] & 0xffffffffu);
+  }
+}
+
+}  // namespace
+
+bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls) const {
+  const std::size_t n = discs.size();
+  if (x0_.size() != n || wall_ax0_.size() != walls.size()) return true;
+  double move2 = 0, grow = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dx = discs.x[i] - x0_[i], dy = discs.y[i] - y0_[i];
+    move2 = std::max(move2, dx * dx + dy * dy);
+    grow = std::max(grow, discs.r[i] - r0_[i]);
+  }
+  double wall_move2 = 0;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const double dx = walls.ax[w] - wall_ax0_[w], dy = walls.ay[w] - wall_ay0_[w];
+    wall_move2 = std::max(wall_move2, dx * dx + dy * dy);
+  }
+  // A disc-disc gap closes by at most 2 (move + growth), a disc-wall gap by move + growth +
+  // wall move; either must stay below the skin.
+  const double disc = std::sqrt(move2) + grow;
+  return std::max(2.0 * disc, disc + std::sqrt(wall_move2)) > skin;
+}
+
+void NeighborList::build_grid(const Discs& discs) {
+  const std::size_t n = discs.size();
+  double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY, rmax = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!discs.active[i]) continue;
+    xmin = std::min(xmin, discs.x[i]);
+    xmax = std::max(xmax, discs.x[i]);
+    ymin = std::min(ymin, discs.y[i]);
+    ymax = std::max(ymax, discs.y[i]);
+    rmax = std::max(rmax, discs.r[i]);
+  }
+  if (!(xmax >= xmin)) xmin = xmax = ymin = ymax = 0;
+  // A cell at least one contact range wide, so every partner is in the 3x3 block; the grid is
+  // kept to about one cell per disc so a few stray discs cannot blow up its size.
+  cell_ = std::max(2.0 * rmax + skin, 1e-12);
+  const double area_cells = (xmax - xmin + cell_) * (ymax - ymin + cell_) / (cell_ * cell_);
+  if (area_cells > 4.0 * static_cast<double>(n) + 16.0)
+    cell_ *= std::sqrt(area_cells / (4.0 * static_cast<double>(n) + 16.0));
+  xmin_ = xmin;
+  ymin_ = ymin;
+  nx_ = static_cast<int>((xmax - xmin) / cell_) + 1;
+  ny_ = static_cast<int>((ymax - ymin) / cell_) + 1;
+  const std::size_t cells = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+  cell_start_.assign(cells + 1, 0);
+  disc_cell_.assign(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!discs.active[i]) continue;
+    const int cx = std::clamp(static_cast<int>((discs.x[i] - xmin_) / cell_), 0, nx_ - 1);
+    const int cy = std::clamp(static_cast<int>((discs.y[i] - ymin_) / cell_), 0, ny_ - 1);
+    disc_cell_[i] = cy * nx_ + cx;
+    ++cell_start_[disc_cell_[i] + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_discs_.resize(cell_start_[cells]);
+  scratch_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  // Discs in ascending index within each cell, so the build order is deterministic.
+  for (std::size_t i = 0; i < n; ++i)
+    if (disc_cell_[i] >= 0) cell_discs_[scratch_[disc_cell_[i]]++] = static_cast<std::int32_t>(i);
+}
+
+void NeighborList::build(const Discs& discs, const Walls& walls) {
+  const std::size_t n = discs.size();
+  build_grid(discs);
+
+  // Disc-disc: for each disc i (ascending) the partners j > i of the 3x3 block, sorted, so the
+  // concatenation is sorted without a global sort.
+  new_keys_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (disc_cell_[i] < 0) continue;
+    const int cx = disc_cell_[i] % nx_, cy = disc_cell_[i] / nx_;
+    const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + skin;
+    const std::int32_t bi = discs.body[i];
+    const std::size_t start = new_keys_.size();
+    for (int gy = std::max(cy - 1, 0); gy <= std::min(cy + 1, ny_ - 1); ++gy) {
+      for (int gx = std::max(cx - 1, 0); gx <= std::min(cx + 1, nx_ - 1); ++gx) {
+        const int c = gy * nx_ + gx;
+        for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+          const std::int32_t j = cell_discs_[k];
+          if (static_cast<std::size_t>(j) <= i || discs.body[j] == bi) continue;
+          const double dx = discs.x[j] - xi, dy = discs.y[j] - yi, reach = ri + discs.r[j];
+          if (dx * dx + dy * dy < reach * reach)
+            new_keys_.push_back(
+                pair_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)));
+        }
+      }
+    }
+    std::sort(new_keys_.begin() + static_cast<std::ptrdiff_t>(start), new_keys_.end());
+  }
+  merge_state(keys, state, new_keys_, new_state_);
+  std::swap(keys, new_keys_);
+  std::swap(state, new_state_);
+  split_keys(keys, first, second);
+  contact_class.resize(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    contact_class[k] = static_cast<std::uint8_t>(disc_pair_class(
+        static_cast<int>(discs.material[first[k]]), static_cast<int>(discs.material[second[k]])));
+
+  // Disc-wall: the cells under each wall's box widened by the contact range.
+  new_keys_.clear();
+  double rmax = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (discs.active[i]) rmax = std::max(rmax, discs.r[i]);
+  const double reach = rmax + skin;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const auto cell_x = [&](double v) {
+      return std::clamp(static_cast<int>(std::floor((v - xmin_) / cell_)), 0, nx_ - 1);
+    };
+    const auto cell_y = [&](double v) {
+      return std::clamp(static_cast<int>(std::floor((v - ymin_) / cell_)), 0, ny_ - 1);
+    };
+    const int gx0 = cell_x(std::min(walls.ax[w], walls.bx[w]) - reach);
+    const int gx1 = cell_x(std::max(walls.ax[w], walls.bx[w]) + reach);
+    const int gy0 = cell_y(std::min(walls.ay[w], walls.by[w]) - reach);
+    const int gy1 = cell_y(std::max(walls.ay[w], walls.by[w]) + reach);
+    for (int gy = gy0; gy <= gy1; ++gy) {
+      for (int gx = gx0; gx <= gx1; ++gx) {
+        const int c = gy * nx_ + gx;
+        for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+          const std::int32_t d = cell_discs_[k];
+          double px, py;
+          closest_on_segment(walls.ax[w], walls.ay[w], walls.bx[w], walls.by[w], discs.x[d],
+                             discs.y[d], px, py);
+          const double dx = discs.x[d] - px, dy = discs.y[d] - py, range = discs.r[d] + skin;
+          if (dx * dx + dy * dy < range * range)
+            new_keys_.push_back(
+                pair_key(static_cast<std::uint32_t>(d), static_cast<std::uint32_t>(w)));
+        }
+      }
+    }
+  }
+  std::sort(new_keys_.begin(), new_keys_.end());
+  merge_state(wall_keys, wall_state, new_keys_, new_state_);
+  std::swap(wall_keys, new_keys_);
+  std::swap(wall_state, new_state_);
+  split_keys(wall_keys, wall_disc, wall_index);
+
+  x0_ = discs.x;
+  y0_ = discs.y;
+  r0_ = discs.r;
+  wall_ax0_ = walls.ax;
+  wall_ay0_ = walls.ay;
+  ++build_count;
+}
+
+}  // namespace cdem::dem

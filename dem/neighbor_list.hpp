@@ -1,0 +1,66 @@
+#pragma once
+// Contact detection: a uniform cell grid builds a Verlet list of candidate pairs (discs whose
+// gap is below the skin), kept until some disc has moved or grown by more than skin/2 (or a wall
+// has come that close). Pairs are
+// sorted by key (i < j), so the per-pair state (shear force now, bond state later) is carried
+// across a rebuild by merging the old and new sorted keys.
+#include <cstdint>
+#include <vector>
+
+#include "dem/bodies.hpp"
+#include "dem/discs.hpp"
+#include "dem/wall.hpp"
+
+namespace cdem::dem {
+
+// Persistent per-contact state, structure of arrays. Bond fields join here.
+struct ContactStates {
+  std::vector<double> shear_force;  // N, component along the tangent t = (-ny, nx)
+
+  void resize(std::size_t n) { shear_force.assign(n, 0.0); }
+  void copy_from(std::size_t to, const ContactStates& from, std::size_t from_index) {
+    shear_force[to] = from.shear_force[from_index];
+  }
+};
+
+inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+class NeighborList {
+ public:
+  // Disc-disc candidates: keys (i << 32 | j, i < j) sorted ascending, with the two indices and
+  // the persistent state aligned with them.
+  std::vector<std::uint64_t> keys;
+  std::vector<std::int32_t> first, second;
+  std::vector<std::uint8_t> contact_class;  // ContactClass of the pair (from the materials)
+  ContactStates state;
+  // Disc-wall candidates: keys (disc << 32 | wall) sorted ascending.
+  std::vector<std::uint64_t> wall_keys;
+  std::vector<std::int32_t> wall_disc, wall_index;
+  ContactStates wall_state;
+
+  double skin = 0;  // m, extra gap under which a pair is kept as a candidate
+  long build_count = 0;
+
+  // True when a disc (or wall) has moved or a disc grown so much since the last build that a
+  // pair not in the list could be touching: 2 (max displacement + max radius growth) > skin, or
+  // that plus the largest wall displacement > skin for disc-wall pairs. Walls only translate.
+  bool needs_rebuild(const Discs& discs, const Walls& walls) const;
+  void build(const Discs& discs, const Walls& walls);
+
+ private:
+  void build_grid(const Discs& discs);
+  // Reference positions and radii of the last build (walls: first end point).
+  std::vector<double> x0_, y0_, r0_, wall_ax0_, wall_ay0_;
+  // Cell grid (counting sort of the active discs by cell).
+  double cell_ = 0, xmin_ = 0, ymin_ = 0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::int32_t> cell_start_, cell_discs_, disc_cell_;
+  // Scratch kept between builds so a rebuild allocates only when the lists grow.
+  std::vector<std::uint64_t> new_keys_;
+  std::vector<std::int32_t> scratch_;
+  ContactStates new_state_;
+};
+
+}  // namespace cdem::dem

@@ -1,0 +1,244 @@
+#include "dem/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "core/input_error.hpp"
+#include "dem/integrator.hpp"
+
+namespace cdem::dem {
+
+namespace {
+
+template <class T>
+void push_zero(std::initializer_list<std::vector<T>*> vectors) {
+  for (auto* v : vectors) v->push_back(T{});
+}
+
+}  // namespace
+
+World::World(WorldSettings s) : settings(s) {}
+
+int World::add_disc(double x, double y, double r, double density, DiscMaterial material) {
+  const int body = static_cast<int>(bodies.size());
+  const double mass = density * std::numbers::pi * r * r * kThickness;
+  bodies.x.push_back(x);
+  bodies.y.push_back(y);
+  push_zero<double>({&bodies.theta, &bodies.vx, &bodies.vy, &bodies.omega, &bodies.fx, &bodies.fy,
+                     &bodies.moment, &bodies.fx_applied, &bodies.fy_applied});
+  bodies.mass.push_back(mass);
+  bodies.inertia.push_back(0.5 * mass * r * r);
+  bodies.inv_mass_dyn.push_back(1.0 / mass);
+  bodies.inv_inertia_dyn.push_back(2.0 / (mass * r * r));
+  bodies.first_disc.push_back(static_cast<std::int32_t>(discs.size()));
+  bodies.disc_count.push_back(1);
+  bodies.is_clump.push_back(0);
+  bodies.prescribed.push_back(0);
+
+  discs.x.push_back(x);
+  discs.y.push_back(y);
+  discs.r.push_back(r);
+  push_zero<double>({&discs.vx, &discs.vy, &discs.omega, &discs.offset_x, &discs.offset_y,
+                     &discs.fx, &discs.fy, &discs.moment});
+  discs.body.push_back(body);
+  discs.active.push_back(1);
+  discs.material.push_back(material);
+  rebuild_pending_ = true;
+  return body;
+}
+
+int World::add_clump(double cx, double cy, double mass, double inertia,
+                     const std::vector<double>& px, const std::vector<double>& py,
+                     const std::vector<double>& pr, const std::vector<std::uint8_t>& active) {
+  const int body = static_cast<int>(bodies.size());
+  bodies.x.push_back(cx);
+  bodies.y.push_back(cy);
+  push_zero<double>({&bodies.theta, &bodies.vx, &bodies.vy, &bodies.omega, &bodies.fx, &bodies.fy,
+                     &bodies.moment, &bodies.fx_applied, &bodies.fy_applied});
+  bodies.mass.push_back(mass);
+  bodies.inertia.push_back(inertia);
+  bodies.inv_mass_dyn.push_back(1.0 / mass);
+  bodies.inv_inertia_dyn.push_back(1.0 / inertia);
+  bodies.first_disc.push_back(static_cast<std::int32_t>(discs.size()));
+  bodies.disc_count.push_back(static_cast<std::int32_t>(px.size()));
+  bodies.is_clump.push_back(1);
+  bodies.prescribed.push_back(0);
+  for (std::size_t k = 0; k < px.size(); ++k) {
+    discs.x.push_back(px[k]);
+    discs.y.push_back(py[k]);
+    discs.r.push_back(pr[k]);
+    discs.offset_x.push_back(px[k] - cx);
+    discs.offset_y.push_back(py[k] - cy);
+    push_zero<double>({&discs.vx, &discs.vy, &discs.omega, &discs.fx, &discs.fy, &discs.moment});
+    discs.body.push_back(body);
+    discs.active.push_back(active[k]);
+    discs.material.push_back(DiscMaterial::Aggregate);
+  }
+  rebuild_pending_ = true;
+  return body;
+}
+
+void World::add_container_walls(const Container& mould, int polygon_sides) {
+  dem::add_container_walls(walls, mould, polygon_sides);
+  rebuild_pending_ = true;
+}
+
+void World::scale_radii(double factor) {
+  for (double& r : discs.r) r *= factor;
+  const double f2 = factor * factor;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies.is_clump[b]) continue;
+    bodies.mass[b] *= f2;
+    bodies.inertia[b] *= f2 * f2;
+    if (!settings.density_scaling) {
+      bodies.inv_mass_dyn[b] /= f2;
+      bodies.inv_inertia_dyn[b] /= f2 * f2;
+    }
+  }
+  // Uniform scaling leaves every kn unchanged (kn depends on the radius ratio only), so the
+  // critical step scales with sqrt(m) ~ factor.
+  if (!settings.density_scaling && settings.fixed_time_step <= 0 && factor < 1) dt_ *= factor;
+}
+
+void World::set_body_velocity(int b, double vx, double vy, double omega) {
+  bodies.vx[b] = vx;
+  bodies.vy[b] = vy;
+  bodies.omega[b] = omega;
+  for (std::int32_t i = bodies.first_disc[b]; i < bodies.first_disc[b] + bodies.disc_count[b];
+       ++i) {
+    discs.vx[i] = vx - omega * (discs.y[i] - bodies.y[b]);
+    discs.vy[i] = vy + omega * (discs.x[i] - bodies.x[b]);
+    discs.omega[i] = omega;
+  }
+}
+
+void World::rebuild() {
+  if (neighbors.skin <= 0) {
+    neighbors.skin = settings.skin;
+    if (neighbors.skin <= 0) {
+      double sum = 0;
+      for (double r : discs.r) sum += r;
+      neighbors.skin = discs.size() ? 0.2 * sum / static_cast<double>(discs.size()) : 0.0;
+    }
+  }
+  neighbors.build(discs, walls);
+  update_time_step();
+  rebuild_pending_ = false;
+}
+
+// Per body: translational stiffness sum of max(kn, ks) and rotational sum of ks arm^2 over the
+// candidate contacts (touching or within the skin, so contacts about to form count already),
+// never less than one wall contact, so an isolated body does not get an unbounded step.
+void World::update_time_step() {
+  const std::size_t nb = bodies.size();
+  stiffness_.assign(nb, 0.0);
+  rot_stiffness_.assign(nb, 0.0);
+  const auto arm = [&](std::int32_t d) {
+    return std::sqrt(discs.offset_x[d] * discs.offset_x[d] +
+                     discs.offset_y[d] * discs.offset_y[d]) +
+           discs.r[d];
+  };
+  for (std::size_t k = 0; k < neighbors.keys.size(); ++k) {
+    const std::int32_t i = neighbors.first[k], j = neighbors.second[k];
+    const LinearContact& law =
+        settings.laws[static_cast<int>(discs.material[i]) + static_cast<int>(discs.material[j])];
+    const double kn = law.normal_stiffness(discs.r[i], discs.r[j]);
+    const double ks = law.shear_stiffness(kn);
+    const double kt = std::max(kn, ks);
+    const double ai = arm(i), aj = arm(j);
+    stiffness_[discs.body[i]] += kt;
+    stiffness_[discs.body[j]] += kt;
+    rot_stiffness_[discs.body[i]] += ks * ai * ai;
+    rot_stiffness_[discs.body[j]] += ks * aj * aj;
+  }
+  const LinearContact& wall_law = settings.laws[static_cast<int>(ContactClass::Wall)];
+  const double kn_wall = wall_law.wall_normal_stiffness();
+  const double ks_wall = wall_law.shear_stiffness(kn_wall);
+  for (std::size_t k = 0; k < neighbors.wall_keys.size(); ++k) {
+    const std::int32_t i = neighbors.wall_disc[k];
+    const double a = arm(i);
+    stiffness_[discs.body[i]] += std::max(kn_wall, ks_wall);
+    rot_stiffness_[discs.body[i]] += ks_wall * a * a;
+  }
+  const double k_floor = std::max(kn_wall, ks_wall);
+  double dt_min = std::numeric_limits<double>::infinity();
+  const double safety = settings.time_step_safety;
+  for (std::size_t b = 0; b < nb; ++b) {
+    const double kt = std::max(stiffness_[b], k_floor);
+    double kr = rot_stiffness_[b];
+    if (kr <= 0) {
+      const double a = arm(bodies.first_disc[b]);
+      kr = ks_wall * a * a;
+    }
+    if (settings.density_scaling) {
+      const double tau2 = std::pow(settings.scaled_time_step / safety, 2);
+      bodies.inv_mass_dyn[b] = 1.0 / (kt * tau2);
+      bodies.inv_inertia_dyn[b] = 1.0 / (kr * tau2);
+      continue;
+    }
+    if (bodies.prescribed[b]) continue;
+    dt_min = std::min({dt_min, std::sqrt(bodies.mass[b] / kt), std::sqrt(bodies.inertia[b] / kr)});
+  }
+  if (settings.fixed_time_step > 0)
+    dt_ = settings.fixed_time_step;
+  else if (settings.density_scaling)
+    dt_ = settings.scaled_time_step;
+  else
+    dt_ = std::isfinite(dt_min) ? safety * dt_min : 0.0;
+}
+
+void World::fail(const std::string& what, long disc, const std::string& cause) const {
+  std::ostringstream out;
+  out << "DEM run unstable at step " << steps_ << " (t = " << time_ << " s, dt = " << dt_
+      << " s): disc " << disc << ' ' << what << "; likely cause: " << cause;
+  throw RunError(out.str());
+}
+
+void World::step() {
+  if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls)) rebuild();
+  last_pass_ =
+      compute_contact_forces(discs, walls, neighbors, pair_forces, wall_forces, settings.laws, dt_,
+                             settings.max_overlap_ratio, settings.threads);
+  if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0) {
+    std::ostringstream what;
+    long disc;
+    if (last_pass_.bad_pair >= 0) {
+      const long k = last_pass_.bad_pair;
+      disc = neighbors.first[k];
+      const std::int32_t j = neighbors.second[k];
+      what << "overlaps disc " << j << " by " << pair_forces.overlap[k] << " m, more than "
+           << settings.max_overlap_ratio << " x the smaller radius "
+           << std::min(discs.r[disc], discs.r[j]) << " m";
+    } else {
+      const long k = last_pass_.bad_wall_pair;
+      disc = neighbors.wall_disc[k];
+      what << "overlaps wall " << neighbors.wall_index[k] << " by " << wall_forces.overlap[k]
+           << " m, more than " << settings.max_overlap_ratio << " x its radius " << discs.r[disc]
+           << " m";
+    }
+    fail(what.str(), disc,
+         "time step too large for the contact stiffness (check the safety factor, fixed step or "
+         "density scaling), a loading velocity far too high, or discs created overlapping");
+  }
+  gather_body_forces(bodies, discs);
+  const long bad = integrate(bodies, discs, dt_, settings.local_damping);
+  if (bad >= 0)
+    fail("has a non-finite position or velocity", bodies.first_disc[bad],
+         "time step above the critical step, a zero mass or radius, or a non-finite input");
+  move_walls(walls, dt_);
+  time_ += dt_;
+  ++steps_;
+}
+
+double World::sum_body_force() const {
+  double sum = 0;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (!bodies.prescribed[b])
+      sum += std::sqrt(bodies.fx[b] * bodies.fx[b] + bodies.fy[b] * bodies.fy[b]);
+  return sum;
+}
+
+}  // namespace cdem::dem

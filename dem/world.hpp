@@ -1,0 +1,95 @@
+#pragma once
+// The DEM world: bodies, their discs, walls, the neighbour list and the contact laws, advanced
+// one cycle at a time. Data are public structure-of-arrays (read them freely; change positions
+// or radii only through the functions below so the neighbour list stays valid).
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/specimen.hpp"
+#include "dem/bodies.hpp"
+#include "dem/contact_solver.hpp"
+#include "dem/discs.hpp"
+#include "dem/linear_contact.hpp"
+#include "dem/neighbor_list.hpp"
+#include "dem/wall.hpp"
+
+namespace cdem::dem {
+
+struct WorldSettings {
+  double local_damping = 0.7;     // alpha, 0 = off
+  double time_step_safety = 0.8;  // fraction of min sqrt(m / sum k)
+  double fixed_time_step = 0;     // s; > 0 overrides the automatic step
+  // Density scaling (quasi-static runs): every body's inertia is set so that its own critical
+  // step equals `scaled_time_step` / time_step_safety. Static equilibria do not depend on mass;
+  // dynamics (wave speeds, kinetic energy with scaled masses) do, so it is off by default.
+  bool density_scaling = false;
+  double scaled_time_step = 1.0;   // s, the step used when density scaling is on
+  double skin = 0;                 // m; 0 = 0.2 x the mean radius at the first build
+  double max_overlap_ratio = 1.0;  // guard: overlap / min radius beyond which the run stops
+  ContactLaws laws{};              // by ContactClass (M, ITZ, A, W)
+  // OpenMP threads for the disc-disc pair kernel (the one parallel loop of a cycle). Every sum
+  // runs in a fixed order whatever the count, so results are bitwise the same for any value.
+  int threads = 1;
+};
+
+class World {
+ public:
+  explicit World(WorldSettings settings = {});
+
+  // A free disc; mass = density pi r^2 t. Returns the body index (== disc index while only
+  // free discs are added, which the packing relies on).
+  int add_disc(double x, double y, double r, double density,
+               DiscMaterial material = DiscMaterial::Mortar);
+  // A rigid clump: pebbles at world positions, body centroid/mass/inertia given (from the
+  // aggregate polygon, SPEC 3.5). Inactive pebbles ride along but are never in contact.
+  int add_clump(double cx, double cy, double mass, double inertia, const std::vector<double>& px,
+                const std::vector<double>& py, const std::vector<double>& pr,
+                const std::vector<std::uint8_t>& active);
+  int add_wall(double ax, double ay, double bx, double by) { return walls.add(ax, ay, bx, by); }
+  void add_container_walls(const Container& mould, int polygon_sides = 256);
+
+  // One cycle: (neighbour rebuild if needed), force pass, integration. Throws RunError on
+  // instability (non-finite state, overlap beyond max_overlap_ratio x radius).
+  void step();
+  void cycle(long steps) {
+    for (long s = 0; s < steps; ++s) step();
+  }
+
+  // Multiplies every disc radius by `factor` (radius expansion / radius servo of free-disc
+  // packings); the mass and inertia of free discs follow (r^2, r^4). Clump pebble offsets and
+  // clump inertias are left alone.
+  void scale_radii(double factor);
+  // Sets a body's velocity (m/s, rad/s) and carries it to its discs at once, so the next force
+  // pass already sees it (prescribed motions, initial conditions).
+  void set_body_velocity(int body, double vx, double vy, double omega);
+  // Forces a neighbour-list rebuild (and time step update) at the next step.
+  void invalidate_neighbors() { rebuild_pending_ = true; }
+
+  double time_step() const { return dt_; }
+  double time() const { return time_; }
+  long step_count() const { return steps_; }
+  const ForcePassResult& last_force_pass() const { return last_pass_; }
+  // Sum over free bodies of |F| of the last force pass (undamped resultants), N.
+  double sum_body_force() const;
+
+  WorldSettings settings;
+  Bodies bodies;
+  Discs discs;
+  Walls walls;
+  NeighborList neighbors;
+  ContactForces pair_forces, wall_forces;
+
+ private:
+  void rebuild();
+  void update_time_step();
+  [[noreturn]] void fail(const std::string& what, long disc, const std::string& cause) const;
+
+  double dt_ = 0, time_ = 0;
+  long steps_ = 0;
+  bool rebuild_pending_ = true;
+  ForcePassResult last_pass_;
+  std::vector<double> stiffness_, rot_stiffness_;  // per body, scratch of update_time_step
+};
+
+}  // namespace cdem::dem

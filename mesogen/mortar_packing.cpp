@@ -1,0 +1,307 @@
+#include "mesogen/mortar_packing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+
+#include "core/input_error.hpp"
+#include "dem/measure.hpp"
+#include "dem/world.hpp"
+
+namespace cdem::mesogen {
+
+namespace {
+
+using std::numbers::pi;
+
+// Unbalanced-force ratio below which the expanded packing is considered calm.
+constexpr double kExpandedRatio = 2e-2;
+// Logarithmic decompression rates (fraction of the contact stress shed per cycle, affinely).
+constexpr double kFastDecompression = 4e-3;
+constexpr double kSlowDecompression = 2e-3;
+constexpr double kFastDecompressionAbove = 100.0;  // x sigma0
+constexpr double kHoldGain = 0.5;     // fraction of the wall-stress error corrected per interval
+constexpr long kCheckEvery = 50;      // cycles between convergence checks
+constexpr long kStiffnessEvery = 10;  // cycles between updates of the servo's stiffness estimate
+
+void check_controls(const Container& mould, const MortarPackingControls& c) {
+  const auto bad = [](const char* key, const std::string& reason) {
+    throw InputError("", key, reason);
+  };
+  if (!(mould.width > 0) || !(mould.height > 0)) bad("mould", "width and height must be > 0");
+  if (!(c.r_mean > 0)) bad("r_mean", "must be > 0");
+  if (!(c.r_ratio >= 1)) bad("r_ratio", "R_max / R_min must be >= 1");
+  if (!(c.porosity > 0 && c.porosity < 1)) bad("porosity", "must be in (0, 1)");
+  if (!(c.sigma0 > 0)) bad("sigma0", "must be > 0");
+  if (!(c.stress_tolerance > 0)) bad("stress_tolerance", "must be > 0");
+  if (!(c.emod > 0)) bad("emod", "must be > 0");
+  if (!(c.density > 0)) bad("density", "must be > 0");
+  if (c.max_steps <= 0) bad("max_steps", "must be > 0");
+  if (!(c.local_damping >= 0 && c.local_damping < 1)) bad("local_damping", "must be in [0, 1)");
+  if (c.expansion_steps <= 0) bad("expansion_steps", "must be > 0");
+  if (c.wall_segments < 3) bad("wall_segments", "must be >= 3");
+}
+
+// Random sequential addition at half radius: uniform centres, each disc wholly inside the mould
+// and not overlapping those already placed (a cell grid finds the neighbours). The area fraction
+// at half radius is (1 - n) / 4, far below the ~0.55 where random addition jams, so the bound on
+// attempts is a safeguard, not part of the recipe.
+void place_half_radius(const Container& mould, std::vector<double>& x, std::vector<double>& y,
+                       const std::vector<double>& half, Rng& rng) {
+  const std::size_t n = half.size();
+  const double rmax = *std::max_element(half.begin(), half.end());
+  const double cell = 2.0 * rmax;
+  const int nx = static_cast<int>(mould.width / cell) + 1,
+            ny = static_cast<int>(mould.height / cell) + 1;
+  std::vector<std::vector<std::int32_t>> grid(static_cast<std::size_t>(nx) * ny);
+  x.resize(n);
+  y.resize(n);
+  const bool disc = mould.shape == ContainerShape::Disc;
+  const double cx = 0.5 * mould.width, cy = 0.5 * mould.height, big_r = 0.5 * mould.width;
+  constexpr int kAttempts = 10000;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double ri = half[i];
+    bool placed = false;
+    for (int attempt = 0; attempt < kAttempts && !placed; ++attempt) {
+      double px, py;
+      if (disc) {
+        // Uniform in the disc of radius R - ri by rejection from its bounding square.
+        const double reach = big_r - ri;
+        do {
+          px = rng.uniform(-reach, reach);
+          py = rng.uniform(-reach, reach);
+        } while (px * px + py * py > reach * reach);
+        px += cx;
+        py += cy;
+      } else {
+        px = rng.uniform(ri, mould.width - ri);
+        py = rng.uniform(ri, mould.height - ri);
+      }
+      const int gx = std::min(static_cast<int>(px / cell), nx - 1);
+      const int gy = std::min(static_cast<int>(py / cell), ny - 1);
+      bool free = true;
+      for (int yy = std::max(gy - 1, 0); yy <= std::min(gy + 1, ny - 1) && free; ++yy)
+        for (int xx = std::max(gx - 1, 0); xx <= std::min(gx + 1, nx - 1) && free; ++xx)
+          for (std::int32_t j : grid[static_cast<std::size_t>(yy) * nx + xx]) {
+            const double dx = x[j] - px, dy = y[j] - py, reach = ri + half[j];
+            if (dx * dx + dy * dy < reach * reach) {
+              free = false;
+              break;
+            }
+          }
+      if (!free) continue;
+      x[i] = px;
+      y[i] = py;
+      grid[static_cast<std::size_t>(gy) * nx + gx].push_back(static_cast<std::int32_t>(i));
+      placed = true;
+    }
+    if (!placed) {
+      std::ostringstream out;
+      out << "mortar packing: random placement at half radius jammed after placing " << i << " of "
+          << n << " discs (" << kAttempts << " attempts for the next one)";
+      throw RunError(out.str());
+    }
+  }
+}
+
+// Orders the discs along rows of cells so that neighbours in space are near in memory (the
+// contact loop then walks the position arrays almost sequentially). Deterministic.
+std::vector<std::size_t> spatial_order(const std::vector<double>& x, const std::vector<double>& y,
+                                       double cell) {
+  std::vector<std::int64_t> key(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const auto gx = static_cast<std::int64_t>(x[i] / cell);
+    const auto gy = static_cast<std::int64_t>(y[i] / cell);
+    key[i] = gy * (1 << 20) + ((gy & 1) ? (1 << 20) - 1 - gx : gx);  // serpentine rows
+  }
+  std::vector<std::size_t> order(x.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  return order;
+}
+
+// Change of the contact-based mean stress per unit relative radius change if the discs did not
+// move (affine response): (1 / 2A) sum kn L^2 over the touching contacts (Pa). Isotropic
+// compression of a jammed packing is close to affine, so this is a fair estimate.
+double touching_stiffness(const dem::World& w, double area) {
+  const dem::Discs& d = w.discs;
+  const dem::LinearContact& law = w.settings.laws[0];
+  double sum = 0;
+  for (std::size_t k = 0; k < w.neighbors.keys.size(); ++k) {
+    if (w.pair_forces.overlap[k] <= 0) continue;
+    const std::int32_t i = w.neighbors.first[k], j = w.neighbors.second[k];
+    const double l = d.r[i] + d.r[j];
+    sum += law.normal_stiffness(d.r[i], d.r[j]) * l * l;
+  }
+  const double kw = w.settings.laws[3].wall_normal_stiffness();
+  for (std::size_t k = 0; k < w.neighbors.wall_keys.size(); ++k) {
+    if (w.wall_forces.overlap[k] <= 0) continue;
+    const double l = d.r[w.neighbors.wall_disc[k]];
+    sum += kw * l * l;
+  }
+  return sum / (2.0 * area);
+}
+
+// The same over all candidate pairs (touching or within the skin): the response once the near
+// pairs close, used when re-compressing a packing that has few contacts.
+double candidate_stiffness(const dem::World& w, double area) {
+  const dem::Discs& d = w.discs;
+  const dem::LinearContact& law = w.settings.laws[0];
+  double sum = 0;
+  for (std::size_t k = 0; k < w.neighbors.keys.size(); ++k) {
+    const std::int32_t i = w.neighbors.first[k], j = w.neighbors.second[k];
+    const double l = d.r[i] + d.r[j];
+    sum += law.normal_stiffness(d.r[i], d.r[j]) * l * l;
+  }
+  const double kw = w.settings.laws[3].wall_normal_stiffness();
+  for (std::size_t k = 0; k < w.neighbors.wall_keys.size(); ++k) {
+    const double l = d.r[w.neighbors.wall_disc[k]];
+    sum += kw * l * l;
+  }
+  return sum / (2.0 * area);
+}
+
+}  // namespace
+
+MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c, Rng& rng) {
+  check_controls(mould, c);
+  MortarPacking out;
+  const double area = mould.area();
+  out.disc_count_formula =
+      static_cast<long>(std::floor(area * (1.0 - c.porosity) / (pi * c.r_mean * c.r_mean)));
+  if (out.disc_count_formula < 2)
+    throw InputError("", "r_mean", "the mould holds fewer than two mortar discs of this size");
+  const auto n = static_cast<std::size_t>(out.disc_count_formula);
+
+  // Radii uniform in [R_min, R_max] with mean R_mean: R_min = 2 R_mean / (1 + ratio).
+  const double r_min = 2.0 * c.r_mean / (1.0 + c.r_ratio), r_max = c.r_ratio * r_min;
+  Rng radius_rng = rng.split();
+  Rng place_rng = rng.split();
+  std::vector<double> half(n);
+  for (double& h : half) h = 0.5 * radius_rng.uniform(r_min, r_max);
+  std::vector<double> x, y;
+  place_half_radius(mould, x, y, half, place_rng);
+
+  double solid = 0;
+  for (double h : half) solid += pi * h * h;
+  out.initial_porosity = 1.0 - solid / area;
+  out.expansion_factor = std::sqrt((1.0 - c.porosity) / (1.0 - out.initial_porosity));
+
+  // The DEM model of the packing: frictionless linear contacts, local damping, no gravity.
+  // Density scaling: every disc's inertia is set from its contact stiffness so all discs share
+  // one critical step. The packing is judged only in static equilibrium, which does not depend
+  // on mass, so this changes the path to equilibrium but not the equilibrium reached.
+  dem::WorldSettings settings;
+  settings.local_damping = c.local_damping;
+  settings.density_scaling = true;
+  settings.threads = std::max(1, c.threads);
+  // A wide skin while the discs travel far (expansion), a tight one for the servo phase.
+  settings.skin = 0.5 * c.r_mean;
+  const dem::LinearContact law{c.emod, 1.0, 0.0};
+  settings.laws.fill(law);
+  dem::World world(settings);
+  for (std::size_t i : spatial_order(x, y, 2.0 * r_max))
+    world.add_disc(x[i], y[i], half[i], c.density);
+  world.add_container_walls(mould, c.wall_segments);
+
+  // Expansion to m x half radius, spread over `expansion_steps` cycles: applied at once, a small
+  // disc next to a large one can start with an overlap beyond its own radius, where the contact
+  // normal means nothing and the instability guard (rightly) stops the run.
+  const long ramp = std::max(1L, c.expansion_steps);
+  const double growth = std::pow(out.expansion_factor, 1.0 / static_cast<double>(ramp));
+  for (long s = 0; s < ramp && world.step_count() < c.max_steps; ++s) {
+    world.scale_radii(growth);
+    world.step();
+  }
+
+  // Cycle at the expanded radii until the violent start has calmed down.
+  while (world.step_count() < c.max_steps) {
+    world.step();
+    if (world.step_count() % kCheckEvery == 0 &&
+        dem::unbalanced_force_ratio(world) < kExpandedRatio)
+      break;
+  }
+
+  world.neighbors.skin = 0.2 * r_min;
+  world.invalidate_neighbors();
+
+  // Radius servo at fixed mould, two stages.
+  // 1. Decompression: all radii shrink by one common factor per cycle chosen so the contact
+  //    stress (instantaneous, no lag) would drop by a fixed fraction if the discs did not move:
+  //    a constant logarithmic rate. It has to be slow against the relaxation of the whole
+  //    packing, else contacts open faster than the discs can follow, the coordination number
+  //    collapses and the packing unjams (re-jamming from below then creeps for ~1e5 cycles).
+  // 2. Hold: the radii are left alone while the packing settles, except for a proportional
+  //    correction on the wall stress (the reported figure) every check interval.
+  const Eigen::Vector2d centre = mould.centre();
+  const double band = 0.25 * c.stress_tolerance * c.sigma0;
+  double wall_sigma = 0, contact_sigma = 0, ratio = 1, stiffness = 0, hold_rate = 0;
+  bool holding = false;
+  while (world.step_count() < c.max_steps) {
+    world.step();
+    const double sigma = world.last_force_pass().virial / (2.0 * area);
+    if (!holding) holding = sigma <= c.sigma0 + band;
+    if (!holding) {
+      if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
+        stiffness = touching_stiffness(world, area);
+      const double fraction =
+          sigma > kFastDecompressionAbove * c.sigma0 ? kFastDecompression : kSlowDecompression;
+      if (stiffness > 0) world.scale_radii(1.0 - fraction * sigma / stiffness);
+    } else if (hold_rate != 0) {
+      world.scale_radii(1.0 + hold_rate);
+    }
+    if (world.step_count() % kCheckEvery) continue;
+    wall_sigma = dem::mean_stress(dem::wall_stress(world, area, centre));
+    contact_sigma = sigma;
+    ratio = dem::unbalanced_force_ratio(world);
+    if (std::abs(wall_sigma - c.sigma0) <= c.stress_tolerance * c.sigma0 &&
+        std::abs(contact_sigma - c.sigma0) <= c.stress_tolerance * c.sigma0 &&
+        ratio <= c.unbalanced_limit) {
+      out.converged = true;
+      break;
+    }
+    // Kinetic-energy quench while holding (PFC practice: zero the velocities). Local damping
+    // acts on the force only, so a disc that lost its contacts keeps its velocity and rattles
+    // around for thousands of cycles, keeping the unbalanced-force ratio up; quenching during
+    // the decompression instead makes the packing unjam, so it is done in the hold stage only.
+    if (holding)
+      for (std::size_t b = 0; b < world.bodies.size(); ++b)
+        world.set_body_velocity(static_cast<int>(b), 0, 0, 0);
+    hold_rate = 0;
+    if (holding && std::abs(wall_sigma - c.sigma0) > band) {
+      // Spread a fraction of the affine correction over the next interval.
+      const double k =
+          std::max(touching_stiffness(world, area), candidate_stiffness(world, area) / 10);
+      hold_rate = kHoldGain * (c.sigma0 - wall_sigma) / k / static_cast<double>(kCheckEvery);
+    }
+  }
+  out.steps = world.step_count();
+  if (!out.converged) {
+    std::ostringstream msg;
+    msg << "mortar packing did not reach sigma0 = " << c.sigma0
+        << " Pa within max_steps = " << c.max_steps << ": wall stress " << wall_sigma
+        << " Pa, contact stress " << contact_sigma << " Pa, unbalanced-force ratio " << ratio
+        << " (limit " << c.unbalanced_limit << "), porosity " << dem::porosity(world, area);
+    throw RunError(msg.str());
+  }
+
+  out.x = world.discs.x;
+  out.y = world.discs.y;
+  out.r = world.discs.r;
+  out.porosity = dem::porosity(world, area);
+  const dem::OverlapStatistics ov = dem::overlap_statistics(world);
+  out.mean_overlap = ov.mean_overlap;
+  out.mean_overlap_ratio = ov.mean_ratio;
+  out.max_overlap_ratio = ov.max_ratio;
+  out.residual_stress = wall_sigma;
+  out.contact_stress = dem::mean_stress(dem::contact_stress(world, area));
+  out.unbalanced_ratio = ratio;
+  out.coordination_number = dem::coordination_number(world);
+  out.floating_discs = dem::floating_disc_count(world, 3);
+  return out;
+}
+
+}  // namespace cdem::mesogen

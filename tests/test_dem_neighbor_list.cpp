@@ -1,0 +1,105 @@
+// Neighbour list: sorted unique candidate pairs, skipped pairs (same body, inactive discs), and
+// per-pair state carried across rebuilds.
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/rng.hpp"
+#include "dem/world.hpp"
+
+namespace {
+
+using cdem::dem::LinearContact;
+using cdem::dem::World;
+using cdem::dem::WorldSettings;
+
+WorldSettings frictional(double dt) {
+  WorldSettings s;
+  s.fixed_time_step = dt;
+  s.laws.fill(LinearContact{16e9, 2.0, 0.5});
+  return s;
+}
+
+TEST(NeighborList, CandidatesAreSortedUniqueAndComplete) {
+  WorldSettings s = frictional(1e-12);
+  s.max_overlap_ratio = INFINITY;  // random discs overlap at will here
+  World w(s);
+  cdem::Rng rng(3);
+  for (int k = 0; k < 400; ++k)
+    w.add_disc(rng.uniform(0, 0.02), rng.uniform(0, 0.02), rng.uniform(2e-4, 5e-4), 2000);
+  w.step();
+  const auto& nl = w.neighbors;
+  ASSERT_TRUE(std::is_sorted(nl.keys.begin(), nl.keys.end()));
+  ASSERT_TRUE(std::adjacent_find(nl.keys.begin(), nl.keys.end()) == nl.keys.end());
+  // Brute force: every pair within the skin is a candidate, and nothing else.
+  std::size_t expected = 0;
+  for (std::size_t i = 0; i < w.discs.size(); ++i)
+    for (std::size_t j = i + 1; j < w.discs.size(); ++j) {
+      const double reach = w.discs.r[i] + w.discs.r[j] + nl.skin;
+      if (std::hypot(w.discs.x[j] - w.discs.x[i], w.discs.y[j] - w.discs.y[i]) < reach) {
+        ++expected;
+        EXPECT_TRUE(std::binary_search(nl.keys.begin(), nl.keys.end(), cdem::dem::pair_key(i, j)));
+      }
+    }
+  // Positions moved by one step before the check; a pair at the skin edge may differ.
+  EXPECT_NEAR(static_cast<double>(nl.keys.size()), static_cast<double>(expected), 2.0);
+}
+
+TEST(NeighborList, SkipsPebblesOfOneClumpAndInactiveDiscs) {
+  World w(frictional(1e-8));
+  // Clump of three overlapping pebbles, the middle one inactive; a free disc touching pebble 0.
+  w.add_clump(0, 0, 1.0, 1e-6, {-0.5e-3, 0, 0.5e-3}, {0, 0, 0}, {0.4e-3, 0.4e-3, 0.4e-3},
+              {1, 0, 1});
+  w.add_disc(-1.25e-3, 0, 0.4e-3, 2000);
+  w.step();
+  ASSERT_EQ(w.neighbors.keys.size(), 1u);
+  EXPECT_EQ(w.neighbors.first[0], 0);
+  EXPECT_EQ(w.neighbors.second[0], 3);
+}
+
+TEST(NeighborList, ShearStateSurvivesRebuilds) {
+  const double dt = 1e-7;
+  World w(frictional(dt));
+  w.add_disc(0, 0, 1e-3, 2000);
+  w.add_disc(2e-3 - 1e-6, 0, 1e-3, 2000);
+  const int far = w.add_disc(0.05, 0.05, 1e-3, 2000);  // a disc that will trigger rebuilds
+  w.bodies.prescribed[0] = w.bodies.prescribed[1] = w.bodies.prescribed[far] = 1;
+  w.set_body_velocity(1, 0, 0, 2.0);
+  for (int n = 0; n < 200; ++n) w.step();
+  w.set_body_velocity(1, 0, 0, 0);
+  w.step();
+  const double fs = w.neighbors.state.shear_force[0];
+  ASSERT_GT(fs, 0);
+  const long builds = w.neighbors.build_count;
+
+  // Move the far disc by more than half the skin in one step: the list is rebuilt.
+  w.set_body_velocity(far, w.neighbors.skin / dt, 0, 0);
+  w.step();
+  w.set_body_velocity(far, 0, 0, 0);
+  w.step();
+  EXPECT_GT(w.neighbors.build_count, builds);
+  // A forced rebuild too.
+  w.invalidate_neighbors();
+  w.step();
+  EXPECT_GT(w.neighbors.build_count, builds + 1);
+  ASSERT_EQ(w.neighbors.keys[0], cdem::dem::pair_key(0, 1));
+  EXPECT_EQ(w.neighbors.state.shear_force[0], fs);
+  EXPECT_NEAR(w.bodies.fy[1], fs, 1e-12 * fs);
+}
+
+TEST(NeighborList, OpeningContactForgetsItsShear) {
+  const double dt = 1e-7;
+  World w(frictional(dt));
+  w.add_disc(0, 0, 1e-3, 2000);
+  w.add_disc(2e-3 - 1e-6, 0, 1e-3, 2000);
+  w.bodies.prescribed[0] = w.bodies.prescribed[1] = 1;
+  w.set_body_velocity(1, 0, 0, 2.0);
+  for (int n = 0; n < 100; ++n) w.step();
+  ASSERT_GT(w.neighbors.state.shear_force[0], 0);
+  w.set_body_velocity(1, 0.02, 0, 0);  // pull apart by 2e-9 m per step
+  for (int n = 0; n < 1000; ++n) w.step();
+  EXPECT_EQ(w.neighbors.state.shear_force[0], 0.0);
+}
+
+}  // namespace

@@ -1,0 +1,151 @@
+// Mortar packing by radius expansion + radius servo (SPEC 3.4) on small moulds.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/input_error.hpp"
+#include "mesogen/mortar_packing.hpp"
+
+namespace {
+
+using cdem::Container;
+using cdem::ContainerShape;
+using cdem::mesogen::MortarPacking;
+using cdem::mesogen::MortarPackingControls;
+using cdem::mesogen::pack_mortar;
+using std::numbers::pi;
+
+Container rectangle(double w, double h) {
+  Container c;
+  c.shape = ContainerShape::Rectangle;
+  c.width = w;
+  c.height = h;
+  return c;
+}
+
+Container disc(double d) {
+  Container c;
+  c.shape = ContainerShape::Disc;
+  c.width = c.height = d;
+  return c;
+}
+
+MortarPacking pack(const Container& mould, const MortarPackingControls& c, std::uint64_t seed) {
+  cdem::Rng rng(seed);
+  return pack_mortar(mould, c, rng);
+}
+
+// What every packing must satisfy, from the controls alone.
+void expect_valid(const MortarPacking& p, const Container& mould, const MortarPackingControls& c) {
+  const double area = mould.area();
+  const long n =
+      static_cast<long>(std::floor(area * (1 - c.porosity) / (pi * c.r_mean * c.r_mean)));
+  EXPECT_EQ(p.disc_count_formula, n);
+  ASSERT_EQ(static_cast<long>(p.r.size()), n);
+  ASSERT_EQ(p.x.size(), p.r.size());
+  ASSERT_EQ(p.y.size(), p.r.size());
+  EXPECT_TRUE(p.converged);
+  EXPECT_LE(std::abs(p.residual_stress - c.sigma0), c.stress_tolerance * c.sigma0);
+  EXPECT_LE(std::abs(p.contact_stress - c.sigma0), c.stress_tolerance * c.sigma0);
+  EXPECT_LE(p.unbalanced_ratio, c.unbalanced_limit);
+  // Radii were scaled by one common factor: the ratio survives.
+  const auto [rmin, rmax] = std::minmax_element(p.r.begin(), p.r.end());
+  EXPECT_LE(*rmax / *rmin, c.r_ratio * (1 + 1e-12));
+  // Porosity reported = 1 - sum(pi r^2) / A.
+  double solid = 0;
+  for (double r : p.r) solid += pi * r * r;
+  EXPECT_NEAR(p.porosity, 1 - solid / area, 1e-12);
+  // Frictionless discs at a tiny stress jam near 0.16 (far above the nominal 0.12): bounds
+  // wide enough for small moulds with their wall effect.
+  EXPECT_GT(p.porosity, 0.13);
+  EXPECT_LT(p.porosity, 0.22);
+  // Half radius: n0 = 1 - N pi E[r^2] / (4 A) for radii uniform in [a, b], within four
+  // standard deviations of the sum of N sampled r^2.
+  const double a = 2 * c.r_mean / (1 + c.r_ratio), b = c.r_ratio * a;
+  const double mean_r2 = (b * b * b - a * a * a) / (3 * (b - a));
+  const double mean_r4 = (std::pow(b, 5) - std::pow(a, 5)) / (5 * (b - a));
+  const double nd = static_cast<double>(n);
+  const double sd = std::sqrt(nd * (mean_r4 - mean_r2 * mean_r2)) * pi / (4 * area);
+  EXPECT_NEAR(p.initial_porosity, 1 - nd * pi * mean_r2 / (4 * area), 4 * sd);
+  EXPECT_NEAR(p.expansion_factor, std::sqrt((1 - c.porosity) / (1 - p.initial_porosity)), 1e-12);
+  // Overlaps at sigma0 are tiny: of order sigma0 / E* of the radius.
+  EXPECT_GT(p.mean_overlap, 0);
+  EXPECT_LT(p.mean_overlap_ratio, 100 * c.sigma0 / c.emod);
+  EXPECT_GT(p.coordination_number, 2.5);
+  EXPECT_LT(p.coordination_number, 4.5);
+  EXPECT_GT(p.steps, 0);
+  EXPECT_LE(p.steps, c.max_steps);
+}
+
+TEST(MortarPacking, RectangleMouldReachesSigma0) {
+  const Container mould = rectangle(0.02, 0.02);
+  MortarPackingControls c;
+  const MortarPacking p = pack(mould, c, 1);
+  expect_valid(p, mould, c);
+  for (std::size_t i = 0; i < p.r.size(); ++i) {
+    EXPECT_GT(p.x[i], -0.5 * p.r[i]);
+    EXPECT_LT(p.x[i], mould.width + 0.5 * p.r[i]);
+    EXPECT_GT(p.y[i], -0.5 * p.r[i]);
+    EXPECT_LT(p.y[i], mould.height + 0.5 * p.r[i]);
+  }
+}
+
+TEST(MortarPacking, DiscMouldReachesSigma0) {
+  const Container mould = disc(0.025);
+  MortarPackingControls c;
+  const MortarPacking p = pack(mould, c, 2);
+  expect_valid(p, mould, c);
+  for (std::size_t i = 0; i < p.r.size(); ++i)
+    EXPECT_LT(std::hypot(p.x[i] - 0.0125, p.y[i] - 0.0125), 0.0125);
+}
+
+TEST(MortarPacking, OtherStressAndSizes) {
+  const Container mould = rectangle(0.03, 0.015);
+  MortarPackingControls c;
+  c.sigma0 = 1e6;
+  c.r_mean = 0.6e-3;
+  c.r_ratio = 1.5;
+  const MortarPacking p = pack(mould, c, 5);
+  expect_valid(p, mould, c);
+}
+
+TEST(MortarPacking, SameSeedSameBits) {
+  const Container mould = rectangle(0.02, 0.015);
+  MortarPackingControls c;
+  const MortarPacking a = pack(mould, c, 11);
+  const MortarPacking b = pack(mould, c, 11);
+  EXPECT_EQ(a.x, b.x);
+  EXPECT_EQ(a.y, b.y);
+  EXPECT_EQ(a.r, b.r);
+  EXPECT_EQ(a.steps, b.steps);
+  const MortarPacking other = pack(mould, c, 12);
+  EXPECT_NE(a.x, other.x);
+}
+
+TEST(MortarPacking, EffortBoundGivesRunErrorWithFigures) {
+  MortarPackingControls c;
+  c.max_steps = 300;
+  try {
+    pack(rectangle(0.02, 0.02), c, 1);
+    FAIL() << "expected a RunError";
+  } catch (const cdem::RunError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("max_steps"), std::string::npos) << what;
+    EXPECT_NE(what.find("wall stress"), std::string::npos) << what;
+    EXPECT_NE(what.find("porosity"), std::string::npos) << what;
+  }
+}
+
+TEST(MortarPacking, RejectsBadControls) {
+  MortarPackingControls c;
+  c.porosity = 1.2;
+  EXPECT_THROW(pack(rectangle(0.02, 0.02), c, 1), cdem::InputError);
+  c = {};
+  c.r_ratio = 0.5;
+  EXPECT_THROW(pack(rectangle(0.02, 0.02), c, 1), cdem::InputError);
+}
+
+}  // namespace
