@@ -4,6 +4,7 @@
 // JSON, and can be told by its input to fail, crash, hang or skip its summary.
 //   campaign_driver campaign DESIGN.toml [-j N] [-o DIR] ...
 //   campaign_driver fake-job INPUT.toml --summary S.json --seed N --log LOG
+// The log gets one line per execution: run directory name, seed, parent pid.
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -44,7 +45,10 @@ int fake_job(const FakeJob& job) {
   const double x = input["fake"]["x"].value_or(0.0);
   const auto n = input["fake"]["n"].value_or<int64_t>(1);
   const std::string run = std::filesystem::current_path().filename().string();
-  if (!job.log.empty()) log_execution(job.log, run + " " + std::to_string(job.seed));
+  // The parent is the campaign process (or MPI rank) that ran this job.
+  if (!job.log.empty())
+    log_execution(job.log,
+                  run + " " + std::to_string(job.seed) + " " + std::to_string(::getppid()));
 
   const auto sleep_ms = input["fake"]["sleep_ms"].value_or<int64_t>(0);
   std::this_thread::sleep_for(std::chrono::milliseconds(sleep_ms));
@@ -67,6 +71,8 @@ int fake_job(const FakeJob& job) {
   summary["nested"] = {{"x", x}, {"n", n}};
   summary["label"] = "a,\"b\"";
   summary["list"] = {10, 20, 30};
+  // A job must not see the MPI launch of the campaign that runs it.
+  summary["mpi_env"] = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr;
   cdem::write_text_atomically(job.summary, summary.dump(2) + "\n");
   std::ofstream(std::filesystem::current_path() / "output.dat") << "data\n";
   return 0;

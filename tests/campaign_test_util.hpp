@@ -55,10 +55,11 @@ inline std::string fake_base(const std::string& extra = "") {
 }
 
 // A campaign over fake.x and fake.n with the given design table and factors; runs log to
-// dir/log.txt.
+// dir/log.txt. `job_extra` holds further [job] keys; by default a timeout, so that no test can
+// hang on a run.
 inline std::string fake_campaign(const fs::path& dir, const std::string& design,
                                  const std::string& factors, const std::string& top = "",
-                                 const std::string& job_extra = "") {
+                                 const std::string& job_extra = "timeout_s = 60\n") {
   return "base = \"base.toml\"\n"
          "output_dir = \"" +
          (dir / "out").string() + "\"\n" + top +
