@@ -1,5 +1,7 @@
 #include "calib/campaign_spec.hpp"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -17,6 +19,14 @@ const std::vector<std::string>& campaign_placeholders() {
 }
 
 namespace {
+
+// Shortest text that reads back to the same double: bounds appear in messages as the user wrote
+// them (0.75, not 0.750000).
+std::string shortest(double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
 
 std::filesystem::path beside(const std::filesystem::path& file, const std::string& relative) {
   const std::filesystem::path p(relative);
@@ -110,8 +120,8 @@ CampaignFactor read_factor(const InputTable& t, const BaseInput& base, const std
   f.low = t.number("low", Range::any());
   f.high = t.number("high", Range::any());
   if (!(f.low < f.high))
-    t.fail("high", "must be above low for factor '" + f.key + "' (low " + std::to_string(f.low) +
-                       ", high " + std::to_string(f.high) + ")");
+    t.fail("high", "must be above low for factor '" + f.key + "' (low " + shortest(f.low) +
+                       ", high " + shortest(f.high) + ")");
   return f;
 }
 

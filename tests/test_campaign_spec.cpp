@@ -8,6 +8,8 @@
 #include "calib/campaign_spec.hpp"
 #include "campaign_test_util.hpp"
 #include "core/input_error.hpp"
+#include "core/input_table.hpp"
+#include "mesogen/generator_input.hpp"
 
 using namespace cdem::calib;
 using namespace campaign_test;
@@ -176,4 +178,25 @@ TEST(CampaignSpec, BadInputNamesFileAndKey) {
   text = fake_campaign(dir, ff, kTwoFactors);
   text.replace(text.find("base.toml"), 9, "nowhere.toml");
   expect_input_error(setup(dir, text), "base", "cannot open the base input");
+}
+
+TEST(CampaignSpec, GradationStudySampleMakesValidGeneratorInputs) {
+  const fs::path sample = fs::path(CDEM_SOURCE_DIR) / "samples" / "gradation_study.toml";
+  const auto spec = read_campaign_spec(sample);
+  ASSERT_EQ(spec.points.rows(), 6);
+  EXPECT_EQ(spec.seeds.size(), 3u);
+  EXPECT_FALSE(spec.factors[0].integer);
+  EXPECT_TRUE(spec.factors[1].integer);
+  const auto tasks = plan_campaign(spec, scratch_dir() / "out");
+  ASSERT_EQ(tasks.size(), 18u);
+  for (const auto& task : tasks) {
+    // Every run's input is a valid generator input carrying the run's factor values.
+    const auto input = cdem::mesogen::read_generator_input(
+        cdem::InputTable::parse_string(task.input_text, task.dir_label + "/input.toml"));
+    ASSERT_TRUE(input.gradation);
+    EXPECT_NEAR(input.gradation->p_k, task.values[0], 1e-12);
+    EXPECT_EQ(input.shape.max_vertices, static_cast<int>(task.values[1]));
+  }
+  EXPECT_NEAR(tasks[3].values[0], 0.65, 1e-12);  // point 2, seed 1
+  EXPECT_EQ(tasks.back().args[0], "generate");
 }
