@@ -112,7 +112,12 @@ RunQueue make_queue(Prepared& p, bool verbose) {
     line.precision(3);
     line << "[" << done << "/" << total << "] run " << r.id << " (point " << r.point << ", seed "
          << r.seed << "): " << to_string(r.status) << " in " << r.wall_s << " s";
-    if (!r.message.empty()) line << ": " << r.message.substr(0, r.message.find('\n'));
+    // The reason and the last line of the job's stderr, which is where cdem says what went wrong.
+    if (!r.message.empty()) {
+      line << ": " << r.message.substr(0, r.message.find('\n'));
+      const auto last = r.message.rfind('\n');
+      if (last != std::string::npos) line << " " << r.message.substr(last + 1);
+    }
     say(verbose, line.str());
   });
 }
@@ -201,6 +206,7 @@ CampaignOutcome run_campaign(const CampaignOptions& options) {
       mpi_master(mpi, nothing, self);
       throw;
     }
+    if (options.jobs > 1) say(options.verbose, "-j is ignored under MPI: one run per rank");
     say(options.verbose, "MPI: " + std::to_string(mpi.size()) +
                              " ranks, one run at a time each (rank 0 hands out runs and runs "
                              "jobs too)");

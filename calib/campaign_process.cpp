@@ -54,6 +54,9 @@ bool is_mpi_variable(const char* entry) {
   ::dup2(in, 0);
   ::dup2(out, 1);
   ::dup2(err, 2);
+  // Descriptors opened without O_CLOEXEC elsewhere in the campaign (MPI's sockets and shared
+  // memory among them) must not live on in a job that may outlive this rank.
+  ::close_range(3, ~0U, 0);
   if (::chdir(cwd) != 0) {
     static const char msg[] = "campaign: cannot enter the run directory\n";
     [[maybe_unused]] auto n = ::write(2, msg, sizeof msg - 1);
