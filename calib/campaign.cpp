@@ -1,7 +1,8 @@
 #include "calib/campaign.hpp"
 
-#include <cstdio>
+#include <algorithm>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -87,8 +88,9 @@ Prepared prepare(const CampaignOptions& options) {
     std::string why;
     auto record = completed_record(task, &why);
     if (record && options.retry_failed && record->status != RunStatus::Ok) {
+      why = std::string("its status is ") + to_string(record->status) +
+            " and --retry-failed was given";
       record.reset();
-      why = "it " + std::string(to_string(RunStatus::Failed)) + " and --retry-failed was given";
     }
     if (record) {
       p.reused.push_back(std::move(*record));

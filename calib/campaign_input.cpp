@@ -1,10 +1,10 @@
 #include "calib/campaign_input.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
+#include "calib/shortest_number.hpp"
 #include "core/input_error.hpp"
 
 namespace cdem::calib {
@@ -65,12 +65,10 @@ BaseInput::Kind BaseInput::kind(const std::string& dotted_key) const {
 namespace {
 
 // The TOML literal of a value: an integer for integer keys, otherwise the shortest decimal that
-// reads back to the same double (so a level of 0.2 is written 0.2, not 0.20000000000000001).
+// reads back to the same double, with the ".0" TOML needs to keep a whole number a float.
 std::string literal(double value, bool integer) {
   if (integer) return std::to_string(std::llround(value));
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, value);
-  std::string text(buf, res.ptr);
+  std::string text = shortest_number(value);
   if (text.find_first_of(".eE") == std::string::npos) text += ".0";
   return text;
 }

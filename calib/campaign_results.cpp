@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "calib/shortest_number.hpp"
+
 namespace cdem::calib {
 
 std::string csv_field(const std::string& text) {
@@ -16,11 +18,6 @@ std::string csv_field(const std::string& text) {
 }
 
 namespace {
-
-// Shortest text that reads back to the same double (nlohmann's number formatting).
-std::string number_text(double v) {
-  return nlohmann::json(v).dump();
-}
 
 std::string gathered_text(const nlohmann::json& v) {
   if (v.is_null()) return "";
@@ -59,7 +56,7 @@ std::string results_csv(const CampaignSpec& spec, const std::vector<RunRecord>& 
                                  std::to_string(r.seed)};
     for (std::size_t j = 0; j < spec.factors.size(); ++j)
       row.push_back(spec.factors[j].integer ? std::to_string(std::llround(r.values[j]))
-                                            : number_text(r.values[j]));
+                                            : shortest_number(r.values[j]));
     row.push_back(to_string(r.status));
     row.push_back(std::to_string(r.exit_code));
     {

@@ -6,6 +6,7 @@
 
 #include "calib/campaign_input.hpp"
 #include "calib/campaign_process.hpp"
+#include "calib/shortest_number.hpp"
 #include "core/atomic_output.hpp"
 
 namespace cdem::calib {
@@ -172,7 +173,8 @@ RunRecord execute_run(const RunTask& task, const std::filesystem::path& self) {
     case ProcessEnding::Kind::TimedOut:
       r.status = RunStatus::Timeout;
       r.exit_code = 128 + ending.code;
-      r.message = with_tail("killed after the timeout of " + std::to_string(task.timeout_s) + " s");
+      r.message =
+          with_tail("killed after the timeout of " + shortest_number(task.timeout_s) + " s");
       break;
     case ProcessEnding::Kind::Signaled:
       r.status = RunStatus::Failed;

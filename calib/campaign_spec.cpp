@@ -1,7 +1,6 @@
 #include "calib/campaign_spec.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -9,6 +8,7 @@
 
 #include "calib/campaign_design.hpp"
 #include "calib/campaign_input.hpp"
+#include "calib/shortest_number.hpp"
 #include "core/input_table.hpp"
 
 namespace cdem::calib {
@@ -19,14 +19,6 @@ const std::vector<std::string>& campaign_placeholders() {
 }
 
 namespace {
-
-// Shortest text that reads back to the same double: bounds appear in messages as the user wrote
-// them (0.75, not 0.750000).
-std::string shortest(double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
 
 std::filesystem::path beside(const std::filesystem::path& file, const std::string& relative) {
   const std::filesystem::path p(relative);
@@ -120,8 +112,8 @@ CampaignFactor read_factor(const InputTable& t, const BaseInput& base, const std
   f.low = t.number("low", Range::any());
   f.high = t.number("high", Range::any());
   if (!(f.low < f.high))
-    t.fail("high", "must be above low for factor '" + f.key + "' (low " + shortest(f.low) +
-                       ", high " + shortest(f.high) + ")");
+    t.fail("high", "must be above low for factor '" + f.key + "' (low " + shortest_number(f.low) +
+                       ", high " + shortest_number(f.high) + ")");
   return f;
 }
 
