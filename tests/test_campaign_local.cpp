@@ -210,3 +210,28 @@ TEST(CampaignLocal, CommandLineExitCodes) {
   EXPECT_EQ(read_csv(dir / "out" / "results.csv").rows.size(), 6u);
   EXPECT_NE(read_file(dir / "stderr.txt").find("6 runs: 6 ok"), std::string::npos);
 }
+
+TEST(CampaignLocal, TimeoutOptionOverridesTheFile) {
+  const auto dir = scratch_dir();
+  write_file(dir / "base.toml", fake_base("hang_above = 0.6\n"));
+  write_file(dir / "c.toml", fake_campaign(dir, "type = \"explicit\"\nruns = [[0.7], [0.1]]\n",
+                                           "[[factors]]\nkey = \"fake.x\"\n"));
+  CampaignOptions o;
+  o.file = dir / "c.toml";
+  o.jobs = 2;
+  o.timeout_s = 0.5;  // the file says 60 s
+  o.output_dir = dir / "elsewhere";
+  o.verbose = false;
+  const auto start = std::chrono::steady_clock::now();
+  const auto outcome = run_campaign(o);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30);
+  EXPECT_EQ(outcome.timeout, 1);
+  EXPECT_EQ(outcome.ok, 1);
+  EXPECT_EQ(outcome.results, dir / "elsewhere" / "results.csv");
+  const Csv csv = read_csv(outcome.results);
+  ASSERT_EQ(csv.rows.size(), 2u);
+  EXPECT_EQ(csv.rows[0].at("status"), "timeout");
+  EXPECT_EQ(csv.rows[0].at("exit_code"), std::to_string(128 + SIGKILL));
+  EXPECT_NE(csv.rows[0].at("message").find("timeout of 0.5 s"), std::string::npos);
+  EXPECT_NE(csv.rows[0].at("message").find("fake-job: hanging"), std::string::npos);
+}
