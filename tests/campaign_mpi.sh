@@ -44,6 +44,9 @@ timeout 120 "$CAMPAIGN" campaign "$work/campaign.toml" -j 2 -o "$work/local" 2>"
   || { cat "$work/local.err"; fail "local campaign exited $?"; }
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# Containers often forbid the cross-memory attach Open MPI's shared-memory transport uses for
+# larger messages (a task carries a whole input file); plain copies work everywhere.
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
 timeout 180 "$MPIEXEC" --allow-run-as-root --oversubscribe -np 2 \
   "$CAMPAIGN" campaign "$work/campaign.toml" -o "$work/mpi" >"$work/mpi.out" 2>"$work/mpi.err" \
   || { cat "$work/mpi.out" "$work/mpi.err"; fail "mpirun campaign exited $?"; }
