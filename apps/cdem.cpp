@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
 
   const std::vector<cdem::apps::Action> actions{
       cdem::apps::add_generate_command(app),
+      cdem::apps::add_campaign_command(app),
   };
 
   try {

@@ -229,6 +229,69 @@ std::vector<double> InputTable::numbers(std::string_view key, Range each) const 
   return out;
 }
 
+std::vector<long long> InputTable::integers(std::string_view key, long long lo,
+                                           long long hi) const {
+  std::string range("[");
+  range.append(std::to_string(lo)).append(", ").append(std::to_string(hi)).append("]");
+  const toml::node* n = node_->get(key);
+  if (!n) fail(key, "missing (an array of integers in " + range + ")");
+  const toml::array* a = n->as_array();
+  if (!a) fail(key, "must be an array of integers in " + range);
+  std::vector<long long> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = (*a)[i];
+    if (!e.is_integer()) fail(key, "entry " + std::to_string(i) + " must be an integer");
+    const long long v = *e.value<int64_t>();
+    if (v < lo || v > hi)
+      fail(key, "entry " + std::to_string(i) + " must be in " + range + ", got " +
+                    std::to_string(v));
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<std::string> InputTable::strings(std::string_view key) const {
+  const toml::node* n = node_->get(key);
+  if (!n) fail(key, "missing (an array of strings)");
+  const toml::array* a = n->as_array();
+  if (!a) fail(key, "must be an array of strings");
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    auto v = (*a)[i].value<std::string>();
+    if (!v || !(*a)[i].is_string()) fail(key, "entry " + std::to_string(i) + " must be a string");
+    out.push_back(*v);
+  }
+  return out;
+}
+
+std::vector<std::vector<double>> InputTable::number_rows(std::string_view key,
+                                                         std::size_t columns, Range each) const {
+  const toml::node* n = node_->get(key);
+  if (!n) fail(key, "missing (an array of rows of numbers)");
+  const toml::array* a = n->as_array();
+  if (!a) fail(key, "must be an array of rows of numbers, e.g. [[1, 2], [3, 4]]");
+  std::vector<std::vector<double>> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::array* row = (*a)[i].as_array();
+    if (!row) fail(key, "row " + std::to_string(i) + " must be an array of numbers");
+    if (row->size() != columns)
+      fail(key, "row " + std::to_string(i) + " has " + std::to_string(row->size()) +
+                    " entries, expected " + std::to_string(columns));
+    std::vector<double> values;
+    for (std::size_t j = 0; j < row->size(); ++j) {
+      auto v = as_double((*row)[j]);
+      if (!v) fail(key, "row " + std::to_string(i) + " entry " + std::to_string(j) +
+                            " must be a number");
+      if (!each.contains(*v))
+        fail(key, "row " + std::to_string(i) + " entry " + std::to_string(j) + " must be in " +
+                      each.str() + ", got " + fmt(*v));
+      values.push_back(*v);
+    }
+    out.push_back(std::move(values));
+  }
+  return out;
+}
+
 double InputTable::quantity(std::string_view key, Dimension dim, Range allowed_si) const {
   auto f = find_quantity(key, dim);
   if (!f) fail(key, "missing (give it as one of " + unit_list(dim, key) + ")");

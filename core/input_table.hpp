@@ -45,6 +45,11 @@ class InputTable {
   std::string string_or(std::string_view key, std::string fallback,
                         const std::vector<std::string>& allowed = {}) const;
   std::vector<double> numbers(std::string_view key, Range each) const;
+  std::vector<long long> integers(std::string_view key, long long lo, long long hi) const;
+  std::vector<std::string> strings(std::string_view key) const;
+  // An array of arrays of numbers (a table of rows), every row `columns` long.
+  std::vector<std::vector<double>> number_rows(std::string_view key, std::size_t columns,
+                                               Range each) const;
 
   // A dimensional value returned in SI. `allowed_si` is in SI; messages convert it to the unit
   // the user wrote.

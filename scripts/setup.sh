@@ -9,6 +9,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev libboost-dev
   libbox2d-dev libhdf5-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev libpagmo-dev
+  libopenmpi-dev openmpi-bin
   python3 python3-h5py python3-numpy
 )
 missing=()
