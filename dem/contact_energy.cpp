@@ -33,6 +33,7 @@ ContactEnergy contact_energy(const World& world) {
     e.linear_strain += 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
   }
   e.friction = world.friction_dissipated();
+  e.bond_breakage = world.bond_energy_released();
   return e;
 }
 

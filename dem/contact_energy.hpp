@@ -14,6 +14,9 @@ struct ContactEnergy {
   double bond_strain = 0;
   // Dissipated by Coulomb slip since the world was built (World::friction_dissipated).
   double friction = 0;
+  // Released by bond failures since the world was built (World::bond_energy_released): the
+  // strain energy a parallel bond held at its break, or a contact bond's tensile normal spring.
+  double bond_breakage = 0;
 
   double strain() const { return linear_strain + bond_strain; }
 };

@@ -9,7 +9,8 @@ namespace {
 
 void resize(ContactForces& f, std::size_t n, bool with_points) {
   if (f.normal.size() == n) return;
-  for (auto* v : {&f.normal, &f.overlap, &f.fx, &f.fy, &f.moment1, &f.moment2, &f.slip_work})
+  for (auto* v : {&f.normal, &f.overlap, &f.fx, &f.fy, &f.moment1, &f.moment2, &f.slip_work,
+                  &f.bond_energy_released})
     v->resize(n);
   f.failure.resize(n);
   if (with_points) {
@@ -47,6 +48,7 @@ class DiscDiscKernel {
         m1_(out.moment1.data()),
         m2_(out.moment2.data()),
         slip_(out.slip_work.data()),
+        released_(out.bond_energy_released.data()),
         failure_(out.failure.data()),
         disc_fx_(d.fx.data()),
         disc_fy_(d.fy.data()),
@@ -92,6 +94,9 @@ class DiscDiscKernel {
         failure = contact_bond_failure(fn_bonded, trial,
                                        contact_bond_strength(bonds_[cls].contact, ri, rj));
         point_bonded = failure == BondFailure::None;
+        // A break releases the normal spring energy beyond what the plain contact keeps (the
+        // shear spring's drop to the friction limit is booked as slip work below).
+        if (!point_bonded) released_[k] = 0.5 * (fn_bonded * fn_bonded - fn * fn) / kn;
         fn = point_bonded ? fn_bonded : fn;
       }
       fs = point_bonded ? trial : coulomb_limit(trial, law.mu, fn);
@@ -104,7 +109,12 @@ class DiscDiscKernel {
         pb = {bond_normal_[k], bond_shear_[k], bond_moment_[k]};
         parallel_bond_increment(pb, g, vn * dt_, vt * dt_, (w_[j] - w_[i]) * dt_);
         failure = parallel_bond_failure(pb, g, p);
-        if (failure != BondFailure::None) pb = {};
+        if (failure != BondFailure::None) {
+          released_[k] = 0.5 * pb.fn * pb.fn / (g.kn * g.area) +
+                         0.5 * pb.fs * pb.fs / (g.ks * g.area) +
+                         0.5 * pb.m * pb.m / (g.kn * g.inertia);
+          pb = {};
+        }
         bond_normal_[k] = pb.fn;
         bond_shear_[k] = pb.fs;
         bond_moment_[k] = pb.m;
@@ -142,7 +152,10 @@ class DiscDiscKernel {
     result.virial += fn_[k] * (r_[i] + r_[j] - ov_[k]);
     result.touching += ov_[k] > 0;
     result.slip_work += slip_[k];
-    if (failure_[k]) broken.push_back(static_cast<std::int32_t>(k));
+    if (failure_[k]) {
+      broken.push_back(static_cast<std::int32_t>(k));
+      result.bond_energy_released += released_[k];
+    }
   }
 
  private:
@@ -151,7 +164,7 @@ class DiscDiscKernel {
   const double *x_, *y_, *r_, *vx_, *vy_, *w_;
   double *shear_, *bond_normal_, *bond_shear_, *bond_moment_, *bond_gap_;
   std::uint8_t* bond_;
-  double *fn_, *ov_, *fx_, *fy_, *m1_, *m2_, *slip_;
+  double *fn_, *ov_, *fx_, *fy_, *m1_, *m2_, *slip_, *released_;
   std::uint8_t* failure_;
   double *disc_fx_, *disc_fy_, *disc_m_;
   const ContactLaws& laws_;

@@ -25,7 +25,9 @@ struct ContactForces {
   std::vector<double> moment1, moment2;  // N m, about the centres of the first and second disc
   std::vector<double> cx, cy;            // m, contact point (walls only)
   std::vector<double> slip_work;         // J, energy dissipated by friction slip in this pass
-  std::vector<std::uint8_t> failure;     // BondFailure of a bond that broke in this pass
+  // J, strain energy a bond held when it broke in this pass (valid where failure != 0 only).
+  std::vector<double> bond_energy_released;
+  std::vector<std::uint8_t> failure;  // BondFailure of a bond that broke in this pass
   // Pairs whose bond broke in this pass, ascending (disc-disc only; walls are not bonded).
   std::vector<std::int32_t> broken;
 };
@@ -42,6 +44,8 @@ struct ForcePassResult {
   long bad_pair = -1, bad_wall_pair = -1;
   // Energy dissipated by friction slip in this pass, summed in pair order (J per m).
   double slip_work = 0;
+  // Strain energy released by the bonds that broke in this pass, in pair order (J per m).
+  double bond_energy_released = 0;
   long bonds_broken = 0;  // bonds that failed in this pass
 };
 

@@ -236,6 +236,7 @@ void World::step() {
   }
   if (last_pass_.bonds_broken) cracks.record(pair_forces, neighbors, discs, settings.bonds, time_);
   friction_dissipated_ += last_pass_.slip_work;
+  bond_energy_released_ += last_pass_.bond_energy_released;
   gather_body_forces(bodies, discs);
   const long bad = integrate(bodies, discs, dt_, settings.local_damping);
   if (bad >= 0)

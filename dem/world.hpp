@@ -83,6 +83,9 @@ class World {
   // Energy dissipated by friction slip since the world was built (disc-disc and disc-wall
   // contacts, summed in pair order every step), J per m of thickness.
   double friction_dissipated() const { return friction_dissipated_; }
+  // Strain energy released by bond failures since the world was built (the bond's springs at
+  // the break; for a contact bond its tensile normal spring), J per m of thickness.
+  double bond_energy_released() const { return bond_energy_released_; }
 
   WorldSettings settings;
   Bodies bodies;
@@ -98,7 +101,7 @@ class World {
   [[noreturn]] void fail(const std::string& what, long disc, const std::string& cause) const;
 
   double dt_ = 0, time_ = 0;
-  double friction_dissipated_ = 0;  // J/m
+  double friction_dissipated_ = 0, bond_energy_released_ = 0;  // J/m
   long steps_ = 0;
   bool rebuild_pending_ = true;
   ForcePassResult last_pass_;

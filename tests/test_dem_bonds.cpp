@@ -179,6 +179,11 @@ TEST(ParallelBondWorld, TensileFailureAtSigmaBWithBendingAndCrackRecord) {
   const double gap = std::hypot(pass_x, pass_y) - kL;
   EXPECT_NEAR(c.x, (kR1 + 0.5 * gap) * pass_x / std::hypot(pass_x, pass_y), 1e-15);
   EXPECT_NEAR(c.y, (kR1 + 0.5 * gap) * pass_y / std::hypot(pass_x, pass_y), 1e-15);
+  // The strain energy the bond held in the breaking pass is booked as released:
+  // fn^2 / (2 kbn Ab) + m^2 / (2 kbn Ib) with fn = kbn Ab n v dt, m = kbn Ib n wr dt.
+  const double opening = fail_step * v * kDt, bend = fail_step * wr * kDt;
+  const double released = 0.5 * e.kbn * e.ab * opening * opening + 0.5 * e.kbn * e.ib * bend * bend;
+  EXPECT_NEAR(w.bond_energy_released(), released, 1e-9 * released);
   // Broken and apart: no force, no moment.
   EXPECT_EQ(w.bodies.fx[1], 0);
   EXPECT_EQ(w.bodies.moment[1], 0);
@@ -236,10 +241,19 @@ TEST(ParallelBondWorld, AfterFailureLinearWithFriction) {
   const double overlap = kL - std::hypot(w.bodies.x[1], w.bodies.y[1]);
   const double fn = kn * overlap;
   EXPECT_NEAR(w.bodies.fx[1], fn, 1e-9 * fn);
-  for (int n = 0; n < 2000; ++n) {
-    orbit(w, 0.01);
+  const double speed = 0.01;
+  for (int n = 0; n < 1500; ++n) {
+    orbit(w, speed);
     w.step();
   }
+  // Sliding at the limit dissipates mu Fn per unit of slip.
+  const double friction_before = w.friction_dissipated();
+  for (int n = 0; n < 500; ++n) {
+    orbit(w, speed);
+    w.step();
+  }
+  const double slid = 500 * speed * kDt;
+  EXPECT_NEAR(w.friction_dissipated() - friction_before, mu * fn * slid, 1e-5 * mu * fn * slid);
   const double shear = std::abs(w.neighbors.state.shear_force[0]);
   const double fn_now = kn * (kL - std::hypot(w.bodies.x[1], w.bodies.y[1]));
   EXPECT_NEAR(shear, mu * fn_now, 1e-6 * fn);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <set>
 
 #include "dem/bond_installation.hpp"
@@ -93,7 +94,7 @@ TEST(WorldFromSpecimen, MortarDiscsAndClumps) {
     EXPECT_EQ(w.discs.material[d], s.clump[i] < 0 ? DiscMaterial::Mortar : DiscMaterial::Aggregate);
     const std::int32_t b = w.discs.body[d];
     if (s.clump[i] < 0) {
-      EXPECT_DOUBLE_EQ(w.bodies.mass[b], s.mortar_density * M_PI * s.r[i] * s.r[i]);
+      EXPECT_DOUBLE_EQ(w.bodies.mass[b], s.mortar_density * std::numbers::pi * s.r[i] * s.r[i]);
     } else {
       const cdem::Clump& c = s.clumps[s.clump[i]];
       EXPECT_EQ(w.bodies.mass[b], c.mass);
