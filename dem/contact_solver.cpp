@@ -1,6 +1,7 @@
 #include "dem/contact_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace cdem::dem {
@@ -56,7 +57,10 @@ class DiscDiscKernel {
         laws_(laws),
         bonds_(bonds),
         dt_(dt),
-        guard_(guard) {}
+        guard_(guard) {
+    for (int c = 0; c < kContactClassCount; ++c)
+      tan_friction_angle_[c] = std::tan(bonds[c].parallel.friction_angle);
+  }
 
   // Unbonded pairs run branch-free over touching / not touching (about half the candidates
   // touch, so a branch would be mispredicted often): a pair apart has zero normal force, so the
@@ -108,7 +112,7 @@ class DiscDiscKernel {
         const double vn = (vx_[j] - vx_[i]) * nx + (vy_[j] - vy_[i]) * ny;
         pb = {bond_normal_[k], bond_shear_[k], bond_moment_[k]};
         parallel_bond_increment(pb, g, vn * dt_, vt * dt_, (w_[j] - w_[i]) * dt_);
-        failure = parallel_bond_failure(pb, g, p);
+        failure = parallel_bond_failure(pb, g, p, tan_friction_angle_[cls]);
         if (failure != BondFailure::None) {
           released_[k] = 0.5 * pb.fn * pb.fn / (g.kn * g.area) +
                          0.5 * pb.fs * pb.fs / (g.ks * g.area) +
@@ -169,6 +173,7 @@ class DiscDiscKernel {
   double *disc_fx_, *disc_fy_, *disc_m_;
   const ContactLaws& laws_;
   const BondModels& bonds_;
+  std::array<double, kContactClassCount> tan_friction_angle_{};  // tan(phi_b) by class
   double dt_, guard_;
 };
 
