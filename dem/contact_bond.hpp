@@ -4,6 +4,7 @@
 // slip; the bond breaks in tension when the tensile normal force reaches sigma_cn A, and in
 // shear when |Fs| reaches tau_cs A (A = 2 r t, r = min(R1, R2)). After that the contact is
 // linear with friction.
+#include <algorithm>
 #include <cmath>
 
 #include "dem/bond_failure.hpp"
@@ -23,7 +24,7 @@ struct ContactBondStrength {
 // For a disc-wall bond pass r2 = 0 (r = R1).
 inline ContactBondStrength contact_bond_strength(const ContactBondParams& p, double r1, double r2) {
   constexpr double t = 1.0;  // m
-  const double area = 2 * (r2 > 0 ? std::fmin(r1, r2) : r1) * t;
+  const double area = 2 * (r2 > 0 ? std::min(r1, r2) : r1) * t;
   return {p.normal_strength * area, p.shear_strength * area};
 }
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "dem/contact_model.hpp"
 #include "dem/discs.hpp"
 #include "dem/linear_contact.hpp"
 #include "dem/neighbor_list.hpp"
@@ -15,12 +16,20 @@ namespace cdem::dem {
 
 // Per-pair results of the last force pass, aligned with the neighbour list (pairs that do not
 // touch hold zeros).
+// For a bonded pair `normal` is the total (linear part minus the parallel bond's tension) and
+// may be negative (tension); the linear part alone is normal + bond_normal of the state.
 struct ContactForces {
   std::vector<double> normal;            // N, normal force, repulsive positive
   std::vector<double> overlap;           // m, positive when touching
   std::vector<double> fx, fy;            // N, force on the second disc (on the disc for walls)
   std::vector<double> moment1, moment2;  // N m, about the centres of the first and second disc
   std::vector<double> cx, cy;            // m, contact point (walls only)
+  std::vector<double> slip_work;         // J, energy dissipated by friction slip in this pass
+  // J, strain energy a bond held when it broke in this pass (valid where failure != 0 only).
+  std::vector<double> bond_energy_released;
+  std::vector<std::uint8_t> failure;  // BondFailure of a bond that broke in this pass
+  // Pairs whose bond broke in this pass, ascending (disc-disc only; walls are not bonded).
+  std::vector<std::int32_t> broken;
 };
 
 struct ForcePassResult {
@@ -33,16 +42,23 @@ struct ForcePassResult {
   // Guard: index of the first pair (or wall pair) whose overlap exceeds the allowed fraction of
   // the smaller radius, -1 if none.
   long bad_pair = -1, bad_wall_pair = -1;
+  // Energy dissipated by friction slip in this pass, summed in pair order (J per m).
+  double slip_work = 0;
+  // Strain energy released by the bonds that broke in this pass, in pair order (J per m).
+  double bond_energy_released = 0;
+  long bonds_broken = 0;  // bonds that failed in this pass
 };
 
 using ContactLaws = std::array<LinearContact, kContactClassCount>;
 
-// Evaluates all contacts, updates the persistent shear state and fills forces, discs.fx/fy/
-// moment and the wall force sums. `max_overlap_ratio` is the instability-guard threshold;
+// Evaluates all contacts, updates the persistent shear and bond state (breaking bonds that
+// reach their strength) and fills forces, discs.fx/fy/moment and the wall force sums.
+// `laws` are the linear parts by class, `bonds` the bond laws by class (a pair's bond kind is
+// its own state, set at installation). `max_overlap_ratio` is the instability-guard threshold;
 // `threads` > 1 runs the pair kernel with OpenMP (results do not depend on it).
 ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, NeighborList& list,
                                        ContactForces& pair, ContactForces& wall_pair,
-                                       const ContactLaws& laws, double dt, double max_overlap_ratio,
-                                       int threads = 1);
+                                       const ContactLaws& laws, const BondModels& bonds, double dt,
+                                       double max_overlap_ratio, int threads = 1);
 
 }  // namespace cdem::dem

@@ -9,14 +9,35 @@ namespace cdem::dem {
 
 namespace {
 
-// Carries the state of keys present in both lists; new keys start from zero state.
+// The new list is the union of the candidates and the old pairs that hold an intact bond (a
+// bonded pair is never dropped, whatever its gap). Keys present in the old list carry their
+// state; new keys start from zero state. Both inputs are sorted, so the union is too.
 void merge_state(const std::vector<std::uint64_t>& old_keys, const ContactStates& old_state,
-                 const std::vector<std::uint64_t>& new_keys, ContactStates& new_state) {
-  new_state.resize(new_keys.size());
-  std::size_t o = 0;
-  for (std::size_t n = 0; n < new_keys.size(); ++n) {
-    while (o < old_keys.size() && old_keys[o] < new_keys[n]) ++o;
-    if (o < old_keys.size() && old_keys[o] == new_keys[n]) new_state.copy_from(n, old_state, o);
+                 const std::vector<std::uint64_t>& candidates, std::vector<std::uint64_t>& out_keys,
+                 ContactStates& out_state) {
+  const auto kept = [&](std::size_t o) { return old_state.bond[o] != 0; };
+  std::size_t count = candidates.size();
+  for (std::size_t o = 0, c = 0; o < old_keys.size(); ++o) {
+    while (c < candidates.size() && candidates[c] < old_keys[o]) ++c;
+    if (kept(o) && (c == candidates.size() || candidates[c] != old_keys[o])) ++count;
+  }
+  out_keys.resize(count);
+  out_state.resize(count);
+  std::size_t o = 0, c = 0, n = 0;
+  while (c < candidates.size() || o < old_keys.size()) {
+    const bool take_old =
+        c == candidates.size() || (o < old_keys.size() && old_keys[o] <= candidates[c]);
+    if (take_old) {
+      const bool shared = c < candidates.size() && old_keys[o] == candidates[c];
+      if (shared || kept(o)) {
+        out_keys[n] = old_keys[o];
+        out_state.copy_from(n++, old_state, o);
+      }
+      if (shared) ++c;
+      ++o;
+    } else {
+      out_keys[n++] = candidates[c++];
+    }
   }
 }
 
@@ -120,8 +141,8 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
     }
     std::sort(new_keys_.begin() + static_cast<std::ptrdiff_t>(start), new_keys_.end());
   }
-  merge_state(keys, state, new_keys_, new_state_);
-  std::swap(keys, new_keys_);
+  merge_state(keys, state, new_keys_, merged_keys_, new_state_);
+  std::swap(keys, merged_keys_);
   std::swap(state, new_state_);
   split_keys(keys, first, second);
   contact_class.resize(keys.size());
@@ -163,8 +184,8 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
     }
   }
   std::sort(new_keys_.begin(), new_keys_.end());
-  merge_state(wall_keys, wall_state, new_keys_, new_state_);
-  std::swap(wall_keys, new_keys_);
+  merge_state(wall_keys, wall_state, new_keys_, merged_keys_, new_state_);
+  std::swap(wall_keys, merged_keys_);
   std::swap(wall_state, new_state_);
   split_keys(wall_keys, wall_disc, wall_index);
 

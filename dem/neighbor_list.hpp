@@ -1,9 +1,9 @@
 #pragma once
 // Contact detection: a uniform cell grid builds a Verlet list of candidate pairs (discs whose
 // gap is below the skin), kept until some disc has moved or grown by more than skin/2 (or a wall
-// has come that close). Pairs are
-// sorted by key (i < j), so the per-pair state (shear force now, bond state later) is carried
-// across a rebuild by merging the old and new sorted keys.
+// has come that close). Pairs are sorted by key (i < j), so the per-pair state (shear force,
+// bond state) is carried across a rebuild by merging the old and new sorted keys. A pair with an
+// intact bond stays in the list whatever its gap: the merge keeps every bonded old key.
 #include <cstdint>
 #include <vector>
 
@@ -13,14 +13,40 @@
 
 namespace cdem::dem {
 
-// Persistent per-contact state, structure of arrays. Bond fields join here.
+// Persistent per-contact state, structure of arrays (sign conventions of
+// dem/parallel_bond.hpp: n from the first disc to the second, t = (-ny, nx)).
 struct ContactStates {
-  std::vector<double> shear_force;  // N, component along the tangent t = (-ny, nx)
+  std::vector<double> shear_force;  // N, linear part, component along the tangent t
+  std::vector<std::uint8_t> bond;   // BondKind of the intact bond; 0 = none or broken
+  // Parallel bond: normal force (N, tension positive), shear force on the second disc along t
+  // (N), moment on the second disc (N m).
+  std::vector<double> bond_normal, bond_shear, bond_moment;
+  // Contact bond: gap at installation (m, >= 0); the bonded linear part is at zero normal
+  // force at this gap, Fn = kn (overlap + bond_gap).
+  std::vector<double> bond_gap;
 
-  void resize(std::size_t n) { shear_force.assign(n, 0.0); }
+  void resize(std::size_t n) {
+    shear_force.assign(n, 0.0);
+    bond.assign(n, 0);
+    bond_normal.assign(n, 0.0);
+    bond_shear.assign(n, 0.0);
+    bond_moment.assign(n, 0.0);
+    bond_gap.assign(n, 0.0);
+  }
   void copy_from(std::size_t to, const ContactStates& from, std::size_t from_index) {
     shear_force[to] = from.shear_force[from_index];
+    bond[to] = from.bond[from_index];
+    bond_normal[to] = from.bond_normal[from_index];
+    bond_shear[to] = from.bond_shear[from_index];
+    bond_moment[to] = from.bond_moment[from_index];
+    bond_gap[to] = from.bond_gap[from_index];
   }
+  // Removes the bond of pair k (after a failure): the contact is plain linear from then on.
+  void break_bond(std::size_t k) {
+    bond[k] = 0;
+    bond_normal[k] = bond_shear[k] = bond_moment[k] = bond_gap[k] = 0;
+  }
+  std::size_t size() const { return shear_force.size(); }
 };
 
 inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
@@ -58,7 +84,7 @@ class NeighborList {
   int nx_ = 0, ny_ = 0;
   std::vector<std::int32_t> cell_start_, cell_discs_, disc_cell_;
   // Scratch kept between builds so a rebuild allocates only when the lists grow.
-  std::vector<std::uint64_t> new_keys_;
+  std::vector<std::uint64_t> new_keys_, merged_keys_;
   std::vector<std::int32_t> scratch_;
   ContactStates new_state_;
 };

@@ -11,6 +11,7 @@
 // State is held in the contact frame, so in 2D it rotates with the contact plane exactly.
 //   fn > 0 is tension (N); fs is the shear force on disc 2 along t (N); m the moment on disc 2
 //   (N m). The force on disc 2 is -fn n + fs t, on disc 1 its opposite.
+#include <algorithm>
 #include <cmath>
 
 #include "dem/bond_failure.hpp"
@@ -18,13 +19,13 @@
 namespace cdem::dem {
 
 struct ParallelBondParams {
-  double modulus = 0;             // Eb, Pa
-  double stiffness_ratio = 1;     // kappa_b = kbn / kbs
-  double tensile_strength = 0;    // sigma_b, Pa
-  double cohesion = 0;            // c_b, Pa
-  double friction_angle = 0;      // phi_b, rad
-  double radius_multiplier = 1;   // lambda
-  double moment_factor = 1;       // beta
+  double modulus = 0;            // Eb, Pa
+  double stiffness_ratio = 1;    // kappa_b = kbn / kbs
+  double tensile_strength = 0;   // sigma_b, Pa
+  double cohesion = 0;           // c_b, Pa
+  double friction_angle = 0;     // phi_b, rad
+  double radius_multiplier = 1;  // lambda
+  double moment_factor = 1;      // beta
 };
 
 // Geometry and stiffness of one bond, fixed at installation.
@@ -46,7 +47,7 @@ struct ParallelBondState {
 inline ParallelBondGeometry parallel_bond_geometry(const ParallelBondParams& p, double r1,
                                                    double r2) {
   constexpr double t = 1.0;  // m, unit thickness
-  const double r = r2 > 0 ? std::fmin(r1, r2) : r1;
+  const double r = r2 > 0 ? std::min(r1, r2) : r1;
   const double length = r1 + r2;
   ParallelBondGeometry g;
   g.radius = p.radius_multiplier * r;
@@ -66,29 +67,42 @@ inline void parallel_bond_increment(ParallelBondState& s, const ParallelBondGeom
 }
 
 struct ParallelBondStress {
-  double sigma_max = 0;  // Pa, Fn/Ab + beta |M| Rb / Ib, tension positive
-  double tau_max = 0;    // Pa, |Fs| / Ab
+  double sigma_max = 0;       // Pa, Fn/Ab + beta |M| Rb / Ib, tension positive
+  double tau_max = 0;         // Pa, |Fs| / Ab
   double shear_strength = 0;  // Pa, c_b - sigma tan(phi_b), sigma = Fn/Ab (tension positive)
 };
 
+// `tan_friction_angle` = tan(phi_b), passed in so the contact loop evaluates it once per class.
 inline ParallelBondStress parallel_bond_stress(const ParallelBondState& s,
                                                const ParallelBondGeometry& g,
-                                               const ParallelBondParams& p) {
+                                               const ParallelBondParams& p,
+                                               double tan_friction_angle) {
   ParallelBondStress out;
   const double sigma = s.fn / g.area;
   out.sigma_max = sigma + p.moment_factor * std::fabs(s.m) * g.radius / g.inertia;
   out.tau_max = std::fabs(s.fs) / g.area;
-  out.shear_strength = p.cohesion - sigma * std::tan(p.friction_angle);
+  out.shear_strength = p.cohesion - sigma * tan_friction_angle;
   return out;
+}
+
+inline ParallelBondStress parallel_bond_stress(const ParallelBondState& s,
+                                               const ParallelBondGeometry& g,
+                                               const ParallelBondParams& p) {
+  return parallel_bond_stress(s, g, p, std::tan(p.friction_angle));
 }
 
 // Tension is checked first, as in PFC: a bond that fails both ways is a tensile crack.
 inline BondFailure parallel_bond_failure(const ParallelBondState& s, const ParallelBondGeometry& g,
-                                         const ParallelBondParams& p) {
-  const ParallelBondStress st = parallel_bond_stress(s, g, p);
+                                         const ParallelBondParams& p, double tan_friction_angle) {
+  const ParallelBondStress st = parallel_bond_stress(s, g, p, tan_friction_angle);
   if (st.sigma_max >= p.tensile_strength) return BondFailure::Tension;
   if (st.tau_max >= st.shear_strength) return BondFailure::Shear;
   return BondFailure::None;
+}
+
+inline BondFailure parallel_bond_failure(const ParallelBondState& s, const ParallelBondGeometry& g,
+                                         const ParallelBondParams& p) {
+  return parallel_bond_failure(s, g, p, std::tan(p.friction_angle));
 }
 
 }  // namespace cdem::dem

@@ -145,14 +145,21 @@ void World::update_time_step() {
     const std::int32_t i = neighbors.first[k], j = neighbors.second[k];
     const LinearContact& law =
         settings.laws[static_cast<int>(discs.material[i]) + static_cast<int>(discs.material[j])];
-    const double kn = law.normal_stiffness(discs.r[i], discs.r[j]);
-    const double ks = law.shear_stiffness(kn);
+    double kn = law.normal_stiffness(discs.r[i], discs.r[j]);
+    double ks = law.shear_stiffness(kn);
+    // A parallel bond acts in parallel with the linear part: its stiffnesses add.
+    BondStiffness bond;
+    if (neighbors.state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel))
+      bond = parallel_bond_stiffness(settings.bonds[neighbors.contact_class[k]].parallel,
+                                     discs.r[i], discs.r[j]);
+    kn += bond.normal;
+    ks += bond.shear;
     const double kt = std::max(kn, ks);
     const double ai = arm(i), aj = arm(j);
     stiffness_[discs.body[i]] += kt;
     stiffness_[discs.body[j]] += kt;
-    rot_stiffness_[discs.body[i]] += ks * ai * ai;
-    rot_stiffness_[discs.body[j]] += ks * aj * aj;
+    rot_stiffness_[discs.body[i]] += ks * ai * ai + bond.rotation;
+    rot_stiffness_[discs.body[j]] += ks * aj * aj + bond.rotation;
   }
   const LinearContact& wall_law = settings.laws[static_cast<int>(ContactClass::Wall)];
   const double kn_wall = wall_law.wall_normal_stiffness();
@@ -190,6 +197,10 @@ void World::update_time_step() {
     dt_ = std::isfinite(dt_min) ? safety * dt_min : 0.0;
 }
 
+void World::refresh_neighbors() {
+  if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls)) rebuild();
+}
+
 void World::fail(const std::string& what, long disc, const std::string& cause) const {
   std::ostringstream out;
   out << "DEM run unstable at step " << steps_ << " (t = " << time_ << " s, dt = " << dt_
@@ -200,8 +211,8 @@ void World::fail(const std::string& what, long disc, const std::string& cause) c
 void World::step() {
   if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls)) rebuild();
   last_pass_ =
-      compute_contact_forces(discs, walls, neighbors, pair_forces, wall_forces, settings.laws, dt_,
-                             settings.max_overlap_ratio, settings.threads);
+      compute_contact_forces(discs, walls, neighbors, pair_forces, wall_forces, settings.laws,
+                             settings.bonds, dt_, settings.max_overlap_ratio, settings.threads);
   if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0) {
     std::ostringstream what;
     long disc;
@@ -223,6 +234,9 @@ void World::step() {
          "time step too large for the contact stiffness (check the safety factor, fixed step or "
          "density scaling), a loading velocity far too high, or discs created overlapping");
   }
+  if (last_pass_.bonds_broken) cracks.record(pair_forces, neighbors, discs, settings.bonds, time_);
+  friction_dissipated_ += last_pass_.slip_work;
+  bond_energy_released_ += last_pass_.bond_energy_released;
   gather_body_forces(bodies, discs);
   const long bad = integrate(bodies, discs, dt_, settings.local_damping);
   if (bad >= 0)

@@ -8,7 +8,9 @@
 
 #include "core/specimen.hpp"
 #include "dem/bodies.hpp"
+#include "dem/contact_model.hpp"
 #include "dem/contact_solver.hpp"
+#include "dem/crack_log.hpp"
 #include "dem/discs.hpp"
 #include "dem/linear_contact.hpp"
 #include "dem/neighbor_list.hpp"
@@ -28,6 +30,9 @@ struct WorldSettings {
   double skin = 0;                 // m; 0 = 0.2 x the mean radius at the first build
   double max_overlap_ratio = 1.0;  // guard: overlap / min radius beyond which the run stops
   ContactLaws laws{};              // by ContactClass (M, ITZ, A, W)
+  // Bond law by ContactClass (default none: linear everywhere). Bonds exist only where
+  // install_bonds (dem/bond_installation.hpp) put them; a pair's bond breaks for good.
+  BondModels bonds{};
   // OpenMP threads for the disc-disc pair kernel (the one parallel loop of a cycle). Every sum
   // runs in a fixed order whatever the count, so results are bitwise the same for any value.
   int threads = 1;
@@ -65,6 +70,9 @@ class World {
   void set_body_velocity(int body, double vx, double vy, double omega);
   // Forces a neighbour-list rebuild (and time step update) at the next step.
   void invalidate_neighbors() { rebuild_pending_ = true; }
+  // Rebuilds the neighbour list now if it is out of date (as step() would), so its candidate
+  // pairs can be inspected or bonded before the next step.
+  void refresh_neighbors();
 
   double time_step() const { return dt_; }
   double time() const { return time_; }
@@ -72,6 +80,12 @@ class World {
   const ForcePassResult& last_force_pass() const { return last_pass_; }
   // Sum over free bodies of |F| of the last force pass (undamped resultants), N.
   double sum_body_force() const;
+  // Energy dissipated by friction slip since the world was built (disc-disc and disc-wall
+  // contacts, summed in pair order every step), J per m of thickness.
+  double friction_dissipated() const { return friction_dissipated_; }
+  // Strain energy released by bond failures since the world was built (the bond's springs at
+  // the break; for a contact bond its tensile normal spring), J per m of thickness.
+  double bond_energy_released() const { return bond_energy_released_; }
 
   WorldSettings settings;
   Bodies bodies;
@@ -79,6 +93,7 @@ class World {
   Walls walls;
   NeighborList neighbors;
   ContactForces pair_forces, wall_forces;
+  CrackLog cracks;  // every bond failure, in the order they happened
 
  private:
   void rebuild();
@@ -86,6 +101,7 @@ class World {
   [[noreturn]] void fail(const std::string& what, long disc, const std::string& cause) const;
 
   double dt_ = 0, time_ = 0;
+  double friction_dissipated_ = 0, bond_energy_released_ = 0;  // J/m
   long steps_ = 0;
   bool rebuild_pending_ = true;
   ForcePassResult last_pass_;

@@ -1,0 +1,51 @@
+#include "dem/bond_installation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace cdem::dem {
+
+InstalledBonds install_bonds(World& world, const BondInstallation& options) {
+  if (!(options.gap_ratio >= 0) || !std::isfinite(options.gap_ratio))
+    throw std::invalid_argument("bond installation: gap_ratio must be finite and >= 0");
+  world.refresh_neighbors();
+  const Discs& d = world.discs;
+  NeighborList& list = world.neighbors;
+  double rmax = 0;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (d.active[i]) rmax = std::max(rmax, d.r[i]);
+  if (options.gap_ratio * rmax >= list.skin)
+    throw std::invalid_argument("bond installation: gap tolerance " +
+                                std::to_string(options.gap_ratio * rmax) +
+                                " m reaches the neighbour skin " + std::to_string(list.skin) +
+                                " m; lower gap_ratio or raise WorldSettings::skin");
+  ContactStates& state = list.state;
+  InstalledBonds installed;
+  for (std::size_t k = 0; k < list.keys.size(); ++k) {
+    const std::int32_t i = list.first[k], j = list.second[k];
+    const double tolerance = options.gap_ratio * std::min(d.r[i], d.r[j]);
+    const std::uint8_t cls = list.contact_class[k];
+    const BondKind kind = world.settings.bonds[cls].kind;
+    if (kind == BondKind::None || state.bond[k] != 0) continue;
+    const double gap = std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) - d.r[i] - d.r[j];
+    if (gap > tolerance) continue;
+    state.bond[k] = static_cast<std::uint8_t>(kind);
+    state.bond_normal[k] = state.bond_shear[k] = state.bond_moment[k] = 0;
+    state.bond_gap[k] = kind == BondKind::Contact ? std::max(gap, 0.0) : 0.0;
+    ++installed.by_class[cls];
+  }
+  world.invalidate_neighbors();
+  return installed;
+}
+
+std::array<long, kContactClassCount> intact_bond_count(const World& world) {
+  std::array<long, kContactClassCount> count{};
+  const NeighborList& list = world.neighbors;
+  for (std::size_t k = 0; k < list.keys.size(); ++k)
+    if (list.state.bond[k]) ++count[list.contact_class[k]];
+  return count;
+}
+
+}  // namespace cdem::dem

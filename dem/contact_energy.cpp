@@ -1,0 +1,40 @@
+#include "dem/contact_energy.hpp"
+
+namespace cdem::dem {
+
+ContactEnergy contact_energy(const World& world) {
+  ContactEnergy e;
+  const Discs& d = world.discs;
+  const NeighborList& list = world.neighbors;
+  const ContactStates& state = list.state;
+  const ContactForces& pair = world.pair_forces;
+  for (std::size_t k = 0; k < pair.normal.size(); ++k) {
+    const std::int32_t i = list.first[k], j = list.second[k];
+    const std::uint8_t cls = list.contact_class[k];
+    const LinearContact& law = world.settings.laws[cls];
+    const double kn = law.normal_stiffness(d.r[i], d.r[j]);
+    const double ks = law.shear_stiffness(kn);
+    // The total normal force holds the parallel bond's tension with a minus sign.
+    const double fn = pair.normal[k] + state.bond_normal[k];
+    const double fs = state.shear_force[k];
+    e.linear_strain += 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
+    if (state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel)) {
+      const ParallelBondGeometry g =
+          parallel_bond_geometry(world.settings.bonds[cls].parallel, d.r[i], d.r[j]);
+      const double bn = state.bond_normal[k], bs = state.bond_shear[k], bm = state.bond_moment[k];
+      e.bond_strain += 0.5 * bn * bn / (g.kn * g.area) + 0.5 * bs * bs / (g.ks * g.area) +
+                       0.5 * bm * bm / (g.kn * g.inertia);
+    }
+  }
+  const LinearContact& wall_law = world.settings.laws[static_cast<int>(ContactClass::Wall)];
+  const double kn = wall_law.wall_normal_stiffness(), ks = wall_law.shear_stiffness(kn);
+  for (std::size_t k = 0; k < world.wall_forces.normal.size(); ++k) {
+    const double fn = world.wall_forces.normal[k], fs = list.wall_state.shear_force[k];
+    e.linear_strain += 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
+  }
+  e.friction = world.friction_dissipated();
+  e.bond_breakage = world.bond_energy_released();
+  return e;
+}
+
+}  // namespace cdem::dem

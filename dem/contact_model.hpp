@@ -1,0 +1,44 @@
+#pragma once
+// The contact model of each contact class (SPEC 4): the linear part lives in
+// WorldSettings::laws (LinearContact), the bond a class installs lives here. A class is
+// `linear` (no bond), `contact_bond` (linear + point bond) or `parallel_bond` (linear in
+// parallel with a bond). Disc-wall contacts (class W) are linear only.
+#include <array>
+#include <cstdint>
+
+#include "dem/contact_bond.hpp"
+#include "dem/linear_contact.hpp"
+#include "dem/parallel_bond.hpp"
+
+namespace cdem::dem {
+
+// Kind of the bond a pair carries; a pair whose bond broke holds None (plain linear).
+enum class BondKind : std::uint8_t { None = 0, Contact = 1, Parallel = 2 };
+
+struct BondModel {
+  BondKind kind = BondKind::None;  // the bond that install_bonds puts on pairs of this class
+  ContactBondParams contact;       // used when kind == Contact
+  ParallelBondParams parallel;     // used when kind == Parallel
+};
+
+// By ContactClass (M, ITZ, A, W); the default is linear everywhere.
+using BondModels = std::array<BondModel, kContactClassCount>;
+
+// Short names used in the crack log and in messages: M, ITZ, A, W.
+inline const char* contact_class_name(ContactClass c) {
+  static constexpr const char* names[kContactClassCount] = {"M", "ITZ", "A", "W"};
+  return names[static_cast<int>(c)];
+}
+
+// Extra stiffness a parallel bond adds to its contact (for the critical time step):
+// normal kbn Ab (N/m), shear kbs Ab (N/m), rotation kbn Ib (N m / rad).
+struct BondStiffness {
+  double normal = 0, shear = 0, rotation = 0;
+};
+
+inline BondStiffness parallel_bond_stiffness(const ParallelBondParams& p, double r1, double r2) {
+  const ParallelBondGeometry g = parallel_bond_geometry(p, r1, r2);
+  return {g.kn * g.area, g.ks * g.area, g.kn * g.inertia};
+}
+
+}  // namespace cdem::dem

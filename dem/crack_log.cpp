@@ -1,0 +1,35 @@
+#include "dem/crack_log.hpp"
+
+#include <cmath>
+
+namespace cdem::dem {
+
+long CrackLog::count(BondFailure mode, ContactClass cls) const {
+  long n = 0;
+  for (const Crack& c : cracks) n += c.mode == mode && c.contact_class == cls;
+  return n;
+}
+
+void CrackLog::record(const ContactForces& pair, const NeighborList& list, const Discs& discs,
+                      const BondModels& bonds, double time) {
+  for (const std::int32_t k : pair.broken) {
+    const std::int32_t i = list.first[k], j = list.second[k];
+    const double dx = discs.x[j] - discs.x[i], dy = discs.y[j] - discs.y[i];
+    const double dist = std::sqrt(dx * dx + dy * dy);
+    // Contact point at arm_i = R_i - overlap / 2 from the centre of i along the normal.
+    const double arm = discs.r[i] - 0.5 * pair.overlap[k];
+    const double s = dist > 0 ? arm / dist : 0.0;
+    Crack c;
+    c.time = time;
+    c.x = discs.x[i] + s * dx;
+    c.y = discs.y[i] + s * dy;
+    c.mode = static_cast<BondFailure>(pair.failure[k]);
+    c.contact_class = static_cast<ContactClass>(list.contact_class[k]);
+    c.bond = bonds[list.contact_class[k]].kind;
+    c.first = i;
+    c.second = j;
+    cracks.push_back(c);
+  }
+}
+
+}  // namespace cdem::dem

@@ -1,0 +1,39 @@
+#pragma once
+// Crack records (SPEC 6): every bond failure with its time, position, mode and contact class.
+// Cracks of one force pass are appended in ascending pair key, so the log is deterministic
+// (and independent of the thread count).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "dem/bond_failure.hpp"
+#include "dem/contact_model.hpp"
+#include "dem/contact_solver.hpp"
+#include "dem/discs.hpp"
+#include "dem/neighbor_list.hpp"
+
+namespace cdem::dem {
+
+struct Crack {
+  double time = 0;      // s, simulation time of the force pass in which the bond broke
+  double x = 0, y = 0;  // m, contact point (on the line of centres, mid-gap when apart)
+  BondFailure mode = BondFailure::None;               // Tension or Shear
+  ContactClass contact_class = ContactClass::Mortar;  // M, ITZ, A
+  BondKind bond = BondKind::None;                     // the law of the bond that broke
+  std::int32_t first = -1, second = -1;               // the two discs (first < second)
+};
+
+struct CrackLog {
+  std::vector<Crack> cracks;
+
+  void clear() { cracks.clear(); }
+  std::size_t size() const { return cracks.size(); }
+  // Number of cracks of one mode and class.
+  long count(BondFailure mode, ContactClass cls) const;
+  // Appends the bonds that broke in the last force pass (`pair.broken`, ascending pair index).
+  // Positions are read from the discs, which must not have moved since that pass.
+  void record(const ContactForces& pair, const NeighborList& list, const Discs& discs,
+              const BondModels& bonds, double time);
+};
+
+}  // namespace cdem::dem

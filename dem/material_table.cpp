@@ -1,0 +1,95 @@
+#include "dem/material_table.hpp"
+
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace cdem::dem {
+
+namespace {
+
+const std::vector<std::string> kLaws{"linear", "contact_bond", "parallel_bond"};
+
+// Keys common to every class, then those of each bond law.
+const std::vector<std::string> kLinearKeys{"law", "emod", "kratio", "friction"};
+const std::vector<std::string> kContactBondKeys{"cb_tensile_strength", "cb_shear_strength"};
+const std::vector<std::string> kParallelBondKeys{"pb_emod",
+                                                 "pb_kratio",
+                                                 "pb_tensile_strength",
+                                                 "pb_cohesion",
+                                                 "pb_friction_angle_deg",
+                                                 "pb_radius_multiplier",
+                                                 "pb_moment_factor"};
+
+std::vector<std::string> known_keys(const std::string& law) {
+  std::vector<std::string> keys = kLinearKeys;
+  const auto& extra = law == "contact_bond"    ? kContactBondKeys
+                      : law == "parallel_bond" ? kParallelBondKeys
+                                               : std::vector<std::string>{};
+  keys.insert(keys.end(), extra.begin(), extra.end());
+  return keys;
+}
+
+// One class table. `fallback` (the mortar's linear part) supplies defaults for the wall.
+void read_class(const InputTable& t, ContactClass cls, const LinearContact* fallback,
+                MaterialTable& out) {
+  const bool wall = cls == ContactClass::Wall;
+  const std::string law = wall ? t.string_or("law", "linear", {"linear"}) : t.string("law", kLaws);
+  t.reject_unknown_keys(known_keys(law));
+  LinearContact linear;
+  if (fallback) {
+    linear.emod = t.quantity_or("emod", Dimension::Stress, fallback->emod, Range::positive());
+    linear.kappa = t.number_or("kratio", fallback->kappa, Range::positive());
+    linear.mu = t.number_or("friction", 0.0, Range::non_negative());
+  } else {
+    linear.emod = t.quantity("emod", Dimension::Stress, Range::positive());
+    linear.kappa = t.number("kratio", Range::positive());
+    linear.mu = t.number("friction", Range::non_negative());
+  }
+  const int c = static_cast<int>(cls);
+  out.linear[c] = linear;
+  BondModel& bond = out.bonds[c];
+  bond = BondModel{};
+  if (law == "contact_bond") {
+    bond.kind = BondKind::Contact;
+    bond.contact.normal_strength =
+        t.quantity("cb_tensile_strength", Dimension::Stress, Range::positive());
+    bond.contact.shear_strength =
+        t.quantity("cb_shear_strength", Dimension::Stress, Range::positive());
+  } else if (law == "parallel_bond") {
+    bond.kind = BondKind::Parallel;
+    ParallelBondParams& p = bond.parallel;
+    p.modulus = t.quantity_or("pb_emod", Dimension::Stress, linear.emod, Range::positive());
+    p.stiffness_ratio = t.number_or("pb_kratio", linear.kappa, Range::positive());
+    p.tensile_strength = t.quantity("pb_tensile_strength", Dimension::Stress, Range::positive());
+    p.cohesion = t.quantity("pb_cohesion", Dimension::Stress, Range::positive());
+    p.friction_angle = t.number_or("pb_friction_angle_deg", 0.0, Range::right_open(0, 90)) *
+                       std::numbers::pi / 180.0;
+    p.radius_multiplier = t.number_or("pb_radius_multiplier", 1.0, Range::positive());
+    p.moment_factor = t.number_or("pb_moment_factor", 1.0, Range::closed(0, 1));
+  }
+}
+
+}  // namespace
+
+MaterialTable read_material_table(const InputTable& input) {
+  const InputTable materials = input.table("materials");
+  materials.reject_unknown_keys({"mortar", "itz", "aggregate", "wall"});
+  MaterialTable out;
+  read_class(materials.table("mortar"), ContactClass::Mortar, nullptr, out);
+  read_class(materials.table("itz"), ContactClass::Itz, nullptr, out);
+  read_class(materials.table("aggregate"), ContactClass::Aggregate, nullptr, out);
+  // The wall defaults to the mortar's E* and kappa* with mu = 0 (SPEC 4), table optional.
+  const LinearContact mortar = out.linear[static_cast<int>(ContactClass::Mortar)];
+  if (const auto wall = materials.optional_table("wall"))
+    read_class(*wall, ContactClass::Wall, &mortar, out);
+  else
+    out.linear[static_cast<int>(ContactClass::Wall)] = LinearContact{mortar.emod, mortar.kappa, 0};
+  return out;
+}
+
+MaterialTable read_material_table(const std::filesystem::path& file) {
+  return read_material_table(InputTable::parse_file(file));
+}
+
+}  // namespace cdem::dem

@@ -1,0 +1,32 @@
+#pragma once
+// The contact material table (SPEC 4, SPEC 8): one TOML table per contact class,
+//   [materials.mortar] (M), [materials.itz] (ITZ), [materials.aggregate] (A), [materials.wall] (W),
+// each naming its law ("linear", "contact_bond", "parallel_bond") and its parameters with
+// explicit units (docs/materials.md lists every key). Converted to SI here, once.
+#include <filesystem>
+
+#include "core/input_table.hpp"
+#include "dem/contact_model.hpp"
+#include "dem/linear_contact.hpp"
+#include "dem/world.hpp"
+
+namespace cdem::dem {
+
+struct MaterialTable {
+  ContactLaws linear{};  // linear part by ContactClass
+  BondModels bonds{};    // bond law by ContactClass (None for `linear`)
+
+  // Copies the laws into world settings (before the world is built or bonds are installed).
+  void apply(WorldSettings& settings) const {
+    settings.laws = linear;
+    settings.bonds = bonds;
+  }
+};
+
+// Reads the table [materials] of an input file. Throws InputError naming the file, the key and
+// the allowed range for: an unknown class or key, an unknown law, a missing parameter, a
+// stiffness or strength <= 0, a friction coefficient < 0, a friction angle outside [0, 90) deg.
+MaterialTable read_material_table(const InputTable& input);
+MaterialTable read_material_table(const std::filesystem::path& file);
+
+}  // namespace cdem::dem
