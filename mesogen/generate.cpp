@@ -14,6 +14,8 @@
 #include "core/specimen_file.hpp"
 #include "core/units.hpp"
 #include "core/version.hpp"
+#include "dem/contact_census.hpp"
+#include "dem/world_from_specimen.hpp"
 #include "mesogen/clumping.hpp"
 #include "mesogen/generator_input.hpp"
 #include "mesogen/gradation.hpp"
@@ -195,8 +197,18 @@ void run_generate(const GenerateRequest& request) {
     throw RunError(std::to_string(clumping.empty_clumps) +
                    " aggregates captured no mortar disc: the mortar discs are too coarse for "
                    "the smallest aggregates (reduce mortar.r_mean or raise gradation.d_min)");
+  // The interfaces the test will bond: touching pairs per class (M, ITZ, A).
+  dem::World census_world = dem::world_from_specimen(s, dem::WorldSettings{});
+  census_world.refresh_neighbors();
+  const auto census = dem::contact_census(census_world);
+  const auto contacts = [&census](dem::ContactClass c) { return census[static_cast<int>(c)]; };
+  const long m_contacts = contacts(dem::ContactClass::Mortar),
+             itz_contacts = contacts(dem::ContactClass::Itz),
+             a_contacts = contacts(dem::ContactClass::Aggregate);
   log.end(std::to_string(s.clumps.size()) + " clumps, " + std::to_string(clumping.pebbles_kept) +
-          " pebbles kept, " + std::to_string(clumping.pebbles_dropped) + " dropped");
+          " pebbles kept, " + std::to_string(clumping.pebbles_dropped) + " dropped; contacts M " +
+          std::to_string(m_contacts) + ", ITZ " + std::to_string(itz_contacts) + ", A " +
+          std::to_string(a_contacts));
 
   // Summary.
   nlohmann::ordered_json jbins = nlohmann::ordered_json::array();
@@ -219,6 +231,9 @@ void run_generate(const GenerateRequest& request) {
   summary["pebbles_kept"] = clumping.pebbles_kept;
   summary["pebbles_dropped"] = clumping.pebbles_dropped;
   summary["residual_stress_MPa"] = packing.residual_stress / units::MPa;
+  summary["contacts"] = {{"mortar_mortar", m_contacts},
+                         {"itz", itz_contacts},
+                         {"aggregate_aggregate", a_contacts}};
   summary["packing"] = {{"disc_count_formula", packing.disc_count_formula},
                         {"initial_porosity", packing.initial_porosity},
                         {"expansion_factor", packing.expansion_factor},

@@ -1,0 +1,19 @@
+#include "dem/contact_census.hpp"
+
+#include <cmath>
+
+namespace cdem::dem {
+
+std::array<long, kContactClassCount> contact_census(const World& world, double gap_tolerance) {
+  std::array<long, kContactClassCount> count{};
+  const NeighborList& nl = world.neighbors;
+  const Discs& d = world.discs;
+  for (std::size_t k = 0; k < nl.keys.size(); ++k) {
+    const auto i = nl.first[k], j = nl.second[k];
+    const double gap = std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) - d.r[i] - d.r[j];
+    if (gap <= gap_tolerance) ++count[nl.contact_class[k]];
+  }
+  return count;
+}
+
+}  // namespace cdem::dem
