@@ -26,14 +26,36 @@ void gather_body_forces(Bodies& b, const Discs& d) {
   }
 }
 
-long integrate(Bodies& b, Discs& d, double dt, double alpha) {
+namespace {
+
+// One degree of freedom of a free body: updates the half-step velocity and adds the energy
+// removed by damping, (F - F_damped) . v_mean dt, and the applied work, F_applied . v_mean dt.
+inline void advance(double& v, double force, double applied, double inv_inertia, double dt,
+                    double alpha, double& damped, double& applied_work) {
+  const double f_damped = local_damping(force, v, alpha);
+  const double v_old = v;
+  v += dt * inv_inertia * f_damped;
+  const double v_mean_dt = 0.5 * (v_old + v) * dt;
+  damped += (force - f_damped) * v_mean_dt;
+  applied_work += applied * v_mean_dt;
+}
+
+}  // namespace
+
+long integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledger) {
   const std::size_t n = b.size();
   long bad = static_cast<long>(n);
+  double damped = 0, applied = 0, prescribed = 0;
   for (std::size_t k = 0; k < n; ++k) {
     if (!b.prescribed[k]) {
-      b.vx[k] += dt * b.inv_mass_dyn[k] * local_damping(b.fx[k], b.vx[k], alpha);
-      b.vy[k] += dt * b.inv_mass_dyn[k] * local_damping(b.fy[k], b.vy[k], alpha);
-      b.omega[k] += dt * b.inv_inertia_dyn[k] * local_damping(b.moment[k], b.omega[k], alpha);
+      advance(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, damped, applied);
+      advance(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, damped, applied);
+      advance(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, damped, applied);
+    } else {
+      // The contacts push on the body with F - F_applied; it does the opposite work on them.
+      prescribed -= ((b.fx[k] - b.fx_applied[k]) * b.vx[k] + (b.fy[k] - b.fy_applied[k]) * b.vy[k] +
+                     b.moment[k] * b.omega[k]) *
+                    dt;
     }
     b.x[k] += dt * b.vx[k];
     b.y[k] += dt * b.vy[k];
@@ -61,6 +83,9 @@ long integrate(Bodies& b, Discs& d, double dt, double alpha) {
       d.omega[i] = b.omega[k];
     }
   }
+  ledger.damping += damped;
+  ledger.applied_work += applied;
+  ledger.prescribed_work += prescribed;
   return bad == static_cast<long>(n) ? -1 : bad;
 }
 
