@@ -48,7 +48,10 @@ double kinetic_energy_dynamic(const World& world) {
 
 void restart_energy_reference(World& world) {
   EnergyLedger& e = world.energy;
-  const double present = kinetic_energy_dynamic(world) + contact_strain_energy(world);
+  // Called before the step's displacements: the energy now is at x(t) and v(t - dt/2), the
+  // state the accumulated terms of the previous steps describe.
+  const double present =
+      kinetic_energy_dynamic(world) + contact_strain_energy(world) + e.strain_to_half_step;
   e.reference = present + e.damping - (e.wall_work + e.applied_work + e.prescribed_work);
   e.reference_pending = false;
 }
@@ -60,8 +63,9 @@ Energies energies(const World& world) {
     e.kinetic += 0.5 * (b.mass[k] * (b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]) +
                         b.inertia[k] * b.omega[k] * b.omega[k]);
   e.kinetic_dynamic = kinetic_energy_dynamic(world);
-  e.contact_strain = contact_strain_energy(world);
   const EnergyLedger& l = world.energy;
+  e.contact_strain_now = contact_strain_energy(world);
+  e.contact_strain = e.contact_strain_now + l.strain_to_half_step;
   e.damping = l.damping;
   e.wall_work = l.wall_work;
   e.applied_work = l.applied_work;

@@ -30,14 +30,16 @@ namespace {
 
 // One degree of freedom of a free body: updates the half-step velocity and adds the energy
 // removed by damping, (F - F_damped) . v_mean dt, and the applied work, F_applied . v_mean dt.
+// Also adds the power of the contact force at the new half-step velocity, (F - F_applied) v.
 inline void advance(double& v, double force, double applied, double inv_inertia, double dt,
-                    double alpha, double& damped, double& applied_work) {
+                    double alpha, double& damped, double& applied_work, double& contact_power) {
   const double f_damped = local_damping(force, v, alpha);
   const double v_old = v;
   v += dt * inv_inertia * f_damped;
   const double v_mean_dt = 0.5 * (v_old + v) * dt;
   damped += (force - f_damped) * v_mean_dt;
   applied_work += applied * v_mean_dt;
+  contact_power += (force - applied) * v;
 }
 
 }  // namespace
@@ -45,17 +47,21 @@ inline void advance(double& v, double force, double applied, double inv_inertia,
 long integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledger) {
   const std::size_t n = b.size();
   long bad = static_cast<long>(n);
-  double damped = 0, applied = 0, prescribed = 0;
+  double damped = 0, applied = 0, prescribed = 0, power = 0;
   for (std::size_t k = 0; k < n; ++k) {
     if (!b.prescribed[k]) {
-      advance(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, damped, applied);
-      advance(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, damped, applied);
-      advance(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, damped, applied);
+      advance(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, damped, applied,
+              power);
+      advance(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, damped, applied,
+              power);
+      advance(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, damped, applied,
+              power);
     } else {
       // The contacts push on the body with F - F_applied; it does the opposite work on them.
-      prescribed -= ((b.fx[k] - b.fx_applied[k]) * b.vx[k] + (b.fy[k] - b.fy_applied[k]) * b.vy[k] +
-                     b.moment[k] * b.omega[k]) *
-                    dt;
+      const double p = (b.fx[k] - b.fx_applied[k]) * b.vx[k] +
+                       (b.fy[k] - b.fy_applied[k]) * b.vy[k] + b.moment[k] * b.omega[k];
+      prescribed -= p * dt;
+      power += p;
     }
     b.x[k] += dt * b.vx[k];
     b.y[k] += dt * b.vy[k];
@@ -86,6 +92,7 @@ long integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledge
   ledger.damping += damped;
   ledger.applied_work += applied;
   ledger.prescribed_work += prescribed;
+  ledger.strain_to_half_step -= 0.5 * dt * power;
   return bad == static_cast<long>(n) ? -1 : bad;
 }
 

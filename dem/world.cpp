@@ -216,15 +216,17 @@ void World::account_wall_work() {
     energy.last_dx.resize(walls.size(), 0.0);
     energy.last_dy.resize(walls.size(), 0.0);
   }
-  double work = 0;
+  double work = 0, work_this_step = 0;
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const double dx = dt_ * walls.vx[w], dy = dt_ * walls.vy[w];
+    work_this_step += walls.fx[w] * dx + walls.fy[w] * dy;
     work -=
         walls.fx[w] * 0.5 * (energy.last_dx[w] + dx) + walls.fy[w] * 0.5 * (energy.last_dy[w] + dy);
     energy.last_dx[w] = dx;
     energy.last_dy[w] = dy;
   }
   energy.wall_work += work;
+  energy.strain_to_half_step = -0.5 * work_this_step;  // integrate adds the bodies' share
 }
 
 void World::check_energy() {
