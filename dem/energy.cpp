@@ -48,8 +48,8 @@ double kinetic_energy_dynamic(const World& world) {
 
 void restart_energy_reference(World& world) {
   EnergyLedger& e = world.energy;
-  // Called before the step's displacements: the energy now is at x(t) and v(t - dt/2), the
-  // state the accumulated terms of the previous steps describe.
+  // Called by World::step after the integration: kinetic energy and work terms at t + dt/2,
+  // strain energy carried there from x(t).
   const double present =
       kinetic_energy_dynamic(world) + contact_strain_energy(world) + e.strain_to_half_step;
   e.reference = present + e.damping - (e.wall_work + e.applied_work + e.prescribed_work);

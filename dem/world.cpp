@@ -269,11 +269,11 @@ void World::step() {
     fail(what.str(), disc);
   }
   if (!servos.empty()) update_wall_servos(*this);
-  check_energy();
   account_wall_work();
   gather_body_forces(bodies, discs);
   const long bad = integrate(bodies, discs, dt_, settings.local_damping, energy);
   if (bad >= 0) fail("has a non-finite position or velocity", bodies.first_disc[bad]);
+  check_energy();
   move_walls(walls, dt_);
   time_ += dt_;
   ++steps_;
