@@ -83,6 +83,19 @@ BENCHMARK(BM_ReferenceSpecimenCycles)
     ->Repetitions(5)
     ->UseRealTime();
 
+// One evaluation of the stored energies (kinetic + contact strain): the cost of the runaway
+// check (every energy_check_interval steps) and of a bookkeeping restart (after scale_radii,
+// i.e. every cycle of the packing's radius servo).
+void BM_ReferenceSpecimenEnergyEvaluation(benchmark::State& state) {
+  cdem::dem::World w = cdem::bench::reference_world(cdem::bench::reference_packing(), 1);
+  w.cycle(10);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(cdem::dem::kinetic_energy_dynamic(w) +
+                             cdem::dem::contact_strain_energy(w));
+}
+
+BENCHMARK(BM_ReferenceSpecimenEnergyEvaluation)->Unit(benchmark::kMicrosecond)->Repetitions(5);
+
 }  // namespace
 
 BENCHMARK_MAIN();

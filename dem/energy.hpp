@@ -24,8 +24,8 @@ struct EnergyLedger {
   // (= alpha |F| |v| dt except in a step where the velocity changes sign), J/m.
   double damping = 0;
   // Energy present when the bookkeeping was last (re)started: kinetic (integration inertia) +
-  // strain energy. Radius changes, velocity resets and added bodies restart it, because they
-  // add or remove energy outside the step.
+  // strain energy. Radius changes, velocity resets and added bodies restart it (at the next
+  // energy check), because they add or remove energy outside the step.
   double reference = 0;
   bool reference_pending = true;
   // Change of the contact strain energy from x(t) to x(t + dt/2), J/m: minus half the work of

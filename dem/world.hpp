@@ -75,8 +75,10 @@ class World {
   // Forces a neighbour-list rebuild (and time step update) at the next step.
   void invalidate_neighbors() { rebuild_pending_ = true; }
 
-  // Restarts the energy bookkeeping: the energy present at the next step becomes the reference
-  // (the accumulated work and damping terms are kept, the reference absorbs the difference).
+  // Restarts the energy bookkeeping at the next energy check (step count a multiple of
+  // settings.energy_check_interval): the reference absorbs what the accumulated work and
+  // damping terms (which are kept) do not explain. scale_radii, set_body_velocity and adding
+  // bodies call it.
   void reset_energy_reference() { energy.reference_pending = true; }
 
   double time_step() const { return dt_; }
