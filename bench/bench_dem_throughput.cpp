@@ -45,12 +45,14 @@ double solver_bytes(const cdem::dem::World& w) {
 void BM_ReferenceSpecimenCycles(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const auto bonds = static_cast<cdem::bench::Bonds>(state.range(1));
+  const bool energy_tracking = state.range(2) != 0;
   if (bonds == cdem::bench::Bonds::Bonded) {
     state.SkipWithError("bonds are installed by the contact kernel of wip-bonds (not here yet)");
     return;
   }
   const auto& packing = cdem::bench::reference_packing();
   cdem::dem::World w = cdem::bench::reference_world(packing, threads);
+  w.settings.energy_tracking = energy_tracking;
   w.cycle(10);  // neighbour lists and pair arrays at their working size
   long pair_updates = 0, disc_steps = 0;
   for (auto _ : state) {
@@ -75,9 +77,10 @@ void BM_ReferenceSpecimenCycles(benchmark::State& state) {
 }
 
 BENCHMARK(BM_ReferenceSpecimenCycles)
-    ->ArgNames({"threads", "bonded"})
-    ->Args({1, 0})
-    ->Args({2, 0})
+    ->ArgNames({"threads", "bonded", "energy"})
+    ->Args({1, 0, 1})
+    ->Args({2, 0, 1})
+    ->Args({1, 0, 0})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(4)
     ->Repetitions(5)

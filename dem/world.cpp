@@ -234,6 +234,7 @@ void World::account_wall_work() {
 // last check (radius scaling every cycle of the packing's servo must not pay it each cycle),
 // otherwise look for runaway kinetic energy.
 void World::check_energy() {
+  if (!settings.energy_tracking) return;
   if (settings.energy_check_interval < 1 || steps_ % settings.energy_check_interval != 0) return;
   if (energy.reference_pending) {
     restart_energy_reference(*this);
@@ -275,7 +276,8 @@ void World::step() {
   if (!servos.empty()) update_wall_servos(*this);
   account_wall_work();
   gather_body_forces(bodies, discs);
-  const long bad = integrate(bodies, discs, dt_, settings.local_damping, energy);
+  const long bad = integrate(bodies, discs, dt_, settings.local_damping,
+                             settings.energy_tracking ? &energy : nullptr);
   if (bad >= 0) fail("has a non-finite position or velocity", bodies.first_disc[bad]);
   check_energy();
   move_walls(walls, dt_);

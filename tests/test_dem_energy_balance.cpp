@@ -130,4 +130,19 @@ TEST(EnergyBalance, PrescribedBodyWorkIsCounted) {
   EXPECT_NEAR(e.prescribed_work / (free_kinetic + e.contact_strain), 1, 1e-3);
 }
 
+TEST(EnergyBalance, BookkeepingDoesNotChangeTheMotion) {
+  // Tracking on or off: the same positions bit for bit (the ledger only reads the motion).
+  const auto run = [](bool tracking) {
+    WorldSettings s;
+    s.energy_tracking = tracking;
+    s.laws.fill(LinearContact{kE, 1.0, 0.5});
+    World w(s);
+    cdem::test::add_block(w, cdem::test::BlockSpec{});
+    w.walls.vy[2] = -0.5;
+    w.cycle(2000);
+    return w.bodies.x;
+  };
+  EXPECT_EQ(run(true), run(false));
+}
+
 }  // namespace
