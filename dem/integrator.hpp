@@ -28,8 +28,9 @@ void gather_body_forces(Bodies& bodies, const Discs& discs);
 // discs (pebble positions from their offsets). With a ledger, adds to it the energy removed by
 // damping and the work of the applied loads (force . mean of the two half-step velocities . dt,
 // which is exactly what the kinetic energy at the half step sees) and of the prescribed bodies
-// (measured cost on the reference specimen: about 55 more instructions per body, ~+8 % per
-// cycle); nullptr skips them. Returns the first body whose state became non-finite, or -1.
+// (measured on the reference specimen: about 55 more instructions per body, +9 % of the
+// instructions of a cycle); nullptr skips them. Returns the first body whose state became
+// non-finite, or -1.
 long integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger);
 
 }  // namespace cdem::dem
