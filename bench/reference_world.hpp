@@ -3,8 +3,6 @@
 // 100 x 200 mm, n = 0.12, R_mean = 0.5 mm, R_max/R_min = 2.5, ~22,400 discs) in a DEM world
 // set up as at the start of a compression test (frictional linear contacts, local damping 0.7,
 // the mould walls, top and bottom walls moving toward each other at 0.02 m/s).
-#include <fstream>
-#include <string>
 
 #include "core/rng.hpp"
 #include "core/specimen.hpp"
