@@ -15,7 +15,10 @@ static void BM_GenerateC30(benchmark::State& state) {
   const fs::path dir = fs::temp_directory_path() / "cdem_bench_generate";
   fs::create_directories(dir);
   cdem::mesogen::GenerateRequest req{fs::path(CDEM_SOURCE_DIR) / "samples/c30_specimen.toml",
-                                     dir / "c30.h5", std::nullopt, dir / "c30.json", std::nullopt,
+                                     dir / "c30.h5",
+                                     std::nullopt,
+                                     dir / "c30.json",
+                                     std::nullopt,
                                      false};
   nlohmann::json summary;
   for (auto _ : state) {
@@ -27,7 +30,10 @@ static void BM_GenerateC30(benchmark::State& state) {
   state.counters["discs"] = summary["discs"].get<double>();
   fs::remove_all(dir);
 }
-BENCHMARK(BM_GenerateC30)->Unit(benchmark::kSecond)->Iterations(1)->Repetitions(3)
+BENCHMARK(BM_GenerateC30)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->Repetitions(3)
     ->ReportAggregatesOnly(true);
 
 BENCHMARK_MAIN();

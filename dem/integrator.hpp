@@ -7,6 +7,7 @@
 
 #include "dem/bodies.hpp"
 #include "dem/discs.hpp"
+#include "dem/energy.hpp"
 
 namespace cdem::dem {
 
@@ -24,8 +25,12 @@ void gather_body_forces(Bodies& bodies, const Discs& discs);
 
 // v(t + dt/2) = v(t - dt/2) + dt F_damped / m; x(t + dt) = x(t) + dt v(t + dt/2); likewise
 // for the rotation. Prescribed bodies keep their velocity. Then carries the body motion to the
-// discs (pebble positions from their offsets). Returns the first body whose state became
+// discs (pebble positions from their offsets). With a ledger, adds to it the energy removed by
+// damping and the work of the applied loads (force . mean of the two half-step velocities . dt,
+// which is exactly what the kinetic energy at the half step sees) and of the prescribed bodies
+// (measured on the reference specimen: about 55 more instructions per body, +9 % of the
+// instructions of a cycle); nullptr skips them. Returns the first body whose state became
 // non-finite, or -1.
-long integrate(Bodies& bodies, Discs& discs, double dt, double alpha);
+long integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger);
 
 }  // namespace cdem::dem

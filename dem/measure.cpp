@@ -1,5 +1,7 @@
 #include "dem/measure.hpp"
 
+#include "dem/contact_energy.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -9,6 +11,12 @@ namespace cdem::dem {
 
 namespace {
 
+// A disc-disc pair carries force when it touches or holds an intact bond (a bonded pair may be
+// in tension across a small gap).
+bool carries_force(const World& w, std::size_t k) {
+  return w.pair_forces.overlap[k] > 0 || w.neighbors.state.bond[k] != 0;
+}
+
 // Calls visit(contact point, branch vector, force on the second body) for every touching
 // contact; disc-wall branches run from the disc centre to the contact point and, the disc being
 // the second body, carry the sign that makes the sum compression positive.
@@ -17,7 +25,7 @@ void for_each_contact(const World& w, Visit&& visit) {
   const Discs& d = w.discs;
   const NeighborList& nl = w.neighbors;
   for (std::size_t k = 0; k < w.pair_forces.normal.size(); ++k) {
-    if (w.pair_forces.overlap[k] <= 0) continue;
+    if (!carries_force(w, k)) continue;
     const std::int32_t i = nl.first[k], j = nl.second[k];
     const double lx = d.x[j] - d.x[i], ly = d.y[j] - d.y[i];
     const double len = std::hypot(lx, ly);
@@ -105,7 +113,7 @@ double coordination_number(const World& world) {
 long floating_disc_count(const World& world, int min_contacts) {
   std::vector<int> count(world.discs.size(), 0);
   for (std::size_t k = 0; k < world.pair_forces.overlap.size(); ++k) {
-    if (world.pair_forces.overlap[k] <= 0) continue;
+    if (!carries_force(world, k)) continue;
     ++count[world.neighbors.first[k]];
     ++count[world.neighbors.second[k]];
   }
@@ -120,12 +128,14 @@ long floating_disc_count(const World& world, int min_contacts) {
 double unbalanced_force_ratio(const World& world) {
   double sum_contact = 0;
   long contacts = 0;
-  for (const ContactForces* f : {&world.pair_forces, &world.wall_forces})
-    for (std::size_t k = 0; k < f->normal.size(); ++k) {
-      if (f->overlap[k] <= 0) continue;
-      sum_contact += std::sqrt(f->fx[k] * f->fx[k] + f->fy[k] * f->fy[k]);
-      ++contacts;
-    }
+  const auto add = [&](const ContactForces& f, std::size_t k) {
+    sum_contact += std::sqrt(f.fx[k] * f.fx[k] + f.fy[k] * f.fy[k]);
+    ++contacts;
+  };
+  for (std::size_t k = 0; k < world.pair_forces.normal.size(); ++k)
+    if (carries_force(world, k)) add(world.pair_forces, k);
+  for (std::size_t k = 0; k < world.wall_forces.normal.size(); ++k)
+    if (world.wall_forces.overlap[k] > 0) add(world.wall_forces, k);
   if (contacts == 0 || sum_contact <= 0) return 0;
   long free_bodies = 0;
   for (auto pr : world.bodies.prescribed) free_bodies += pr ? 0 : 1;
@@ -143,28 +153,7 @@ double kinetic_energy(const World& world) {
   return e;
 }
 
-double strain_energy(const World& world) {
-  const Discs& d = world.discs;
-  const ContactLaws& laws = world.settings.laws;
-  double e = 0;
-  for (std::size_t k = 0; k < world.pair_forces.normal.size(); ++k) {
-    if (world.pair_forces.overlap[k] <= 0) continue;
-    const std::int32_t i = world.neighbors.first[k], j = world.neighbors.second[k];
-    const LinearContact& law =
-        laws[static_cast<int>(d.material[i]) + static_cast<int>(d.material[j])];
-    const double kn = law.normal_stiffness(d.r[i], d.r[j]);
-    const double fn = world.pair_forces.normal[k], fs = world.neighbors.state.shear_force[k];
-    e += 0.5 * fn * fn / kn + 0.5 * fs * fs / law.shear_stiffness(kn);
-  }
-  const LinearContact& wl = laws[static_cast<int>(ContactClass::Wall)];
-  const double kn = wl.wall_normal_stiffness();
-  for (std::size_t k = 0; k < world.wall_forces.normal.size(); ++k) {
-    if (world.wall_forces.overlap[k] <= 0) continue;
-    const double fn = world.wall_forces.normal[k], fs = world.neighbors.wall_state.shear_force[k];
-    e += 0.5 * fn * fn / kn + 0.5 * fs * fs / wl.shear_stiffness(kn);
-  }
-  return e;
-}
+double strain_energy(const World& world) { return contact_energy(world).strain(); }
 
 double porosity(const World& world, double area) {
   double solid = 0;

@@ -51,7 +51,7 @@ long floating_disc_count(const World& world, int min_contacts = 3);
 double unbalanced_force_ratio(const World& world);
 // Physical kinetic energy (real masses even under density scaling), J per m of thickness.
 double kinetic_energy(const World& world);
-// Energy stored in the linear springs: sum Fn^2 / (2 kn) + Fs^2 / (2 ks), J per m.
+// Energy stored in the contact springs and bonds, J per m (contact_energy(world).strain()).
 double strain_energy(const World& world);
 // 1 - sum(pi r^2) / A over active discs (overlaps not subtracted).
 double porosity(const World& world, double area);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/input_error.hpp"
+#include "dem/instability.hpp"
 #include "dem/integrator.hpp"
 
 namespace cdem::dem {
@@ -20,7 +21,9 @@ void push_zero(std::initializer_list<std::vector<T>*> vectors) {
 
 }  // namespace
 
-World::World(WorldSettings s) : settings(s) {}
+World::World(WorldSettings s) : settings(s) {
+  check_settings(settings);
+}
 
 int World::add_disc(double x, double y, double r, double density, DiscMaterial material) {
   const int body = static_cast<int>(bodies.size());
@@ -47,6 +50,7 @@ int World::add_disc(double x, double y, double r, double density, DiscMaterial m
   discs.active.push_back(1);
   discs.material.push_back(material);
   rebuild_pending_ = true;
+  energy.reference_pending = true;
   return body;
 }
 
@@ -78,6 +82,7 @@ int World::add_clump(double cx, double cy, double mass, double inertia,
     discs.material.push_back(DiscMaterial::Aggregate);
   }
   rebuild_pending_ = true;
+  energy.reference_pending = true;
   return body;
 }
 
@@ -88,6 +93,7 @@ void World::add_container_walls(const Container& mould, int polygon_sides) {
 
 void World::scale_radii(double factor) {
   for (double& r : discs.r) r *= factor;
+  energy.reference_pending = true;
   const double f2 = factor * factor;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (bodies.is_clump[b]) continue;
@@ -107,6 +113,7 @@ void World::set_body_velocity(int b, double vx, double vy, double omega) {
   bodies.vx[b] = vx;
   bodies.vy[b] = vy;
   bodies.omega[b] = omega;
+  energy.reference_pending = true;
   for (std::int32_t i = bodies.first_disc[b]; i < bodies.first_disc[b] + bodies.disc_count[b];
        ++i) {
     discs.vx[i] = vx - omega * (discs.y[i] - bodies.y[b]);
@@ -116,6 +123,7 @@ void World::set_body_velocity(int b, double vx, double vy, double omega) {
 }
 
 void World::rebuild() {
+  check_settings(settings);
   if (neighbors.skin <= 0) {
     neighbors.skin = settings.skin;
     if (neighbors.skin <= 0) {
@@ -189,6 +197,10 @@ void World::update_time_step() {
     if (bodies.prescribed[b]) continue;
     dt_min = std::min({dt_min, std::sqrt(bodies.mass[b] / kt), std::sqrt(bodies.inertia[b] / kr)});
   }
+  // Under density scaling every body sits at the same critical step by construction.
+  dt_critical_ = settings.density_scaling ? settings.scaled_time_step / safety
+                 : std::isfinite(dt_min)  ? dt_min
+                                          : 0.0;
   if (settings.fixed_time_step > 0)
     dt_ = settings.fixed_time_step;
   else if (settings.density_scaling)
@@ -201,11 +213,51 @@ void World::refresh_neighbors() {
   if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls)) rebuild();
 }
 
-void World::fail(const std::string& what, long disc, const std::string& cause) const {
+void World::fail(const std::string& what, long disc) const {
   std::ostringstream out;
-  out << "DEM run unstable at step " << steps_ << " (t = " << time_ << " s, dt = " << dt_
-      << " s): disc " << disc << ' ' << what << "; likely cause: " << cause;
+  out << "DEM run unstable at step " << steps_ << " (t = " << time_ << " s): disc " << disc << ' '
+      << what << "; " << describe_instability(*this, disc);
   throw RunError(out.str());
+}
+
+// Work done on the discs by the walls over this step, mid-step rule: the force of this pass
+// times the mean of the wall displacement of the previous step and of this one.
+void World::account_wall_work() {
+  if (energy.last_dx.size() != walls.size()) {  // walls were added (never inside a run)
+    energy.last_dx.resize(walls.size(), 0.0);
+    energy.last_dy.resize(walls.size(), 0.0);
+  }
+  double work = 0, work_this_step = 0;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const double dx = dt_ * walls.vx[w], dy = dt_ * walls.vy[w];
+    work_this_step += walls.fx[w] * dx + walls.fy[w] * dy;
+    work -=
+        walls.fx[w] * 0.5 * (energy.last_dx[w] + dx) + walls.fy[w] * 0.5 * (energy.last_dy[w] + dy);
+    energy.last_dx[w] = dx;
+    energy.last_dy[w] = dy;
+  }
+  energy.wall_work += work;
+  energy.strain_to_half_step = -0.5 * work_this_step;  // integrate adds the bodies' share
+}
+
+// Every energy_check_interval steps (an O(bodies + pairs) pass, about 1/6 of a cycle on the
+// reference specimen): restart the bookkeeping if energy was added outside the step since the
+// last check (radius scaling every cycle of the packing's servo must not pay it each cycle),
+// otherwise look for runaway kinetic energy.
+void World::check_energy() {
+  if (!settings.energy_tracking) return;
+  if (settings.energy_check_interval < 1 || steps_ % settings.energy_check_interval != 0) return;
+  if (energy.reference_pending) {
+    restart_energy_reference(*this);
+    return;
+  }
+  const RunawayCheck r = runaway_check(*this);
+  if (r.body < 0) return;
+  std::ostringstream what;
+  what << "runaway kinetic energy: kinetic + strain + damped energy " << r.accounted
+       << " J/m exceeds " << settings.runaway_energy_factor << " x the energy put in " << r.input
+       << " J/m (kinetic " << r.kinetic << " J/m; body " << r.body << " holds the most)";
+  fail(what.str(), bodies.first_disc[r.body]);
 }
 
 void World::step() {
@@ -230,18 +282,18 @@ void World::step() {
            << " m, more than " << settings.max_overlap_ratio << " x its radius " << discs.r[disc]
            << " m";
     }
-    fail(what.str(), disc,
-         "time step too large for the contact stiffness (check the safety factor, fixed step or "
-         "density scaling), a loading velocity far too high, or discs created overlapping");
+    fail(what.str(), disc);
   }
   if (last_pass_.bonds_broken) cracks.record(pair_forces, neighbors, discs, settings.bonds, time_);
   friction_dissipated_ += last_pass_.slip_work;
   bond_energy_released_ += last_pass_.bond_energy_released;
+  if (!servos.empty()) update_wall_servos(*this);
+  account_wall_work();
   gather_body_forces(bodies, discs);
-  const long bad = integrate(bodies, discs, dt_, settings.local_damping);
-  if (bad >= 0)
-    fail("has a non-finite position or velocity", bodies.first_disc[bad],
-         "time step above the critical step, a zero mass or radius, or a non-finite input");
+  const long bad = integrate(bodies, discs, dt_, settings.local_damping,
+                             settings.energy_tracking ? &energy : nullptr);
+  if (bad >= 0) fail("has a non-finite position or velocity", bodies.first_disc[bad]);
+  check_energy();
   move_walls(walls, dt_);
   time_ += dt_;
   ++steps_;
