@@ -2,7 +2,9 @@
 
 #include <H5Cpp.h>
 
+#include <array>
 #include <numbers>
+#include <stdexcept>
 
 #include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
@@ -49,6 +51,36 @@ void write_scalar_attr(H5::H5Object& o, const std::string& name, T value) {
   o.createAttribute(name, h5type<T>(), H5::DataSpace(H5S_SCALAR)).write(h5type<T>(), &value);
 }
 
+// Root attributes the file format itself writes; a provenance attribute of the same name would
+// make HDF5 fail half-way through the file.
+constexpr std::array<const char*, 5> kReservedAttributes = {
+    "format", "format_version", "cdem_version", "mortar_density_kg_m3",
+    "aggregate_density_kg_m3"};
+
+// A specimen the reader would reject must not be written: refuse it before touching the disk.
+void check_consistent(const Specimen& s) {
+  const std::size_t n = s.x.size();
+  auto same_length = [n](const char* name, std::size_t size) {
+    if (size != n)
+      throw std::invalid_argument("write_specimen: discs/" + std::string(name) + " has " +
+                                  std::to_string(size) + " entries, discs/x has " +
+                                  std::to_string(n));
+  };
+  same_length("y", s.y.size());
+  same_length("r", s.r.size());
+  same_length("clump", s.clump.size());
+  same_length("contact_active", s.contact_active.size());
+  const auto m = static_cast<std::int32_t>(s.clumps.size());
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.clump[i] < -1 || s.clump[i] >= m)
+      throw std::invalid_argument("write_specimen: disc " + std::to_string(i) + " names clump " +
+                                  std::to_string(s.clump[i]) + " of " + std::to_string(m));
+  for (const char* name : kReservedAttributes)
+    if (s.attributes.count(name))
+      throw std::invalid_argument("write_specimen: attribute name '" + std::string(name) +
+                                  "' is reserved for the file format");
+}
+
 struct Reader {
   const std::filesystem::path& path;
 
@@ -75,6 +107,10 @@ struct Reader {
     if (!v.empty()) ds.read(v.data(), h5type<T>());
     return v;
   }
+  H5::Group group(const H5::H5File& f, const std::string& name) const {
+    if (!f.nameExists(name)) fail(name, "group missing; not a cdem specimen file?");
+    return f.openGroup(name);
+  }
   std::string string_attr(const H5::H5Object& o, const std::string& name) const {
     if (!o.attrExists(name)) fail(name, "attribute missing");
     H5::Attribute a = o.openAttribute(name);
@@ -94,8 +130,12 @@ struct Reader {
 }  // namespace
 
 void write_specimen(const Specimen& s, const std::filesystem::path& path) {
+  check_consistent(s);
   AtomicOutput out(path);
-  {
+  H5::Exception::dontPrint();
+  // H5::Exception is not a std::exception: translate it, or no caller would catch it. The
+  // temporary file is removed by `out` on the way out.
+  try {
     H5::H5File f(out.temp_path().string(), H5F_ACC_TRUNC);
     write_string_attr(f, "format", kFormat);
     write_scalar_attr<std::int32_t>(f, "format_version", kFormatVersion);
@@ -142,6 +182,9 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
     write_array(g, "vertex_offset", offset);
     write_array(g, "vertices", vertices, 2, "m");
     f.close();
+  } catch (const H5::Exception& e) {
+    throw RunError("cannot write specimen file " + path.string() + " (" + e.getDetailMsg() +
+                   ")");
   }
   out.commit();
 }
@@ -173,14 +216,14 @@ Specimen read_specimen(const std::filesystem::path& path) {
     s.attributes.erase("format");
     s.attributes.erase("cdem_version");
 
-    H5::Group c = f.openGroup("container");
+    H5::Group c = rd.group(f, "container");
     const std::string shape = rd.string_attr(c, "shape");
     if (shape != "rectangle" && shape != "disc") rd.fail("container/shape", "unknown shape '" + shape + "'");
     s.container.shape = shape == "disc" ? ContainerShape::Disc : ContainerShape::Rectangle;
     s.container.width = rd.scalar_attr<double>(c, "width_m");
     s.container.height = rd.scalar_attr<double>(c, "height_m");
 
-    H5::Group d = f.openGroup("discs");
+    H5::Group d = rd.group(f, "discs");
     s.x = rd.array<double>(d, "x", SIZE_MAX);
     const std::size_t n = s.x.size();
     s.y = rd.array<double>(d, "y", n);
@@ -188,7 +231,7 @@ Specimen read_specimen(const std::filesystem::path& path) {
     s.clump = rd.array<std::int32_t>(d, "clump", n);
     s.contact_active = rd.array<std::uint8_t>(d, "contact_active", n);
 
-    H5::Group g = f.openGroup("clumps");
+    H5::Group g = rd.group(f, "clumps");
     const auto mass = rd.array<double>(g, "mass", SIZE_MAX);
     const std::size_t m = mass.size();
     const auto centroid = rd.array<double>(g, "centroid", m, 2);
