@@ -14,10 +14,14 @@ namespace cdem::mesogen {
 
 namespace {
 
+// p_k only scales Pc. A user's P_k is held to (0, 1] where the input is read; here any
+// positive value is allowed, because a target section area fraction (gradation.
+// target_area_fraction) may need more than any real grading gives, and placement must then be
+// the one to report what it reached.
 void check_content_and_size(const char* who, double p_k, double d_max) {
-  if (!(p_k > 0 && p_k <= 1))
-    throw std::invalid_argument(std::string(who) + ": aggregate volume fraction p_k must be in " +
-                                "(0, 1], got " + std::to_string(p_k));
+  if (!(p_k > 0 && std::isfinite(p_k)))
+    throw std::invalid_argument(std::string(who) + ": aggregate volume fraction p_k must be > 0, "
+                                "got " + std::to_string(p_k));
   if (!(d_max > 0 && std::isfinite(d_max)))
     throw std::invalid_argument(std::string(who) + ": maximum aggregate size must be > 0, got " +
                                 std::to_string(d_max));

@@ -54,8 +54,10 @@ TEST(Walraven, ClampsAndKnownPoint) {
 }
 
 TEST(Walraven, RejectsBadContentAndSize) {
-  expect_invalid([] { walraven_passing(1, 1, 1.5); }, "p_k");
+  expect_invalid([] { walraven_passing(1, 1, -0.5); }, "p_k");
   expect_invalid([] { walraven_passing(1, 1, 0); }, "p_k");
+  // Above 1 only scales (a target area fraction beyond any real grading): Pc is linear in P_k.
+  EXPECT_DOUBLE_EQ(walraven_passing(0.5, 1, 1.5), 1.5 * walraven_passing(0.5, 1, 1.0));
   expect_invalid([] { make_walraven(0.75, -1); }, "maximum aggregate size");
 }
 
@@ -208,6 +210,6 @@ TEST(SieveTable, ValidatesWithClearMessages) {
       "largest sieve (10 mm) must pass 100");
   expect_invalid([] { make_sieve_table(0.7, {5 * kMm, 10 * kMm}, {-1, 100}); }, "[0, 100]");
   expect_invalid([] { make_sieve_table(0.7, {0, 10 * kMm}, {5, 100}); }, "size 0");
-  expect_invalid([] { make_sieve_table(1.2, {5 * kMm, 10 * kMm}, {5, 100}); }, "p_k");
+  expect_invalid([] { make_sieve_table(-0.2, {5 * kMm, 10 * kMm}, {5, 100}); }, "p_k");
   expect_invalid([] { make_fuller(0.7, 10 * kMm, 0); }, "exponent");
 }
