@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -151,4 +152,41 @@ r_mean_mm = 0.4
   const double R = 25e-3;
   for (std::size_t i = 0; i < s.disc_count(); ++i)
     EXPECT_LT(std::hypot(s.x[i] - R, s.y[i] - R), R) << "disc " << i << " centre outside";
+}
+
+namespace {
+std::string sample(const char* name) {
+  std::ifstream in(fs::path(CDEM_SOURCE_DIR) / "samples" / name);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+// The SPEC 8 reference specimen as shipped (issue acceptance): bins exactly 59/28/15/8/4, every
+// aggregate inside and apart (independent exact check), area fraction within 0.01 of the
+// Walraven target, the disc count of the formula, residual stress within 20 % of sigma0.
+TEST(Generate, C30ReferenceSpecimen) {
+  const Generated g = generate(sample("c30_specimen.toml"), "c30", 1);
+  const int expected[] = {59, 28, 15, 8, 4};
+  ASSERT_EQ(g.summary["bins"].size(), 5u);
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(g.summary["bins"][i]["target_count"].get<int>(), expected[i]);
+    EXPECT_EQ(g.summary["bins"][i]["placed_count"].get<int>(), expected[i]);
+  }
+  expect_valid_aggregates(g.specimen, 0.5e-3, 0.5e-3);
+  const double target = mesogen::walraven_passing(15e-3, 15e-3, 0.75) -
+                        mesogen::walraven_passing(5e-3, 15e-3, 0.75);
+  EXPECT_NEAR(g.summary["aggregate_area_fraction"]["target"].get<double>(), target, 1e-12);
+  EXPECT_NEAR(g.summary["aggregate_area_fraction"]["achieved"].get<double>(), target, 0.01);
+  EXPECT_EQ(g.specimen.disc_count(),
+            static_cast<std::size_t>(std::floor(0.02 * 0.88 / (std::numbers::pi * 0.25e-6))));
+  EXPECT_NEAR(g.summary["residual_stress_MPa"].get<double>(), 0.1, 0.02);
+  EXPECT_GT(g.summary["contacts"]["itz"].get<long>(), 0);
+}
+
+TEST(Generate, HighContentSampleReachesFiftyFivePercent) {
+  const Generated g = generate(sample("high_content.toml"), "high_content", 7);
+  EXPECT_GE(g.summary["aggregate_area_fraction"]["achieved"].get<double>(), 0.55);
+  expect_valid_aggregates(g.specimen, 0.2e-3, 0.2e-3);
 }
