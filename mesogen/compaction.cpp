@@ -17,6 +17,7 @@
 #include <box2d/box2d.h>
 
 #include "core/input_error.hpp"
+#include "mesogen/aggregate_shape.hpp"
 
 namespace cdem::mesogen {
 namespace {
@@ -62,16 +63,6 @@ constexpr long kRelaxMinSteps = 60, kRelaxMaxSteps = 1500;
 // Violators repaired by re-placement at most this share of the aggregates (at least 3).
 constexpr double kRepairShare = 0.03;
 constexpr long kRepairTrials = 20000;
-
-double signed_area(const Polygon& p) {
-  double a = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const auto& u = p[i];
-    const auto& v = p[(i + 1) % p.size()];
-    a += u.x() * v.y() - u.y() * v.x();
-  }
-  return 0.5 * a;
-}
 
 Eigen::Vector2d outward_normal(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
   const Eigen::Vector2d e = (to - from).normalized();
@@ -264,7 +255,7 @@ RepairResult check_and_repair(const Container& mould, const std::vector<Aggregat
     if (bad.count(k)) {
       redo.push_back(placed[k].draw);
     } else {
-      out.valid_area += std::abs(signed_area(placed[k].vertices));
+      out.valid_area += std::abs(polygon_area(placed[k].vertices));
       kept.push_back(std::move(placed[k]));
     }
   }
@@ -281,7 +272,7 @@ RepairResult check_and_repair(const Container& mould, const std::vector<Aggregat
   pc.max_trials_per_aggregate = kRepairTrials;
   PlacementResult r = place_among(mould, draws, redo, std::move(kept), pc, rng);
   for (std::size_t k = placed.size() - redo.size(); k < r.placed.size(); ++k)
-    out.valid_area += std::abs(signed_area(r.placed[k].vertices));
+    out.valid_area += std::abs(polygon_area(r.placed[k].vertices));
   if (!r.unplaced.empty()) {
     out.message = std::to_string(r.unplaced.size()) + " of the " + std::to_string(redo.size()) +
                   " aggregates that failed the exact checks found no room again";
@@ -319,7 +310,7 @@ CompactionResult compact(const Container& mould, const std::vector<AggregateDraw
 
   double aggregate_area = 0, largest = 0;
   for (const auto& d : draws) {
-    aggregate_area += std::abs(signed_area(d.shape));
+    aggregate_area += std::abs(polygon_area(d.shape));
     for (const auto& v : d.shape) largest = std::max(largest, 2 * v.norm());
   }
   CompactionResult result;
@@ -373,7 +364,7 @@ CompactionResult compact(const Container& mould, const std::vector<AggregateDraw
     for (std::size_t k = 0; k < d.shape.size(); ++k)
       perimeter += (d.shape[(k + 1) % d.shape.size()] - d.shape[k]).norm();
     const double r = inflation_u * L + skin_m;
-    inflated_area += std::abs(signed_area(d.shape)) + perimeter * r + std::numbers::pi * r * r;
+    inflated_area += std::abs(polygon_area(d.shape)) + perimeter * r + std::numbers::pi * r * r;
   }
   double s0 = std::max(1.05, std::sqrt(inflated_area / (kGasFraction * mould_area_at(1))));
   std::vector<PlacedAggregate> gas;
@@ -400,7 +391,7 @@ CompactionResult compact(const Container& mould, const std::vector<AggregateDraw
     }
     if (attempt == 10) {  // a pathological draw (e.g. one stone nearly the mould's size)
       double placed_area = 0;
-      for (const auto& p : start.placed) placed_area += std::abs(signed_area(p.vertices));
+      for (const auto& p : start.placed) placed_area += std::abs(polygon_area(p.vertices));
       result.area_fraction_reached = placed_area / mould.area();
       result.message = "compaction could not even scatter the aggregates in a mould " +
                        fraction(s0) + " times as wide; random placement reached area fraction " +
@@ -423,7 +414,7 @@ CompactionResult compact(const Container& mould, const std::vector<AggregateDraw
       local.emplace_back((v - p.centroid) / L);
       radius_u = std::max(radius_u, local.back().norm());
     }
-    if (signed_area(local) < 0) std::reverse(local.begin(), local.end());
+    if (polygon_area(local) < 0) std::reverse(local.begin(), local.end());
     b2BodyDef def;
     def.type = b2_dynamicBody;
     const Eigen::Vector2d at = (p.centroid - gas_centre) / L;

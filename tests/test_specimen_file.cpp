@@ -12,16 +12,15 @@
 #include "core/rng.hpp"
 #include "core/specimen_file.hpp"
 
+#include "scratch_dir.hpp"
+
 namespace fs = std::filesystem;
 using cdem::Specimen;
 
 namespace {
 
 fs::path scratch_dir(const std::string& test) {
-  const fs::path dir = fs::path(CDEM_BINARY_DIR) / "test_output" / "specimen_file" / test;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return cdem::test::scratch_dir("specimen_file", test);
 }
 
 // Three mortar discs, two clumps (a triangle and a square) with two pebbles each, one pebble

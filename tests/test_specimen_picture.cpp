@@ -10,6 +10,8 @@
 
 #include "mesogen/specimen_picture.hpp"
 
+#include "scratch_dir.hpp"
+
 namespace fs = std::filesystem;
 using cdem::Specimen;
 using namespace cdem::mesogen;
@@ -17,10 +19,7 @@ using namespace cdem::mesogen;
 namespace {
 
 fs::path scratch_dir(const std::string& test) {
-  const fs::path dir = fs::path(CDEM_BINARY_DIR) / "test_output" / "specimen_picture" / test;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return cdem::test::scratch_dir("specimen_picture", test);
 }
 
 // 100 x 200 mm: a mortar disc near the top, a bin-0 clump near the bottom (two pebbles, one of
