@@ -1,9 +1,9 @@
 #include "core/atomic_output.hpp"
 
+#include <unistd.h>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
-#include <unistd.h>
 
 namespace cdem {
 

@@ -9,7 +9,9 @@ namespace cdem {
 class InputError : public std::runtime_error {
  public:
   InputError(std::string file, std::string key, const std::string& reason)
-      : std::runtime_error(format(file, key, reason)), file_(std::move(file)), key_(std::move(key)) {}
+      : std::runtime_error(format(file, key, reason)),
+        file_(std::move(file)),
+        key_(std::move(key)) {}
 
   const std::string& file() const { return file_; }
   const std::string& key() const { return key_; }

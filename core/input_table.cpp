@@ -21,14 +21,18 @@ const std::vector<UnitDef>& units_of(Dimension dim) {
       {"Pa", "Pa", 1.0}, {"kPa", "kPa", 1e3}, {"MPa", "MPa", 1e6}, {"GPa", "GPa", 1e9}};
   static const std::vector<UnitDef> density{{"kg_m3", "kg/m3", 1.0}, {"g_cm3", "g/cm3", 1e3}};
   static const std::vector<UnitDef> velocity{{"m_s", "m/s", 1.0}, {"mm_s", "mm/s", 1e-3}};
-  static const std::vector<UnitDef> time{
-      {"s", "s", 1.0}, {"ms", "ms", 1e-3}, {"us", "us", 1e-6}};
+  static const std::vector<UnitDef> time{{"s", "s", 1.0}, {"ms", "ms", 1e-3}, {"us", "us", 1e-6}};
   switch (dim) {
-    case Dimension::Length: return length;
-    case Dimension::Stress: return stress;
-    case Dimension::Density: return density;
-    case Dimension::Velocity: return velocity;
-    case Dimension::Time: return time;
+    case Dimension::Length:
+      return length;
+    case Dimension::Stress:
+      return stress;
+    case Dimension::Density:
+      return density;
+    case Dimension::Velocity:
+      return velocity;
+    case Dimension::Time:
+      return time;
   }
   return length;
 }
@@ -101,13 +105,16 @@ std::optional<InputTable::Found> InputTable::find_quantity(std::string_view key,
   if (const toml::node* n = node_->get(key)) {
     // A plain key must be a string with a unit: a bare number would hide its unit.
     const auto s = n->value<std::string>();
-    if (!s) fail(key, "needs a unit: write '" + std::string(key) + " = \"<value> <unit>\"' or use one of " + unit_list(dim, key));
+    if (!s)
+      fail(key, "needs a unit: write '" + std::string(key) +
+                    " = \"<value> <unit>\"' or use one of " + unit_list(dim, key));
     std::istringstream in(*s);
     double v = 0;
     std::string unit;
     if (!(in >> v >> unit)) fail(key, "cannot read '" + *s + "' as '<number> <unit>'");
     for (const auto& u : units_of(dim))
-      if (unit == u.name || unit == u.suffix) return take(Found{n, std::string(key), u.factor, u.name}), found;
+      if (unit == u.name || unit == u.suffix)
+        return take(Found{n, std::string(key), u.factor, u.name}), found;
     std::string names;
     for (const auto& u : units_of(dim)) names += std::string(names.empty() ? "" : ", ") + u.name;
     fail(key, "unknown unit '" + unit + "' (allowed: " + names + ")");
@@ -121,8 +128,8 @@ std::optional<InputTable::Found> InputTable::find_quantity(std::string_view key,
 
 bool InputTable::has(std::string_view key) const {
   if (node_->contains(key)) return true;
-  for (Dimension d : {Dimension::Length, Dimension::Stress, Dimension::Density,
-                      Dimension::Velocity, Dimension::Time})
+  for (Dimension d : {Dimension::Length, Dimension::Stress, Dimension::Density, Dimension::Velocity,
+                      Dimension::Time})
     for (const auto& u : units_of(d))
       if (node_->contains(std::string(key) + "_" + u.suffix)) return true;
   return false;
@@ -193,7 +200,8 @@ bool InputTable::boolean_or(std::string_view key, bool fallback) const {
   return *n->value<bool>();
 }
 
-std::string InputTable::string(std::string_view key, const std::vector<std::string>& allowed) const {
+std::string InputTable::string(std::string_view key,
+                               const std::vector<std::string>& allowed) const {
   std::string names;
   for (const auto& a : allowed) names += (names.empty() ? "" : ", ") + ("'" + a + "'");
   const toml::node* n = node_->get(key);
@@ -230,7 +238,7 @@ std::vector<double> InputTable::numbers(std::string_view key, Range each) const 
 }
 
 std::vector<long long> InputTable::integers(std::string_view key, long long lo,
-                                           long long hi) const {
+                                            long long hi) const {
   std::string range("[");
   range.append(std::to_string(lo)).append(", ").append(std::to_string(hi)).append("]");
   const toml::node* n = node_->get(key);
@@ -243,8 +251,8 @@ std::vector<long long> InputTable::integers(std::string_view key, long long lo,
     if (!e.is_integer()) fail(key, "entry " + std::to_string(i) + " must be an integer");
     const long long v = *e.value<int64_t>();
     if (v < lo || v > hi)
-      fail(key, "entry " + std::to_string(i) + " must be in " + range + ", got " +
-                    std::to_string(v));
+      fail(key,
+           "entry " + std::to_string(i) + " must be in " + range + ", got " + std::to_string(v));
     out.push_back(v);
   }
   return out;
@@ -264,8 +272,8 @@ std::vector<std::string> InputTable::strings(std::string_view key) const {
   return out;
 }
 
-std::vector<std::vector<double>> InputTable::number_rows(std::string_view key,
-                                                         std::size_t columns, Range each) const {
+std::vector<std::vector<double>> InputTable::number_rows(std::string_view key, std::size_t columns,
+                                                         Range each) const {
   const toml::node* n = node_->get(key);
   if (!n) fail(key, "missing (an array of rows of numbers)");
   const toml::array* a = n->as_array();
@@ -280,8 +288,8 @@ std::vector<std::vector<double>> InputTable::number_rows(std::string_view key,
     std::vector<double> values;
     for (std::size_t j = 0; j < row->size(); ++j) {
       auto v = as_double((*row)[j]);
-      if (!v) fail(key, "row " + std::to_string(i) + " entry " + std::to_string(j) +
-                            " must be a number");
+      if (!v)
+        fail(key, "row " + std::to_string(i) + " entry " + std::to_string(j) + " must be a number");
       if (!each.contains(*v))
         fail(key, "row " + std::to_string(i) + " entry " + std::to_string(j) + " must be in " +
                       each.str() + ", got " + fmt(*v));

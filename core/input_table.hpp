@@ -66,7 +66,10 @@ class InputTable {
  private:
   InputTable(std::shared_ptr<const toml::table> root, const toml::table* node, std::string file,
              std::string prefix, std::shared_ptr<const std::string> text)
-      : root_(std::move(root)), node_(node), file_(std::move(file)), prefix_(std::move(prefix)),
+      : root_(std::move(root)),
+        node_(node),
+        file_(std::move(file)),
+        prefix_(std::move(prefix)),
         text_(std::move(text)) {}
   struct Found {
     const toml::node* node = nullptr;

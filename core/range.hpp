@@ -13,7 +13,9 @@ struct Range {
   bool hi_open = false;
 
   static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, true}; }
-  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, true}; }
+  static Range non_negative() {
+    return {0.0, std::numeric_limits<double>::infinity(), false, true};
+  }
   static Range closed(double a, double b) { return {a, b, false, false}; }
   static Range open(double a, double b) { return {a, b, true, true}; }
   static Range left_open(double a, double b) { return {a, b, true, false}; }

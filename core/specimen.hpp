@@ -38,9 +38,10 @@ enum class DiscTag : std::uint8_t { Mortar = 0, Aggregate = 1 };
 struct Specimen {
   Container container;
   // Discs, structure of arrays.
-  std::vector<double> x, y, r;              // m
-  std::vector<std::int32_t> clump;          // -1 for mortar, else index into clumps
-  std::vector<std::uint8_t> contact_active; // 0 for pebbles too deep inside a clump to touch anything
+  std::vector<double> x, y, r;      // m
+  std::vector<std::int32_t> clump;  // -1 for mortar, else index into clumps
+  std::vector<std::uint8_t>
+      contact_active;  // 0 for pebbles too deep inside a clump to touch anything
   std::vector<Clump> clumps;
   double mortar_density = 2000;     // kg/m3
   double aggregate_density = 2650;  // kg/m3

@@ -23,10 +23,22 @@ constexpr int kFormatVersion = 1;
 
 template <class T>
 const H5::PredType& h5type();
-template <> const H5::PredType& h5type<double>() { return H5::PredType::NATIVE_DOUBLE; }
-template <> const H5::PredType& h5type<std::int32_t>() { return H5::PredType::NATIVE_INT32; }
-template <> const H5::PredType& h5type<std::int64_t>() { return H5::PredType::NATIVE_INT64; }
-template <> const H5::PredType& h5type<std::uint8_t>() { return H5::PredType::NATIVE_UINT8; }
+template <>
+const H5::PredType& h5type<double>() {
+  return H5::PredType::NATIVE_DOUBLE;
+}
+template <>
+const H5::PredType& h5type<std::int32_t>() {
+  return H5::PredType::NATIVE_INT32;
+}
+template <>
+const H5::PredType& h5type<std::int64_t>() {
+  return H5::PredType::NATIVE_INT64;
+}
+template <>
+const H5::PredType& h5type<std::uint8_t>() {
+  return H5::PredType::NATIVE_UINT8;
+}
 
 template <class T>
 void write_array(H5::Group& g, const char* name, const std::vector<T>& v, hsize_t cols = 1,
@@ -54,8 +66,7 @@ void write_scalar_attr(H5::H5Object& o, const std::string& name, T value) {
 // Root attributes the file format itself writes; a provenance attribute of the same name would
 // make HDF5 fail half-way through the file.
 constexpr std::array<const char*, 5> kReservedAttributes = {
-    "format", "format_version", "cdem_version", "mortar_density_kg_m3",
-    "aggregate_density_kg_m3"};
+    "format", "format_version", "cdem_version", "mortar_density_kg_m3", "aggregate_density_kg_m3"};
 
 // A specimen the reader would reject must not be written: refuse it before touching the disk.
 void check_consistent(const Specimen& s) {
@@ -101,8 +112,8 @@ struct Reader {
     sp.getSimpleExtentDims(dims);
     if (cols != 1 && dims[1] != cols) fail(where, "wrong number of columns");
     if (expect_rows != SIZE_MAX && dims[0] != expect_rows)
-      fail(where, "has " + std::to_string(dims[0]) + " rows, expected " +
-                      std::to_string(expect_rows));
+      fail(where,
+           "has " + std::to_string(dims[0]) + " rows, expected " + std::to_string(expect_rows));
     std::vector<T> v(dims[0] * cols);
     if (!v.empty()) ds.read(v.data(), h5type<T>());
     return v;
@@ -183,8 +194,7 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
     write_array(g, "vertices", vertices, 2, "m");
     f.close();
   } catch (const H5::Exception& e) {
-    throw RunError("cannot write specimen file " + path.string() + " (" + e.getDetailMsg() +
-                   ")");
+    throw RunError("cannot write specimen file " + path.string() + " (" + e.getDetailMsg() + ")");
   }
   out.commit();
 }
@@ -218,7 +228,8 @@ Specimen read_specimen(const std::filesystem::path& path) {
 
     H5::Group c = rd.group(f, "container");
     const std::string shape = rd.string_attr(c, "shape");
-    if (shape != "rectangle" && shape != "disc") rd.fail("container/shape", "unknown shape '" + shape + "'");
+    if (shape != "rectangle" && shape != "disc")
+      rd.fail("container/shape", "unknown shape '" + shape + "'");
     s.container.shape = shape == "disc" ? ContainerShape::Disc : ContainerShape::Rectangle;
     s.container.width = rd.scalar_attr<double>(c, "width_m");
     s.container.height = rd.scalar_attr<double>(c, "height_m");

@@ -13,7 +13,9 @@ double Energies::relative_error() const {
   return scale > 0 ? std::abs(total_balance()) / scale : 0.0;
 }
 
-double contact_strain_energy(const World& world) { return contact_energy(world).strain(); }
+double contact_strain_energy(const World& world) {
+  return contact_energy(world).strain();
+}
 
 double kinetic_energy_dynamic(const World& world) {
   const Bodies& b = world.bodies;

@@ -40,10 +40,9 @@ UcsResult analyse_ucs(const std::vector<double>& eps, const std::vector<double>&
   while (last + 1 <= out.peak_index && sig[last + 1] >= lo && sig[last + 1] <= hi) ++last;
   if (!(sig[first] >= lo && sig[first] <= hi)) ++first;
   if (last < first || last - first + 1 < 2)
-    throw std::invalid_argument("analyse_ucs: fewer than 2 points between " +
-                                std::to_string(0.5 - window) + " and " +
-                                std::to_string(0.5 + window) +
-                                " of peak; record the history more often");
+    throw std::invalid_argument(
+        "analyse_ucs: fewer than 2 points between " + std::to_string(0.5 - window) + " and " +
+        std::to_string(0.5 + window) + " of peak; record the history more often");
   const long m = static_cast<long>(last - first + 1);
   Eigen::MatrixXd a(m, 2);
   Eigen::VectorXd b(m);
@@ -72,8 +71,10 @@ MohrCoulomb fit_mohr_coulomb(const std::vector<double>& s3, const std::vector<do
   const Eigen::Vector2d x = a.colPivHouseholderQr().solve(b);
   const double k = x(0), intercept = x(1);
   if (!(k > 1))
-    throw std::invalid_argument("Mohr-Coulomb fit: peak strength does not rise with confinement "
-                                "(slope " + std::to_string(k) + "), no friction angle");
+    throw std::invalid_argument(
+        "Mohr-Coulomb fit: peak strength does not rise with confinement "
+        "(slope " +
+        std::to_string(k) + "), no friction angle");
   MohrCoulomb mc;
   mc.friction_angle = std::asin((k - 1) / (k + 1));
   mc.cohesion = intercept / (2 * std::sqrt(k));

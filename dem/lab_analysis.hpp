@@ -8,10 +8,10 @@
 namespace cdem::dem {
 
 struct UcsResult {
-  double peak_stress = 0;     // Pa, sigma_u
+  double peak_stress = 0;  // Pa, sigma_u
   std::size_t peak_index = 0;
-  double young_modulus = 0;   // Pa, tangent slope at 50 % of peak (local linear fit)
-  double poisson_ratio = 0;   // |lateral strain / axial strain| at that point
+  double young_modulus = 0;  // Pa, tangent slope at 50 % of peak (local linear fit)
+  double poisson_ratio = 0;  // |lateral strain / axial strain| at that point
   double strain_at_half_peak = 0;
 };
 

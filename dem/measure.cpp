@@ -153,7 +153,9 @@ double kinetic_energy(const World& world) {
   return e;
 }
 
-double strain_energy(const World& world) { return contact_energy(world).strain(); }
+double strain_energy(const World& world) {
+  return contact_energy(world).strain();
+}
 
 double porosity(const World& world, double area) {
   double solid = 0;

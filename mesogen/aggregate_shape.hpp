@@ -9,11 +9,11 @@
 namespace cdem::mesogen {
 
 struct ShapeControls {
-  int min_vertices = 4;                 // drawn N = round(min + U (max - min)), before the hull
-  int max_vertices = 6;                 // at most 32
-  double min_interior_angle_deg = 0;    // 0 = no limit; rejects needle-sharp corners
-  double max_elongation = 0;            // 0 = no limit; ratio of longest to shortest width
-  int max_attempts = 1000;              // draws before giving up on the limits (RunError)
+  int min_vertices = 4;               // drawn N = round(min + U (max - min)), before the hull
+  int max_vertices = 6;               // at most 32
+  double min_interior_angle_deg = 0;  // 0 = no limit; rejects needle-sharp corners
+  double max_elongation = 0;          // 0 = no limit; ratio of longest to shortest width
+  int max_attempts = 1000;            // draws before giving up on the limits (RunError)
 };
 
 // A convex polygon, counter-clockwise, centroid at the origin, area pi d^2 / 4 exactly (up to

@@ -49,8 +49,12 @@ class PolygonGrid {
   }
 
  private:
-  int clampx(double x) const { return std::clamp(static_cast<int>(std::floor(x / cell_)), 0, nx_ - 1); }
-  int clampy(double y) const { return std::clamp(static_cast<int>(std::floor(y / cell_)), 0, ny_ - 1); }
+  int clampx(double x) const {
+    return std::clamp(static_cast<int>(std::floor(x / cell_)), 0, nx_ - 1);
+  }
+  int clampy(double y) const {
+    return std::clamp(static_cast<int>(std::floor(y / cell_)), 0, ny_ - 1);
+  }
   double cell_;
   int nx_, ny_;
   std::vector<std::vector<std::size_t>> cells_;

@@ -38,7 +38,8 @@ class PhaseLog {
   void end(const std::string& detail) {
     const double s = std::chrono::duration<double>(Clock::now() - start_).count();
     timings_[name_] = s;
-    if (verbose_) std::cerr << "[generate] " << name_ << ": " << detail << " (" << fixed(s, 2) << " s)\n";
+    if (verbose_)
+      std::cerr << "[generate] " << name_ << ": " << detail << " (" << fixed(s, 2) << " s)\n";
   }
   const nlohmann::ordered_json& timings() const { return timings_; }
   static std::string fixed(double v, int digits) {
@@ -58,9 +59,12 @@ class PhaseLog {
 
 std::unique_ptr<Gradation> make_gradation(const GradationInput& g, double p_k) {
   switch (g.law) {
-    case GradationLaw::Walraven: return make_walraven(p_k, g.d_max);
-    case GradationLaw::Fuller: return make_fuller(p_k, g.d_max, g.fuller_exponent);
-    case GradationLaw::SieveTable: return make_sieve_table(p_k, g.sieve_sizes, g.sieve_passing);
+    case GradationLaw::Walraven:
+      return make_walraven(p_k, g.d_max);
+    case GradationLaw::Fuller:
+      return make_fuller(p_k, g.d_max, g.fuller_exponent);
+    case GradationLaw::SieveTable:
+      return make_sieve_table(p_k, g.sieve_sizes, g.sieve_passing);
   }
   return nullptr;
 }
@@ -119,10 +123,11 @@ void run_generate(const GenerateRequest& request) {
   summary["cdem_version"] = kVersion;
   summary["input"] = request.input.string();
   summary["seed"] = in.seed;
-  summary["specimen"] = {{"shape", in.container.shape == ContainerShape::Disc ? "disc" : "rectangle"},
-                         {"width_mm", in.container.width / units::mm},
-                         {"height_mm", in.container.height / units::mm},
-                         {"area_mm2", area / (units::mm * units::mm)}};
+  summary["specimen"] = {
+      {"shape", in.container.shape == ContainerShape::Disc ? "disc" : "rectangle"},
+      {"width_mm", in.container.width / units::mm},
+      {"height_mm", in.container.height / units::mm},
+      {"area_mm2", area / (units::mm * units::mm)}};
 
   // Gradation -> bins -> aggregate shapes -> placement (-> compaction).
   std::vector<BinTarget> bins;
@@ -220,7 +225,8 @@ void run_generate(const GenerateRequest& request) {
                      {"area_fraction", bins[b].area_fraction},
                      {"target_count", bins[b].count},
                      {"placed_count", placed_per_bin[b]}});
-  summary["gradation"] = in.gradation ? nlohmann::ordered_json{{"p_k", p_k}} : nlohmann::ordered_json{};
+  summary["gradation"] =
+      in.gradation ? nlohmann::ordered_json{{"p_k", p_k}} : nlohmann::ordered_json{};
   summary["bins"] = jbins;
   summary["aggregate_area_fraction"] = {{"target", target_fraction},
                                         {"achieved", polygons_area(aggregates) / area}};
@@ -231,9 +237,8 @@ void run_generate(const GenerateRequest& request) {
   summary["pebbles_kept"] = clumping.pebbles_kept;
   summary["pebbles_dropped"] = clumping.pebbles_dropped;
   summary["residual_stress_MPa"] = packing.residual_stress / units::MPa;
-  summary["contacts"] = {{"mortar_mortar", m_contacts},
-                         {"itz", itz_contacts},
-                         {"aggregate_aggregate", a_contacts}};
+  summary["contacts"] = {
+      {"mortar_mortar", m_contacts}, {"itz", itz_contacts}, {"aggregate_aggregate", a_contacts}};
   summary["packing"] = {{"disc_count_formula", packing.disc_count_formula},
                         {"initial_porosity", packing.initial_porosity},
                         {"expansion_factor", packing.expansion_factor},

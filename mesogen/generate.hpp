@@ -7,12 +7,12 @@
 namespace cdem::mesogen {
 
 struct GenerateRequest {
-  std::filesystem::path input;                    // generator TOML
-  std::filesystem::path output;                   // specimen .h5
-  std::optional<std::uint64_t> seed;              // overrides the file's seed
-  std::optional<std::filesystem::path> summary;   // summary JSON
-  std::optional<std::filesystem::path> picture;   // PNG
-  bool verbose = true;                            // phase lines on stderr
+  std::filesystem::path input;                   // generator TOML
+  std::filesystem::path output;                  // specimen .h5
+  std::optional<std::uint64_t> seed;             // overrides the file's seed
+  std::optional<std::filesystem::path> summary;  // summary JSON
+  std::optional<std::filesystem::path> picture;  // PNG
+  bool verbose = true;                           // phase lines on stderr
 };
 
 // Throws InputError for bad input and RunError when the target cannot be reached. Writes

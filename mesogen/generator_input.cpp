@@ -58,12 +58,14 @@ GradationInput read_gradation(const InputTable& t, const Container& mould, doubl
   g.d_max = t.quantity("d_max", Dimension::Length, Range::left_open(0, kMaxSize));
   if (g.d_min >= g.d_max)
     t.fail("d_min", "must be smaller than d_max (" + mm(g.d_max) + "), got " + mm(g.d_min));
-  const double room = (mould.shape == ContainerShape::Disc ? mould.width
-                                                           : std::min(mould.width, mould.height)) -
-                      2 * clearance;
+  const double room =
+      (mould.shape == ContainerShape::Disc ? mould.width : std::min(mould.width, mould.height)) -
+      2 * clearance;
   if (g.d_max >= room)
-    t.fail("d_max", "must be smaller than the specimen's smallest size less the boundary "
-                    "clearances (" + mm(room) + "), got " + mm(g.d_max));
+    t.fail("d_max",
+           "must be smaller than the specimen's smallest size less the boundary "
+           "clearances (" +
+               mm(room) + "), got " + mm(g.d_max));
 
   if (t.has("bins")) {
     if (t.has("bin_count")) t.fail("bin_count", "give either bins or bin_count, not both");
@@ -75,8 +77,10 @@ GradationInput read_gradation(const InputTable& t, const Container& mould, doubl
     for (std::size_t i = 1; i < g.bin_edges.size(); ++i)
       if (g.bin_edges[i] <= g.bin_edges[i - 1]) t.fail(key, "edges must increase strictly");
     const double tol = 1e-9;
-    if (std::abs(g.bin_edges.front() - g.d_min) > tol || std::abs(g.bin_edges.back() - g.d_max) > tol)
-      t.fail(key, "must start at d_min (" + mm(g.d_min) + ") and end at d_max (" + mm(g.d_max) + ")");
+    if (std::abs(g.bin_edges.front() - g.d_min) > tol ||
+        std::abs(g.bin_edges.back() - g.d_max) > tol)
+      t.fail(key,
+             "must start at d_min (" + mm(g.d_min) + ") and end at d_max (" + mm(g.d_max) + ")");
   } else {
     const auto n = t.integer_or("bin_count", 5, 1, 100);
     for (long long i = 0; i <= n; ++i)
@@ -92,7 +96,8 @@ GradationInput read_gradation(const InputTable& t, const Container& mould, doubl
     if (g.sieve_sizes.size() != g.sieve_passing.size() || g.sieve_sizes.size() < 2)
       t.fail("sieve_passing_percent", "needs one value per sieve size (at least two)");
     for (std::size_t i = 1; i < g.sieve_sizes.size(); ++i) {
-      if (g.sieve_sizes[i] <= g.sieve_sizes[i - 1]) t.fail(sizes_key, "sizes must increase strictly");
+      if (g.sieve_sizes[i] <= g.sieve_sizes[i - 1])
+        t.fail(sizes_key, "sizes must increase strictly");
       if (g.sieve_passing[i] < g.sieve_passing[i - 1])
         t.fail("sieve_passing_percent", "cumulative passing must not decrease");
     }
@@ -110,7 +115,8 @@ GeneratorInput read_generator_input(const InputTable& root) {
   GeneratorInput in;
   in.file = root.file();
   in.source_text = root.source_text();
-  in.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
+  in.seed = static_cast<std::uint64_t>(
+      root.integer_or("seed", 1, 0, std::numeric_limits<long long>::max()));
   in.container = read_container(root.table("specimen"));
   // Defaults hold when the [aggregates] table is left out.
   in.placement.min_gap = in.placement.boundary_clearance = 0.5 * units::mm;
@@ -124,16 +130,18 @@ GeneratorInput read_generator_input(const InputTable& root) {
     in.shape.min_vertices = static_cast<int>(a.integer_or("min_vertices", 4, 3, 32));
     in.shape.max_vertices = static_cast<int>(a.integer_or("max_vertices", 6, 3, 32));
     if (in.shape.max_vertices < in.shape.min_vertices)
-      a.fail("max_vertices", "must be >= min_vertices (" + std::to_string(in.shape.min_vertices) + ")");
-    in.shape.min_interior_angle_deg = a.number_or("min_interior_angle_deg", 0, Range::right_open(0, 180));
+      a.fail("max_vertices",
+             "must be >= min_vertices (" + std::to_string(in.shape.min_vertices) + ")");
+    in.shape.min_interior_angle_deg =
+        a.number_or("min_interior_angle_deg", 0, Range::right_open(0, 180));
     in.shape.max_elongation = a.number_or("max_elongation", 0, Range::non_negative());
     if (in.shape.max_elongation != 0 && in.shape.max_elongation < 1)
       a.fail("max_elongation", "must be 0 (no limit) or >= 1");
     in.aggregate_density = a.quantity_or("density", Dimension::Density, 2650, Range::positive());
     const Range gap = Range::right_open(0, 0.1);
     in.placement.min_gap = a.quantity_or("min_gap", Dimension::Length, in.placement.min_gap, gap);
-    in.placement.boundary_clearance =
-        a.quantity_or("boundary_clearance", Dimension::Length, in.placement.boundary_clearance, gap);
+    in.placement.boundary_clearance = a.quantity_or("boundary_clearance", Dimension::Length,
+                                                    in.placement.boundary_clearance, gap);
     in.placement.max_trials_per_aggregate = a.integer_or("max_trials", 2000, 1, 10'000'000);
     in.compaction_enabled = a.boolean_or("compaction", true);
     in.compaction.max_steps = a.integer_or("compaction_max_steps", 200000, 1, 100'000'000);
@@ -167,7 +175,8 @@ GeneratorInput read_generator_input(const InputTable& root) {
     m.fail("r_mean", "discs too large for the aggregates: a disc diameter (" + mm(2 * r_max) +
                          ") must be below d_min (" + mm(in.gradation->d_min) + ")");
   const double area = in.container.area();
-  const double n_discs = std::floor(area * (1 - mc.porosity) / (std::numbers::pi * mc.r_mean * mc.r_mean));
+  const double n_discs =
+      std::floor(area * (1 - mc.porosity) / (std::numbers::pi * mc.r_mean * mc.r_mean));
   if (n_discs > 5e6)
     m.fail("r_mean", "would give " + std::to_string(static_cast<long long>(n_discs)) +
                          " discs; the limit is 5,000,000");

@@ -32,8 +32,8 @@ struct GradationInput {
 };
 
 struct GeneratorInput {
-  std::string file;           // path as given, for messages
-  std::string source_text;    // the whole file, stored in the specimen for provenance
+  std::string file;         // path as given, for messages
+  std::string source_text;  // the whole file, stored in the specimen for provenance
   std::uint64_t seed = 1;
   Container container;
   std::optional<GradationInput> gradation;  // absent: mortar only

@@ -20,8 +20,10 @@ namespace {
 // the one to report what it reached.
 void check_content_and_size(const char* who, double p_k, double d_max) {
   if (!(p_k > 0 && std::isfinite(p_k)))
-    throw std::invalid_argument(std::string(who) + ": aggregate volume fraction p_k must be > 0, "
-                                "got " + std::to_string(p_k));
+    throw std::invalid_argument(std::string(who) +
+                                ": aggregate volume fraction p_k must be > 0, "
+                                "got " +
+                                std::to_string(p_k));
   if (!(d_max > 0 && std::isfinite(d_max)))
     throw std::invalid_argument(std::string(who) + ": maximum aggregate size must be > 0, got " +
                                 std::to_string(d_max));

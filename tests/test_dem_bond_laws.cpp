@@ -47,7 +47,8 @@ TEST(ParallelBond, ElasticResponseUnderImposedMotion) {
   const double delta = 2e-9, delta_s = 3e-9, theta = 1e-6;
   // Imposed in 1000 equal increments: the incremental law must integrate to the total one.
   ParallelBondState s;
-  for (int i = 0; i < 1000; ++i) parallel_bond_increment(s, g, delta / 1000, delta_s / 1000, theta / 1000);
+  for (int i = 0; i < 1000; ++i)
+    parallel_bond_increment(s, g, delta / 1000, delta_s / 1000, theta / 1000);
   const double kbn = 16e9 / 1e-3, kbs = kbn / 1.45, ab = 2 * 0.4e-3;
   const double ib = 2.0 / 3.0 * std::pow(0.4e-3, 3);
   EXPECT_NEAR(s.fn, kbn * ab * delta, 1e-12 * kbn * ab * delta);

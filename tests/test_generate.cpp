@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/specimen_file.hpp"
-#include "polygon_fixtures.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/gradation.hpp"
+#include "polygon_fixtures.hpp"
 
 namespace fs = std::filesystem;
 using namespace cdem;
@@ -111,7 +111,8 @@ TEST(Generate, SmallRectangleHoldsEveryPromise) {
     for (const auto& v : s.clumps[s.clump[i]].vertices) poly.push_back({v.x(), v.y()});
     EXPECT_EQ(poly.bounded_side({s.x[i], s.y[i]}), CGAL::ON_BOUNDED_SIDE);
   }
-  EXPECT_EQ(pebbles, g.summary["pebbles_kept"].get<long>() + g.summary["pebbles_dropped"].get<long>());
+  EXPECT_EQ(pebbles,
+            g.summary["pebbles_kept"].get<long>() + g.summary["pebbles_dropped"].get<long>());
 
   // Clump mass and inertia come from the polygon (density x area, density x polar moment).
   for (const Clump& c : s.clumps) {
@@ -175,8 +176,8 @@ TEST(Generate, C30ReferenceSpecimen) {
     EXPECT_EQ(g.summary["bins"][i]["placed_count"].get<int>(), expected[i]);
   }
   expect_valid_aggregates(g.specimen, 0.5e-3, 0.5e-3);
-  const double target = mesogen::walraven_passing(15e-3, 15e-3, 0.75) -
-                        mesogen::walraven_passing(5e-3, 15e-3, 0.75);
+  const double target =
+      mesogen::walraven_passing(15e-3, 15e-3, 0.75) - mesogen::walraven_passing(5e-3, 15e-3, 0.75);
   EXPECT_NEAR(g.summary["aggregate_area_fraction"]["target"].get<double>(), target, 1e-12);
   EXPECT_NEAR(g.summary["aggregate_area_fraction"]["achieved"].get<double>(), target, 0.01);
   EXPECT_EQ(g.specimen.disc_count(),
