@@ -6,14 +6,14 @@
 
 #include "core/rng.hpp"
 #include "core/specimen.hpp"
+#include "dem/bond_installation.hpp"
 #include "dem/world.hpp"
 #include "mesogen/mortar_packing.hpp"
 
 namespace cdem::bench {
 
-// Contacts of the benchmark world. Bonded is the run the SPEC's C30 model needs; it becomes
-// available when the parallel bonds are installed by the contact kernel (wip-bonds), at which
-// point `reference_world` installs them on every touching disc-disc contact.
+// Contacts of the benchmark world. Bonded is the run the SPEC's C30 model needs: parallel bonds
+// (the SPEC 8 mortar bond) installed on every disc-disc contact, all intact for the run.
 enum class Bonds { Unbonded = 0, Bonded = 1 };
 
 inline constexpr double kEmod = 16e9;     // Pa, E* of all contact classes
@@ -36,16 +36,32 @@ inline const mesogen::MortarPacking& reference_packing(double r_ratio = 2.5) {
   return packing;
 }
 
-inline dem::World reference_world(const mesogen::MortarPacking& p, int threads) {
+inline dem::World reference_world(const mesogen::MortarPacking& p, int threads,
+                                  Bonds bonds = Bonds::Unbonded) {
   dem::WorldSettings s;
   s.threads = threads;
   s.laws.fill(dem::LinearContact{kEmod, kKappa, kFriction});
+  if (bonds == Bonds::Bonded) {
+    // SPEC 8 mortar bond on every disc-disc class; far from failure in a 500-step benchmark.
+    dem::BondModel mortar;
+    mortar.kind = dem::BondKind::Parallel;
+    mortar.parallel.modulus = kEmod;
+    mortar.parallel.stiffness_ratio = 1.45;
+    mortar.parallel.tensile_strength = 10e6;
+    mortar.parallel.cohesion = 30e6;
+    for (auto c : {dem::ContactClass::Mortar, dem::ContactClass::Itz, dem::ContactClass::Aggregate})
+      s.bonds[static_cast<int>(c)] = mortar;
+  }
   dem::World w(s);
   Container mould;
   mould.width = 0.1;
   mould.height = 0.2;
   w.add_container_walls(mould);
   for (std::size_t i = 0; i < p.r.size(); ++i) w.add_disc(p.x[i], p.y[i], p.r[i], kDensity);
+  if (bonds == Bonds::Bonded) {
+    w.refresh_neighbors();
+    dem::install_bonds(w);
+  }
   w.walls.vy[0] = 0.02;
   w.walls.vy[2] = -0.02;
   return w;
