@@ -31,6 +31,22 @@ double crossing(double t0, double g0, double t1, double g1) {
   return t0 + (t1 - t0) * g0 / (g0 - g1);
 }
 
+// Steps the world until the gap `gap()` has closed and opened again (at most 20,000 steps);
+// returns the contact time in s, or -1 if the contact did not both start and end.
+template <class Gap>
+double contact_duration(World& w, Gap gap) {
+  double t_prev = w.time(), g_prev = gap(), t_in = -1, t_out = -1;
+  for (int s = 0; s < 20000 && t_out < 0; ++s) {
+    w.step();
+    const double g = gap();
+    if (g_prev > 0 && g <= 0) t_in = crossing(t_prev, g_prev, w.time(), g);
+    if (g_prev <= 0 && g > 0) t_out = crossing(t_prev, g_prev, w.time(), g);
+    t_prev = w.time();
+    g_prev = g;
+  }
+  return t_in > 0 && t_out > t_in ? t_out - t_in : -1;
+}
+
 TEST(LinearContactLaw, StiffnessFollowsSpecFormulas) {
   const LinearContact law{kE, 1.45, 0.5};
   // kn = A E* / L, A = 2 min(R1, R2) t, L = R1 + R2 (t = 1 m).
@@ -62,18 +78,9 @@ TEST(DiscDiscImpact, ContactTimeAndRestitution) {
   const auto gap = [&] {
     return std::hypot(w.discs.x[1] - w.discs.x[0], w.discs.y[1] - w.discs.y[0]) - r1 - r2;
   };
-  double t_prev = w.time(), g_prev = gap(), t_in = -1, t_out = -1;
-  for (int s = 0; s < 20000 && t_out < 0; ++s) {
-    w.step();
-    const double g = gap();
-    if (g_prev > 0 && g <= 0) t_in = crossing(t_prev, g_prev, w.time(), g);
-    if (g_prev <= 0 && g > 0) t_out = crossing(t_prev, g_prev, w.time(), g);
-    t_prev = w.time();
-    g_prev = g;
-  }
-  ASSERT_GT(t_in, 0);
-  ASSERT_GT(t_out, t_in);
-  EXPECT_NEAR((t_out - t_in) / tc, 1.0, 1e-3);
+  const double duration = contact_duration(w, gap);
+  ASSERT_GT(duration, 0);
+  EXPECT_NEAR(duration / tc, 1.0, 1e-3);
   const double approach = v1 - v2;
   const double separation = w.bodies.vx[1] - w.bodies.vx[0];
   EXPECT_NEAR(separation / approach, 1.0, 1e-3);
@@ -93,18 +100,9 @@ TEST(DiscWallImpact, ContactTimeAndRestitution) {
   w.add_disc(r + 50 * dt * -v, 0.002, r, kRho);
   w.set_body_velocity(0, v, 0, 0);
   const auto gap = [&] { return w.discs.x[0] - r; };
-  double t_prev = w.time(), g_prev = gap(), t_in = -1, t_out = -1;
-  for (int s = 0; s < 20000 && t_out < 0; ++s) {
-    w.step();
-    const double g = gap();
-    if (g_prev > 0 && g <= 0) t_in = crossing(t_prev, g_prev, w.time(), g);
-    if (g_prev <= 0 && g > 0) t_out = crossing(t_prev, g_prev, w.time(), g);
-    t_prev = w.time();
-    g_prev = g;
-  }
-  ASSERT_GT(t_in, 0);
-  ASSERT_GT(t_out, t_in);
-  EXPECT_NEAR((t_out - t_in) / tc, 1.0, 1e-3);
+  const double duration = contact_duration(w, gap);
+  ASSERT_GT(duration, 0);
+  EXPECT_NEAR(duration / tc, 1.0, 1e-3);
   EXPECT_NEAR(w.bodies.vx[0] / -v, 1.0, 1e-3);
   EXPECT_NEAR(w.bodies.vy[0], 0.0, 1e-12);
 }
