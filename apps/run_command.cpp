@@ -56,6 +56,9 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   g["floating_discs_removed"] = r.genesis.floating_removed;
   g["removal_passes"] = r.genesis.removal_passes;
   g["discs"] = r.genesis.discs;
+  g["relaxation_steps"] = r.genesis.relaxation_steps;
+  g["relaxation_unbalanced_ratio"] = r.genesis.relaxation_unbalanced_ratio;
+  g["relaxation_cracks"] = r.genesis.relaxation_cracks;
   for (int c = 0; c < 3; ++c) bonds[contact_class_name(ContactClass(c))] = r.genesis.bonds[c];
   g["bonds"] = bonds;
   j["genesis"] = g;

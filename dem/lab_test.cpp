@@ -186,38 +186,50 @@ struct Extent {
 
 Extent disc_extent(const World& w) {
   Extent e;
-  const Discs& d = w.discs;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    e.xmin = std::min(e.xmin, d.x[i] - d.r[i]);
-    e.xmax = std::max(e.xmax, d.x[i] + d.r[i]);
-    e.ymin = std::min(e.ymin, d.y[i] - d.r[i]);
-    e.ymax = std::max(e.ymax, d.y[i] + d.r[i]);
+  const Discs& s = w.discs;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    e.xmin = std::min(e.xmin, s.x[i] - s.r[i]);
+    e.xmax = std::max(e.xmax, s.x[i] + s.r[i]);
+    e.ymin = std::min(e.ymin, s.y[i] - s.r[i]);
+    e.ymax = std::max(e.ymax, s.y[i] + s.r[i]);
   }
   return e;
 }
 
+// The platens of a uniaxial or Brazilian test, as walls not yet in a world: bottom then top,
+// tangent to the outermost discs of the relaxed specimen (the mould faces were flat and every
+// boundary disc touched them, so a uniaxial specimen's ends are flat to within the relaxation),
+// wider than the specimen so a bulging specimen stays on them.
+Walls make_platens(const LabTestControls& c, const Extent& e) {
+  Walls platens;
+  if (c.type == LabTestType::DirectTension) return platens;
+  const double y0 = e.ymin, y1 = e.ymax, x0 = e.xmin, x1 = e.xmax;
+  const double over = c.platen_overhang * (x1 - x0);
+  platens.add(x0 - over, y0, x1 + over, y0);
+  platens.add(x1 + over, y1, x0 - over, y1);
+  platens.vy[0] = c.platen_velocity;
+  platens.vy[1] = -c.platen_velocity;
+  return platens;
+}
+
 Loading set_up_loading(World& world, const Specimen& specimen, const LabTestControls& c,
-                       const Extent& e) {
+                       const Walls& platens, const Extent& e) {
   Loading l;
-  const double height = e.ymax - e.ymin, width = e.xmax - e.xmin;
   const double v = c.platen_velocity;
   if (c.type != LabTestType::DirectTension) {
-    // Rigid platens touching the outermost discs, wider than the specimen so a bulging
-    // specimen stays on them; the top one points its segment the other way (no effect on the
-    // contact, which is by distance).
-    const double over = c.platen_overhang * width;
-    l.bottom_wall = world.add_wall(e.xmin - over, e.ymin, e.xmax + over, e.ymin);
-    l.top_wall = world.add_wall(e.xmax + over, e.ymax, e.xmin - over, e.ymax);
-    world.walls.vy[l.bottom_wall] = v;
-    world.walls.vy[l.top_wall] = -v;
-    l.bottom_y0 = e.ymin;
-    l.top_y0 = e.ymax;
-    l.gauge_length = height;
+    l.bottom_wall = world.add_wall(platens.ax[0], platens.ay[0], platens.bx[0], platens.by[0]);
+    l.top_wall = world.add_wall(platens.ax[1], platens.ay[1], platens.bx[1], platens.by[1]);
+    world.walls.vy[l.bottom_wall] = platens.vy[0];
+    world.walls.vy[l.top_wall] = platens.vy[1];
+    l.bottom_y0 = platens.ay[0];
+    l.top_y0 = platens.ay[1];
+    l.gauge_length = l.top_y0 - l.bottom_y0;
     l.section = specimen.container.width;
     return l;
   }
   // Grip bands: every body whose centroid lies within grip_fraction x H of an end moves with
   // that end (a clump reaching into the band moves whole).
+  const double height = e.ymax - e.ymin;
   l.grips = true;
   const double band = c.grip_fraction * height;
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
@@ -260,13 +272,17 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   res.type = c.type;
   const Specimen cleaned = remove_floating_discs(specimen, settings, c.genesis, res.genesis);
   World world = world_from_specimen(cleaned, settings);
-  const Extent e = disc_extent(world);
-  const Loading loading = set_up_loading(world, cleaned, c, e);
   install_test_bonds(world, c.genesis, res.genesis);
+  // The relaxed state is the reference: displacements, strains, time and steps count from here.
+  const Extent e = disc_extent(world);
+  const Walls platens = make_platens(c, e);
+  const Loading loading = set_up_loading(world, cleaned, c, platens, e);
+  const long step0 = world.step_count();
+  const double time0 = world.time();
   world.refresh_neighbors();
   res.time_step = world.time_step();
   res.width = c.type == LabTestType::Brazilian ? specimen.container.width : loading.section;
-  res.height = c.type == LabTestType::Brazilian ? specimen.container.width : e.ymax - e.ymin;
+  res.height = c.type == LabTestType::Brazilian ? specimen.container.width : loading.gauge_length;
 
   // Lateral strain and confining stress from the central region (middle gauge_fraction of H).
   const double ymid = 0.5 * (e.ymin + e.ymax), half = 0.5 * c.gauge_fraction * (e.ymax - e.ymin);
@@ -281,8 +297,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   const auto record = [&] {
     const double force = loading.force(world);
     const ContactEnergy energy = contact_energy(world);
-    h.step.push_back(world.step_count());
-    h.time.push_back(world.time());
+    h.step.push_back(world.step_count() - step0);
+    h.time.push_back(world.time() - time0);
     h.axial_strain.push_back(loading.travel(world) / loading.gauge_length);
     h.lateral_strain.push_back(-gauge.gradient(world)(0, 0));
     h.axial_stress.push_back(force / (loading.section * kThickness));
@@ -306,7 +322,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   for (;;) {
     world.step();
     boundary_work += loading.work(world, world.time_step());
-    const long s = world.step_count();
+    const long s = world.step_count() - step0;
     const bool at_record = s % c.history_interval == 0;
     bool done = false;
     if (at_record) {
@@ -337,8 +353,9 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
       hooks.snapshot(world);
   }
 
-  res.steps = world.step_count();
+  res.steps = world.step_count() - step0;
   res.cracks = world.cracks.cracks;
+  for (Crack& k : res.cracks) k.time -= time0;
   for (const Crack& k : res.cracks) {
     const int mode = static_cast<int>(k.mode) - 1, cls = static_cast<int>(k.contact_class);
     if (mode >= 0 && mode < 2 && cls >= 0 && cls < 3) ++res.crack_count[mode][cls];

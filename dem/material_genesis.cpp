@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "dem/measure.hpp"
 #include "dem/world_from_specimen.hpp"
 
 namespace cdem::dem {
@@ -27,12 +28,24 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
       second.push_back(j);
     }
   }
+  // Contacts with the mould's walls never go away with a removal: counted once.
+  Walls mould;
+  add_container_walls(mould, specimen.container);
+  std::vector<int> wall_contacts(d.size(), 0);
+  for (std::size_t i = 0; i < d.size(); ++i)
+    for (std::size_t w = 0; w < mould.size(); ++w) {
+      double cx, cy;
+      closest_on_segment(mould.ax[w], mould.ay[w], mould.bx[w], mould.by[w],
+                         d.x[i], d.y[i], cx, cy);
+      if (std::hypot(d.x[i] - cx, d.y[i] - cy) - d.r[i] <= options.bond_gap_ratio * d.r[i])
+        ++wall_contacts[i];
+    }
   std::vector<std::uint8_t> removed(d.size(), 0);
   std::vector<int> contacts(d.size());
   report.floating_removed = 0;
   report.removal_passes = 0;
   for (;;) {
-    std::fill(contacts.begin(), contacts.end(), 0);
+    contacts = wall_contacts;
     for (std::size_t k = 0; k < first.size(); ++k) {
       if (removed[first[k]] || removed[second[k]]) continue;
       ++contacts[first[k]];
@@ -73,6 +86,20 @@ void install_test_bonds(World& world, const GenesisOptions& options, GenesisRepo
   installation.gap_ratio = options.bond_gap_ratio;
   report.bonds = install_bonds(world, installation).by_class;
   report.discs = static_cast<long>(world.discs.size());
+  const long start = world.step_count();
+  for (;;) {
+    world.cycle(100);
+    const long steps = world.step_count() - start;
+    report.relaxation_unbalanced_ratio = unbalanced_force_ratio(world);
+    if ((steps >= options.relax_min_steps &&
+         report.relaxation_unbalanced_ratio <= options.relax_tolerance) ||
+        steps >= options.relax_max_steps)
+      break;
+  }
+  report.relaxation_steps = world.step_count() - start;
+  report.relaxation_cracks = static_cast<long>(world.cracks.size());
+  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+    world.set_body_velocity(static_cast<int>(b), 0, 0, 0);
   world.cracks.clear();
 }
 

@@ -124,6 +124,10 @@ void ResultFile::commit(const LabTestResult& r) {
     write_scalar_attr<long>(g, "floating_discs_removed", r.genesis.floating_removed);
     write_scalar_attr<std::int32_t>(g, "removal_passes", r.genesis.removal_passes);
     write_scalar_attr<long>(g, "discs", r.genesis.discs);
+    write_scalar_attr<long>(g, "relaxation_steps", r.genesis.relaxation_steps);
+    write_scalar_attr<double>(g, "relaxation_unbalanced_ratio",
+                              r.genesis.relaxation_unbalanced_ratio);
+    write_scalar_attr<long>(g, "relaxation_cracks", r.genesis.relaxation_cracks);
     for (int c = 0; c < 3; ++c)
       write_scalar_attr<long>(g, std::string("bonds_") + contact_class_name(ContactClass(c)),
                               r.genesis.bonds[c]);
