@@ -21,8 +21,8 @@ namespace cdem::apps {
 namespace {
 
 nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabTestInput& in) {
-  using dem::ContactClass;
   using dem::contact_class_name;
+  using dem::ContactClass;
   nlohmann::ordered_json j;
   j["test"] = dem::lab_test_name(r.type);
   j["specimen"] = in.specimen_path.string();
@@ -107,8 +107,9 @@ Action add_run_command(CLI::App& app) {
   };
   auto o = std::make_shared<Options>();
   auto* r = app.add_subcommand(
-      "run", "Run a lab test (uniaxial, Brazilian, direct tension) on a specimen: material "
-             "genesis, loading to past the peak, results");
+      "run",
+      "Run a lab test (uniaxial, Brazilian, direct tension) on a specimen: material "
+      "genesis, loading to past the peak, results");
   r->add_option("test", o->test, "Test file (TOML); see samples/c30_ucs.toml")->required();
   r->add_option("-o,--output", o->output,
                 "Result file to write (HDF5; snapshots add an XDMF file beside it)");

@@ -20,9 +20,12 @@ namespace cdem::dem {
 
 const char* lab_test_name(LabTestType type) {
   switch (type) {
-    case LabTestType::Uniaxial: return "uniaxial";
-    case LabTestType::Brazilian: return "brazilian";
-    case LabTestType::DirectTension: return "direct_tension";
+    case LabTestType::Uniaxial:
+      return "uniaxial";
+    case LabTestType::Brazilian:
+      return "brazilian";
+    case LabTestType::DirectTension:
+      return "direct_tension";
   }
   return "?";
 }
@@ -30,8 +33,8 @@ const char* lab_test_name(LabTestType type) {
 namespace {
 
 LabTestControls read_controls(const InputTable& t) {
-  t.reject_unknown_keys({"type", "platen_velocity", "stop_fraction", "stop_strain_margin", "local_damping",
-                         "time_step_safety", "density_scaling", "scaled_time_step",
+  t.reject_unknown_keys({"type", "platen_velocity", "stop_fraction", "stop_strain_margin",
+                         "local_damping", "time_step_safety", "density_scaling", "scaled_time_step",
                          "history_interval", "snapshot_interval", "max_steps", "grip_fraction",
                          "gauge_fraction", "platen_overhang", "threads", "min_contacts",
                          "bond_gap_ratio"});
@@ -81,8 +84,9 @@ LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path&
   // The specimen: a file written by `cdem generate` (an inline generator table is not read yet).
   const toml::table root = toml::parse(input.source_text());
   if (root.get("specimen") && root.get("specimen")->is_table())
-    input.fail("specimen", "an inline generator table is not supported yet; generate the "
-                           "specimen with `cdem generate` and give its file name here");
+    input.fail("specimen",
+               "an inline generator table is not supported yet; generate the "
+               "specimen with `cdem generate` and give its file name here");
   const std::filesystem::path specimen = input.string("specimen");
   out.specimen_path = specimen.is_absolute() ? specimen : base_dir / specimen;
   if (!std::filesystem::is_regular_file(out.specimen_path))
@@ -92,8 +96,9 @@ LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path&
   // Materials: inline [materials.*] tables or the name of a file holding them.
   const toml::node* materials = root.get("materials");
   if (!materials)
-    input.fail("materials", "missing: give [materials.mortar], [materials.itz], "
-                            "[materials.aggregate] tables or materials = \"file.toml\"");
+    input.fail("materials",
+               "missing: give [materials.mortar], [materials.itz], "
+               "[materials.aggregate] tables or materials = \"file.toml\"");
   if (materials->is_string()) {
     const std::filesystem::path name = input.string("materials");
     const std::filesystem::path file = name.is_absolute() ? name : base_dir / name;
@@ -124,17 +129,19 @@ void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input
                          " is a rectangle");
   if (type != LabTestType::Brazilian && disc)
     throw InputError(input.file, "test.type",
-                     std::string("a ") + lab_test_name(type) + " test needs a rectangular "
-                     "specimen; " + input.specimen_path.string() + " is a disc (use \"brazilian\")");
+                     std::string("a ") + lab_test_name(type) +
+                         " test needs a rectangular "
+                         "specimen; " +
+                         input.specimen_path.string() + " is a disc (use \"brazilian\")");
   if (specimen.disc_count() == 0)
     throw InputError(input.specimen_path.string(), "", "the specimen holds no discs");
 }
 
 void LabHistory::reserve(std::size_t n) {
   step.reserve(n);
-  for (auto* v : {&time, &axial_strain, &lateral_strain, &axial_stress, &confining_stress,
-                  &platen_force, &kinetic_energy, &strain_energy, &friction_energy,
-                  &breakage_energy, &boundary_work})
+  for (auto* v :
+       {&time, &axial_strain, &lateral_strain, &axial_stress, &confining_stress, &platen_force,
+        &kinetic_energy, &strain_energy, &friction_energy, &breakage_energy, &boundary_work})
     v->reserve(n);
   bonds_broken.reserve(n);
 }

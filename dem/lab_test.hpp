@@ -26,29 +26,30 @@ const char* lab_test_name(LabTestType type);  // "uniaxial", "brazilian", "direc
 
 struct LabTestControls {
   LabTestType type = LabTestType::Uniaxial;
-  double platen_velocity = 0.02;  // m/s, of each platen (or grip band), toward / away from the other
-  double stop_fraction = 0.8;     // stop when the stress falls below this fraction of the peak
+  double platen_velocity =
+      0.02;                    // m/s, of each platen (or grip band), toward / away from the other
+  double stop_fraction = 0.8;  // stop when the stress falls below this fraction of the peak
   // ... and the axial strain has grown by at least this fraction of the strain at the peak, so a
   // local, recovering drop (a disc crushed under a platen) does not end the test.
   double stop_strain_margin = 0.05;
-  double local_damping = 0.7;     // alpha
+  double local_damping = 0.7;  // alpha
   double time_step_safety = 0.8;
   bool density_scaling = false;
-  double scaled_time_step = 1.0;   // s, the step under density scaling
-  long history_interval = 100;     // steps between history records
-  long snapshot_interval = 0;      // steps between snapshots of the discs; 0 = none
-  long max_steps = 5'000'000;      // bound on the run; reaching it is a RunError
-  double grip_fraction = 0.05;     // direct tension: grip bands, fraction of the height per end
-  double gauge_fraction = 0.5;     // central region of the lateral-strain fit, fraction of H
-  double platen_overhang = 0.25;   // platens reach this fraction of the width beyond each side
+  double scaled_time_step = 1.0;  // s, the step under density scaling
+  long history_interval = 100;    // steps between history records
+  long snapshot_interval = 0;     // steps between snapshots of the discs; 0 = none
+  long max_steps = 5'000'000;     // bound on the run; reaching it is a RunError
+  double grip_fraction = 0.05;    // direct tension: grip bands, fraction of the height per end
+  double gauge_fraction = 0.5;    // central region of the lateral-strain fit, fraction of H
+  double platen_overhang = 0.25;  // platens reach this fraction of the width beyond each side
   int threads = 1;
   GenesisOptions genesis{};
 };
 
 struct LabTestInput {
-  std::string file;                    // the test file, as given
-  std::string text;                    // its text, stored with the results
-  std::string materials_text;          // the material file's text when given by name
+  std::string file;                     // the test file, as given
+  std::string text;                     // its text, stored with the results
+  std::string materials_text;           // the material file's text when given by name
   std::filesystem::path specimen_path;  // resolved relative to the test file
   MaterialTable materials;
   LabTestControls controls;
@@ -101,8 +102,8 @@ struct LabTestResult {
   UcsResult ucs;                 // uniaxial only
   double tensile_strength = 0;   // Pa, Brazilian (2 P / pi D t) and direct tension (F / W t)
   long steps = 0;
-  double time_step = 0;  // s, at the start of loading (after bond installation)
-  double wall_time = 0;  // s
+  double time_step = 0;         // s, at the start of loading (after bond installation)
+  double wall_time = 0;         // s
   std::size_t gauge_discs = 0;  // discs in the lateral-strain region
 };
 

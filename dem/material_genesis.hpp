@@ -27,9 +27,9 @@ struct GenesisOptions {
 
 struct GenesisReport {
   long discs_in_specimen = 0;
-  long floating_removed = 0;  // mortar discs removed (all passes)
-  int removal_passes = 0;     // passes until no disc was left below min_contacts
-  long discs = 0;             // discs of the world (pebbles included)
+  long floating_removed = 0;                     // mortar discs removed (all passes)
+  int removal_passes = 0;                        // passes until no disc was left below min_contacts
+  long discs = 0;                                // discs of the world (pebbles included)
   std::array<long, kContactClassCount> bonds{};  // bonds installed per ContactClass
   long relaxation_steps = 0;
   double relaxation_unbalanced_ratio = 0;  // at the end of the relaxation

@@ -16,11 +16,26 @@ constexpr int kFormatVersion = 1;
 
 template <class T>
 const H5::PredType& h5type();
-template <> const H5::PredType& h5type<double>() { return H5::PredType::NATIVE_DOUBLE; }
-template <> const H5::PredType& h5type<std::int32_t>() { return H5::PredType::NATIVE_INT32; }
-template <> const H5::PredType& h5type<long>() { return H5::PredType::NATIVE_LONG; }
-template <> const H5::PredType& h5type<std::uint8_t>() { return H5::PredType::NATIVE_UINT8; }
-template <> const H5::PredType& h5type<std::uint64_t>() { return H5::PredType::NATIVE_UINT64; }
+template <>
+const H5::PredType& h5type<double>() {
+  return H5::PredType::NATIVE_DOUBLE;
+}
+template <>
+const H5::PredType& h5type<std::int32_t>() {
+  return H5::PredType::NATIVE_INT32;
+}
+template <>
+const H5::PredType& h5type<long>() {
+  return H5::PredType::NATIVE_LONG;
+}
+template <>
+const H5::PredType& h5type<std::uint8_t>() {
+  return H5::PredType::NATIVE_UINT8;
+}
+template <>
+const H5::PredType& h5type<std::uint64_t>() {
+  return H5::PredType::NATIVE_UINT64;
+}
 
 void write_string_attr(H5::H5Object& o, const std::string& name, const std::string& value) {
   H5::StrType st(H5::PredType::C_S1, H5T_VARIABLE);
@@ -136,7 +151,8 @@ void ResultFile::commit(const LabTestResult& r) {
     H5::Group hg = file_->createGroup("history");
     write_array(hg, "step", h.step);
     write_array(hg, "time", h.time, "s");
-    write_array(hg, "axial_strain", h.axial_strain, "1", "platen (grip) travel / H0, loading sense");
+    write_array(hg, "axial_strain", h.axial_strain, "1",
+                "platen (grip) travel / H0, loading sense");
     write_array(hg, "lateral_strain", h.lateral_strain, "1",
                 "-du_x/dx of the central region, contraction positive");
     write_array(hg, "axial_stress", h.axial_stress, "Pa", "mean platen force / (W t)");
@@ -172,10 +188,9 @@ void ResultFile::commit(const LabTestResult& r) {
     write_array(cg, "second", second, "", "world disc index");
     for (int m = 0; m < 2; ++m)
       for (int c = 0; c < 3; ++c)
-        write_scalar_attr<long>(cg,
-                                std::string(m == 0 ? "tension_" : "shear_") +
-                                    contact_class_name(ContactClass(c)),
-                                r.crack_count[m][c]);
+        write_scalar_attr<long>(
+            cg, std::string(m == 0 ? "tension_" : "shear_") + contact_class_name(ContactClass(c)),
+            r.crack_count[m][c]);
   }
   file_->close();
   file_.reset();
@@ -191,9 +206,8 @@ void ResultFile::commit(const LabTestResult& r) {
     const std::size_t n = snapshots_[k].discs;
     const auto item = [&](const char* name, const char* type, int precision) {
       std::ostringstream s;
-      s << "     <DataItem Dimensions=\"" << n << "\" NumberType=\"" << type
-        << "\" Precision=\"" << precision << "\" Format=\"HDF\">" << path << name
-        << "</DataItem>\n";
+      s << "     <DataItem Dimensions=\"" << n << "\" NumberType=\"" << type << "\" Precision=\""
+        << precision << "\" Format=\"HDF\">" << path << name << "</DataItem>\n";
       return s.str();
     };
     x << "   <Grid Name=\"step " << snapshots_[k].step << "\" GridType=\"Uniform\">\n"

@@ -57,11 +57,11 @@ const Specimen& disc_specimen() {  // 20 mm diameter
 std::string materials(double modulus_factor = 1, double strength_factor = 1) {
   const auto num = [](double v) { return std::to_string(v); };
   return "[materials.mortar]\nlaw = \"parallel_bond\"\nemod_GPa = " + num(16 * modulus_factor) +
-         "\nkratio = 1.45\nfriction = 0.5\npb_tensile_strength_MPa = " +
-         num(10 * strength_factor) + "\npb_cohesion_MPa = " + num(30 * strength_factor) +
+         "\nkratio = 1.45\nfriction = 0.5\npb_tensile_strength_MPa = " + num(10 * strength_factor) +
+         "\npb_cohesion_MPa = " + num(30 * strength_factor) +
          "\n[materials.itz]\nlaw = \"parallel_bond\"\nemod_GPa = " + num(8 * modulus_factor) +
-         "\nkratio = 1.45\nfriction = 0.5\npb_tensile_strength_MPa = " +
-         num(5 * strength_factor) + "\npb_cohesion_MPa = " + num(15 * strength_factor) +
+         "\nkratio = 1.45\nfriction = 0.5\npb_tensile_strength_MPa = " + num(5 * strength_factor) +
+         "\npb_cohesion_MPa = " + num(15 * strength_factor) +
          "\n[materials.aggregate]\nlaw = \"linear\"\nemod_GPa = " + num(20 * modulus_factor) +
          "\nkratio = 2\nfriction = 1.0\n";
 }
@@ -82,8 +82,8 @@ void write(const fs::path& file, const std::string& text) {
 LabTestInput test_input(const fs::path& dir, const Specimen& s, const std::string& test_table,
                         const std::string& materials_text = materials()) {
   cdem::write_specimen(s, dir / "specimen.h5");
-  write(dir / "test.toml", "seed = 3\nspecimen = \"specimen.h5\"\n" + materials_text + "\n" +
-                               test_table);
+  write(dir / "test.toml",
+        "seed = 3\nspecimen = \"specimen.h5\"\n" + materials_text + "\n" + test_table);
   return read_lab_test(dir / "test.toml");
 }
 
@@ -144,16 +144,16 @@ TEST(LabTests, DoublingModuliAndStrengthsTogetherScalesTheCurve) {
   const LabTestResult a = run_lab_test(rectangle_specimen(), base);
   const LabTestResult b = run_lab_test(rectangle_specimen(), both);
   EXPECT_NEAR(b.ucs.young_modulus / a.ucs.young_modulus, 2.0, 0.04);  // measured 1.986
-  EXPECT_NEAR(b.ucs.poisson_ratio, a.ucs.poisson_ratio, 0.01);         // measured +2e-4
+  EXPECT_NEAR(b.ucs.poisson_ratio, a.ucs.poisson_ratio, 0.01);        // measured +2e-4
   EXPECT_NEAR(b.ucs.peak_stress / a.ucs.peak_stress, 2.0, 0.06);      // measured 1.951
 }
 
 TEST(LabTests, BrazilianStrengthFollowsThePlatenForceHistory) {
   const fs::path dir = scratch("brazilian");
-  const LabTestInput in = test_input(
-      dir, disc_specimen(),
-      "[materials.wall]\nlaw = \"linear\"\nfriction = 0.5\n"
-      "[test]\ntype = \"brazilian\"\nhistory_interval = 20\nmax_steps = 400000\n");
+  const LabTestInput in =
+      test_input(dir, disc_specimen(),
+                 "[materials.wall]\nlaw = \"linear\"\nfriction = 0.5\n"
+                 "[test]\ntype = \"brazilian\"\nhistory_interval = 20\nmax_steps = 400000\n");
   const LabTestResult r = run_lab_test(disc_specimen(), in);
   double p_max = 0;
   for (double p : r.history.platen_force) p_max = std::max(p_max, p);
@@ -165,9 +165,9 @@ TEST(LabTests, BrazilianStrengthFollowsThePlatenForceHistory) {
 
 TEST(LabTests, DirectTensionPullsTheGripsApart) {
   const fs::path dir = scratch("tension");
-  const LabTestInput in = test_input(
-      dir, rectangle_specimen(),
-      "[test]\ntype = \"direct_tension\"\nhistory_interval = 20\nmax_steps = 400000\n");
+  const LabTestInput in =
+      test_input(dir, rectangle_specimen(),
+                 "[test]\ntype = \"direct_tension\"\nhistory_interval = 20\nmax_steps = 400000\n");
   const LabTestResult r = run_lab_test(rectangle_specimen(), in);
   EXPECT_GT(r.tensile_strength, 0);
   EXPECT_DOUBLE_EQ(r.tensile_strength, r.peak_stress);
@@ -197,10 +197,10 @@ TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
     return read_lab_test(dir / "t.toml");
   };
   const std::string m = materials();
-  expect_input_error([&] { read("specimen = \"none.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n"); },
-                     "specimen");
-  expect_input_error([&] { read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"triaxial\"\n"); },
-                     "test.type");
+  expect_input_error(
+      [&] { read("specimen = \"none.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n"); }, "specimen");
+  expect_input_error(
+      [&] { read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"triaxial\"\n"); }, "test.type");
   expect_input_error(
       [&] {
         read("specimen = \"rect.h5\"\n" + m +
@@ -209,18 +209,25 @@ TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
       "test.platen_velocity");
   expect_input_error(
       [&] {
-        read("specimen = \"rect.h5\"\n[materials.mortar]\nlaw = \"linear\"\nemod_GPa = 16\n"
-             "kratio = 1\nfriction = 0.5\n[test]\ntype = \"uniaxial\"\n");
+        read(
+            "specimen = \"rect.h5\"\n[materials.mortar]\nlaw = \"linear\"\nemod_GPa = 16\n"
+            "kratio = 1\nfriction = 0.5\n[test]\ntype = \"uniaxial\"\n");
       },
       "materials.itz");
-  expect_input_error([&] { read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\nspeed = 1\n"); },
-                     "speed");
-  expect_input_error([&] { read("specimen = \"rect.h5\"\nmaterials = \"none.toml\"\n[test]\ntype = \"uniaxial\"\n"); },
-                     "materials");
+  expect_input_error(
+      [&] { read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\nspeed = 1\n"); },
+      "speed");
+  expect_input_error(
+      [&] {
+        read("specimen = \"rect.h5\"\nmaterials = \"none.toml\"\n[test]\ntype = \"uniaxial\"\n");
+      },
+      "materials");
   // Shape of the specimen against the test.
-  const LabTestInput braz_on_rect = read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"brazilian\"\n");
+  const LabTestInput braz_on_rect =
+      read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"brazilian\"\n");
   expect_input_error([&] { run_lab_test(rectangle_specimen(), braz_on_rect); }, "test.type");
-  const LabTestInput ucs_on_disc = read("specimen = \"disc.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n");
+  const LabTestInput ucs_on_disc =
+      read("specimen = \"disc.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n");
   expect_input_error([&] { run_lab_test(disc_specimen(), ucs_on_disc); }, "test.type");
   // A corrupt HDF5 specimen.
   write(dir / "corrupt.h5", "not an HDF5 file");
@@ -249,9 +256,9 @@ TEST(LabTests, AFailedRunLeavesNoResultFile) {
 
 TEST(LabTests, ResultFileAndXdmfAreWrittenOnSuccess) {
   const fs::path dir = scratch("result");
-  const LabTestInput in = test_input(
-      dir, rectangle_specimen(),
-      "[test]\ntype = \"uniaxial\"\nhistory_interval = 50\nsnapshot_interval = 5000\n");
+  const LabTestInput in =
+      test_input(dir, rectangle_specimen(),
+                 "[test]\ntype = \"uniaxial\"\nhistory_interval = 50\nsnapshot_interval = 5000\n");
   const fs::path target = dir / "result.h5";
   ResultFile file(target, in);
   LabTestHooks hooks;
