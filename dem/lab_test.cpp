@@ -219,8 +219,9 @@ Walls make_platens(const LabTestControls& c, const Extent& e) {
   return platens;
 }
 
-Loading set_up_loading(World& world, const Specimen& specimen, const LabTestControls& c,
+Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInput& input,
                        const Walls& platens, const Extent& e) {
+  const LabTestControls& c = input.controls;
   Loading l;
   const double v = c.platen_velocity;
   if (c.type != LabTestType::DirectTension) {
@@ -247,7 +248,7 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestCont
       l.top_grip.push_back(static_cast<std::int32_t>(b));
   }
   if (l.bottom_grip.empty() || l.top_grip.empty())
-    throw InputError("", "test.grip_fraction", "a grip band holds no disc; widen it");
+    throw InputError(input.file, "test.grip_fraction", "a grip band holds no disc; widen it");
   for (const auto& [band_bodies, vy] : {std::pair{&l.bottom_grip, -v}, std::pair{&l.top_grip, v}})
     for (const std::int32_t b : *band_bodies) {
       world.bodies.prescribed[b] = 1;
@@ -283,7 +284,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   // The relaxed state is the reference: displacements, strains, time and steps count from here.
   const Extent e = disc_extent(world);
   const Walls platens = make_platens(c, e);
-  const Loading loading = set_up_loading(world, cleaned, c, platens, e);
+  const Loading loading = set_up_loading(world, cleaned, input, platens, e);
   const long step0 = world.step_count();
   const double time0 = world.time();
   world.refresh_neighbors();

@@ -109,7 +109,7 @@ TEST(LabTests, UniaxialRunsToTheStopRuleWithFiniteFigures) {
     for (long n : mode) cracks += n;
   EXPECT_EQ(cracks, static_cast<long>(r.cracks.size()));
   EXPECT_EQ(h.bonds_broken.back(), cracks);
-  // Genesis: no mortar disc is left with fewer than 3 contacts (removal repeated to the end).
+  // Genesis figures add up.
   EXPECT_EQ(r.genesis.discs, r.genesis.discs_in_specimen - r.genesis.floating_removed);
 }
 
