@@ -344,8 +344,6 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     }
     if (done || s >= c.max_steps) {
       if (!at_record) record();
-      if (hooks.snapshot && c.snapshot_interval > 0 && s % c.snapshot_interval != 0)
-        hooks.snapshot(world);
       if (!done) {
         std::ostringstream msg;
         msg << "the " << lab_test_name(c.type) << " test reached max_steps = " << c.max_steps
@@ -355,6 +353,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
             << " bonds broken; raise test.max_steps or the platen velocity";
         throw RunError(msg.str());
       }
+      if (hooks.snapshot && c.snapshot_interval > 0) hooks.snapshot(world);  // the last state
       break;
     }
     if (hooks.snapshot && c.snapshot_interval > 0 && s % c.snapshot_interval == 0)
