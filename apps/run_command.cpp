@@ -136,7 +136,9 @@ Action add_run_command(CLI::App& app) {
       };
     }
     if (result_file)
-      hooks.snapshot = [&result_file](const dem::World& w) { result_file->snapshot(w); };
+      hooks.snapshot = [&result_file](const dem::World& w, long step, double time) {
+        result_file->snapshot(w, step, time);
+      };
     const dem::LabTestResult result = dem::run_lab_test(specimen, input, hooks);
     progress.reset();
 

@@ -326,7 +326,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   };
 
   record();
-  if (hooks.snapshot && c.snapshot_interval > 0) hooks.snapshot(world);
+  if (hooks.snapshot && c.snapshot_interval > 0)
+    hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   for (;;) {
     world.step();
     boundary_work += loading.work(world, world.time_step());
@@ -353,11 +354,12 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
             << " bonds broken; raise test.max_steps or the platen velocity";
         throw RunError(msg.str());
       }
-      if (hooks.snapshot && c.snapshot_interval > 0) hooks.snapshot(world);  // the last state
+      if (hooks.snapshot && c.snapshot_interval > 0)
+        hooks.snapshot(world, world.step_count() - step0, world.time() - time0);  // the last state
       break;
     }
     if (hooks.snapshot && c.snapshot_interval > 0 && s % c.snapshot_interval == 0)
-      hooks.snapshot(world);
+      hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   }
 
   res.steps = world.step_count() - step0;

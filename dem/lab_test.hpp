@@ -111,7 +111,7 @@ struct LabTestResult {
 // steps (and at the first and last step), both optional.
 struct LabTestHooks {
   std::function<void(const LabHistory&, double peak, long max_steps)> progress;
-  std::function<void(const World&)> snapshot;
+  std::function<void(const World&, long step, double time)> snapshot;  // loading step, s
 };
 
 // Genesis + loading. Throws RunError (with the figures reached) when max_steps runs out

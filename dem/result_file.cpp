@@ -89,12 +89,12 @@ std::filesystem::path ResultFile::xdmf_path() const {
   return p.replace_extension(".xmf");
 }
 
-void ResultFile::snapshot(const World& world) {
+void ResultFile::snapshot(const World& world, long step, double time) {
   const Discs& d = world.discs;
   H5::Group root = file_->openGroup("snapshots");
   H5::Group g = root.createGroup(snapshot_name(snapshots_.size()));
-  write_scalar_attr<long>(g, "step", world.step_count());
-  write_scalar_attr<double>(g, "time_s", world.time());
+  write_scalar_attr<long>(g, "step", step);
+  write_scalar_attr<double>(g, "time_s", time);
   const auto copy = [&](const std::vector<double>& v, const char* name, const char* units) {
     scratch_.assign(v.begin(), v.end());
     write_array(g, name, scratch_, units);
@@ -112,7 +112,7 @@ void ResultFile::snapshot(const World& world) {
       ++bond_count_[list.second[k]];
     }
   write_array(g, "bonds", bond_count_, "", "intact bonds of the disc");
-  snapshots_.push_back({world.step_count(), world.time(), d.size()});
+  snapshots_.push_back({step, time, d.size()});
 }
 
 void ResultFile::commit(const LabTestResult& r) {

@@ -24,8 +24,9 @@ class ResultFile {
   ResultFile(const ResultFile&) = delete;
   ResultFile& operator=(const ResultFile&) = delete;
 
-  // Appends a snapshot of the discs (position, velocity, intact bonds per disc).
-  void snapshot(const World& world);
+  // Appends a snapshot of the discs (position, velocity, intact bonds per disc) taken at loading
+  // step `step` and loading time `time` (s).
+  void snapshot(const World& world, long step, double time);
   // Writes the histories, cracks and figures, closes the file and renames it into place.
   void commit(const LabTestResult& result);
 

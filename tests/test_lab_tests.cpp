@@ -243,7 +243,9 @@ TEST(LabTests, AFailedRunLeavesNoResultFile) {
   {
     ResultFile file(target, in);
     LabTestHooks hooks;
-    hooks.snapshot = [&file](const World& w) { file.snapshot(w); };
+    hooks.snapshot = [&file](const World& w, long step, double time) {
+      file.snapshot(w, step, time);
+    };
     EXPECT_THROW(run_lab_test(rectangle_specimen(), in, hooks), cdem::RunError);
   }
   for (const auto& entry : fs::directory_iterator(dir))
@@ -262,7 +264,9 @@ TEST(LabTests, ResultFileAndXdmfAreWrittenOnSuccess) {
   const fs::path target = dir / "result.h5";
   ResultFile file(target, in);
   LabTestHooks hooks;
-  hooks.snapshot = [&file](const World& w) { file.snapshot(w); };
+  hooks.snapshot = [&file](const World& w, long step, double time) {
+    file.snapshot(w, step, time);
+  };
   const LabTestResult r = run_lab_test(rectangle_specimen(), in, hooks);
   file.commit(r);
   EXPECT_TRUE(fs::exists(target));
@@ -270,6 +274,8 @@ TEST(LabTests, ResultFileAndXdmfAreWrittenOnSuccess) {
   std::ifstream xmf(dir / "result.xmf");
   const std::string text((std::istreambuf_iterator<char>(xmf)), {});
   EXPECT_NE(text.find("result.h5:/snapshots/000000/x"), std::string::npos);
+  EXPECT_NE(text.find("<Grid Name=\"step 0\""), std::string::npos);  // loading steps
+  EXPECT_NE(text.find("<Grid Name=\"step " + std::to_string(r.steps) + "\""), std::string::npos);
   EXPECT_NE(text.find("Polyvertex"), std::string::npos);
 }
 
