@@ -113,6 +113,24 @@ TEST(LabTests, UniaxialRunsToTheStopRuleWithFiniteFigures) {
   EXPECT_EQ(r.genesis.discs, r.genesis.discs_in_specimen - r.genesis.floating_removed);
 }
 
+TEST(LabTests, SameInputSameBitsWithOneOrTwoThreads) {
+  const fs::path dir = scratch("determinism");
+  const LabTestInput one = test_input(dir, rectangle_specimen(), kUcs);
+  const LabTestInput two = test_input(dir, rectangle_specimen(), kUcs + "threads = 2\n");
+  const LabTestResult a = run_lab_test(rectangle_specimen(), one);
+  const LabTestResult b = run_lab_test(rectangle_specimen(), one);
+  const LabTestResult c = run_lab_test(rectangle_specimen(), two);
+  for (const LabTestResult* r : {&b, &c}) {
+    EXPECT_EQ(r->history.axial_stress, a.history.axial_stress);
+    EXPECT_EQ(r->history.lateral_strain, a.history.lateral_strain);
+    ASSERT_EQ(r->cracks.size(), a.cracks.size());
+    for (std::size_t k = 0; k < a.cracks.size(); ++k) {
+      EXPECT_EQ(r->cracks[k].x, a.cracks[k].x);
+      EXPECT_EQ(r->cracks[k].time, a.cracks[k].time);
+    }
+  }
+}
+
 TEST(LabTests, DoublingEveryModulusDoublesEAndKeepsNu) {
   const fs::path dir = scratch("moduli");
   const LabTestInput base = test_input(dir, rectangle_specimen(), kUcs);
