@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   const std::vector<cdem::apps::Action> actions{
       cdem::apps::add_generate_command(app),
       cdem::apps::add_campaign_command(app),
+      cdem::apps::add_run_command(app),
   };
 
   try {

@@ -13,5 +13,6 @@ using Action = std::function<void()>;
 // Adds the subcommand; the returned action runs it with the parsed options.
 Action add_generate_command(CLI::App& app);
 Action add_campaign_command(CLI::App& app);
+Action add_run_command(CLI::App& app);
 
 }  // namespace cdem::apps

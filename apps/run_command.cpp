@@ -1,0 +1,159 @@
+// `cdem run TEST.toml [-o result.h5] [--summary out.json] [--seed N] [--plot out.png]
+//  [--crack-map out.png] [-q]`: material genesis and one lab test (docs/lab_tests.md).
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/commands.hpp"
+#include "core/atomic_output.hpp"
+#include "core/specimen_file.hpp"
+#include "dem/lab_pictures.hpp"
+#include "dem/lab_test.hpp"
+#include "dem/result_file.hpp"
+
+namespace cdem::apps {
+
+namespace {
+
+nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabTestInput& in) {
+  using dem::contact_class_name;
+  using dem::ContactClass;
+  nlohmann::ordered_json j;
+  j["test"] = dem::lab_test_name(r.type);
+  j["specimen"] = in.specimen_path.string();
+  j["seed"] = in.seed;
+  j["peak_stress_MPa"] = r.peak_stress * 1e-6;
+  if (r.type == dem::LabTestType::Uniaxial) {
+    j["young_modulus_GPa"] = r.ucs.young_modulus * 1e-9;
+    j["poisson_ratio"] = r.ucs.poisson_ratio;
+    j["strain_at_half_peak"] = r.ucs.strain_at_half_peak;
+  } else {
+    j["tensile_strength_MPa"] = r.tensile_strength * 1e-6;
+    j["peak_force_kN_per_m"] = r.peak_force * 1e-3;
+  }
+  nlohmann::ordered_json cracks;
+  long total = 0;
+  for (int m = 0; m < 2; ++m) {
+    nlohmann::ordered_json by_class;
+    for (int c = 0; c < 3; ++c) {
+      by_class[contact_class_name(ContactClass(c))] = r.crack_count[m][c];
+      total += r.crack_count[m][c];
+    }
+    cracks[m == 0 ? "tension" : "shear"] = by_class;
+  }
+  cracks["total"] = total;
+  j["cracks"] = cracks;
+  j["steps"] = r.steps;
+  j["time_step_s"] = r.time_step;
+  j["wall_time_s"] = r.wall_time;
+  nlohmann::ordered_json g, bonds;
+  g["discs_in_specimen"] = r.genesis.discs_in_specimen;
+  g["floating_discs_removed"] = r.genesis.floating_removed;
+  g["removal_passes"] = r.genesis.removal_passes;
+  g["discs"] = r.genesis.discs;
+  g["relaxation_steps"] = r.genesis.relaxation_steps;
+  g["relaxation_unbalanced_ratio"] = r.genesis.relaxation_unbalanced_ratio;
+  g["relaxation_cracks"] = r.genesis.relaxation_cracks;
+  for (int c = 0; c < 3; ++c) bonds[contact_class_name(ContactClass(c))] = r.genesis.bonds[c];
+  g["bonds"] = bonds;
+  j["genesis"] = g;
+  return j;
+}
+
+// One progress line on a terminal, refreshed at most twice a second.
+class ProgressLine {
+ public:
+  void update(const dem::LabHistory& h, double peak, long max_steps) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(500)) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const long step = h.step.back();
+    const double bound = step > 0 ? elapsed * static_cast<double>(max_steps - step) / step : 0;
+    std::fprintf(stderr,
+                 "\rstep %ld  strain %.3e  stress %.3f MPa (peak %.3f)  bonds broken %ld  "
+                 "%.0f s, at most %.0f s left   ",
+                 step, h.axial_strain.back(), h.axial_stress.back() * 1e-6, peak * 1e-6,
+                 h.bonds_broken.back(), elapsed, bound);
+    std::fflush(stderr);
+    shown_ = true;
+  }
+  ~ProgressLine() {
+    if (shown_) std::fputc('\n', stderr);
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+  bool shown_ = false;
+};
+
+std::filesystem::path beside(const std::filesystem::path& result, const std::string& suffix) {
+  std::filesystem::path p = result;
+  return p.replace_filename(result.stem().string() + suffix);
+}
+
+}  // namespace
+
+Action add_run_command(CLI::App& app) {
+  struct Options {
+    std::string test, output, summary, plot, crack_map;
+    std::uint64_t seed = 0;
+    bool quiet = false;
+  };
+  auto o = std::make_shared<Options>();
+  auto* r = app.add_subcommand(
+      "run",
+      "Run a lab test (uniaxial, Brazilian, direct tension) on a specimen: material "
+      "genesis, loading to past the peak, results");
+  r->add_option("test", o->test, "Test file (TOML); see samples/c30_ucs.toml")->required();
+  r->add_option("-o,--output", o->output,
+                "Result file to write (HDF5; snapshots add an XDMF file beside it)");
+  auto* seed = r->add_option("--seed", o->seed, "Seed (overrides the file's `seed`)");
+  r->add_option("--summary", o->summary, "Write a summary JSON here");
+  r->add_option("--plot", o->plot, "Stress-strain plot (PNG); default beside -o");
+  r->add_option("--crack-map", o->crack_map, "Crack map (PNG); default beside -o");
+  r->add_flag("-q,--quiet", o->quiet, "No progress line");
+  return [o, r, seed] {
+    if (!r->parsed()) return;
+    dem::LabTestInput input = dem::read_lab_test(std::filesystem::path(o->test));
+    if (seed->count()) input.seed = o->seed;
+    const Specimen specimen = read_specimen(input.specimen_path);
+    dem::check_specimen_for_test(specimen, input);
+
+    std::optional<dem::ResultFile> result_file;
+    if (!o->output.empty()) result_file.emplace(o->output, input);
+    dem::LabTestHooks hooks;
+    std::optional<ProgressLine> progress;
+    if (!o->quiet && ::isatty(STDERR_FILENO)) {
+      progress.emplace();
+      hooks.progress = [&progress](const dem::LabHistory& h, double peak, long max_steps) {
+        progress->update(h, peak, max_steps);
+      };
+    }
+    if (result_file)
+      hooks.snapshot = [&result_file](const dem::World& w, long step, double time) {
+        result_file->snapshot(w, step, time);
+      };
+    const dem::LabTestResult result = dem::run_lab_test(specimen, input, hooks);
+    progress.reset();
+
+    if (result_file) result_file->commit(result);
+    if (!o->summary.empty())
+      write_text_atomically(o->summary, summary_json(result, input).dump(2) + "\n");
+    std::string plot = o->plot, crack_map = o->crack_map;
+    if (!o->output.empty()) {
+      if (plot.empty()) plot = beside(o->output, "_stress_strain.png").string();
+      if (crack_map.empty()) crack_map = beside(o->output, "_cracks.png").string();
+    }
+    if (!plot.empty()) dem::draw_stress_strain_png(result.history, result.type, plot);
+    if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result.cracks, crack_map);
+    if (!o->quiet) std::printf("%s\n", summary_json(result, input).dump(2).c_str());
+  };
+}
+
+}  // namespace cdem::apps

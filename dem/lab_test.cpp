@@ -1,0 +1,395 @@
+#include "dem/lab_test.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include <toml++/toml.h>
+
+#include "core/input_error.hpp"
+#include "dem/contact_energy.hpp"
+#include "dem/measure.hpp"
+#include "dem/strain_measure.hpp"
+#include "dem/world_from_specimen.hpp"
+
+namespace cdem::dem {
+
+const char* lab_test_name(LabTestType type) {
+  switch (type) {
+    case LabTestType::Uniaxial:
+      return "uniaxial";
+    case LabTestType::Brazilian:
+      return "brazilian";
+    case LabTestType::DirectTension:
+      return "direct_tension";
+  }
+  return "?";
+}
+
+namespace {
+
+LabTestControls read_controls(const InputTable& t) {
+  t.reject_unknown_keys({"type", "platen_velocity", "stop_fraction", "stop_strain_margin",
+                         "local_damping", "time_step_safety", "density_scaling", "scaled_time_step",
+                         "history_interval", "snapshot_interval", "max_steps", "grip_fraction",
+                         "gauge_fraction", "platen_overhang", "threads", "min_contacts",
+                         "bond_gap_ratio"});
+  LabTestControls c;
+  const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension"});
+  c.type = type == "uniaxial"    ? LabTestType::Uniaxial
+           : type == "brazilian" ? LabTestType::Brazilian
+                                 : LabTestType::DirectTension;
+  c.platen_velocity =
+      t.quantity_or("platen_velocity", Dimension::Velocity, c.platen_velocity, Range::positive());
+  c.stop_fraction = t.number_or("stop_fraction", c.stop_fraction, Range::open(0, 1));
+  c.stop_strain_margin =
+      t.number_or("stop_strain_margin", c.stop_strain_margin, Range::closed(0, 10));
+  c.local_damping = t.number_or("local_damping", c.local_damping, Range::right_open(0, 1));
+  c.time_step_safety = t.number_or("time_step_safety", c.time_step_safety, Range::left_open(0, 1));
+  c.density_scaling = t.boolean_or("density_scaling", c.density_scaling);
+  c.scaled_time_step =
+      t.quantity_or("scaled_time_step", Dimension::Time, c.scaled_time_step, Range::positive());
+  if (t.has("scaled_time_step") && !c.density_scaling)
+    t.fail("scaled_time_step", "only meaningful with density_scaling = true");
+  c.history_interval = t.integer_or("history_interval", c.history_interval, 1, 1'000'000'000);
+  c.snapshot_interval = t.integer_or("snapshot_interval", c.snapshot_interval, 0, 1'000'000'000);
+  c.max_steps = t.integer_or("max_steps", c.max_steps, 1, 1'000'000'000'000);
+  c.grip_fraction = t.number_or("grip_fraction", c.grip_fraction, Range::open(0, 0.25));
+  if (t.has("grip_fraction") && c.type != LabTestType::DirectTension)
+    t.fail("grip_fraction", "only used by type = \"direct_tension\"");
+  c.gauge_fraction = t.number_or("gauge_fraction", c.gauge_fraction, Range::left_open(0, 1));
+  c.platen_overhang = t.number_or("platen_overhang", c.platen_overhang, Range::closed(0, 10));
+  c.threads = static_cast<int>(t.integer_or("threads", c.threads, 1, 1024));
+  c.genesis.min_contacts =
+      static_cast<int>(t.integer_or("min_contacts", c.genesis.min_contacts, 0, 12));
+  c.genesis.bond_gap_ratio =
+      t.number_or("bond_gap_ratio", c.genesis.bond_gap_ratio, Range::closed(0, 0.1));
+  return c;
+}
+
+}  // namespace
+
+LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path& base_dir) {
+  input.reject_unknown_keys({"seed", "specimen", "materials", "test"});
+  LabTestInput out;
+  out.file = input.file();
+  out.text = input.source_text();
+  out.seed = static_cast<std::uint64_t>(
+      input.integer_or("seed", 0, 0, std::numeric_limits<long long>::max()));
+
+  // The specimen: a file written by `cdem generate` (an inline generator table is not read yet).
+  const toml::table root = toml::parse(input.source_text());
+  if (root.get("specimen") && root.get("specimen")->is_table())
+    input.fail("specimen",
+               "an inline generator table is not supported yet; generate the "
+               "specimen with `cdem generate` and give its file name here");
+  const std::filesystem::path specimen = input.string("specimen");
+  out.specimen_path = specimen.is_absolute() ? specimen : base_dir / specimen;
+  if (!std::filesystem::is_regular_file(out.specimen_path))
+    input.fail("specimen", "file " + out.specimen_path.string() +
+                               " not found (a specimen HDF5 written by `cdem generate`)");
+
+  // Materials: inline [materials.*] tables or the name of a file holding them.
+  const toml::node* materials = root.get("materials");
+  if (!materials)
+    input.fail("materials",
+               "missing: give [materials.mortar], [materials.itz], "
+               "[materials.aggregate] tables or materials = \"file.toml\"");
+  if (materials->is_string()) {
+    const std::filesystem::path name = input.string("materials");
+    const std::filesystem::path file = name.is_absolute() ? name : base_dir / name;
+    if (!std::filesystem::is_regular_file(file))
+      input.fail("materials", "file " + file.string() + " not found");
+    const InputTable table = InputTable::parse_file(file);
+    out.materials = read_material_table(table);
+    out.materials_text = table.source_text();
+  } else {
+    out.materials = read_material_table(input);
+  }
+  out.controls = read_controls(input.table("test"));
+  return out;
+}
+
+LabTestInput read_lab_test(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file))
+    throw InputError(file.string(), "", "test file not found");
+  return read_lab_test(InputTable::parse_file(file), file.parent_path());
+}
+
+void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input) {
+  const bool disc = specimen.container.shape == ContainerShape::Disc;
+  const LabTestType type = input.controls.type;
+  if (type == LabTestType::Brazilian && !disc)
+    throw InputError(input.file, "test.type",
+                     "a Brazilian test needs a disc specimen; " + input.specimen_path.string() +
+                         " is a rectangle");
+  if (type != LabTestType::Brazilian && disc)
+    throw InputError(input.file, "test.type",
+                     std::string("a ") + lab_test_name(type) +
+                         " test needs a rectangular "
+                         "specimen; " +
+                         input.specimen_path.string() + " is a disc (use \"brazilian\")");
+  if (specimen.disc_count() == 0)
+    throw InputError(input.specimen_path.string(), "", "the specimen holds no discs");
+}
+
+void LabHistory::reserve(std::size_t n) {
+  step.reserve(n);
+  for (auto* v :
+       {&time, &axial_strain, &lateral_strain, &axial_stress, &confining_stress, &platen_force,
+        &kinetic_energy, &strain_energy, &friction_energy, &breakage_energy, &boundary_work})
+    v->reserve(n);
+  bonds_broken.reserve(n);
+}
+
+namespace {
+
+// How the specimen is loaded: two platens (walls) or two grip bands (prescribed bodies).
+struct Loading {
+  bool grips = false;
+  int bottom_wall = -1, top_wall = -1;
+  std::vector<std::int32_t> bottom_grip, top_grip;  // bodies
+  double top_y0 = 0, bottom_y0 = 0;                 // m, reference of the travel
+  double gauge_length = 0;                          // m, length the axial strain refers to
+  double section = 0;                               // m, W (or D) of the nominal stress
+
+  // Force of the specimen on the loading pair, mean of the two ends (N per m), positive in the
+  // sense of the test (compression for platens, tension for grips).
+  double force(const World& w) const {
+    if (!grips) return 0.5 * (w.walls.fy[top_wall] - w.walls.fy[bottom_wall]);
+    double top = 0, bottom = 0;
+    for (const std::int32_t b : top_grip) top += w.bodies.fy[b];
+    for (const std::int32_t b : bottom_grip) bottom += w.bodies.fy[b];
+    return 0.5 * (bottom - top);
+  }
+  // Change of the distance between the two ends (m), positive in the sense of the test.
+  double travel(const World& w) const {
+    if (!grips) return (top_y0 - bottom_y0) - (w.walls.ay[top_wall] - w.walls.ay[bottom_wall]);
+    return (w.bodies.y[top_grip.front()] - top_y0) - (w.bodies.y[bottom_grip.front()] - bottom_y0);
+  }
+  // Work done on the specimen by the loading ends over one step of length dt (J per m).
+  double work(const World& w, double dt) const {
+    double p = 0;
+    if (!grips) {
+      for (const int k : {bottom_wall, top_wall})
+        p -= w.walls.fx[k] * w.walls.vx[k] + w.walls.fy[k] * w.walls.vy[k];
+    } else {
+      for (const auto* band : {&bottom_grip, &top_grip})
+        for (const std::int32_t b : *band)
+          p -= w.bodies.fx[b] * w.bodies.vx[b] + w.bodies.fy[b] * w.bodies.vy[b];
+    }
+    return p * dt;
+  }
+};
+
+struct Extent {
+  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
+  double xmax = -std::numeric_limits<double>::infinity(), ymax = xmax;
+};
+
+Extent disc_extent(const World& w) {
+  Extent e;
+  const Discs& s = w.discs;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    e.xmin = std::min(e.xmin, s.x[i] - s.r[i]);
+    e.xmax = std::max(e.xmax, s.x[i] + s.r[i]);
+    e.ymin = std::min(e.ymin, s.y[i] - s.r[i]);
+    e.ymax = std::max(e.ymax, s.y[i] + s.r[i]);
+  }
+  return e;
+}
+
+// The platens of a uniaxial or Brazilian test, as walls not yet in a world: bottom then top,
+// tangent to the outermost discs of the relaxed specimen (the mould faces were flat and every
+// boundary disc touched them, so a uniaxial specimen's ends are flat to within the relaxation),
+// wider than the specimen so a bulging specimen stays on them.
+Walls make_platens(const LabTestControls& c, const Extent& e) {
+  Walls platens;
+  if (c.type == LabTestType::DirectTension) return platens;
+  const double y0 = e.ymin, y1 = e.ymax, x0 = e.xmin, x1 = e.xmax;
+  const double over = c.platen_overhang * (x1 - x0);
+  platens.add(x0 - over, y0, x1 + over, y0);
+  platens.add(x1 + over, y1, x0 - over, y1);
+  platens.vy[0] = c.platen_velocity;
+  platens.vy[1] = -c.platen_velocity;
+  return platens;
+}
+
+Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInput& input,
+                       const Walls& platens, const Extent& e) {
+  const LabTestControls& c = input.controls;
+  Loading l;
+  const double v = c.platen_velocity;
+  if (c.type != LabTestType::DirectTension) {
+    l.bottom_wall = world.add_wall(platens.ax[0], platens.ay[0], platens.bx[0], platens.by[0]);
+    l.top_wall = world.add_wall(platens.ax[1], platens.ay[1], platens.bx[1], platens.by[1]);
+    world.walls.vy[l.bottom_wall] = platens.vy[0];
+    world.walls.vy[l.top_wall] = platens.vy[1];
+    l.bottom_y0 = platens.ay[0];
+    l.top_y0 = platens.ay[1];
+    l.gauge_length = l.top_y0 - l.bottom_y0;
+    l.section = specimen.container.width;
+    return l;
+  }
+  // Grip bands: every body whose centroid lies within grip_fraction x H of an end moves with
+  // that end (a clump reaching into the band moves whole).
+  const double height = e.ymax - e.ymin;
+  l.grips = true;
+  const double band = c.grip_fraction * height;
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    const double y = world.bodies.y[b];
+    if (y <= e.ymin + band)
+      l.bottom_grip.push_back(static_cast<std::int32_t>(b));
+    else if (y >= e.ymax - band)
+      l.top_grip.push_back(static_cast<std::int32_t>(b));
+  }
+  if (l.bottom_grip.empty() || l.top_grip.empty())
+    throw InputError(input.file, "test.grip_fraction", "a grip band holds no disc; widen it");
+  for (const auto& [band_bodies, vy] : {std::pair{&l.bottom_grip, -v}, std::pair{&l.top_grip, v}})
+    for (const std::int32_t b : *band_bodies) {
+      world.bodies.prescribed[b] = 1;
+      world.set_body_velocity(b, 0, vy, 0);
+    }
+  l.bottom_y0 = world.bodies.y[l.bottom_grip.front()];
+  l.top_y0 = world.bodies.y[l.top_grip.front()];
+  l.gauge_length = height - 2 * band;
+  l.section = specimen.container.width;
+  return l;
+}
+
+}  // namespace
+
+LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
+                           const LabTestHooks& hooks) {
+  check_specimen_for_test(specimen, input);
+  const auto wall_start = std::chrono::steady_clock::now();
+  const LabTestControls& c = input.controls;
+  WorldSettings settings;
+  input.materials.apply(settings);
+  settings.local_damping = c.local_damping;
+  settings.time_step_safety = c.time_step_safety;
+  settings.density_scaling = c.density_scaling;
+  settings.scaled_time_step = c.scaled_time_step;
+  settings.threads = c.threads;
+
+  LabTestResult res;
+  res.type = c.type;
+  const Specimen cleaned = remove_floating_discs(specimen, settings, c.genesis, res.genesis);
+  World world = world_from_specimen(cleaned, settings);
+  install_test_bonds(world, c.genesis, res.genesis);
+  // The relaxed state is the reference: displacements, strains, time and steps count from here.
+  const Extent e = disc_extent(world);
+  const Walls platens = make_platens(c, e);
+  const Loading loading = set_up_loading(world, cleaned, input, platens, e);
+  const long step0 = world.step_count();
+  const double time0 = world.time();
+  world.refresh_neighbors();
+  res.time_step = world.time_step();
+  res.width = c.type == LabTestType::Brazilian ? specimen.container.width : loading.section;
+  res.height = c.type == LabTestType::Brazilian ? specimen.container.width : loading.gauge_length;
+
+  // Lateral strain and confining stress from the central region (middle gauge_fraction of H).
+  const double ymid = 0.5 * (e.ymin + e.ymax), half = 0.5 * c.gauge_fraction * (e.ymax - e.ymin);
+  const Box gauge_box{e.xmin, ymid - half, e.xmax, ymid + half};
+  const StrainGauge gauge(world, gauge_box);
+  res.gauge_discs = gauge.disc_count();
+
+  LabHistory& h = res.history;
+  const long max_records = c.max_steps / c.history_interval + 2;
+  h.reserve(static_cast<std::size_t>(std::min<long>(max_records, 1'000'000)));
+  double boundary_work = 0, peak = 0, strain_at_peak = 0;
+  const auto record = [&] {
+    const double force = loading.force(world);
+    const ContactEnergy energy = contact_energy(world);
+    h.step.push_back(world.step_count() - step0);
+    h.time.push_back(world.time() - time0);
+    h.axial_strain.push_back(loading.travel(world) / loading.gauge_length);
+    h.lateral_strain.push_back(-gauge.gradient(world)(0, 0));
+    h.axial_stress.push_back(force / (loading.section * kThickness));
+    h.confining_stress.push_back(contact_stress(world, gauge_box)(0, 0));
+    h.platen_force.push_back(force);
+    h.kinetic_energy.push_back(kinetic_energy(world));
+    h.strain_energy.push_back(energy.strain());
+    h.friction_energy.push_back(energy.friction);
+    h.breakage_energy.push_back(energy.bond_breakage);
+    h.boundary_work.push_back(boundary_work);
+    h.bonds_broken.push_back(static_cast<long>(world.cracks.size()));
+    if (h.axial_stress.back() > peak) {
+      peak = h.axial_stress.back();
+      strain_at_peak = h.axial_strain.back();
+    }
+    if (hooks.progress) hooks.progress(h, peak, c.max_steps);
+  };
+
+  record();
+  if (hooks.snapshot && c.snapshot_interval > 0)
+    hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
+  for (;;) {
+    world.step();
+    boundary_work += loading.work(world, world.time_step());
+    const long s = world.step_count() - step0;
+    const bool at_record = s % c.history_interval == 0;
+    bool done = false;
+    if (at_record) {
+      record();
+      // SPEC 6 stop rule, once the specimen has started to break (the first records of the
+      // loading are tiny and noisy; a fall there is not a post-peak branch) and confirmed by a
+      // margin of strain beyond the peak (a local drop that recovers is not the failure).
+      done = !world.cracks.cracks.empty() &&
+             past_peak(h.axial_stress.back(), peak, c.stop_fraction) &&
+             h.axial_strain.back() >= strain_at_peak * (1 + c.stop_strain_margin);
+    }
+    if (done || s >= c.max_steps) {
+      if (!at_record) record();
+      if (!done) {
+        std::ostringstream msg;
+        msg << "the " << lab_test_name(c.type) << " test reached max_steps = " << c.max_steps
+            << " before the stress fell below " << c.stop_fraction << " x its peak: peak "
+            << peak * 1e-6 << " MPa, last stress " << h.axial_stress.back() * 1e-6
+            << " MPa, axial strain " << h.axial_strain.back() << ", " << world.cracks.size()
+            << " bonds broken; raise test.max_steps or the platen velocity";
+        throw RunError(msg.str());
+      }
+      if (hooks.snapshot && c.snapshot_interval > 0)
+        hooks.snapshot(world, world.step_count() - step0, world.time() - time0);  // the last state
+      break;
+    }
+    if (hooks.snapshot && c.snapshot_interval > 0 && s % c.snapshot_interval == 0)
+      hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
+  }
+
+  res.steps = world.step_count() - step0;
+  res.cracks = world.cracks.cracks;
+  for (Crack& k : res.cracks) k.time -= time0;
+  for (const Crack& k : res.cracks) {
+    const int mode = static_cast<int>(k.mode) - 1, cls = static_cast<int>(k.contact_class);
+    if (mode >= 0 && mode < 2 && cls >= 0 && cls < 3) ++res.crack_count[mode][cls];
+  }
+  const auto peak_at = std::max_element(h.axial_stress.begin(), h.axial_stress.end());
+  res.peak_stress = *peak_at;
+  res.peak_force = h.platen_force[static_cast<std::size_t>(peak_at - h.axial_stress.begin())];
+  switch (c.type) {
+    case LabTestType::Uniaxial:
+      try {
+        res.ucs = analyse_ucs(h.axial_strain, h.axial_stress, h.lateral_strain);
+      } catch (const std::invalid_argument& e) {
+        throw RunError(std::string("uniaxial test analysis: ") + e.what());
+      }
+      break;
+    case LabTestType::Brazilian:
+      res.tensile_strength = brazilian_strength(res.peak_force, specimen.container.width);
+      break;
+    case LabTestType::DirectTension:
+      res.tensile_strength = res.peak_stress;
+      break;
+  }
+  res.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return res;
+}
+
+}  // namespace cdem::dem

@@ -1,0 +1,122 @@
+#pragma once
+// Lab tests on a bonded specimen (SPEC 6): uniaxial compression between rigid platens, the
+// Brazilian disc between flat platens, and direct tension by grip bands of discs. The test file
+// (docs/lab_tests.md) names the specimen, the material table and the test controls; a run does
+// the material genesis (SPEC 3.6), loads the specimen until the stress falls below a fraction of
+// its peak, and returns the histories, the cracks and the lab figures.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/input_table.hpp"
+#include "core/specimen.hpp"
+#include "dem/crack_log.hpp"
+#include "dem/lab_analysis.hpp"
+#include "dem/material_genesis.hpp"
+#include "dem/material_table.hpp"
+#include "dem/world.hpp"
+
+namespace cdem::dem {
+
+enum class LabTestType { Uniaxial, Brazilian, DirectTension };
+const char* lab_test_name(LabTestType type);  // "uniaxial", "brazilian", "direct_tension"
+
+struct LabTestControls {
+  LabTestType type = LabTestType::Uniaxial;
+  double platen_velocity =
+      0.02;                    // m/s, of each platen (or grip band), toward / away from the other
+  double stop_fraction = 0.8;  // stop when the stress falls below this fraction of the peak
+  // ... and the axial strain has grown by at least this fraction of the strain at the peak, so a
+  // local, recovering drop (a disc crushed under a platen) does not end the test.
+  double stop_strain_margin = 0.05;
+  double local_damping = 0.7;  // alpha
+  double time_step_safety = 0.8;
+  bool density_scaling = false;
+  double scaled_time_step = 1.0;  // s, the step under density scaling
+  long history_interval = 100;    // steps between history records
+  long snapshot_interval = 0;     // steps between snapshots of the discs; 0 = none
+  long max_steps = 5'000'000;     // bound on the run; reaching it is a RunError
+  double grip_fraction = 0.05;    // direct tension: grip bands, fraction of the height per end
+  double gauge_fraction = 0.5;    // central region of the lateral-strain fit, fraction of H
+  double platen_overhang = 0.25;  // platens reach this fraction of the width beyond each side
+  int threads = 1;
+  GenesisOptions genesis{};
+};
+
+struct LabTestInput {
+  std::string file;                     // the test file, as given
+  std::string text;                     // its text, stored with the results
+  std::string materials_text;           // the material file's text when given by name
+  std::filesystem::path specimen_path;  // resolved relative to the test file
+  MaterialTable materials;
+  LabTestControls controls;
+  std::uint64_t seed = 0;
+};
+
+// Reads and validates a test file. Throws InputError naming the file and key: missing
+// specimen file, unknown test type, bad materials (docs/materials.md), negative velocity or
+// other values out of range, unknown keys.
+LabTestInput read_lab_test(const std::filesystem::path& file);
+LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path& base_dir);
+
+// Throws InputError when the specimen's shape does not suit the test (Brazilian needs a disc,
+// uniaxial and direct tension a rectangle).
+void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input);
+
+// Histories, one entry per record (every history_interval steps, plus the last step). Stresses
+// and strains are positive in the sense the test loads the specimen: compression for uniaxial
+// and Brazilian, tension for direct tension. Lateral strain = -du_x/dx of the central region
+// (positive = contraction), so a specimen bulging under compression has a negative one.
+struct LabHistory {
+  std::vector<long> step;
+  std::vector<double> time;              // s
+  std::vector<double> axial_strain;      // platen (grip) travel / H0
+  std::vector<double> lateral_strain;    // -G_xx of the central region's best-fit gradient
+  std::vector<double> axial_stress;      // Pa, mean platen (grip) force / (W t)
+  std::vector<double> confining_stress;  // Pa, sigma_xx of the contacts in the central region
+  std::vector<double> platen_force;      // N (per m), mean of the two platens (grips)
+  std::vector<double> kinetic_energy;    // J/m, physical masses
+  std::vector<double> strain_energy;     // J/m, linear springs + parallel bonds
+  std::vector<double> friction_energy;   // J/m, dissipated by slip since the test began
+  std::vector<double> breakage_energy;   // J/m, released by bond failures
+  std::vector<double> boundary_work;     // J/m, done by the platens (grips) on the specimen
+  std::vector<long> bonds_broken;
+
+  void reserve(std::size_t n);
+  std::size_t size() const { return time.size(); }
+};
+
+struct LabTestResult {
+  LabTestType type = LabTestType::Uniaxial;
+  GenesisReport genesis;
+  LabHistory history;
+  std::vector<Crack> cracks;
+  // crack_count[mode - 1][class]: mode Tension / Shear, class M / ITZ / A.
+  std::array<std::array<long, 3>, 2> crack_count{};
+  double width = 0, height = 0;  // m, specimen extent between platens at the start (D for a disc)
+  double peak_stress = 0;        // Pa, the largest axial stress of the history
+  double peak_force = 0;         // N per m, the largest platen (grip) force
+  UcsResult ucs;                 // uniaxial only
+  double tensile_strength = 0;   // Pa, Brazilian (2 P / pi D t) and direct tension (F / W t)
+  long steps = 0;
+  double time_step = 0;         // s, at the start of loading (after bond installation)
+  double wall_time = 0;         // s
+  std::size_t gauge_discs = 0;  // discs in the lateral-strain region
+};
+
+// Observers of a run: `progress` at every history record, `snapshot` every snapshot_interval
+// steps (and at the first and last step), both optional.
+struct LabTestHooks {
+  std::function<void(const LabHistory&, double peak, long max_steps)> progress;
+  std::function<void(const World&, long step, double time)> snapshot;  // loading step, s
+};
+
+// Genesis + loading. Throws RunError (with the figures reached) when max_steps runs out
+// before the stress has fallen past the peak, or when the DEM run goes unstable.
+LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
+                           const LabTestHooks& hooks = {});
+
+}  // namespace cdem::dem

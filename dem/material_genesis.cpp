@@ -1,0 +1,106 @@
+#include "dem/material_genesis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "dem/measure.hpp"
+#include "dem/world_from_specimen.hpp"
+
+namespace cdem::dem {
+
+Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& settings,
+                               const GenesisOptions& options, GenesisReport& report) {
+  report.discs_in_specimen = static_cast<long>(specimen.disc_count());
+  std::vector<std::int32_t> world_disc_of;
+  World world = world_from_specimen(specimen, settings, &world_disc_of);
+  world.refresh_neighbors();
+  const NeighborList& list = world.neighbors;
+  const Discs& d = world.discs;
+
+  // The contact pairs (gap within the bond tolerance), found once; removal only deletes pairs.
+  std::vector<std::int32_t> first, second;
+  for (std::size_t k = 0; k < list.keys.size(); ++k) {
+    const std::int32_t i = list.first[k], j = list.second[k];
+    const double gap = std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) - d.r[i] - d.r[j];
+    if (gap <= options.bond_gap_ratio * std::min(d.r[i], d.r[j])) {
+      first.push_back(i);
+      second.push_back(j);
+    }
+  }
+  // Contacts with the mould's walls never go away with a removal: counted once.
+  Walls mould;
+  add_container_walls(mould, specimen.container);
+  std::vector<int> wall_contacts(d.size(), 0);
+  for (std::size_t i = 0; i < d.size(); ++i)
+    for (std::size_t w = 0; w < mould.size(); ++w) {
+      double cx, cy;
+      closest_on_segment(mould.ax[w], mould.ay[w], mould.bx[w], mould.by[w], d.x[i], d.y[i], cx,
+                         cy);
+      if (std::hypot(d.x[i] - cx, d.y[i] - cy) - d.r[i] <= options.bond_gap_ratio * d.r[i])
+        ++wall_contacts[i];
+    }
+  std::vector<std::uint8_t> removed(d.size(), 0);
+  std::vector<int> contacts(d.size());
+  report.floating_removed = 0;
+  report.removal_passes = 0;
+  for (;;) {
+    contacts = wall_contacts;
+    for (std::size_t k = 0; k < first.size(); ++k) {
+      if (removed[first[k]] || removed[second[k]]) continue;
+      ++contacts[first[k]];
+      ++contacts[second[k]];
+    }
+    long newly = 0;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      if (removed[i] || world.bodies.is_clump[d.body[i]]) continue;
+      if (contacts[i] < options.min_contacts) {
+        removed[i] = 1;
+        ++newly;
+      }
+    }
+    if (newly == 0) break;
+    report.floating_removed += newly;
+    ++report.removal_passes;
+  }
+
+  Specimen out;
+  out.container = specimen.container;
+  out.clumps = specimen.clumps;
+  out.mortar_density = specimen.mortar_density;
+  out.aggregate_density = specimen.aggregate_density;
+  out.attributes = specimen.attributes;
+  for (std::size_t s = 0; s < specimen.disc_count(); ++s) {
+    if (removed[static_cast<std::size_t>(world_disc_of[s])]) continue;
+    out.x.push_back(specimen.x[s]);
+    out.y.push_back(specimen.y[s]);
+    out.r.push_back(specimen.r[s]);
+    out.clump.push_back(specimen.clump[s]);
+    out.contact_active.push_back(specimen.contact_active[s]);
+  }
+  return out;
+}
+
+void install_test_bonds(World& world, const GenesisOptions& options, GenesisReport& report) {
+  BondInstallation installation;
+  installation.gap_ratio = options.bond_gap_ratio;
+  report.bonds = install_bonds(world, installation).by_class;
+  report.discs = static_cast<long>(world.discs.size());
+  const long start = world.step_count();
+  for (;;) {
+    world.cycle(100);
+    const long steps = world.step_count() - start;
+    report.relaxation_unbalanced_ratio = unbalanced_force_ratio(world);
+    if ((steps >= options.relax_min_steps &&
+         report.relaxation_unbalanced_ratio <= options.relax_tolerance) ||
+        steps >= options.relax_max_steps)
+      break;
+  }
+  report.relaxation_steps = world.step_count() - start;
+  report.relaxation_cracks = static_cast<long>(world.cracks.size());
+  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+    world.set_body_velocity(static_cast<int>(b), 0, 0, 0);
+  world.cracks.clear();
+}
+
+}  // namespace cdem::dem

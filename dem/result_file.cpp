@@ -1,0 +1,228 @@
+#include "dem/result_file.hpp"
+
+#include <H5Cpp.h>
+
+#include <cstdio>
+#include <sstream>
+
+#include "core/version.hpp"
+
+namespace cdem::dem {
+
+namespace {
+
+constexpr const char* kFormat = "cdem-result";
+constexpr int kFormatVersion = 1;
+
+template <class T>
+const H5::PredType& h5type();
+template <>
+const H5::PredType& h5type<double>() {
+  return H5::PredType::NATIVE_DOUBLE;
+}
+template <>
+const H5::PredType& h5type<std::int32_t>() {
+  return H5::PredType::NATIVE_INT32;
+}
+template <>
+const H5::PredType& h5type<long>() {
+  return H5::PredType::NATIVE_LONG;
+}
+template <>
+const H5::PredType& h5type<std::uint8_t>() {
+  return H5::PredType::NATIVE_UINT8;
+}
+template <>
+const H5::PredType& h5type<std::uint64_t>() {
+  return H5::PredType::NATIVE_UINT64;
+}
+
+void write_string_attr(H5::H5Object& o, const std::string& name, const std::string& value) {
+  H5::StrType st(H5::PredType::C_S1, H5T_VARIABLE);
+  o.createAttribute(name, st, H5::DataSpace(H5S_SCALAR)).write(st, value);
+}
+
+template <class T>
+void write_scalar_attr(H5::H5Object& o, const std::string& name, T value) {
+  o.createAttribute(name, h5type<T>(), H5::DataSpace(H5S_SCALAR)).write(h5type<T>(), &value);
+}
+
+template <class T>
+void write_array(H5::Group& g, const std::string& name, const std::vector<T>& v,
+                 const std::string& units = "", const std::string& meaning = "") {
+  hsize_t dims[1] = {v.size()};
+  H5::DataSet ds = g.createDataSet(name, h5type<T>(), H5::DataSpace(1, dims));
+  if (!v.empty()) ds.write(v.data(), h5type<T>());
+  if (!units.empty()) write_string_attr(ds, "units", units);
+  if (!meaning.empty()) write_string_attr(ds, "meaning", meaning);
+}
+
+std::string snapshot_name(std::size_t k) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%06zu", k);
+  return buf;
+}
+
+}  // namespace
+
+ResultFile::ResultFile(std::filesystem::path target, const LabTestInput& input)
+    : out_(std::move(target)) {
+  file_ = std::make_unique<H5::H5File>(out_.temp_path().string(), H5F_ACC_TRUNC);
+  write_string_attr(*file_, "format", kFormat);
+  write_scalar_attr<std::int32_t>(*file_, "format_version", kFormatVersion);
+  write_string_attr(*file_, "cdem_version", kVersion);
+  write_string_attr(*file_, "test", lab_test_name(input.controls.type));
+  write_scalar_attr<std::uint64_t>(*file_, "seed", input.seed);
+  write_string_attr(*file_, "input_file", input.file);
+  write_string_attr(*file_, "input_text", input.text);
+  write_string_attr(*file_, "materials_text", input.materials_text);
+  write_string_attr(*file_, "specimen_file", input.specimen_path.string());
+  file_->createGroup("snapshots");
+}
+
+ResultFile::~ResultFile() {
+  if (file_) file_->close();
+}
+
+std::filesystem::path ResultFile::xdmf_path() const {
+  std::filesystem::path p = out_.target();
+  return p.replace_extension(".xmf");
+}
+
+void ResultFile::snapshot(const World& world, long step, double time) {
+  const Discs& d = world.discs;
+  H5::Group root = file_->openGroup("snapshots");
+  H5::Group g = root.createGroup(snapshot_name(snapshots_.size()));
+  write_scalar_attr<long>(g, "step", step);
+  write_scalar_attr<double>(g, "time_s", time);
+  const auto copy = [&](const std::vector<double>& v, const char* name, const char* units) {
+    scratch_.assign(v.begin(), v.end());
+    write_array(g, name, scratch_, units);
+  };
+  copy(d.x, "x", "m");
+  copy(d.y, "y", "m");
+  copy(d.r, "r", "m");
+  copy(d.vx, "vx", "m/s");
+  copy(d.vy, "vy", "m/s");
+  bond_count_.assign(d.size(), 0);
+  const NeighborList& list = world.neighbors;
+  for (std::size_t k = 0; k < list.keys.size(); ++k)
+    if (list.state.bond[k] != static_cast<std::uint8_t>(BondKind::None)) {
+      ++bond_count_[list.first[k]];
+      ++bond_count_[list.second[k]];
+    }
+  write_array(g, "bonds", bond_count_, "", "intact bonds of the disc");
+  snapshots_.push_back({step, time, d.size()});
+}
+
+void ResultFile::commit(const LabTestResult& r) {
+  {
+    H5::Group s = file_->createGroup("summary");
+    write_scalar_attr<double>(s, "peak_stress_Pa", r.peak_stress);
+    write_scalar_attr<double>(s, "peak_force_N_per_m", r.peak_force);
+    if (r.type == LabTestType::Uniaxial) {
+      write_scalar_attr<double>(s, "young_modulus_Pa", r.ucs.young_modulus);
+      write_scalar_attr<double>(s, "poisson_ratio", r.ucs.poisson_ratio);
+      write_scalar_attr<double>(s, "strain_at_half_peak", r.ucs.strain_at_half_peak);
+    } else {
+      write_scalar_attr<double>(s, "tensile_strength_Pa", r.tensile_strength);
+    }
+    write_scalar_attr<double>(s, "width_m", r.width);
+    write_scalar_attr<double>(s, "height_m", r.height);
+    write_scalar_attr<long>(s, "steps", r.steps);
+    write_scalar_attr<double>(s, "time_step_s", r.time_step);
+    write_scalar_attr<double>(s, "wall_time_s", r.wall_time);
+    write_scalar_attr<long>(s, "gauge_discs", static_cast<long>(r.gauge_discs));
+
+    H5::Group g = file_->createGroup("genesis");
+    write_scalar_attr<long>(g, "discs_in_specimen", r.genesis.discs_in_specimen);
+    write_scalar_attr<long>(g, "floating_discs_removed", r.genesis.floating_removed);
+    write_scalar_attr<std::int32_t>(g, "removal_passes", r.genesis.removal_passes);
+    write_scalar_attr<long>(g, "discs", r.genesis.discs);
+    write_scalar_attr<long>(g, "relaxation_steps", r.genesis.relaxation_steps);
+    write_scalar_attr<double>(g, "relaxation_unbalanced_ratio",
+                              r.genesis.relaxation_unbalanced_ratio);
+    write_scalar_attr<long>(g, "relaxation_cracks", r.genesis.relaxation_cracks);
+    for (int c = 0; c < 3; ++c)
+      write_scalar_attr<long>(g, std::string("bonds_") + contact_class_name(ContactClass(c)),
+                              r.genesis.bonds[c]);
+
+    const LabHistory& h = r.history;
+    H5::Group hg = file_->createGroup("history");
+    write_array(hg, "step", h.step);
+    write_array(hg, "time", h.time, "s");
+    write_array(hg, "axial_strain", h.axial_strain, "1",
+                "platen (grip) travel / H0, loading sense");
+    write_array(hg, "lateral_strain", h.lateral_strain, "1",
+                "-du_x/dx of the central region, contraction positive");
+    write_array(hg, "axial_stress", h.axial_stress, "Pa", "mean platen force / (W t)");
+    write_array(hg, "confining_stress", h.confining_stress, "Pa",
+                "sigma_xx of the contacts in the central region, compression positive");
+    write_array(hg, "platen_force", h.platen_force, "N/m", "mean of the two ends");
+    write_array(hg, "kinetic_energy", h.kinetic_energy, "J/m");
+    write_array(hg, "strain_energy", h.strain_energy, "J/m");
+    write_array(hg, "friction_energy", h.friction_energy, "J/m");
+    write_array(hg, "breakage_energy", h.breakage_energy, "J/m");
+    write_array(hg, "boundary_work", h.boundary_work, "J/m");
+    write_array(hg, "bonds_broken", h.bonds_broken);
+
+    std::vector<double> t, x, y;
+    std::vector<std::uint8_t> mode, cls;
+    std::vector<std::int32_t> first, second;
+    for (const Crack& c : r.cracks) {
+      t.push_back(c.time);
+      x.push_back(c.x);
+      y.push_back(c.y);
+      mode.push_back(static_cast<std::uint8_t>(c.mode));
+      cls.push_back(static_cast<std::uint8_t>(c.contact_class));
+      first.push_back(c.first);
+      second.push_back(c.second);
+    }
+    H5::Group cg = file_->createGroup("cracks");
+    write_array(cg, "time", t, "s");
+    write_array(cg, "x", x, "m");
+    write_array(cg, "y", y, "m");
+    write_array(cg, "mode", mode, "", "1 = tension, 2 = shear");
+    write_array(cg, "class", cls, "", "0 = M (mortar), 1 = ITZ, 2 = A (aggregate)");
+    write_array(cg, "first", first, "", "world disc index");
+    write_array(cg, "second", second, "", "world disc index");
+    for (int m = 0; m < 2; ++m)
+      for (int c = 0; c < 3; ++c)
+        write_scalar_attr<long>(
+            cg, std::string(m == 0 ? "tension_" : "shear_") + contact_class_name(ContactClass(c)),
+            r.crack_count[m][c]);
+  }
+  file_->close();
+  file_.reset();
+  out_.commit();
+
+  if (snapshots_.empty()) return;
+  const std::string h5 = out_.target().filename().string();
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"discs\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::size_t k = 0; k < snapshots_.size(); ++k) {
+    const std::string path = h5 + ":/snapshots/" + snapshot_name(k) + "/";
+    const std::size_t n = snapshots_[k].discs;
+    const auto item = [&](const char* name, const char* type, int precision) {
+      std::ostringstream s;
+      s << "     <DataItem Dimensions=\"" << n << "\" NumberType=\"" << type << "\" Precision=\""
+        << precision << "\" Format=\"HDF\">" << path << name << "</DataItem>\n";
+      return s.str();
+    };
+    x << "   <Grid Name=\"step " << snapshots_[k].step << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << snapshots_[k].time << "\"/>\n"
+      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
+      << "    <Geometry GeometryType=\"X_Y\">\n"
+      << item("x", "Float", 8) << item("y", "Float", 8) << "    </Geometry>\n";
+    for (const char* a : {"r", "vx", "vy"})
+      x << "    <Attribute Name=\"" << a << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+        << item(a, "Float", 8) << "    </Attribute>\n";
+    x << "    <Attribute Name=\"bonds\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+      << item("bonds", "Int", 4) << "    </Attribute>\n   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  write_text_atomically(xdmf_path(), x.str());
+}
+
+}  // namespace cdem::dem

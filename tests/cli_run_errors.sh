@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Bad input to `cdem run`: each case must exit 2, name the offending key (or file) in its
+# message, and leave no result, summary or picture behind. Run by CTest with CDEM (the binary)
+# and SRC (the source tree) set.
+set -u
+: "${CDEM:?}" "${SRC:?}"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+passed=0
+printf 'not an HDF5 file' > "$work/corrupt.h5"
+cp "$SRC/samples/c30_materials.toml" "$work/materials.toml"
+
+# expect NAME PATTERN TEST_TEXT: write the test file, run it, check exit 2, message, no output.
+expect() {
+  local name=$1 pattern=$2
+  printf '%s\n' "$3" > "$work/$name.toml"
+  timeout 120 "$CDEM" run "$work/$name.toml" -o "$work/$name.h5" --summary "$work/$name.json" \
+    -q 2>"$work/$name.err" >/dev/null
+  local rc=$?
+  local leftovers
+  leftovers=$(ls "$work" | grep -E "^$name(\.|_).*(h5|json|png|xmf)" || true)
+  if [ "$rc" -ne 2 ]; then
+    echo "FAIL $name: exit $rc, expected 2"; cat "$work/$name.err"; failures=$((failures + 1)); return
+  fi
+  if ! grep -q -- "$pattern" "$work/$name.err"; then
+    echo "FAIL $name: message lacks '$pattern':"; cat "$work/$name.err"; failures=$((failures + 1))
+    return
+  fi
+  if [ -n "$leftovers" ]; then
+    echo "FAIL $name: left output behind: $leftovers"; failures=$((failures + 1)); return
+  fi
+  echo "ok   $name: $(head -c 300 "$work/$name.err")"
+  passed=$((passed + 1))
+}
+
+good='[test]
+type = "uniaxial"'
+expect missing_specimen "specimen" "specimen = \"none.h5\"
+materials = \"materials.toml\"
+$good"
+expect corrupt_specimen "corrupt.h5" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+$good"
+expect missing_materials "materials" "specimen = \"corrupt.h5\"
+materials = \"none.toml\"
+$good"
+expect unknown_type "test.type" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"triaxial\""
+expect negative_velocity "test.platen_velocity" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"uniaxial\"
+platen_velocity_m_s = -0.02"
+expect class_without_law "materials.itz" "specimen = \"corrupt.h5\"
+[materials.mortar]
+law = \"linear\"
+emod_GPa = 16
+kratio = 1
+friction = 0.5
+$good"
+expect inline_generator "specimen" "materials = \"materials.toml\"
+[specimen]
+shape = \"rectangle\"
+$good"
+# A test file that does not exist.
+"$CDEM" run "$work/none.toml" -q 2>"$work/none.err" >/dev/null
+rc=$?
+if [ "$rc" -eq 2 ] && grep -q "none.toml: test file not found" "$work/none.err"; then
+  echo "ok   missing_test_file: $(cat "$work/none.err")"; passed=$((passed + 1))
+else
+  echo "FAIL missing_test_file: exit $rc"; cat "$work/none.err"; failures=$((failures + 1))
+fi
+
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]
