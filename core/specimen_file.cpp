@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/atomic_output.hpp"
+#include "core/hdf5_write.hpp"
 #include "core/input_error.hpp"
 #include "core/version.hpp"
 
@@ -21,46 +22,12 @@ namespace {
 constexpr const char* kFormat = "cdem-specimen";
 constexpr int kFormatVersion = 1;
 
+using hdf5::write_array;
+using hdf5::write_scalar_attr;
+using hdf5::write_string_attr;
 template <class T>
-const H5::PredType& h5type();
-template <>
-const H5::PredType& h5type<double>() {
-  return H5::PredType::NATIVE_DOUBLE;
-}
-template <>
-const H5::PredType& h5type<std::int32_t>() {
-  return H5::PredType::NATIVE_INT32;
-}
-template <>
-const H5::PredType& h5type<std::int64_t>() {
-  return H5::PredType::NATIVE_INT64;
-}
-template <>
-const H5::PredType& h5type<std::uint8_t>() {
-  return H5::PredType::NATIVE_UINT8;
-}
-
-template <class T>
-void write_array(H5::Group& g, const char* name, const std::vector<T>& v, hsize_t cols = 1,
-                 const char* units = nullptr) {
-  hsize_t dims[2] = {cols == 1 ? v.size() : v.size() / cols, cols};
-  H5::DataSpace space(cols == 1 ? 1 : 2, dims);
-  H5::DataSet ds = g.createDataSet(name, h5type<T>(), space);
-  if (!v.empty()) ds.write(v.data(), h5type<T>());
-  if (units) {
-    H5::StrType st(H5::PredType::C_S1, H5T_VARIABLE);
-    ds.createAttribute("units", st, H5::DataSpace(H5S_SCALAR)).write(st, std::string(units));
-  }
-}
-
-void write_string_attr(H5::H5Object& o, const std::string& name, const std::string& value) {
-  H5::StrType st(H5::PredType::C_S1, H5T_VARIABLE);
-  o.createAttribute(name, st, H5::DataSpace(H5S_SCALAR)).write(st, value);
-}
-
-template <class T>
-void write_scalar_attr(H5::H5Object& o, const std::string& name, T value) {
-  o.createAttribute(name, h5type<T>(), H5::DataSpace(H5S_SCALAR)).write(h5type<T>(), &value);
+const H5::PredType& h5type() {
+  return hdf5::type_of<T>();
 }
 
 // Root attributes the file format itself writes; a provenance attribute of the same name would
@@ -161,14 +128,12 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
     write_scalar_attr<double>(c, "height_m", s.container.height);
 
     H5::Group d = f.createGroup("discs");
-    write_array(d, "x", s.x, 1, "m");
-    write_array(d, "y", s.y, 1, "m");
-    write_array(d, "r", s.r, 1, "m");
+    write_array(d, "x", s.x, "m");
+    write_array(d, "y", s.y, "m");
+    write_array(d, "r", s.r, "m");
     std::vector<std::uint8_t> tag(s.disc_count());
     for (std::size_t i = 0; i < tag.size(); ++i) tag[i] = static_cast<std::uint8_t>(s.tag(i));
-    write_array(d, "tag", tag);
-    H5::DataSet tag_ds = d.openDataSet("tag");
-    write_string_attr(tag_ds, "meaning", "0 = mortar, 1 = aggregate pebble");
+    write_array(d, "tag", tag, "", "0 = mortar, 1 = aggregate pebble");
     write_array(d, "clump", s.clump);
     write_array(d, "contact_active", s.contact_active);
 
@@ -185,13 +150,13 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
       for (const auto& v : k.vertices) vertices.insert(vertices.end(), {v.x(), v.y()});
       offset.push_back(offset.back() + static_cast<std::int64_t>(k.vertices.size()));
     }
-    write_array(g, "centroid", centroid, 2, "m");
-    write_array(g, "mass", mass, 1, "kg (per m thickness)");
-    write_array(g, "inertia", inertia, 1, "kg m^2 (per m thickness), about the centroid");
-    write_array(g, "equivalent_diameter", deq, 1, "m");
+    write_array(g, "centroid", centroid, "m", "", 2);
+    write_array(g, "mass", mass, "kg (per m thickness)");
+    write_array(g, "inertia", inertia, "kg m^2 (per m thickness), about the centroid");
+    write_array(g, "equivalent_diameter", deq, "m");
     write_array(g, "bin", bin);
     write_array(g, "vertex_offset", offset);
-    write_array(g, "vertices", vertices, 2, "m");
+    write_array(g, "vertices", vertices, "m", "", 2);
     f.close();
   } catch (const H5::Exception& e) {
     throw RunError("cannot write specimen file " + path.string() + " (" + e.getDetailMsg() + ")");

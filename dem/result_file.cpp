@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/hdf5_write.hpp"
 #include "core/version.hpp"
 
 namespace cdem::dem {
@@ -14,48 +15,9 @@ namespace {
 constexpr const char* kFormat = "cdem-result";
 constexpr int kFormatVersion = 1;
 
-template <class T>
-const H5::PredType& h5type();
-template <>
-const H5::PredType& h5type<double>() {
-  return H5::PredType::NATIVE_DOUBLE;
-}
-template <>
-const H5::PredType& h5type<std::int32_t>() {
-  return H5::PredType::NATIVE_INT32;
-}
-template <>
-const H5::PredType& h5type<long>() {
-  return H5::PredType::NATIVE_LONG;
-}
-template <>
-const H5::PredType& h5type<std::uint8_t>() {
-  return H5::PredType::NATIVE_UINT8;
-}
-template <>
-const H5::PredType& h5type<std::uint64_t>() {
-  return H5::PredType::NATIVE_UINT64;
-}
-
-void write_string_attr(H5::H5Object& o, const std::string& name, const std::string& value) {
-  H5::StrType st(H5::PredType::C_S1, H5T_VARIABLE);
-  o.createAttribute(name, st, H5::DataSpace(H5S_SCALAR)).write(st, value);
-}
-
-template <class T>
-void write_scalar_attr(H5::H5Object& o, const std::string& name, T value) {
-  o.createAttribute(name, h5type<T>(), H5::DataSpace(H5S_SCALAR)).write(h5type<T>(), &value);
-}
-
-template <class T>
-void write_array(H5::Group& g, const std::string& name, const std::vector<T>& v,
-                 const std::string& units = "", const std::string& meaning = "") {
-  hsize_t dims[1] = {v.size()};
-  H5::DataSet ds = g.createDataSet(name, h5type<T>(), H5::DataSpace(1, dims));
-  if (!v.empty()) ds.write(v.data(), h5type<T>());
-  if (!units.empty()) write_string_attr(ds, "units", units);
-  if (!meaning.empty()) write_string_attr(ds, "meaning", meaning);
-}
+using hdf5::write_array;
+using hdf5::write_scalar_attr;
+using hdf5::write_string_attr;
 
 std::string snapshot_name(std::size_t k) {
   char buf[32];

@@ -1,0 +1,58 @@
+#pragma once
+// Small helpers shared by cdem's HDF5 files (specimen, lab-test results): native types,
+// string and scalar attributes, and datasets with their units.
+#include <H5Cpp.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cdem::hdf5 {
+
+template <class T>
+const H5::PredType& type_of();
+template <>
+inline const H5::PredType& type_of<double>() {
+  return H5::PredType::NATIVE_DOUBLE;
+}
+template <>
+inline const H5::PredType& type_of<std::int32_t>() {
+  return H5::PredType::NATIVE_INT32;
+}
+template <>
+inline const H5::PredType& type_of<std::int64_t>() {
+  return H5::PredType::NATIVE_INT64;
+}
+template <>
+inline const H5::PredType& type_of<std::uint8_t>() {
+  return H5::PredType::NATIVE_UINT8;
+}
+template <>
+inline const H5::PredType& type_of<std::uint64_t>() {
+  return H5::PredType::NATIVE_UINT64;
+}
+
+inline void write_string_attr(H5::H5Object& o, const std::string& name, const std::string& value) {
+  H5::StrType st(H5::PredType::C_S1, H5T_VARIABLE);
+  o.createAttribute(name, st, H5::DataSpace(H5S_SCALAR)).write(st, value);
+}
+
+template <class T>
+void write_scalar_attr(H5::H5Object& o, const std::string& name, T value) {
+  o.createAttribute(name, type_of<T>(), H5::DataSpace(H5S_SCALAR)).write(type_of<T>(), &value);
+}
+
+// A dataset of `v`: 1-D, or 2-D row-major with `columns` > 1; `units` and `meaning` become
+// string attributes when given.
+template <class T>
+void write_array(H5::Group& g, const std::string& name, const std::vector<T>& v,
+                 const std::string& units = "", const std::string& meaning = "",
+                 hsize_t columns = 1) {
+  const hsize_t dims[2] = {columns == 1 ? v.size() : v.size() / columns, columns};
+  H5::DataSet ds = g.createDataSet(name, type_of<T>(), H5::DataSpace(columns == 1 ? 1 : 2, dims));
+  if (!v.empty()) ds.write(v.data(), type_of<T>());
+  if (!units.empty()) write_string_attr(ds, "units", units);
+  if (!meaning.empty()) write_string_attr(ds, "meaning", meaning);
+}
+
+}  // namespace cdem::hdf5
