@@ -14,9 +14,13 @@ namespace cdem::dem {
 
 namespace {
 
-void write_png(cairo_surface_t* surface, const std::filesystem::path& png) {
+// Ends the drawing: releases the context, writes the surface atomically, and releases the
+// surface whether or not the write succeeded.
+void finish_png(cairo_t* cr, cairo_surface_t* surface, const std::filesystem::path& png) {
+  cairo_destroy(cr);
   AtomicOutput out(png);
   const cairo_status_t status = cairo_surface_write_to_png(surface, out.temp_path().c_str());
+  cairo_surface_destroy(surface);
   if (status != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error("cannot write " + png.string() + ": " +
                              cairo_status_to_string(status));
@@ -127,14 +131,7 @@ void draw_stress_strain_png(const LabHistory& h, LabTestType type, const std::fi
   text(cr, left + pw - 10, top + 20, "axial", 1.0);
   cairo_set_source_rgb(cr, 0.85, 0.2, 0.1);
   text(cr, left + pw - 10, top + 40, "lateral", 1.0);
-  cairo_destroy(cr);
-  try {
-    write_png(surface, png);
-  } catch (...) {
-    cairo_surface_destroy(surface);
-    throw;
-  }
-  cairo_surface_destroy(surface);
+  finish_png(cr, surface, png);
 }
 
 void draw_crack_map_png(const Specimen& s, const std::vector<Crack>& cracks,
@@ -198,14 +195,7 @@ void draw_crack_map_png(const Specimen& s, const std::vector<Crack>& cracks,
       text(cr, lx + 16, ly, names[m][c], 0.0);
       ly += 0.04 * hp;
     }
-  cairo_destroy(cr);
-  try {
-    write_png(surface, png);
-  } catch (...) {
-    cairo_surface_destroy(surface);
-    throw;
-  }
-  cairo_surface_destroy(surface);
+  finish_png(cr, surface, png);
 }
 
 }  // namespace cdem::dem
