@@ -36,12 +36,16 @@ double solver_bytes(const cdem::dem::World& w) {
   sum += bytes(b.first_disc) + bytes(b.disc_count) + bytes(b.is_clump) + bytes(b.prescribed);
   sum += bytes(d.body) + bytes(d.active) + bytes(d.material);
   sum += bytes(n.keys) + bytes(n.first) + bytes(n.second) + bytes(n.contact_class) +
-         bytes(n.state.shear_force) + bytes(n.wall_keys) + bytes(n.wall_disc) +
-         bytes(n.wall_index) + bytes(n.wall_state.shear_force);
-  for (const auto* f : {&w.pair_forces, &w.wall_forces})
-    for (const auto* v :
-         {&f->normal, &f->overlap, &f->fx, &f->fy, &f->moment1, &f->moment2, &f->cx, &f->cy})
+         bytes(n.state.shear_force) + bytes(n.state.bond) + bytes(n.state.bond_normal) +
+         bytes(n.state.bond_shear) + bytes(n.state.bond_moment) + bytes(n.state.bond_gap) +
+         bytes(n.wall_keys) + bytes(n.wall_disc) + bytes(n.wall_index) +
+         bytes(n.wall_state.shear_force);
+  for (const auto* f : {&w.pair_forces, &w.wall_forces}) {
+    for (const auto* v : {&f->normal, &f->overlap, &f->fx, &f->fy, &f->moment, &f->cx, &f->cy,
+                          &f->bond_energy_released})
       sum += bytes(*v);
+    sum += bytes(f->failure) + bytes(f->evaluated);
+  }
   return sum;
 }
 
