@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/specimen_file.hpp"
+#include "cycle_throughput.hpp"
 #include "dem/bond_installation.hpp"
 #include "dem/material_genesis.hpp"
 #include "dem/material_table.hpp"
@@ -85,14 +86,7 @@ void BM_C30BondedSpecimenCycles(benchmark::State& state) {
   w.settings.threads = static_cast<int>(state.range(0));
   const auto by_class = cdem::dem::intact_bond_count(w);
   const long bonds_at_start = std::accumulate(by_class.begin(), by_class.end(), 0L);
-  long pair_updates = 0, disc_steps = 0;
-  for (auto _ : state) {
-    for (long s = 0; s < kSteps; ++s) {
-      w.step();
-      pair_updates += static_cast<long>(w.neighbors.keys.size() + w.neighbors.wall_keys.size());
-    }
-    disc_steps += kSteps * static_cast<long>(w.discs.size());
-  }
+  cdem::bench::time_cycles(state, w, kSteps);
   const long active = std::count(w.discs.active.begin(), w.discs.active.end(), 1);
   state.counters["discs"] = static_cast<double>(w.discs.size());
   state.counters["contact_active_discs"] = static_cast<double>(active);
@@ -104,13 +98,6 @@ void BM_C30BondedSpecimenCycles(benchmark::State& state) {
   state.counters["bonds_broken"] = static_cast<double>(w.cracks.size());
   state.counters["relaxation_steps"] = static_cast<double>(c30.genesis.relaxation_steps);
   state.counters["dt_ns"] = w.time_step() * 1e9;
-  state.counters["disc_steps_per_s"] =
-      benchmark::Counter(static_cast<double>(disc_steps), benchmark::Counter::kIsRate);
-  state.counters["contact_updates_per_s"] =
-      benchmark::Counter(static_cast<double>(pair_updates), benchmark::Counter::kIsRate);
-  state.counters["ns_per_disc_step"] =
-      benchmark::Counter(static_cast<double>(disc_steps) * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 BENCHMARK(BM_C30BondedSpecimenCycles)

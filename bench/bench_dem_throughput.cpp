@@ -8,6 +8,7 @@
 
 #include <algorithm>
 
+#include "cycle_throughput.hpp"
 #include "reference_world.hpp"
 
 namespace {
@@ -57,14 +58,7 @@ void BM_ReferenceSpecimenCycles(benchmark::State& state) {
   cdem::dem::World w = cdem::bench::reference_world(packing, threads, bonds);
   w.settings.energy_tracking = energy_tracking;
   w.cycle(10);  // neighbour lists and pair arrays at their working size
-  long pair_updates = 0, disc_steps = 0;
-  for (auto _ : state) {
-    for (long s = 0; s < kSteps; ++s) {
-      w.step();
-      pair_updates += static_cast<long>(w.neighbors.keys.size() + w.neighbors.wall_keys.size());
-    }
-    disc_steps += kSteps * static_cast<long>(w.discs.size());
-  }
+  cdem::bench::time_cycles(state, w, kSteps);
   const double discs = static_cast<double>(w.discs.size());
   state.counters["discs"] = discs;
   state.counters["candidate_pairs"] = static_cast<double>(w.neighbors.keys.size());
@@ -72,13 +66,6 @@ void BM_ReferenceSpecimenCycles(benchmark::State& state) {
   state.counters["intact_bonds"] = static_cast<double>(
       std::count_if(w.neighbors.state.bond.begin(), w.neighbors.state.bond.end(),
                     [](std::uint8_t b) { return b != 0; }));
-  state.counters["disc_steps_per_s"] =
-      benchmark::Counter(static_cast<double>(disc_steps), benchmark::Counter::kIsRate);
-  state.counters["contact_updates_per_s"] =
-      benchmark::Counter(static_cast<double>(pair_updates), benchmark::Counter::kIsRate);
-  state.counters["ns_per_disc_step"] =
-      benchmark::Counter(static_cast<double>(disc_steps) * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["solver_bytes_per_disc"] = solver_bytes(w) / discs;
 }
 
