@@ -5,9 +5,11 @@
 // kn = 2 E* min(R1, R2) / (R1 + R2) depends on the radii; for equal radii kn = E* exactly
 // (t = 1 m), and the disc-wall kn = 2 E* maps onto fix wall/gran with kn = 2 E*.
 //
-// With CDEM_LAMMPS_DIR set, writes there the LAMMPS data file (positions, diameters; masses
-// from `set density/disc` with the same density) and the parameters (kn, kt, mu, dt, skin,
-// steps) before timing, so both codes run the same state for the same steps.
+// Repetitions from --benchmark_repetitions (bench/lammps_compare.sh runs one per process,
+// alternating with LAMMPS). With CDEM_LAMMPS_DIR set, writes there the LAMMPS data file
+// (positions, diameters; masses from `set density/disc` with the same density) and the
+// parameters (kn, kt, mu, dt, skin, steps) before timing, so both codes run the same state for
+// the same steps.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -71,11 +73,7 @@ void BM_CdemSameStateAsLammps(benchmark::State& state) {
   state.counters["dt"] = w.time_step();
 }
 
-BENCHMARK(BM_CdemSameStateAsLammps)
-    ->Unit(benchmark::kMillisecond)
-    ->Iterations(1)
-    ->Repetitions(5)
-    ->UseRealTime();
+BENCHMARK(BM_CdemSameStateAsLammps)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 

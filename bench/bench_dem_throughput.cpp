@@ -8,6 +8,7 @@
 
 #include <algorithm>
 
+#include "cycle_throughput.hpp"
 #include "reference_world.hpp"
 
 namespace {
@@ -36,12 +37,16 @@ double solver_bytes(const cdem::dem::World& w) {
   sum += bytes(b.first_disc) + bytes(b.disc_count) + bytes(b.is_clump) + bytes(b.prescribed);
   sum += bytes(d.body) + bytes(d.active) + bytes(d.material);
   sum += bytes(n.keys) + bytes(n.first) + bytes(n.second) + bytes(n.contact_class) +
-         bytes(n.state.shear_force) + bytes(n.wall_keys) + bytes(n.wall_disc) +
-         bytes(n.wall_index) + bytes(n.wall_state.shear_force);
-  for (const auto* f : {&w.pair_forces, &w.wall_forces})
-    for (const auto* v :
-         {&f->normal, &f->overlap, &f->fx, &f->fy, &f->moment1, &f->moment2, &f->cx, &f->cy})
+         bytes(n.state.shear_force) + bytes(n.state.bond) + bytes(n.state.bond_normal) +
+         bytes(n.state.bond_shear) + bytes(n.state.bond_moment) + bytes(n.state.bond_gap) +
+         bytes(n.wall_keys) + bytes(n.wall_disc) + bytes(n.wall_index) +
+         bytes(n.wall_state.shear_force);
+  for (const auto* f : {&w.pair_forces, &w.wall_forces}) {
+    for (const auto* v : {&f->normal, &f->overlap, &f->fx, &f->fy, &f->moment, &f->cx, &f->cy,
+                          &f->bond_energy_released})
       sum += bytes(*v);
+    sum += bytes(f->failure) + bytes(f->evaluated);
+  }
   return sum;
 }
 
@@ -53,14 +58,7 @@ void BM_ReferenceSpecimenCycles(benchmark::State& state) {
   cdem::dem::World w = cdem::bench::reference_world(packing, threads, bonds);
   w.settings.energy_tracking = energy_tracking;
   w.cycle(10);  // neighbour lists and pair arrays at their working size
-  long pair_updates = 0, disc_steps = 0;
-  for (auto _ : state) {
-    for (long s = 0; s < kSteps; ++s) {
-      w.step();
-      pair_updates += static_cast<long>(w.neighbors.keys.size() + w.neighbors.wall_keys.size());
-    }
-    disc_steps += kSteps * static_cast<long>(w.discs.size());
-  }
+  cdem::bench::time_cycles(state, w, kSteps);
   const double discs = static_cast<double>(w.discs.size());
   state.counters["discs"] = discs;
   state.counters["candidate_pairs"] = static_cast<double>(w.neighbors.keys.size());
@@ -68,13 +66,6 @@ void BM_ReferenceSpecimenCycles(benchmark::State& state) {
   state.counters["intact_bonds"] = static_cast<double>(
       std::count_if(w.neighbors.state.bond.begin(), w.neighbors.state.bond.end(),
                     [](std::uint8_t b) { return b != 0; }));
-  state.counters["disc_steps_per_s"] =
-      benchmark::Counter(static_cast<double>(disc_steps), benchmark::Counter::kIsRate);
-  state.counters["contact_updates_per_s"] =
-      benchmark::Counter(static_cast<double>(pair_updates), benchmark::Counter::kIsRate);
-  state.counters["ns_per_disc_step"] =
-      benchmark::Counter(static_cast<double>(disc_steps) * 1e-9,
-                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["solver_bytes_per_disc"] = solver_bytes(w) / discs;
 }
 

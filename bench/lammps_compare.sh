@@ -2,8 +2,8 @@
 # cdem vs LAMMPS on the same unbonded 2D packing for the same number of steps, one core each.
 # Not a CTest test: run by hand after building bench_dem_lammps (Release):
 #   bash bench/lammps_compare.sh [build-dir] [steps] [repetitions]
-# Installs the Debian `lammps` package if `lmp` is missing (needs root). Prints the medians and
-# the ratio of wall time per step per disc (LAMMPS / cdem).
+# Installs the Debian `lammps` package if `lmp` is missing (needs root). Prints every run, the
+# medians and the ratio of wall time per step per disc (LAMMPS / cdem).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 build="${1:-$here/../build}"
@@ -18,31 +18,35 @@ fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-# cdem: writes packing.data and params.in into $work, then times `steps` cycles `reps` times.
-CDEM_LAMMPS_DIR="$work" CDEM_LAMMPS_STEPS="$steps" OMP_NUM_THREADS=1 \
-  "$build/bin/bench_dem_lammps" --benchmark_repetitions="$reps" \
-  --benchmark_out="$work/cdem.json" --benchmark_out_format=json > /dev/null
-
+# The runs alternate, cdem then LAMMPS, so a change in the load of a shared machine hits both
+# sides alike. Each cdem run is its own process (it rebuilds the packing first, untimed); the
+# first one writes packing.data and params.in into $work for LAMMPS.
 cp "$here/lammps_compare.in" "$work/in.compare"
 : > "$work/lammps_times"
-for _ in $(seq "$reps"); do
+for rep in $(seq "$reps"); do
+  CDEM_LAMMPS_DIR="$work" CDEM_LAMMPS_STEPS="$steps" OMP_NUM_THREADS=1 \
+    "$build/bin/bench_dem_lammps" --benchmark_repetitions=1 \
+    --benchmark_out="$work/cdem_$rep.json" --benchmark_out_format=json > /dev/null
   (cd "$work" && OMP_NUM_THREADS=1 lmp -in in.compare -log lammps.log -screen none > /dev/null)
   sed -n 's/^Loop time of \([0-9.eE+-]*\) on 1 procs for \([0-9]*\) steps with \([0-9]*\) atoms.*/\1 \2 \3/p' \
     "$work/lammps.log" >> "$work/lammps_times"
 done
 
-python3 - "$work/cdem.json" "$work/lammps_times" <<'PY'
+python3 - "$work/lammps_times" "$work"/cdem_*.json <<'PY'
 import json, statistics, sys
-runs = [b for b in json.load(open(sys.argv[1]))["benchmarks"] if b.get("run_type") == "iteration"]
+runs = [b for f in sys.argv[2:] for b in json.load(open(f))["benchmarks"]
+        if b.get("run_type") == "iteration"]
 cdem = [b["real_time"] / 1e3 for b in runs]  # ms -> s
 discs, steps = runs[0]["discs"], runs[0]["steps"]
-lammps = [float(line.split()[0]) for line in open(sys.argv[2])]
-atoms = int(open(sys.argv[2]).readline().split()[2])
+lammps = [float(line.split()[0]) for line in open(sys.argv[1])]
+atoms = int(open(sys.argv[1]).readline().split()[2])
 assert atoms == int(discs), (atoms, discs)
 c, l = statistics.median(cdem), statistics.median(lammps)
 print(f"discs {int(discs)}, steps {int(steps)}, repetitions {len(cdem)} / {len(lammps)}")
 print("cdem   s:", " ".join(f"{t:.3f}" for t in cdem), f"median {c:.3f}")
 print("LAMMPS s:", " ".join(f"{t:.3f}" for t in lammps), f"median {l:.3f}")
 print(f"ns per disc-step: cdem {c / discs / steps * 1e9:.1f}, LAMMPS {l / discs / steps * 1e9:.1f}")
-print(f"LAMMPS / cdem time per step per disc: {l / c:.2f}")
+print(f"LAMMPS / cdem time per step per disc: {l / c:.2f} (ratio of the medians); "
+      f"median of the {len(lammps)} alternating pairs: "
+      f"{statistics.median(b / a for a, b in zip(cdem, lammps)):.2f}")
 PY

@@ -21,9 +21,8 @@ ContactEnergy contact_energy(const World& world) {
     if (state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel)) {
       const ParallelBondGeometry g =
           parallel_bond_geometry(world.settings.bonds[cls].parallel, d.r[i], d.r[j]);
-      const double bn = state.bond_normal[k], bs = state.bond_shear[k], bm = state.bond_moment[k];
-      e.bond_strain += 0.5 * bn * bn / (g.kn * g.area) + 0.5 * bs * bs / (g.ks * g.area) +
-                       0.5 * bm * bm / (g.kn * g.inertia);
+      e.bond_strain += parallel_bond_strain_energy(
+          {state.bond_normal[k], state.bond_shear[k], state.bond_moment[k]}, g);
     }
   }
   const LinearContact& wall_law = world.settings.laws[static_cast<int>(ContactClass::Wall)];

@@ -1,11 +1,12 @@
 #pragma once
 // The force pass: every candidate pair is evaluated with its contact law (one independent
-// kernel per pair, writing only that pair's slots), then the pair forces are scattered onto the
+// kernel per pair, touching only that pair's slots), then the pair forces are added onto the
 // discs and walls in the fixed sorted pair order. The split keeps the result independent of the
 // number of threads: the kernel may run in parallel, the sums always run in the same order.
 #include <array>
 #include <vector>
 
+#include "dem/bond_failure.hpp"
 #include "dem/contact_model.hpp"
 #include "dem/discs.hpp"
 #include "dem/linear_contact.hpp"
@@ -14,22 +15,36 @@
 
 namespace cdem::dem {
 
-// Per-pair results of the last force pass, aligned with the neighbour list (pairs that do not
-// touch hold zeros).
+// What one disc-disc pair puts on its two discs in one pass. Forces are those on the second
+// disc j (the first, i, gets the opposite); n points from i to j.
+struct PairForce {
+  double normal = 0;                  // N, total normal force, repulsive positive
+  double overlap = 0;                 // m, signed (negative = gap)
+  double fx = 0, fy = 0;              // N, on j
+  double moment_i = 0, moment_j = 0;  // N m, about the centres of i and j
+  double slip_work = 0;               // J, dissipated by friction slip in this pass
+  double released = 0;                // J, strain energy of a bond that broke in this pass
+  BondFailure failure = BondFailure::None;
+};
+
+// Per-pair results of the last force pass, aligned with the neighbour list.
 // For a bonded pair `normal` is the total (linear part minus the parallel bond's tension) and
 // may be negative (tension); the linear part alone is normal + bond_normal of the state.
 struct ContactForces {
-  std::vector<double> normal;            // N, normal force, repulsive positive
-  std::vector<double> overlap;           // m, positive when touching
-  std::vector<double> fx, fy;            // N, force on the second disc (on the disc for walls)
-  std::vector<double> moment1, moment2;  // N m, about the centres of the first and second disc
-  std::vector<double> cx, cy;            // m, contact point (walls only)
-  std::vector<double> slip_work;         // J, energy dissipated by friction slip in this pass
-  // J, strain energy a bond held when it broke in this pass (valid where failure != 0 only).
+  std::vector<double> normal;   // N, normal force, repulsive positive
+  std::vector<double> overlap;  // m, positive when touching
+  std::vector<double> fx, fy;   // N, force on the second disc (on the disc for walls)
+  std::vector<double> moment;   // N m, walls only: moment on the disc about its centre
+  std::vector<double> cx, cy;   // m, contact point (walls only)
+  // Valid for the pairs listed in `broken` only (written when a bond breaks): how it failed,
+  // and the strain energy it held (J).
+  std::vector<std::uint8_t> failure;
   std::vector<double> bond_energy_released;
-  std::vector<std::uint8_t> failure;  // BondFailure of a bond that broke in this pass
   // Pairs whose bond broke in this pass, ascending (disc-disc only; walls are not bonded).
   std::vector<std::int32_t> broken;
+  // Multi-thread pass only: every pair's result from the parallel kernel, added onto the discs
+  // serially afterwards (the one-thread pass adds each pair as soon as it is evaluated).
+  std::vector<PairForce> evaluated;
 };
 
 struct ForcePassResult {

@@ -14,9 +14,11 @@ namespace cdem::dem {
 // Local damping: F <- F - alpha |F| sign(v) (alpha in [0, 1); 0 switches it off). It removes
 // a fixed fraction of the work of the out-of-balance force and needs no velocity scale.
 inline double local_damping(double force, double velocity, double alpha) {
-  // sign(v) without branches: the sign of a velocity is as good as random.
-  const double s = static_cast<double>((velocity > 0) - (velocity < 0));
-  return force - alpha * std::abs(force) * s;
+  // alpha |F| sign(v) with sign(0) = 0: the sign is copied, never branched on (the sign of a
+  // velocity is as good as random); only v = 0, rare once a body moves, takes the other path.
+  // Fewer instructions than forming sign(v) as a number, and the same bits.
+  const double damping = std::copysign(alpha * std::abs(force), velocity);
+  return force - (velocity != 0 ? damping : 0.0);
 }
 
 // Sums the disc forces and moments of every body about its centroid into bodies.fx/fy/moment

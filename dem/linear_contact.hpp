@@ -25,6 +25,11 @@ struct LinearContact {
   double normal_stiffness(double r1, double r2) const {
     return 2.0 * std::min(r1, r2) * kThickness * emod / (r1 + r2);
   }
+  // The same with 1 / L = 1 / (R1 + R2) given (the contact loop gets it from a reciprocal it
+  // shares with the contact normal).
+  double normal_stiffness(double r1, double r2, double inverse_length) const {
+    return 2.0 * std::min(r1, r2) * kThickness * emod * inverse_length;
+  }
   // Disc-wall: r = L = R1, so kn = 2 t E* whatever the radius.
   double wall_normal_stiffness() const { return 2.0 * kThickness * emod; }
   double shear_stiffness(double kn) const { return kn / kappa; }

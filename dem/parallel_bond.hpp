@@ -44,18 +44,23 @@ struct ParallelBondState {
 };
 
 // L = R1 + R2 for two discs; for a disc-wall bond pass r2 = 0 (L = R1, r = R1).
+// `inverse_length` = 1 / L (the contact loop shares that reciprocal with the contact normal).
 inline ParallelBondGeometry parallel_bond_geometry(const ParallelBondParams& p, double r1,
-                                                   double r2) {
+                                                   double r2, double inverse_length) {
   constexpr double t = 1.0;  // m, unit thickness
   const double r = r2 > 0 ? std::min(r1, r2) : r1;
-  const double length = r1 + r2;
   ParallelBondGeometry g;
   g.radius = p.radius_multiplier * r;
   g.area = 2 * g.radius * t;
   g.inertia = (2.0 / 3.0) * g.radius * g.radius * g.radius * t;
-  g.kn = p.modulus / length;
+  g.kn = p.modulus * inverse_length;
   g.ks = g.kn / p.stiffness_ratio;
   return g;
+}
+
+inline ParallelBondGeometry parallel_bond_geometry(const ParallelBondParams& p, double r1,
+                                                   double r2) {
+  return parallel_bond_geometry(p, r1, r2, 1.0 / (r1 + r2));
 }
 
 // dFn = kbn Ab d_open, dFs = -kbs Ab d_shear, dM = -kbn Ib d_theta.
@@ -77,10 +82,14 @@ inline ParallelBondStress parallel_bond_stress(const ParallelBondState& s,
                                                const ParallelBondGeometry& g,
                                                const ParallelBondParams& p,
                                                double tan_friction_angle) {
+  constexpr double t = 1.0;  // m, unit thickness
   ParallelBondStress out;
-  const double sigma = s.fn / g.area;
-  out.sigma_max = sigma + p.moment_factor * std::fabs(s.m) * g.radius / g.inertia;
-  out.tau_max = std::fabs(s.fs) / g.area;
+  // One reciprocal serves the three stresses (this runs for every bond in every pass):
+  // Rb / Ib = 3 / (2 Rb^2 t) = 6 t / Ab^2.
+  const double inverse_area = 1.0 / g.area;
+  const double sigma = s.fn * inverse_area;
+  out.sigma_max = sigma + p.moment_factor * std::fabs(s.m) * 6 * t * inverse_area * inverse_area;
+  out.tau_max = std::fabs(s.fs) * inverse_area;
   out.shear_strength = p.cohesion - sigma * tan_friction_angle;
   return out;
 }
@@ -103,6 +112,14 @@ inline BondFailure parallel_bond_failure(const ParallelBondState& s, const Paral
 inline BondFailure parallel_bond_failure(const ParallelBondState& s, const ParallelBondGeometry& g,
                                          const ParallelBondParams& p) {
   return parallel_bond_failure(s, g, p, std::tan(p.friction_angle));
+}
+
+// Strain energy held by the bond's three springs (J per m of thickness):
+// fn^2 / (2 kbn Ab) + fs^2 / (2 kbs Ab) + m^2 / (2 kbn Ib).
+inline double parallel_bond_strain_energy(const ParallelBondState& s,
+                                          const ParallelBondGeometry& g) {
+  return 0.5 * s.fn * s.fn / (g.kn * g.area) + 0.5 * s.fs * s.fs / (g.ks * g.area) +
+         0.5 * s.m * s.m / (g.kn * g.inertia);
 }
 
 }  // namespace cdem::dem

@@ -1,0 +1,114 @@
+// DEM throughput on the real C30 specimen (SPEC 8): the generated specimen with its aggregate
+// clumps, material genesis as a lab test does it (floating discs removed, bonds of
+// samples/c30_materials.toml installed on every contact, relaxation out of the mould), then two
+// platens loading it at 0.02 m/s each, as at the start of a uniaxial compression test. Reports
+// disc-steps/s and contact updates/s (candidate pairs evaluated, disc-disc + disc-wall) on 1
+// and 2 threads, and the bonds broken while timing (0 = all bonds intact throughout).
+//
+// Needs the specimen file (not generated here: about a minute):
+//   build/bin/cdem generate samples/c30_specimen.toml -o /tmp/c30.h5
+//   build/bin/bench_dem_c30        (reads $CDEM_C30_SPECIMEN, default /tmp/c30.h5)
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <numeric>
+#include <string>
+
+#include "core/specimen_file.hpp"
+#include "cycle_throughput.hpp"
+#include "dem/bond_installation.hpp"
+#include "dem/material_genesis.hpp"
+#include "dem/material_table.hpp"
+#include "dem/world_from_specimen.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr long kSteps = 500;                  // cycles per timed iteration
+constexpr double kPlatenVelocity = 0.02;      // m/s, each platen (SPEC 8)
+constexpr double kPlatenOverhang = 0.25;      // platens reach this fraction of the width beyond
+                                              // each side (lab_test default)
+constexpr long kRelaxationMaxSteps = 20'000;  // bound on the genesis relaxation
+
+fs::path specimen_path() {
+  const char* s = std::getenv("CDEM_C30_SPECIMEN");
+  return s ? fs::path(s) : fs::path("/tmp/c30.h5");
+}
+
+struct C30World {
+  cdem::dem::World world;
+  cdem::dem::GenesisReport genesis;
+};
+
+// The specimen after genesis, with its platens, built once per process and copied per run.
+const C30World& c30_world() {
+  static const C30World built = [] {
+    using namespace cdem::dem;
+    const cdem::Specimen specimen = cdem::read_specimen(specimen_path());
+    WorldSettings settings;
+    read_material_table(fs::path(CDEM_SOURCE_DIR) / "samples/c30_materials.toml").apply(settings);
+    GenesisOptions options;
+    options.relax_max_steps = kRelaxationMaxSteps;
+    GenesisReport report;
+    const cdem::Specimen cleaned = remove_floating_discs(specimen, settings, options, report);
+    World w = world_from_specimen(cleaned, settings);
+    install_test_bonds(w, options, report);
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    for (std::size_t i = 0; i < w.discs.size(); ++i) {
+      xmin = std::min(xmin, w.discs.x[i] - w.discs.r[i]);
+      xmax = std::max(xmax, w.discs.x[i] + w.discs.r[i]);
+      ymin = std::min(ymin, w.discs.y[i] - w.discs.r[i]);
+      ymax = std::max(ymax, w.discs.y[i] + w.discs.r[i]);
+    }
+    const double over = kPlatenOverhang * (xmax - xmin);
+    const int bottom = w.add_wall(xmin - over, ymin, xmax + over, ymin);
+    const int top = w.add_wall(xmax + over, ymax, xmin - over, ymax);
+    w.walls.vy[bottom] = kPlatenVelocity;
+    w.walls.vy[top] = -kPlatenVelocity;
+    return C30World{std::move(w), report};
+  }();
+  return built;
+}
+
+void BM_C30BondedSpecimenCycles(benchmark::State& state) {
+  if (!fs::exists(specimen_path())) {
+    state.SkipWithError(("no specimen at " + specimen_path().string() +
+                         ": run `cdem generate samples/c30_specimen.toml -o /tmp/c30.h5` or set "
+                         "CDEM_C30_SPECIMEN")
+                            .c_str());
+    return;
+  }
+  const C30World& c30 = c30_world();
+  cdem::dem::World w = c30.world;
+  w.settings.threads = static_cast<int>(state.range(0));
+  const auto by_class = cdem::dem::intact_bond_count(w);
+  const long bonds_at_start = std::accumulate(by_class.begin(), by_class.end(), 0L);
+  cdem::bench::time_cycles(state, w, kSteps);
+  const long active = std::count(w.discs.active.begin(), w.discs.active.end(), 1);
+  state.counters["discs"] = static_cast<double>(w.discs.size());
+  state.counters["contact_active_discs"] = static_cast<double>(active);
+  state.counters["clumps"] =
+      static_cast<double>(std::count(w.bodies.is_clump.begin(), w.bodies.is_clump.end(), 1));
+  state.counters["candidate_pairs"] = static_cast<double>(w.neighbors.keys.size());
+  state.counters["touching"] = static_cast<double>(w.last_force_pass().touching);
+  state.counters["intact_bonds"] = static_cast<double>(bonds_at_start);
+  state.counters["bonds_broken"] = static_cast<double>(w.cracks.size());
+  state.counters["relaxation_steps"] = static_cast<double>(c30.genesis.relaxation_steps);
+  state.counters["dt_ns"] = w.time_step() * 1e9;
+}
+
+BENCHMARK(BM_C30BondedSpecimenCycles)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(4)
+    ->Repetitions(5)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,260 @@
+#pragma once
+// The disc-disc contact kernel of the force pass (SPEC 4): one call evaluates one candidate
+// pair with its law, updates that pair's persistent state and stores its per-pair results; a
+// second call adds the result onto the two discs. Evaluating touches only pair k's slots (safe
+// in parallel); adding runs in the sorted pair order (deterministic sums).
+//
+// Conventions: n points from the first disc i to the second j, t = (-ny, nx); all forces are
+// those on j (i gets the opposite). Sign conventions of the bonds: dem/parallel_bond.hpp.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "dem/contact_solver.hpp"
+
+namespace cdem::dem {
+
+class DiscPairKernel {
+ public:
+  DiscPairKernel(Discs& d, NeighborList& list, ContactForces& out, const ContactLaws& laws,
+                 const BondModels& bonds, double dt, double guard)
+      : first_(list.first.data()),
+        second_(list.second.data()),
+        contact_class_(list.contact_class.data()),
+        x_(d.x.data()),
+        y_(d.y.data()),
+        r_(d.r.data()),
+        vx_(d.vx.data()),
+        vy_(d.vy.data()),
+        w_(d.omega.data()),
+        shear_(list.state.shear_force.data()),
+        bond_(list.state.bond.data()),
+        bond_normal_(list.state.bond_normal.data()),
+        bond_shear_(list.state.bond_shear.data()),
+        bond_moment_(list.state.bond_moment.data()),
+        bond_gap_(list.state.bond_gap.data()),
+        normal_(out.normal.data()),
+        overlap_(out.overlap.data()),
+        fx_(out.fx.data()),
+        fy_(out.fy.data()),
+        failure_(out.failure.data()),
+        released_(out.bond_energy_released.data()),
+        disc_fx_(d.fx.data()),
+        disc_fy_(d.fy.data()),
+        disc_m_(d.moment.data()),
+        laws_(laws),
+        bonds_(bonds),
+        dt_(dt),
+        guard_(guard) {
+    for (int c = 0; c < kContactClassCount; ++c) {
+      tan_friction_angle_[c] = std::tan(bonds[c].parallel.friction_angle);
+      shear_per_normal_stiffness_[c] = 1.0 / laws[c].kappa;
+    }
+  }
+
+  // Evaluates pair k: updates its shear and bond state, stores normal, overlap, fx, fy (and, if
+  // its bond breaks, failure and released energy). `within_guard` is false when the overlap
+  // exceeds the instability guard. Unbonded pairs (all of them in an unbonded run) take the
+  // short linear path and never touch the bond arrays; the branch follows the bond kind, which
+  // changes only when a bond breaks, so it is well predicted.
+  PairForce evaluate(std::size_t k, bool& within_guard) const {
+    const Geometry g = geometry(k);
+    within_guard = g.overlap <= guard_ * std::min(g.ri, g.rj);
+    const PairForce f =
+        bond_[k] == static_cast<std::uint8_t>(BondKind::None) ? linear(k, g) : bonded(k, g);
+    normal_[k] = f.normal;
+    overlap_[k] = f.overlap;
+    fx_[k] = f.fx;
+    fy_[k] = f.fy;
+    if (f.failure != BondFailure::None) {
+      failure_[k] = static_cast<std::uint8_t>(f.failure);
+      released_[k] = f.released;
+    }
+    return f;
+  }
+
+  // Adds pair k onto its discs and the pass totals. Pairs apart carry zeros, so adding them
+  // unconditionally keeps the loop branch-free. The virial uses the centre distance
+  // reach - overlap (a bonded pair may be apart).
+  void add(std::size_t k, const PairForce& f, ForcePassResult& result,
+           std::vector<std::int32_t>& broken) const {
+    const std::int32_t i = first_[k], j = second_[k];
+    disc_fx_[j] += f.fx;
+    disc_fy_[j] += f.fy;
+    disc_fx_[i] -= f.fx;
+    disc_fy_[i] -= f.fy;
+    disc_m_[i] += f.moment_i;
+    disc_m_[j] += f.moment_j;
+    result.virial += f.normal * (r_[i] + r_[j] - f.overlap);
+    result.touching += f.overlap > 0;
+    result.slip_work += f.slip_work;
+    if (f.failure != BondFailure::None) {
+      broken.push_back(static_cast<std::int32_t>(k));
+      result.bond_energy_released += f.released;
+    }
+  }
+
+ private:
+  struct Geometry {
+    std::int32_t i, j;
+    double ri, rj;
+    double overlap;         // m, reach - centre distance
+    double nx, ny;          // unit normal from i to j
+    double inverse_length;  // 1/m, 1 / (R_i + R_j)
+  };
+
+  // sqrt and division share one unit of the core, so 1 / dist and 1 / (R_i + R_j) come from
+  // one reciprocal of their product.
+  Geometry geometry(std::size_t k) const {
+    Geometry g;
+    g.i = first_[k];
+    g.j = second_[k];
+    const double dx = x_[g.j] - x_[g.i], dy = y_[g.j] - y_[g.i];
+    g.ri = r_[g.i];
+    g.rj = r_[g.j];
+    const double reach = g.ri + g.rj;
+    const double dist = std::sqrt(dx * dx + dy * dy);
+    g.overlap = reach - dist;
+    if (dist > 0) {
+      const double inv = 1.0 / (dist * reach);
+      const double inverse_dist = reach * inv;
+      g.nx = dx * inverse_dist;
+      g.ny = dy * inverse_dist;
+      g.inverse_length = dist * inv;
+    } else {  // coincident centres: no normal (the guard stops the run)
+      g.nx = g.ny = 0;
+      g.inverse_length = 1.0 / reach;
+    }
+    return g;
+  }
+
+  // Tangential velocity of j's contact point relative to i's (m/s), spins included; the arms
+  // are R - overlap / 2.
+  double tangential_velocity(const Geometry& g) const {
+    const double arm_i = g.ri - 0.5 * g.overlap, arm_j = g.rj - 0.5 * g.overlap;
+    return (vx_[g.j] - vx_[g.i]) * -g.ny + (vy_[g.j] - vy_[g.i]) * g.nx - arm_j * w_[g.j] -
+           arm_i * w_[g.i];
+  }
+
+  // Totals on j from the normal (compression positive) and shear force along t and the bond
+  // moment on j.
+  static void resolve(const Geometry& g, double normal, double shear, double bond_moment,
+                      PairForce& f) {
+    f.normal = normal;
+    f.overlap = g.overlap;
+    f.fx = normal * g.nx - shear * g.ny;
+    f.fy = normal * g.ny + shear * g.nx;
+    f.moment_i = -(g.ri - 0.5 * g.overlap) * shear - bond_moment;
+    f.moment_j = -(g.rj - 0.5 * g.overlap) * shear + bond_moment;
+  }
+
+  // Mean shear force times the slip displacement (trial - fs) / ks (J): the PFC rule; it also
+  // books the spring energy lost when a contact opens. It is non-zero only where the limit
+  // clipped the trial force and the mean force is non-zero (a sliding contact, or one that has
+  // just opened): one rarely taken branch instead of a division on every pair. Pairs apart
+  // (old = fs = 0) and stuck contacts (trial = fs) give exactly zero either way.
+  static double slip_work(double old_shear, double trial, double shear, double ks) {
+    const double mean_twice = old_shear + shear, excess = trial - shear;
+    return mean_twice * excess != 0 ? 0.5 * mean_twice * excess / ks : 0.0;
+  }
+
+  double shear_stiffness(int contact_class, double kn) const {
+    return kn * shear_per_normal_stiffness_[contact_class];
+  }
+
+  // An unbonded pair: compression-only normal force, incremental shear force with Coulomb slip.
+  // Branch-free over touching / apart (about a third of the candidates are apart, at random
+  // along the list): a pair apart has zero normal force, so the Coulomb limit zeroes its shear
+  // force too (the history is forgotten when a contact opens).
+  PairForce linear(std::size_t k, const Geometry& g) const {
+    const int cls = contact_class_[k];
+    const LinearContact& law = laws_[cls];
+    const double kn = law.normal_stiffness(g.ri, g.rj, g.inverse_length);
+    const double fn = kn * std::max(g.overlap, 0.0);
+    PairForce f;
+    double fs = 0;
+    if (law.mu > 0) {
+      const double ks = shear_stiffness(cls, kn);
+      const double old = shear_[k];
+      const double trial = linear_shear_increment(old, ks, tangential_velocity(g), dt_);
+      fs = coulomb_limit(trial, law.mu, fn);
+      f.slip_work = slip_work(old, trial, fs, ks);
+    }
+    shear_[k] = fs;
+    resolve(g, fn, fs, 0.0, f);
+    return f;
+  }
+
+  // A pair with an intact contact or parallel bond (SPEC 4; docs/dem_design.md "Bonds in the
+  // contact loop"). In the pass where a bond breaks the contact is already plain linear.
+  PairForce bonded(std::size_t k, const Geometry& g) const {
+    const int cls = contact_class_[k];
+    const LinearContact& law = laws_[cls];
+    const BondKind kind = static_cast<BondKind>(bond_[k]);
+    const double kn = law.normal_stiffness(g.ri, g.rj, g.inverse_length);
+    const double ks = shear_stiffness(cls, kn);
+    const double vt = tangential_velocity(g);
+    const double old = shear_[k];
+    const double trial = linear_shear_increment(old, ks, vt, dt_);
+    double fn = kn * std::max(g.overlap, 0.0);  // linear part, compression positive
+    PairForce f;
+    bool point_bonded = false;
+    if (kind == BondKind::Contact) {
+      // While bonded: tension allowed (zero force at the installation gap), no slip.
+      const double fn_bonded = kn * (g.overlap + bond_gap_[k]);
+      f.failure = contact_bond_failure(fn_bonded, trial,
+                                       contact_bond_strength(bonds_[cls].contact, g.ri, g.rj));
+      point_bonded = f.failure == BondFailure::None;
+      // A break releases the normal spring energy beyond what the plain contact keeps (the
+      // shear spring's drop to the friction limit is booked as slip work below).
+      if (!point_bonded) f.released = 0.5 * (fn_bonded * fn_bonded - fn * fn) / kn;
+      fn = point_bonded ? fn_bonded : fn;
+    }
+    const double fs = point_bonded ? trial : coulomb_limit(trial, law.mu, fn);
+    f.slip_work = slip_work(old, trial, fs, ks);
+    ParallelBondState pb;
+    if (kind == BondKind::Parallel) {
+      const ParallelBondParams& p = bonds_[cls].parallel;
+      const ParallelBondGeometry bg = parallel_bond_geometry(p, g.ri, g.rj, g.inverse_length);
+      const double vn = (vx_[g.j] - vx_[g.i]) * g.nx + (vy_[g.j] - vy_[g.i]) * g.ny;
+      pb = {bond_normal_[k], bond_shear_[k], bond_moment_[k]};
+      parallel_bond_increment(pb, bg, vn * dt_, vt * dt_, (w_[g.j] - w_[g.i]) * dt_);
+      f.failure = parallel_bond_failure(pb, bg, p, tan_friction_angle_[cls]);
+      if (f.failure != BondFailure::None) {
+        f.released = parallel_bond_strain_energy(pb, bg);
+        pb = {};
+      }
+      bond_normal_[k] = pb.fn;
+      bond_shear_[k] = pb.fs;
+      bond_moment_[k] = pb.m;
+    }
+    if (f.failure != BondFailure::None) {
+      bond_[k] = static_cast<std::uint8_t>(BondKind::None);
+      bond_gap_[k] = 0;
+    }
+    shear_[k] = fs;
+    // Totals on j: linear part plus bond (the bond's normal force is tension positive).
+    resolve(g, fn - pb.fn, fs + pb.fs, pb.m, f);
+    return f;
+  }
+
+  const std::int32_t *first_, *second_;
+  const std::uint8_t* contact_class_;
+  const double *x_, *y_, *r_, *vx_, *vy_, *w_;
+  double* shear_;
+  std::uint8_t* bond_;
+  double *bond_normal_, *bond_shear_, *bond_moment_, *bond_gap_;
+  double *normal_, *overlap_, *fx_, *fy_;
+  std::uint8_t* failure_;
+  double* released_;
+  double *disc_fx_, *disc_fy_, *disc_m_;
+  const ContactLaws& laws_;
+  const BondModels& bonds_;
+  std::array<double, kContactClassCount> tan_friction_angle_{};          // tan(phi_b) by class
+  std::array<double, kContactClassCount> shear_per_normal_stiffness_{};  // 1 / kappa* by class
+  double dt_, guard_;
+};
+
+}  // namespace cdem::dem
