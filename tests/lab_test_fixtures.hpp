@@ -5,6 +5,9 @@
 #include <fstream>
 #include <string>
 
+#include <gtest/gtest.h>
+
+#include "core/input_error.hpp"
 #include "core/rng.hpp"
 #include "core/specimen.hpp"
 #include "core/specimen_file.hpp"
@@ -29,6 +32,23 @@ inline Specimen packed_specimen(const Container& mould, std::uint64_t seed) {
   s.clump.assign(p.r.size(), -1);
   s.contact_active.assign(p.r.size(), 1);
   return s;
+}
+
+// The 10 mm wide, 20 mm high specimen of the small tests (packed once per process).
+inline const Specimen& small_rectangle_specimen() {
+  static const Specimen s = packed_specimen({ContainerShape::Rectangle, 10e-3, 20e-3}, 7);
+  return s;
+}
+
+// Expects `f` to throw an InputError whose message names `key` (and the file).
+template <class F>
+void expect_input_error(F&& f, const std::string& key) {
+  try {
+    f();
+    FAIL() << "no InputError for " << key;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+  }
 }
 
 // The C30 contact laws (SPEC 8) with every modulus and every strength scaled.

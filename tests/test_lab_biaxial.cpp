@@ -23,17 +23,16 @@ namespace {
 
 namespace fs = std::filesystem;
 using cdem::ContainerShape;
-using cdem::InputError;
 using cdem::Specimen;
 using namespace cdem::dem;
+using cdem::test::expect_input_error;
 using cdem::test::lab_test_input;
 using cdem::test::packed_specimen;
 using cdem::test::scratch_dir;
 using cdem::test::write_text;
 
-const Specimen& rectangle_specimen() {  // 10 mm wide, 20 mm high
-  static const Specimen s = packed_specimen({ContainerShape::Rectangle, 10e-3, 20e-3}, 7);
-  return s;
+const Specimen& rectangle_specimen() {
+  return cdem::test::small_rectangle_specimen();
 }
 
 // Frictionless platens and side walls, as samples/biaxial.toml (SPEC 6: wall friction 0).
@@ -148,16 +147,6 @@ TEST(Biaxial, UnconfinedRunIsTheUniaxialTest) {
   EXPECT_EQ(unconfined.peak_deviator, ucs.peak_stress);
   EXPECT_EQ(unconfined.ucs.young_modulus, ucs.ucs.young_modulus);
   EXPECT_EQ(unconfined.confining_stress_at_peak, 0);
-}
-
-template <class F>
-void expect_input_error(F&& f, const std::string& key) {
-  try {
-    f();
-    FAIL() << "no InputError for " << key;
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-  }
 }
 
 TEST(Biaxial, BadInputsAreInputErrorsNamingTheKey) {

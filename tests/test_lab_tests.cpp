@@ -26,14 +26,14 @@ using cdem::InputError;
 using cdem::Specimen;
 using namespace cdem::dem;
 using cdem::test::c30_materials;
+using cdem::test::expect_input_error;
 using cdem::test::lab_test_input;
 using cdem::test::packed_specimen;
 using cdem::test::scratch_dir;
 using cdem::test::write_text;
 
-const Specimen& rectangle_specimen() {  // 10 mm wide, 20 mm high
-  static const Specimen s = packed_specimen({ContainerShape::Rectangle, 10e-3, 20e-3}, 7);
-  return s;
+const Specimen& rectangle_specimen() {
+  return cdem::test::small_rectangle_specimen();
 }
 
 const Specimen& disc_specimen() {  // 20 mm diameter
@@ -125,17 +125,6 @@ TEST(LabTests, DirectTensionPullsTheGripsApart) {
   EXPECT_LT(r.history.axial_stress.back(), 0.8 * r.peak_stress);
   // Tension cracks dominate.
   EXPECT_GT(r.crack_count[0][0], r.crack_count[1][0]);
-}
-
-// Expects an InputError whose message names `key` (and the file).
-template <class F>
-void expect_input_error(F&& f, const std::string& key) {
-  try {
-    f();
-    FAIL() << "no InputError for " << key;
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-  }
 }
 
 TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
