@@ -1,17 +1,20 @@
 // `cdem run TEST.toml [-o result.h5] [--summary out.json] [--seed N] [--plot out.png]
-//  [--crack-map out.png] [-q]`: material genesis and one lab test (docs/lab_tests.md).
+//  [--crack-map out.png] [-q]`: material genesis and one lab test, or the series of a biaxial
+//  test (one run per confinement and the Mohr-Coulomb envelope); docs/lab_tests.md.
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.hpp"
+#include "apps/lab_specimen.hpp"
 #include "core/atomic_output.hpp"
-#include "core/specimen_file.hpp"
+#include "dem/biaxial_test.hpp"
 #include "dem/lab_pictures.hpp"
 #include "dem/lab_test.hpp"
 #include "dem/result_file.hpp"
@@ -28,7 +31,13 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   j["specimen"] = in.specimen_path.string();
   j["seed"] = in.seed;
   j["peak_stress_MPa"] = r.peak_stress * 1e-6;
-  if (r.type == dem::LabTestType::Uniaxial) {
+  if (r.type == dem::LabTestType::Biaxial) {
+    j["sigma3_MPa"] = r.confining_stress * 1e-6;
+    j["sigma3_at_peak_MPa"] = r.confining_stress_at_peak * 1e-6;
+    j["peak_deviator_MPa"] = r.peak_deviator * 1e-6;
+    j["consolidation_steps"] = r.consolidation.steps;
+  }
+  if (r.type == dem::LabTestType::Uniaxial || r.type == dem::LabTestType::Biaxial) {
     j["young_modulus_GPa"] = r.ucs.young_modulus * 1e-9;
     j["poisson_ratio"] = r.ucs.poisson_ratio;
     j["strain_at_half_peak"] = r.ucs.strain_at_half_peak;
@@ -65,6 +74,30 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   return j;
 }
 
+// The series of a biaxial test: the envelope, then each confinement's own summary.
+nlohmann::ordered_json series_json(const dem::BiaxialSeries& series, const dem::LabTestInput& in) {
+  nlohmann::ordered_json j;
+  j["test"] = dem::lab_test_name(dem::LabTestType::Biaxial);
+  j["specimen"] = in.specimen_path.string();
+  j["seed"] = in.seed;
+  j["cohesion_MPa"] = series.envelope.cohesion * 1e-6;
+  j["friction_angle_deg"] = series.envelope.friction_angle * 180 / std::numbers::pi;
+  j["mohr_coulomb_r2"] = series.envelope.r_squared;
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  long steps = 0;
+  for (const dem::LabTestResult& r : series.runs) {
+    nlohmann::ordered_json run = summary_json(r, in);
+    for (const char* shared : {"test", "specimen", "seed"}) run.erase(shared);
+    runs.push_back(run);
+    steps += r.steps + r.consolidation.steps;
+  }
+  j["confinements"] = runs;
+  j["steps"] = steps;
+  j["time_step_s"] = series.runs.front().time_step;
+  j["wall_time_s"] = series.wall_time;
+  return j;
+}
+
 // One progress line on a terminal, refreshed at most twice a second.
 class ProgressLine {
  public:
@@ -97,6 +130,13 @@ std::filesystem::path beside(const std::filesystem::path& result, const std::str
   return p.replace_filename(result.stem().string() + suffix);
 }
 
+// The picture of confinement k of a biaxial series: "_c<k>" before the extension.
+std::string numbered(const std::string& png, std::size_t k) {
+  if (png.empty()) return png;
+  const std::filesystem::path p = png;
+  return beside(p, "_c" + std::to_string(k) + p.extension().string()).string();
+}
+
 }  // namespace
 
 Action add_run_command(CLI::App& app) {
@@ -108,8 +148,8 @@ Action add_run_command(CLI::App& app) {
   auto o = std::make_shared<Options>();
   auto* r = app.add_subcommand(
       "run",
-      "Run a lab test (uniaxial, Brazilian, direct tension) on a specimen: material "
-      "genesis, loading to past the peak, results");
+      "Run a lab test (uniaxial, Brazilian, direct tension, biaxial series) on a specimen: "
+      "material genesis, loading to past the peak, results");
   r->add_option("test", o->test, "Test file (TOML); see samples/c30_ucs.toml")->required();
   r->add_option("-o,--output", o->output,
                 "Result file to write (HDF5; snapshots add an XDMF file beside it)");
@@ -122,34 +162,58 @@ Action add_run_command(CLI::App& app) {
     if (!r->parsed()) return;
     dem::LabTestInput input = dem::read_lab_test(std::filesystem::path(o->test));
     if (seed->count()) input.seed = o->seed;
-    const Specimen specimen = read_specimen(input.specimen_path);
+    const Specimen specimen = lab_test_specimen(input, !o->quiet);
     dem::check_specimen_for_test(specimen, input);
 
     std::optional<dem::ResultFile> result_file;
     if (!o->output.empty()) result_file.emplace(o->output, input);
-    dem::LabTestHooks hooks;
     std::optional<ProgressLine> progress;
-    if (!o->quiet && ::isatty(STDERR_FILENO)) {
-      progress.emplace();
-      hooks.progress = [&progress](const dem::LabHistory& h, double peak, long max_steps) {
-        progress->update(h, peak, max_steps);
-      };
-    }
-    if (result_file)
-      hooks.snapshot = [&result_file](const dem::World& w, long step, double time) {
-        result_file->snapshot(w, step, time);
-      };
-    const dem::LabTestResult result = dem::run_lab_test(specimen, input, hooks);
-    progress.reset();
-
-    if (result_file) result_file->commit(result);
-    if (!o->summary.empty())
-      write_text_atomically(o->summary, summary_json(result, input).dump(2) + "\n");
+    const auto make_hooks = [&] {
+      dem::LabTestHooks hooks;
+      if (!o->quiet && ::isatty(STDERR_FILENO)) {
+        progress.emplace();
+        hooks.progress = [&progress](const dem::LabHistory& h, double peak, long max_steps) {
+          progress->update(h, peak, max_steps);
+        };
+      }
+      if (result_file)
+        hooks.snapshot = [&result_file](const dem::World& w, long step, double time) {
+          result_file->snapshot(w, step, time);
+        };
+      return hooks;
+    };
     std::string plot = o->plot, crack_map = o->crack_map;
     if (!o->output.empty()) {
       if (plot.empty()) plot = beside(o->output, "_stress_strain.png").string();
       if (crack_map.empty()) crack_map = beside(o->output, "_cracks.png").string();
     }
+
+    if (input.controls.type == dem::LabTestType::Biaxial) {
+      const dem::BiaxialSeries series =
+          dem::run_biaxial_series(specimen, input, [&](std::size_t k) {
+            progress.reset();
+            if (result_file)
+              result_file->begin_confinement(k, input.controls.confining_stresses[k]);
+            return make_hooks();
+          });
+      progress.reset();
+      if (result_file) result_file->commit(series);
+      const nlohmann::ordered_json summary = series_json(series, input);
+      if (!o->summary.empty()) write_text_atomically(o->summary, summary.dump(2) + "\n");
+      for (std::size_t k = 0; k < series.runs.size(); ++k) {
+        const dem::LabTestResult& r = series.runs[k];
+        if (!plot.empty()) dem::draw_stress_strain_png(r.history, r.type, numbered(plot, k));
+        if (!crack_map.empty()) dem::draw_crack_map_png(specimen, r.cracks, numbered(crack_map, k));
+      }
+      if (!o->quiet) std::printf("%s\n", summary.dump(2).c_str());
+      return;
+    }
+
+    const dem::LabTestResult result = dem::run_lab_test(specimen, input, make_hooks());
+    progress.reset();
+    if (result_file) result_file->commit(result);
+    if (!o->summary.empty())
+      write_text_atomically(o->summary, summary_json(result, input).dump(2) + "\n");
     if (!plot.empty()) dem::draw_stress_strain_png(result.history, result.type, plot);
     if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result.cracks, crack_map);
     if (!o->quiet) std::printf("%s\n", summary_json(result, input).dump(2).c_str());

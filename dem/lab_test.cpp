@@ -5,12 +5,14 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include <toml++/toml.h>
 
 #include "core/input_error.hpp"
+#include "dem/biaxial_test.hpp"
 #include "dem/contact_energy.hpp"
 #include "dem/measure.hpp"
 #include "dem/strain_measure.hpp"
@@ -26,6 +28,8 @@ const char* lab_test_name(LabTestType type) {
       return "brazilian";
     case LabTestType::DirectTension:
       return "direct_tension";
+    case LabTestType::Biaxial:
+      return "biaxial";
   }
   return "?";
 }
@@ -37,12 +41,13 @@ LabTestControls read_controls(const InputTable& t) {
                          "local_damping", "time_step_safety", "density_scaling", "scaled_time_step",
                          "history_interval", "snapshot_interval", "max_steps", "grip_fraction",
                          "gauge_fraction", "platen_overhang", "threads", "min_contacts",
-                         "bond_gap_ratio"});
+                         "bond_gap_ratio", "confining_stresses"});
   LabTestControls c;
-  const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension"});
-  c.type = type == "uniaxial"    ? LabTestType::Uniaxial
-           : type == "brazilian" ? LabTestType::Brazilian
-                                 : LabTestType::DirectTension;
+  const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial"});
+  c.type = type == "uniaxial"         ? LabTestType::Uniaxial
+           : type == "brazilian"      ? LabTestType::Brazilian
+           : type == "direct_tension" ? LabTestType::DirectTension
+                                      : LabTestType::Biaxial;
   c.platen_velocity =
       t.quantity_or("platen_velocity", Dimension::Velocity, c.platen_velocity, Range::positive());
   c.stop_fraction = t.number_or("stop_fraction", c.stop_fraction, Range::open(0, 1));
@@ -68,7 +73,28 @@ LabTestControls read_controls(const InputTable& t) {
       static_cast<int>(t.integer_or("min_contacts", c.genesis.min_contacts, 0, 12));
   c.genesis.bond_gap_ratio =
       t.number_or("bond_gap_ratio", c.genesis.bond_gap_ratio, Range::closed(0, 0.1));
+  if (c.type == LabTestType::Biaxial)
+    c.confining_stresses = read_confining_stresses(t);
+  else if (t.has("confining_stresses"))  // any unit suffix
+    t.fail("confining_stresses", "only used by type = \"biaxial\"");
   return c;
+}
+
+// The generator file an inline [specimen] table stands for: its plain keys (shape, sizes) form
+// the generator's [specimen], its sub-tables ([specimen.gradation], ...) the generator's root
+// tables. toml++ writes floating-point values so that they read back to the same bits.
+std::string generator_text(const toml::table& inline_spec) {
+  toml::table generator, container;
+  for (const auto& [key, value] : inline_spec) {
+    if (value.is_table())
+      generator.insert(key, value);
+    else
+      container.insert(key, value);
+  }
+  generator.insert("specimen", std::move(container));
+  std::ostringstream text;
+  text << generator << "\n";
+  return text.str();
 }
 
 }  // namespace
@@ -81,17 +107,18 @@ LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path&
   out.seed = static_cast<std::uint64_t>(
       input.integer_or("seed", 0, 0, std::numeric_limits<long long>::max()));
 
-  // The specimen: a file written by `cdem generate` (an inline generator table is not read yet).
+  // The specimen: a file written by `cdem generate`, or an inline generator table.
   const toml::table root = toml::parse(input.source_text());
-  if (root.get("specimen") && root.get("specimen")->is_table())
-    input.fail("specimen",
-               "an inline generator table is not supported yet; generate the "
-               "specimen with `cdem generate` and give its file name here");
-  const std::filesystem::path specimen = input.string("specimen");
-  out.specimen_path = specimen.is_absolute() ? specimen : base_dir / specimen;
-  if (!std::filesystem::is_regular_file(out.specimen_path))
-    input.fail("specimen", "file " + out.specimen_path.string() +
-                               " not found (a specimen HDF5 written by `cdem generate`)");
+  if (const toml::table* inline_spec = root["specimen"].as_table()) {
+    out.specimen_path = input.file() + " [specimen]";
+    out.specimen_generator = generator_text(*inline_spec);
+  } else {
+    const std::filesystem::path specimen = input.string("specimen");
+    out.specimen_path = specimen.is_absolute() ? specimen : base_dir / specimen;
+    if (!std::filesystem::is_regular_file(out.specimen_path))
+      input.fail("specimen", "file " + out.specimen_path.string() +
+                                 " not found (a specimen HDF5 written by `cdem generate`)");
+  }
 
   // Materials: inline [materials.*] tables or the name of a file holding them.
   const toml::node* materials = root.get("materials");
@@ -284,7 +311,21 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   // The relaxed state is the reference: displacements, strains, time and steps count from here.
   const Extent e = disc_extent(world);
   const Walls platens = make_platens(c, e);
-  const Loading loading = set_up_loading(world, cleaned, input, platens, e);
+  Loading loading = set_up_loading(world, cleaned, input, platens, e);
+  // Biaxial: side walls, isotropic consolidation at sigma_3, then the platens load from the
+  // consolidated state, which becomes the reference of strains, time and steps.
+  std::optional<Confinement> confinement;
+  if (c.type == LabTestType::Biaxial && c.confining_stress > 0) {
+    confinement.emplace(world, c.confining_stress, c.platen_velocity, loading.bottom_wall,
+                        loading.top_wall, e.xmin, e.xmax, e.ymin, e.ymax, c.confinement);
+    res.consolidation = confinement->consolidate(world);
+    loading.bottom_y0 = world.walls.ay[loading.bottom_wall];
+    loading.top_y0 = world.walls.ay[loading.top_wall];
+    loading.gauge_length = loading.top_y0 - loading.bottom_y0;
+    world.walls.vy[loading.bottom_wall] = c.platen_velocity;
+    world.walls.vy[loading.top_wall] = -c.platen_velocity;
+  }
+  res.confining_stress = c.type == LabTestType::Biaxial ? c.confining_stress : 0;
   const long step0 = world.step_count();
   const double time0 = world.time();
   world.refresh_neighbors();
@@ -301,16 +342,21 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   LabHistory& h = res.history;
   const long max_records = c.max_steps / c.history_interval + 2;
   h.reserve(static_cast<std::size_t>(std::min<long>(max_records, 1'000'000)));
+  // The stress the peak and the stop rule follow: axial, or the deviator of a biaxial test.
+  const bool biaxial = c.type == LabTestType::Biaxial;
   double boundary_work = 0, peak = 0, strain_at_peak = 0;
   const auto record = [&] {
     const double force = loading.force(world);
     const ContactEnergy energy = contact_energy(world);
+    const double section = confinement ? confinement->width(world) : loading.section;
     h.step.push_back(world.step_count() - step0);
     h.time.push_back(world.time() - time0);
     h.axial_strain.push_back(loading.travel(world) / loading.gauge_length);
     h.lateral_strain.push_back(-gauge.gradient(world)(0, 0));
-    h.axial_stress.push_back(force / (loading.section * kThickness));
-    h.confining_stress.push_back(contact_stress(world, gauge_box)(0, 0));
+    h.axial_stress.push_back(force / (section * kThickness));
+    h.confining_stress.push_back(confinement ? confinement->side_stress(world)
+                                 : biaxial   ? 0.0
+                                             : contact_stress(world, gauge_box)(0, 0));
     h.platen_force.push_back(force);
     h.kinetic_energy.push_back(kinetic_energy(world));
     h.strain_energy.push_back(energy.strain());
@@ -318,8 +364,10 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     h.breakage_energy.push_back(energy.bond_breakage);
     h.boundary_work.push_back(boundary_work);
     h.bonds_broken.push_back(static_cast<long>(world.cracks.size()));
-    if (h.axial_stress.back() > peak) {
-      peak = h.axial_stress.back();
+    const double loading_stress =
+        biaxial ? h.axial_stress.back() - h.confining_stress.back() : h.axial_stress.back();
+    if (loading_stress > peak) {
+      peak = loading_stress;
       strain_at_peak = h.axial_strain.back();
     }
     if (hooks.progress) hooks.progress(h, peak, c.max_steps);
@@ -329,6 +377,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   if (hooks.snapshot && c.snapshot_interval > 0)
     hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   for (;;) {
+    if (confinement) confinement->update_targets(world);
     world.step();
     boundary_work += loading.work(world, world.time_step());
     const long s = world.step_count() - step0;
@@ -339,8 +388,9 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
       // SPEC 6 stop rule, once the specimen has started to break (the first records of the
       // loading are tiny and noisy; a fall there is not a post-peak branch) and confirmed by a
       // margin of strain beyond the peak (a local drop that recovers is not the failure).
-      done = !world.cracks.cracks.empty() &&
-             past_peak(h.axial_stress.back(), peak, c.stop_fraction) &&
+      const double loading_stress =
+          biaxial ? h.axial_stress.back() - h.confining_stress.back() : h.axial_stress.back();
+      done = !world.cracks.cracks.empty() && past_peak(loading_stress, peak, c.stop_fraction) &&
              h.axial_strain.back() >= strain_at_peak * (1 + c.stop_strain_margin);
     }
     if (done || s >= c.max_steps) {
@@ -348,9 +398,10 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
       if (!done) {
         std::ostringstream msg;
         msg << "the " << lab_test_name(c.type) << " test reached max_steps = " << c.max_steps
-            << " before the stress fell below " << c.stop_fraction << " x its peak: peak "
-            << peak * 1e-6 << " MPa, last stress " << h.axial_stress.back() * 1e-6
-            << " MPa, axial strain " << h.axial_strain.back() << ", " << world.cracks.size()
+            << " before the " << (biaxial ? "deviator" : "stress") << " fell below "
+            << c.stop_fraction << " x its peak: peak " << peak * 1e-6 << " MPa, last stress "
+            << h.axial_stress.back() * 1e-6 << " MPa, axial strain " << h.axial_strain.back()
+            << ", " << world.cracks.size()
             << " bonds broken; raise test.max_steps or the platen velocity";
         throw RunError(msg.str());
       }
@@ -385,6 +436,9 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
       break;
     case LabTestType::DirectTension:
       res.tensile_strength = res.peak_stress;
+      break;
+    case LabTestType::Biaxial:
+      analyse_biaxial(res);
       break;
   }
   res.wall_time =

@@ -1,9 +1,11 @@
 #pragma once
 // Lab tests on a bonded specimen (SPEC 6): uniaxial compression between rigid platens, the
-// Brazilian disc between flat platens, and direct tension by grip bands of discs. The test file
-// (docs/lab_tests.md) names the specimen, the material table and the test controls; a run does
-// the material genesis (SPEC 3.6), loads the specimen until the stress falls below a fraction of
-// its peak, and returns the histories, the cracks and the lab figures.
+// Brazilian disc between flat platens, direct tension by grip bands of discs, and one biaxial
+// test (platens plus servo side walls at a confining stress; dem/biaxial_test.hpp runs the
+// series of confinements). The test file (docs/lab_tests.md) names the specimen, the material
+// table and the test controls; a run does the material genesis (SPEC 3.6), loads the specimen
+// until the stress falls below a fraction of its peak, and returns the histories, the cracks and
+// the lab figures.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +15,7 @@
 
 #include "core/input_table.hpp"
 #include "core/specimen.hpp"
+#include "dem/confinement.hpp"
 #include "dem/crack_log.hpp"
 #include "dem/lab_analysis.hpp"
 #include "dem/material_genesis.hpp"
@@ -21,8 +24,9 @@
 
 namespace cdem::dem {
 
-enum class LabTestType { Uniaxial, Brazilian, DirectTension };
-const char* lab_test_name(LabTestType type);  // "uniaxial", "brazilian", "direct_tension"
+enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial };
+// "uniaxial", "brazilian", "direct_tension", "biaxial"
+const char* lab_test_name(LabTestType type);
 
 struct LabTestControls {
   LabTestType type = LabTestType::Uniaxial;
@@ -44,13 +48,25 @@ struct LabTestControls {
   double platen_overhang = 0.25;  // platens reach this fraction of the width beyond each side
   int threads = 1;
   GenesisOptions genesis{};
+  // Biaxial: the confinements of the series (Pa, >= 0; 0 = unconfined, no side walls), and the
+  // one of the run in hand (set by run_biaxial_series); dem/confinement.hpp has the servo
+  // settings.
+  std::vector<double> confining_stresses;
+  double confining_stress = 0;
+  ConfinementOptions confinement{};
 };
 
 struct LabTestInput {
-  std::string file;                     // the test file, as given
-  std::string text;                     // its text, stored with the results
-  std::string materials_text;           // the material file's text when given by name
-  std::filesystem::path specimen_path;  // resolved relative to the test file
+  std::string file;            // the test file, as given
+  std::string text;            // its text, stored with the results
+  std::string materials_text;  // the material file's text when given by name
+  // Resolved relative to the test file; with an inline [specimen] table, "<test file> [specimen]"
+  // (a name for messages and records).
+  std::filesystem::path specimen_path;
+  // Inline [specimen] table: the text of the generator file it stands for (its plain keys under
+  // [specimen], its sub-tables at the root, no seed: the run's seed is the generator's). Empty
+  // when `specimen` names a file. apps/ generates the specimen from it (dem/ has no generator).
+  std::string specimen_generator;
   MaterialTable materials;
   LabTestControls controls;
   std::uint64_t seed = 0;
@@ -63,20 +79,22 @@ LabTestInput read_lab_test(const std::filesystem::path& file);
 LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path& base_dir);
 
 // Throws InputError when the specimen's shape does not suit the test (Brazilian needs a disc,
-// uniaxial and direct tension a rectangle).
+// uniaxial, direct tension and biaxial a rectangle).
 void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input);
 
 // Histories, one entry per record (every history_interval steps, plus the last step). Stresses
 // and strains are positive in the sense the test loads the specimen: compression for uniaxial
 // and Brazilian, tension for direct tension. Lateral strain = -du_x/dx of the central region
 // (positive = contraction), so a specimen bulging under compression has a negative one.
+// Biaxial: the axial stress is sigma_1 = platen force / (side-wall gap x t), the confining stress
+// the side walls' stress sigma_3 (0 unconfined), strains count from the end of consolidation.
 struct LabHistory {
   std::vector<long> step;
   std::vector<double> time;              // s
   std::vector<double> axial_strain;      // platen (grip) travel / H0
   std::vector<double> lateral_strain;    // -G_xx of the central region's best-fit gradient
   std::vector<double> axial_stress;      // Pa, mean platen (grip) force / (W t)
-  std::vector<double> confining_stress;  // Pa, sigma_xx of the contacts in the central region
+  std::vector<double> confining_stress;  // Pa, central-region contact sigma_xx; biaxial: walls
   std::vector<double> platen_force;      // N (per m), mean of the two platens (grips)
   std::vector<double> kinetic_energy;    // J/m, physical masses
   std::vector<double> strain_energy;     // J/m, linear springs + parallel bonds
@@ -99,8 +117,13 @@ struct LabTestResult {
   double width = 0, height = 0;  // m, specimen extent between platens at the start (D for a disc)
   double peak_stress = 0;        // Pa, the largest axial stress of the history
   double peak_force = 0;         // N per m, the largest platen (grip) force
-  UcsResult ucs;                 // uniaxial only
-  double tensile_strength = 0;   // Pa, Brazilian (2 P / pi D t) and direct tension (F / W t)
+  UcsResult ucs;                 // uniaxial; biaxial: of the deviator sigma_1 - sigma_3
+  // Biaxial: peak_stress is sigma_1 at the peak deviator, peak_force the platen force there.
+  double confining_stress = 0;          // Pa, sigma_3 asked for
+  double confining_stress_at_peak = 0;  // Pa, side-wall stress measured at the peak deviator
+  double peak_deviator = 0;             // Pa, largest sigma_1 - sigma_3 of the history
+  ConsolidationReport consolidation;    // isotropic phase (none when unconfined)
+  double tensile_strength = 0;          // Pa, Brazilian (2 P / pi D t) and direct tension (F / W t)
   long steps = 0;
   double time_step = 0;         // s, at the start of loading (after bond installation)
   double wall_time = 0;         // s

@@ -2,7 +2,9 @@
 
 #include <H5Cpp.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <numbers>
 #include <sstream>
 
 #include "core/hdf5_write.hpp"
@@ -25,6 +27,13 @@ std::string snapshot_name(std::size_t k) {
   return buf;
 }
 
+std::string confinement_group(std::size_t k) {
+  return "/confinement_" + std::to_string(k);
+}
+
+// Figures, genesis, histories and cracks of one run, under `where`.
+void write_run(H5::Group& where, const LabTestResult& r);
+
 }  // namespace
 
 ResultFile::ResultFile(std::filesystem::path target, const LabTestInput& input)
@@ -39,7 +48,14 @@ ResultFile::ResultFile(std::filesystem::path target, const LabTestInput& input)
   write_string_attr(*file_, "input_text", input.text);
   write_string_attr(*file_, "materials_text", input.materials_text);
   write_string_attr(*file_, "specimen_file", input.specimen_path.string());
-  file_->createGroup("snapshots");
+  if (input.controls.type != LabTestType::Biaxial) file_->createGroup("snapshots");
+}
+
+void ResultFile::begin_confinement(std::size_t k, double sigma3) {
+  group_ = confinement_group(k);
+  H5::Group g = file_->createGroup(group_);
+  write_scalar_attr<double>(g, "confining_stress_Pa", sigma3);
+  g.createGroup("snapshots");
 }
 
 ResultFile::~ResultFile() {
@@ -53,8 +69,11 @@ std::filesystem::path ResultFile::xdmf_path() const {
 
 void ResultFile::snapshot(const World& world, long step, double time) {
   const Discs& d = world.discs;
-  H5::Group root = file_->openGroup("snapshots");
-  H5::Group g = root.createGroup(snapshot_name(snapshots_.size()));
+  H5::Group root = file_->openGroup(group_).openGroup("snapshots");
+  const std::size_t index = static_cast<std::size_t>(
+      std::count_if(snapshots_.begin(), snapshots_.end(),
+                    [this](const SnapshotIndex& s) { return s.group == group_; }));
+  H5::Group g = root.createGroup(snapshot_name(index));
   write_scalar_attr<long>(g, "step", step);
   write_scalar_attr<double>(g, "time_s", time);
   const auto copy = [&](const std::vector<double>& v, const char* name, const char* units) {
@@ -74,15 +93,44 @@ void ResultFile::snapshot(const World& world, long step, double time) {
       ++bond_count_[list.second[k]];
     }
   write_array(g, "bonds", bond_count_, "", "intact bonds of the disc");
-  snapshots_.push_back({step, time, d.size()});
+  snapshots_.push_back({group_, index, step, time, d.size()});
 }
 
 void ResultFile::commit(const LabTestResult& r) {
+  H5::Group root = file_->openGroup("/");
+  write_run(root, r);
+  finish();
+}
+
+void ResultFile::commit(const BiaxialSeries& series) {
   {
     H5::Group s = file_->createGroup("summary");
+    write_scalar_attr<double>(s, "cohesion_Pa", series.envelope.cohesion);
+    write_scalar_attr<double>(s, "friction_angle_deg",
+                              series.envelope.friction_angle * 180 / std::numbers::pi);
+    write_scalar_attr<double>(s, "mohr_coulomb_r2", series.envelope.r_squared);
+    write_scalar_attr<long>(s, "confinements", static_cast<long>(series.runs.size()));
+    write_scalar_attr<double>(s, "wall_time_s", series.wall_time);
+    for (std::size_t k = 0; k < series.runs.size(); ++k) {
+      const std::string name = confinement_group(k);
+      H5::Group g = file_->nameExists(name) ? file_->openGroup(name) : file_->createGroup(name);
+      if (!g.attrExists("confining_stress_Pa"))
+        write_scalar_attr<double>(g, "confining_stress_Pa", series.runs[k].confining_stress);
+      if (!g.nameExists("snapshots")) g.createGroup("snapshots");
+      write_run(g, series.runs[k]);
+    }
+  }
+  finish();
+}
+
+namespace {
+
+void write_run(H5::Group& where, const LabTestResult& r) {
+  {
+    H5::Group s = where.createGroup("summary");
     write_scalar_attr<double>(s, "peak_stress_Pa", r.peak_stress);
     write_scalar_attr<double>(s, "peak_force_N_per_m", r.peak_force);
-    if (r.type == LabTestType::Uniaxial) {
+    if (r.type == LabTestType::Uniaxial || r.type == LabTestType::Biaxial) {
       write_scalar_attr<double>(s, "young_modulus_Pa", r.ucs.young_modulus);
       write_scalar_attr<double>(s, "poisson_ratio", r.ucs.poisson_ratio);
       write_scalar_attr<double>(s, "strain_at_half_peak", r.ucs.strain_at_half_peak);
@@ -95,8 +143,15 @@ void ResultFile::commit(const LabTestResult& r) {
     write_scalar_attr<double>(s, "time_step_s", r.time_step);
     write_scalar_attr<double>(s, "wall_time_s", r.wall_time);
     write_scalar_attr<long>(s, "gauge_discs", static_cast<long>(r.gauge_discs));
+    if (r.type == LabTestType::Biaxial) {
+      write_scalar_attr<double>(s, "confining_stress_Pa", r.confining_stress);
+      write_scalar_attr<double>(s, "confining_stress_at_peak_Pa", r.confining_stress_at_peak);
+      write_scalar_attr<double>(s, "peak_deviator_Pa", r.peak_deviator);
+      write_scalar_attr<long>(s, "consolidation_steps", r.consolidation.steps);
+      write_scalar_attr<double>(s, "consolidation_worst_error", r.consolidation.worst_error);
+    }
 
-    H5::Group g = file_->createGroup("genesis");
+    H5::Group g = where.createGroup("genesis");
     write_scalar_attr<long>(g, "discs_in_specimen", r.genesis.discs_in_specimen);
     write_scalar_attr<long>(g, "floating_discs_removed", r.genesis.floating_removed);
     write_scalar_attr<std::int32_t>(g, "removal_passes", r.genesis.removal_passes);
@@ -110,16 +165,18 @@ void ResultFile::commit(const LabTestResult& r) {
                               r.genesis.bonds[c]);
 
     const LabHistory& h = r.history;
-    H5::Group hg = file_->createGroup("history");
+    H5::Group hg = where.createGroup("history");
     write_array(hg, "step", h.step);
     write_array(hg, "time", h.time, "s");
     write_array(hg, "axial_strain", h.axial_strain, "1",
                 "platen (grip) travel / H0, loading sense");
     write_array(hg, "lateral_strain", h.lateral_strain, "1",
                 "-du_x/dx of the central region, contraction positive");
-    write_array(hg, "axial_stress", h.axial_stress, "Pa", "mean platen force / (W t)");
+    write_array(hg, "axial_stress", h.axial_stress, "Pa",
+                "mean platen force / (W t); biaxial: W = side-wall gap");
     write_array(hg, "confining_stress", h.confining_stress, "Pa",
-                "sigma_xx of the contacts in the central region, compression positive");
+                "sigma_xx of the contacts in the central region (biaxial: side-wall stress), "
+                "compression positive");
     write_array(hg, "platen_force", h.platen_force, "N/m", "mean of the two ends");
     write_array(hg, "kinetic_energy", h.kinetic_energy, "J/m");
     write_array(hg, "strain_energy", h.strain_energy, "J/m");
@@ -140,7 +197,7 @@ void ResultFile::commit(const LabTestResult& r) {
       first.push_back(c.first);
       second.push_back(c.second);
     }
-    H5::Group cg = file_->createGroup("cracks");
+    H5::Group cg = where.createGroup("cracks");
     write_array(cg, "time", t, "s");
     write_array(cg, "x", x, "m");
     write_array(cg, "y", y, "m");
@@ -154,6 +211,11 @@ void ResultFile::commit(const LabTestResult& r) {
             cg, std::string(m == 0 ? "tension_" : "shear_") + contact_class_name(ContactClass(c)),
             r.crack_count[m][c]);
   }
+}
+
+}  // namespace
+
+void ResultFile::finish() {
   file_->close();
   file_.reset();
   out_.commit();
@@ -161,10 +223,16 @@ void ResultFile::commit(const LabTestResult& r) {
   if (snapshots_.empty()) return;
   const std::string h5 = out_.target().filename().string();
   std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-    << "  <Grid Name=\"discs\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
   for (std::size_t k = 0; k < snapshots_.size(); ++k) {
-    const std::string path = h5 + ":/snapshots/" + snapshot_name(k) + "/";
+    const std::string& group = snapshots_[k].group;
+    if (k == 0 || group != snapshots_[k - 1].group) {
+      if (k > 0) x << "  </Grid>\n";
+      x << "  <Grid Name=\"" << (group == "/" ? "discs" : group.substr(1))
+        << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    }
+    const std::string path = h5 + ":" + (group == "/" ? "" : group) + "/snapshots/" +
+                             snapshot_name(snapshots_[k].index) + "/";
     const std::size_t n = snapshots_[k].discs;
     const auto item = [&](const char* name, const char* type, int precision) {
       std::ostringstream s;

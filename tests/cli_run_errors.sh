@@ -61,10 +61,33 @@ emod_GPa = 16
 kratio = 1
 friction = 0.5
 $good"
-expect inline_generator "specimen" "materials = \"materials.toml\"
+# An inline generator table missing a key: named with the test file's [specimen] table.
+expect inline_generator "specimen.width" "materials = \"materials.toml\"
 [specimen]
 shape = \"rectangle\"
 $good"
+expect biaxial_one_confinement "test.confining_stresses_MPa" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"biaxial\"
+confining_stresses_MPa = [1]"
+expect biaxial_negative_confinement "test.confining_stresses_MPa" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"biaxial\"
+confining_stresses_MPa = [1, -3]"
+# A biaxial test on a disc (generated inline: a small mortar disc).
+expect biaxial_on_disc "test.type" "materials = \"materials.toml\"
+[specimen]
+shape = \"disc\"
+diameter_mm = 8
+[specimen.mortar]
+r_mean_mm = 0.5
+r_ratio = 2.5
+porosity = 0.12
+[test]
+type = \"biaxial\"
+confining_stresses_MPa = [1, 3]"
 # A test file that does not exist.
 "$CDEM" run "$work/none.toml" -q 2>"$work/none.err" >/dev/null
 rc=$?
