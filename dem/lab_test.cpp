@@ -14,6 +14,7 @@
 #include "dem/contact_energy.hpp"
 #include "dem/measure.hpp"
 #include "dem/strain_measure.hpp"
+#include "dem/test_presets.hpp"
 #include "dem/world_from_specimen.hpp"
 
 namespace cdem::dem {
@@ -37,8 +38,9 @@ LabTestControls read_controls(const InputTable& t) {
                          "local_damping", "time_step_safety", "density_scaling", "scaled_time_step",
                          "history_interval", "snapshot_interval", "max_steps", "grip_fraction",
                          "gauge_fraction", "platen_overhang", "threads", "min_contacts",
-                         "bond_gap_ratio"});
+                         "bond_gap_ratio", "preset"});
   LabTestControls c;
+  apply_test_preset(t, c);  // speed knobs of the preset; the keys below override them
   const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension"});
   c.type = type == "uniaxial"    ? LabTestType::Uniaxial
            : type == "brazilian" ? LabTestType::Brazilian
