@@ -16,6 +16,7 @@
 #include "dem/contact_energy.hpp"
 #include "dem/measure.hpp"
 #include "dem/strain_measure.hpp"
+#include "dem/test_presets.hpp"
 #include "dem/world_from_specimen.hpp"
 
 namespace cdem::dem {
@@ -41,8 +42,9 @@ LabTestControls read_controls(const InputTable& t) {
                          "local_damping", "time_step_safety", "density_scaling", "scaled_time_step",
                          "history_interval", "snapshot_interval", "max_steps", "grip_fraction",
                          "gauge_fraction", "platen_overhang", "threads", "min_contacts",
-                         "bond_gap_ratio", "confining_stresses"});
+                         "bond_gap_ratio", "confining_stresses", "preset"});
   LabTestControls c;
+  apply_test_preset(t, c);  // speed knobs of the preset; the keys below override them
   const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial"});
   c.type = type == "uniaxial"         ? LabTestType::Uniaxial
            : type == "brazilian"      ? LabTestType::Brazilian

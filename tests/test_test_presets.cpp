@@ -1,0 +1,109 @@
+// Speed presets of a lab test file: a preset sets its knobs, an explicit key overrides one, a
+// bad name is an InputError that lists the allowed values, no preset keeps the defaults.
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/input_error.hpp"
+#include "core/input_table.hpp"
+#include "dem/lab_test.hpp"
+#include "dem/test_presets.hpp"
+#include "scratch_dir.hpp"
+
+namespace {
+
+using namespace cdem::dem;
+
+const char* kMaterials = R"(
+[materials.mortar]
+law = "parallel_bond"
+emod_GPa = 16
+kratio = 1.45
+friction = 0.5
+pb_tensile_strength_MPa = 10
+pb_cohesion_MPa = 30
+[materials.itz]
+law = "parallel_bond"
+emod_GPa = 8
+kratio = 1.45
+friction = 0.5
+pb_tensile_strength_MPa = 5
+pb_cohesion_MPa = 15
+[materials.aggregate]
+law = "linear"
+emod_GPa = 20
+kratio = 2
+friction = 1.0
+)";
+
+// Reads a test file whose [test] table holds `test_keys` (the specimen only has to exist).
+LabTestControls controls(const std::string& test_keys) {
+  const auto dir = cdem::test::scratch_dir("test_presets", "read");
+  std::ofstream(dir / "specimen.h5") << "placeholder";
+  const std::string text = std::string("specimen = \"specimen.h5\"\n") + kMaterials +
+                           "\n[test]\ntype = \"uniaxial\"\n" + test_keys;
+  return read_lab_test(cdem::InputTable::parse_string(text, "presets.toml"), dir).controls;
+}
+
+const TestPreset& preset(const std::string& name) {
+  for (const TestPreset& p : test_presets())
+    if (p.name == name) return p;
+  throw std::out_of_range(name);
+}
+
+TEST(TestPresets, EachPresetSetsItsKnobs) {
+  for (const TestPreset& p : test_presets()) {
+    const LabTestControls c = controls("preset = \"" + p.name + "\"\n");
+    EXPECT_DOUBLE_EQ(c.platen_velocity, p.platen_velocity) << p.name;
+    EXPECT_DOUBLE_EQ(c.time_step_safety, p.time_step_safety) << p.name;
+    EXPECT_EQ(c.density_scaling, p.density_scaling) << p.name;
+    EXPECT_DOUBLE_EQ(c.local_damping, p.local_damping) << p.name;
+  }
+}
+
+TEST(TestPresets, FasterPresetsLoadFasterAndAllStayStable) {
+  ASSERT_EQ(test_preset_names(), (std::vector<std::string>{"fast", "balanced", "accurate"}));
+  EXPECT_GT(preset("fast").platen_velocity, preset("balanced").platen_velocity);
+  EXPECT_GT(preset("balanced").platen_velocity, preset("accurate").platen_velocity);
+  for (const TestPreset& p : test_presets()) {
+    // Leapfrog is stable up to sqrt(2) x the step bound; a preset stays within the checked range.
+    EXPECT_GT(p.time_step_safety, 0) << p.name;
+    EXPECT_LE(p.time_step_safety, 1) << p.name;
+    EXPECT_GE(p.local_damping, 0) << p.name;
+    EXPECT_LT(p.local_damping, 1) << p.name;
+  }
+}
+
+TEST(TestPresets, AnExplicitKeyOverridesThePreset) {
+  const LabTestControls c = controls("preset = \"fast\"\nplaten_velocity_mm_s = 3\n");
+  EXPECT_DOUBLE_EQ(c.platen_velocity, 3e-3);
+  EXPECT_DOUBLE_EQ(c.time_step_safety, preset("fast").time_step_safety);
+  const LabTestControls d = controls("local_damping = 0.5\npreset = \"accurate\"\n");
+  EXPECT_DOUBLE_EQ(d.local_damping, 0.5);
+  EXPECT_DOUBLE_EQ(d.platen_velocity, preset("accurate").platen_velocity);
+}
+
+TEST(TestPresets, NoPresetKeepsTheDefaults) {
+  const LabTestControls c = controls("");
+  const LabTestControls defaults;
+  EXPECT_DOUBLE_EQ(c.platen_velocity, defaults.platen_velocity);
+  EXPECT_DOUBLE_EQ(c.time_step_safety, defaults.time_step_safety);
+  EXPECT_EQ(c.density_scaling, defaults.density_scaling);
+  EXPECT_DOUBLE_EQ(c.local_damping, defaults.local_damping);
+}
+
+TEST(TestPresets, AnUnknownNameIsAnInputErrorListingTheAllowedValues) {
+  try {
+    controls("preset = \"quick\"\n");
+    FAIL() << "no InputError for preset = \"quick\"";
+  } catch (const cdem::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("presets.toml"), std::string::npos) << what;
+    EXPECT_NE(what.find("test.preset"), std::string::npos) << what;
+    for (const std::string& name : test_preset_names())
+      EXPECT_NE(what.find(name), std::string::npos) << what;
+  }
+}
+
+}  // namespace
