@@ -1,5 +1,6 @@
-// `cdem calibrate CAL.toml [-o DIR] [-j N] [-q]`: the engine is calib/calibrate.hpp; this file
-// maps the options onto it and turns a calibration that did not succeed into exit code 3.
+// `cdem calibrate CAL.toml [-o DIR] [-j N] [--strategy fast|paper] [-q]`: the engine is
+// calib/calibrate.hpp; this file maps the options onto it and turns a calibration that did not
+// succeed into exit code 3.
 #include <iostream>
 #include <memory>
 
@@ -13,6 +14,7 @@ Action add_calibrate_command(CLI::App& app) {
   struct Options {
     calib::CalibrateOptions calibrate;
     std::string output;
+    std::string strategy;
     bool quiet = false;
   };
   auto o = std::make_shared<Options>();
@@ -25,12 +27,17 @@ Action add_calibrate_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   auto* output =
       c->add_option("-o,--output", o->output, "Output directory (overrides the file's output_dir)");
+  auto* strategy = c->add_option("--strategy", o->strategy, "fast or paper (overrides the file's)")
+                       ->check(CLI::IsMember({"fast", "paper"}));
   c->add_option("-j,--jobs", o->calibrate.jobs, "Runs at once (default: one per core)")
       ->check(CLI::PositiveNumber);
   c->add_flag("-q,--quiet", o->quiet, "No campaign progress lines on stderr");
-  return [o, c, output] {
+  return [o, c, output, strategy] {
     if (!c->parsed()) return;
     if (output->count()) o->calibrate.output_dir = o->output;
+    if (strategy->count())
+      o->calibrate.strategy = o->strategy == "paper" ? calib::CalibrationStrategy::Paper
+                                                     : calib::CalibrationStrategy::Fast;
     o->calibrate.verbose = !o->quiet;
     const auto out = calib::run_calibration(o->calibrate);
     const auto& r = out.result;

@@ -46,7 +46,7 @@ CalibrateOutcome write_calibration(const CalibrationInput& input, CalibrationRes
 }
 
 CalibrateOutcome run_calibration(const CalibrateOptions& options) {
-  const CalibrationInput input = read_calibration_input(options.file);
+  const CalibrationInput input = read_calibration_input(options.file, options.strategy);
   const auto output_dir = std::filesystem::absolute(options.output_dir.value_or(input.output_dir));
   CampaignSimulator simulator(input, output_dir, options.jobs, options.verbose);
   std::vector<std::uint64_t> seeds{input.calibration_seed};

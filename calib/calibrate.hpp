@@ -12,6 +12,7 @@ namespace cdem::calib {
 struct CalibrateOptions {
   std::filesystem::path file;
   std::optional<std::filesystem::path> output_dir;  // overrides the file's output_dir
+  std::optional<CalibrationStrategy> strategy;      // overrides the file's strategy
   int jobs = 0;                                     // concurrent runs; 0 = one per hardware thread
   bool verbose = true;                              // campaign progress on stderr
 };

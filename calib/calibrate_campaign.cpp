@@ -1,7 +1,11 @@
 #include "calib/calibrate_campaign.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include <toml++/toml.h>
 
@@ -140,62 +144,97 @@ std::filesystem::path CampaignSimulator::specimen_file(bool brazilian, std::uint
 
 std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
                                                       const std::vector<SimulationPoint>& points) {
-  std::vector<SimulationOutcome> out(points.size());
-  for (auto& o : out) o.ok = true;
   std::vector<std::uint64_t> seeds;
   for (const auto& p : points)
     if (std::find(seeds.begin(), seeds.end(), p.specimen_seed) == seeds.end())
       seeds.push_back(p.specimen_seed);
-
   std::vector<std::string> keys;
   for (const auto& p : input_.parameters) keys.push_back(p.key);
+
+  // One campaign per test type and specimen (a campaign's runs share one base input, and the
+  // specimen is a path, not a number a design could vary).
+  struct Batch {
+    std::string name;
+    CampaignFile file;
+    std::vector<CalibrationTarget> measured;
+    std::vector<std::size_t> rows;  // indices into points
+    std::vector<RunRecord> records;
+  };
+  std::vector<Batch> batches;
   for (const bool brazilian : {false, true}) {
     if (brazilian ? !input_.needs_brazilian() : !input_.needs_uniaxial()) continue;
-    std::vector<CalibrationTarget> measured;
-    for (const auto& t : input_.targets)
-      if (target_needs_brazilian(t.target) == brazilian) measured.push_back(t.target);
     for (const auto seed : seeds) {
-      CampaignFile c;
+      Batch b;
+      b.name = std::string(brazilian ? "brazilian" : "uniaxial") + "_seed" + std::to_string(seed);
+      for (const auto& t : input_.targets)
+        if (target_needs_brazilian(t.target) == brazilian) b.measured.push_back(t.target);
+      CampaignFile& c = b.file;
       c.base_text = test_with_specimen(brazilian ? input_.brazilian_test : input_.uniaxial_test,
                                        specimen_file(brazilian, seed));
       c.factor_keys = keys;
       c.seed = seed;
       c.command = "run";
       c.args = {"{input}", "--summary", "{summary}", "--seed", "{seed}", "-q"};
-      for (const auto t : measured) c.gather.push_back(target_summary_field(t));
+      for (const auto t : b.measured) c.gather.push_back(target_summary_field(t));
       c.timeout_s = input_.timeout_s;
-      std::vector<std::size_t> rows;
       for (std::size_t i = 0; i < points.size(); ++i) {
         if (points[i].specimen_seed != seed) continue;
-        rows.push_back(i);
+        b.rows.push_back(i);
         c.runs.emplace_back(points[i].values.data(),
                             points[i].values.data() + points[i].values.size());
       }
-      const std::string name =
-          std::string(brazilian ? "brazilian" : "uniaxial") + "_seed" + std::to_string(seed);
-      const auto records =
-          run_campaign_file(output_dir_ / "stages" / stage, name, c, jobs_, verbose_);
-      for (std::size_t r = 0; r < rows.size(); ++r) {
-        auto& o = out[rows[r]];
-        const auto& record = records[r];
-        ++o.simulations;
-        if (record.status != RunStatus::Ok) {
+      batches.push_back(std::move(b));
+    }
+  }
+
+  // The campaigns run side by side (a verification is one single-run campaign per specimen),
+  // sharing the -j budget.
+  const int total =
+      jobs_ > 0 ? jobs_ : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int side_by_side = std::max(1, std::min(total, static_cast<int>(batches.size())));
+  const int jobs_each = std::max(1, total / side_by_side);
+  std::atomic<std::size_t> next{0};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < batches.size(); i = next++) {
+      try {
+        batches[i].records = run_campaign_file(output_dir_ / "stages" / stage, batches[i].name,
+                                               batches[i].file, jobs_each, verbose_);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < side_by_side; ++t) threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
+
+  std::vector<SimulationOutcome> out(points.size());
+  for (auto& o : out) o.ok = true;
+  for (const auto& b : batches) {
+    for (std::size_t r = 0; r < b.rows.size(); ++r) {
+      auto& o = out[b.rows[r]];
+      const auto& record = b.records[r];
+      ++o.simulations;
+      if (record.status != RunStatus::Ok) {
+        o.ok = false;
+        o.message += (o.message.empty() ? "" : "; ") + b.name + " run " +
+                     std::to_string(record.id) + " " + to_string(record.status) + ": " +
+                     record.message;
+        continue;
+      }
+      for (std::size_t g = 0; g < b.measured.size(); ++g) {
+        const auto& value = record.gathered.at(g);
+        if (!value.is_number()) {
           o.ok = false;
-          o.message += (o.message.empty() ? "" : "; ") + name + " run " +
-                       std::to_string(record.id) + " " + to_string(record.status) + ": " +
-                       record.message;
+          o.message += (o.message.empty() ? "" : "; ") + b.name + ": the summary has no " +
+                       target_summary_field(b.measured[g]);
           continue;
         }
-        for (std::size_t g = 0; g < measured.size(); ++g) {
-          const auto& value = record.gathered.at(g);
-          if (!value.is_number()) {
-            o.ok = false;
-            o.message += (o.message.empty() ? "" : "; ") + name + ": the summary has no " +
-                         target_summary_field(measured[g]);
-            continue;
-          }
-          o.responses[static_cast<std::size_t>(measured[g])] = value.get<double>();
-        }
+        o.responses[static_cast<std::size_t>(b.measured[g])] = value.get<double>();
       }
     }
   }

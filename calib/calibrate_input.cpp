@@ -19,46 +19,36 @@
 
 namespace cdem::calib {
 
+namespace {
+
+struct TargetInfo {
+  const char* name;
+  const char* unit;
+  const char* summary_field;  // of `cdem run --summary`
+};
+
+// Indexed by CalibrationTarget.
+constexpr TargetInfo kTargets[kCalibrationTargetCount] = {
+    {"sigma_u", "MPa", "peak_stress_MPa"},
+    {"E", "GPa", "young_modulus_GPa"},
+    {"nu", "", "poisson_ratio"},
+    {"sigma_t", "MPa", "tensile_strength_MPa"},
+};
+
+const TargetInfo& info(CalibrationTarget target) {
+  return kTargets[static_cast<std::size_t>(target)];
+}
+
+}  // namespace
+
 const char* target_name(CalibrationTarget target) {
-  switch (target) {
-    case CalibrationTarget::SigmaU:
-      return "sigma_u";
-    case CalibrationTarget::E:
-      return "E";
-    case CalibrationTarget::Nu:
-      return "nu";
-    case CalibrationTarget::SigmaT:
-      return "sigma_t";
-  }
-  return "?";
+  return info(target).name;
 }
-
 const char* target_unit(CalibrationTarget target) {
-  switch (target) {
-    case CalibrationTarget::SigmaU:
-      return "MPa";
-    case CalibrationTarget::E:
-      return "GPa";
-    case CalibrationTarget::Nu:
-      return "";
-    case CalibrationTarget::SigmaT:
-      return "MPa";
-  }
-  return "";
+  return info(target).unit;
 }
-
 const char* target_summary_field(CalibrationTarget target) {
-  switch (target) {
-    case CalibrationTarget::SigmaU:
-      return "peak_stress_MPa";
-    case CalibrationTarget::E:
-      return "young_modulus_GPa";
-    case CalibrationTarget::Nu:
-      return "poisson_ratio";
-    case CalibrationTarget::SigmaT:
-      return "tensile_strength_MPa";
-  }
-  return "";
+  return info(target).summary_field;
 }
 
 bool target_needs_brazilian(CalibrationTarget target) {
@@ -289,7 +279,8 @@ void read_targets(const InputTable& root, CalibrationInput& in) {
 
 }  // namespace
 
-CalibrationInput read_calibration_input(const std::filesystem::path& file) {
+CalibrationInput read_calibration_input(const std::filesystem::path& file,
+                                        std::optional<CalibrationStrategy> strategy) {
   const InputTable root = InputTable::parse_file(file);
   root.reject_unknown_keys({"strategy", "output_dir", "verification_seeds",
                             "verification_tolerance", "targets", "parameters", "specimen", "tests",
@@ -386,6 +377,7 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file) {
     in.paper.optimizer_seed =
         static_cast<unsigned>(paper->integer_or("optimizer_seed", 20240601, 0, 4294967295LL));
   }
+  if (strategy) in.strategy = *strategy;
   const int k = static_cast<int>(in.parameters.size());
   if (in.strategy == CalibrationStrategy::Paper) {
     const int screen_limit = in.paper.screen == "taguchi_l27" ? 13 : 19;

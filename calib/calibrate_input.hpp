@@ -5,6 +5,7 @@
 // InputError naming the calibration file and the key.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,9 @@ struct CalibrationInput {
   double target_value(CalibrationTarget target) const;  // NaN when not a target
 };
 
-CalibrationInput read_calibration_input(const std::filesystem::path& file);
+// `strategy`, when given, replaces the file's (`cdem calibrate --strategy`); the strategy's own
+// checks apply to it.
+CalibrationInput read_calibration_input(const std::filesystem::path& file,
+                                        std::optional<CalibrationStrategy> strategy = {});
 
 }  // namespace cdem::calib

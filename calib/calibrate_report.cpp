@@ -50,9 +50,14 @@ void verification_table(std::ostringstream& md, const Verification& v, double to
     md << "| " << with_unit(s.target) << " | " << fixed(s.target_value) << " | " << fixed(s.mean)
        << " | " << fixed(s.sd, 3) << " | " << percent(s.cv) << " | " << percent(s.relative_error)
        << " | " << s.values.size() << " |\n";
-  md << "\nPer specimen (the values are in the table of every simulation):\n\n";
+  md << "\nPer specimen:\n\n";
   for (std::size_t i = 0; i < v.seeds.size(); ++i) {
-    md << "- seed " << v.seeds[i] << ": " << (v.ok[i] ? "ok" : "FAILED") << "\n";
+    md << "- seed " << v.seeds[i] << ":";
+    if (!v.ok[i]) md << " FAILED: " << v.outcomes[i].message;
+    for (const auto& s : v.targets)
+      if (v.ok[i])
+        md << " " << target_name(s.target) << " " << fixed(v.outcomes[i].response(s.target));
+    md << "\n";
   }
   md << "\n"
      << (v.passed ? "Passed" : "NOT passed")

@@ -39,6 +39,7 @@ std::optional<Verification> verify(Simulator& simulator, const CalibrationInput&
   if (!outcomes) return std::nullopt;
   v.passed = true;
   for (const auto& o : *outcomes) v.ok.push_back(o.ok);
+  v.outcomes = *outcomes;
   for (const auto& t : input.targets) {
     TargetStatistics s;
     s.target = t.target;

@@ -36,7 +36,8 @@ struct Verification {
   std::string stage;
   Eigen::VectorXd values;  // the parameter set verified
   std::vector<std::uint64_t> seeds;
-  std::vector<bool> ok;  // per seed
+  std::vector<bool> ok;                     // per seed
+  std::vector<SimulationOutcome> outcomes;  // per seed
   std::vector<TargetStatistics> targets;
   bool passed = false;  // every |mean relative error| <= the verification tolerance
 };

@@ -144,6 +144,8 @@ TEST(CalibrateInput, ReadsTheSample) {
   const auto in =
       read_calibration_input(std::filesystem::path(CDEM_SOURCE_DIR) / "samples/c30_calibrate.toml");
   EXPECT_EQ(in.strategy, CalibrationStrategy::Fast);
+  EXPECT_EQ(read_calibration_input(in.file, CalibrationStrategy::Paper).strategy,
+            CalibrationStrategy::Paper);  // cdem calibrate --strategy paper
   ASSERT_EQ(in.targets.size(), 3u);
   EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::SigmaU), 40);
   EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::E), 30);
