@@ -20,10 +20,11 @@ std::string fixed(double x, int digits = 4) {
   return buf;
 }
 
-std::string percent(double x) {
+// A relative error (signed) or, with sign = false, a ratio such as a CV, in per cent.
+std::string percent(double x, bool sign = true) {
   if (!std::isfinite(x)) return "-";
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%+.2f %%", 100 * x);
+  std::snprintf(buf, sizeof buf, sign ? "%+.2f %%" : "%.2f %%", 100 * x);
   return buf;
 }
 
@@ -48,8 +49,8 @@ void verification_table(std::ostringstream& md, const Verification& v, double to
         "|---|---|---|---|---|---|---|\n";
   for (const auto& s : v.targets)
     md << "| " << with_unit(s.target) << " | " << fixed(s.target_value) << " | " << fixed(s.mean)
-       << " | " << fixed(s.sd, 3) << " | " << percent(s.cv) << " | " << percent(s.relative_error)
-       << " | " << s.values.size() << " |\n";
+       << " | " << fixed(s.sd, 3) << " | " << percent(s.cv, false) << " | "
+       << percent(s.relative_error) << " | " << s.values.size() << " |\n";
   md << "\nPer specimen:\n\n";
   for (std::size_t i = 0; i < v.seeds.size(); ++i) {
     md << "- seed " << v.seeds[i] << ":";
