@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
       cdem::apps::add_generate_command(app),
       cdem::apps::add_campaign_command(app),
       cdem::apps::add_run_command(app),
+      cdem::apps::add_calibrate_command(app),
   };
 
   try {

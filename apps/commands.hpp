@@ -14,5 +14,6 @@ using Action = std::function<void()>;
 Action add_generate_command(CLI::App& app);
 Action add_campaign_command(CLI::App& app);
 Action add_run_command(CLI::App& app);
+Action add_calibrate_command(CLI::App& app);
 
 }  // namespace cdem::apps

@@ -1,0 +1,318 @@
+// cdem calibrate: the calibration file's checks, and the fast and paper strategies end to end on
+// an analytic stand-in for the DEM (calib/calibrate_simulator.hpp), whose answer is known.
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "calib/calibrate.hpp"
+#include "calib/calibrate_fast.hpp"
+#include "calib/calibrate_paper.hpp"
+#include "calib/calibrate_report.hpp"
+#include "core/input_error.hpp"
+#include "core/input_table.hpp"
+#include "dem/material_table.hpp"
+#include "scratch_dir.hpp"
+
+namespace {
+
+using namespace cdem::calib;
+
+void write(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+const std::string kParameters = R"(
+[[parameters]]
+key = "materials.mortar.emod_GPa"
+bounds = [8, 40]
+
+[[parameters]]
+key = "materials.itz.emod_GPa"
+bounds = [4, 20]
+
+[[parameters]]
+key = "materials.mortar.kratio"
+bounds = [1, 4]
+
+[[parameters]]
+key = "materials.itz.kratio"
+bounds = [1, 4]
+
+[[parameters]]
+key = "materials.mortar.pb_tensile_strength_MPa"
+bounds = [10, 80]
+
+[[parameters]]
+key = "materials.mortar.pb_cohesion_MPa"
+bounds = [30, 240]
+
+[[parameters]]
+key = "materials.itz.pb_tensile_strength_MPa"
+bounds = [5, 40]
+
+[[parameters]]
+key = "materials.itz.pb_cohesion_MPa"
+bounds = [15, 120]
+)";
+
+// A calibration directory: the C30 materials by file, a UCS test, a generator and CAL.toml made
+// of `head` (root keys and tables) and `parameters`.
+std::filesystem::path make_calibration(const std::string& test, const std::string& head,
+                                       const std::string& parameters = kParameters) {
+  const auto dir = cdem::test::scratch_dir("calibrate", test);
+  std::filesystem::copy_file(std::filesystem::path(CDEM_SOURCE_DIR) / "samples/c30_materials.toml",
+                             dir / "materials.toml");
+  write(dir / "ucs.toml",
+        "specimen = \"none.h5\"\nmaterials = \"materials.toml\"\n"
+        "[test]\ntype = \"uniaxial\"\n");
+  write(dir / "generator.toml", "[specimen]\nshape = \"rectangle\"\n");
+  write(dir / "cal.toml", head +
+                              "\n[tests]\nuniaxial = \"ucs.toml\"\n"
+                              "[specimen]\ngenerator = \"generator.toml\"\n" +
+                              parameters);
+  return dir / "cal.toml";
+}
+
+const std::string kC30Targets = "[targets]\nsigma_u_MPa = 40\nE_GPa = 30\nnu = 0.20\n";
+
+// The analytic model: power laws with weak couplings between the groups and a per-specimen
+// scatter, shaped like the measured C30 behaviour (E about 1.65 x mortar E*, sigma_u about
+// 1.17 x mortar sigma_b, nu 0.207 at kn/ks = 1.45).
+class AnalyticModel : public Simulator {
+ public:
+  explicit AnalyticModel(const CalibrationInput& input) : input_(input) {}
+  int points = 0;
+  std::vector<SimulationOutcome> run(const std::string&,
+                                     const std::vector<SimulationPoint>& batch) override {
+    std::vector<SimulationOutcome> out;
+    for (const auto& p : batch) {
+      ++points;
+      std::map<std::string, double> v;
+      for (std::size_t i = 0; i < input_.parameters.size(); ++i)
+        v[input_.parameters[i].key] = p.values[static_cast<Eigen::Index>(i)];
+      const auto get = [&](const std::string& key, double fallback) {
+        return v.count(key) ? v[key] : fallback;
+      };
+      const double em = get("materials.mortar.emod_GPa", 16), ei = get("materials.itz.emod_GPa", 8);
+      const double km = get("materials.mortar.kratio", 1.45),
+                   ki = get("materials.itz.kratio", 1.45);
+      const double sm = get("materials.mortar.pb_tensile_strength_MPa", 10);
+      const double si = get("materials.itz.pb_tensile_strength_MPa", 5);
+      const double cm = get("materials.mortar.pb_cohesion_MPa", 30);
+      // Specimens differ by a few per cent, as generated specimens do.
+      const double scatter = 1 + 0.015 * std::sin(3.0 * static_cast<double>(p.specimen_seed));
+      SimulationOutcome o;
+      o.ok = true;
+      o.simulations = 1;
+      o.responses[0] = scatter * 1.17 * std::pow(sm, 0.85) * std::pow(si / 0.5, 0.15) *
+                       std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
+      o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
+                       std::pow(1.45 / km, 0.15) * std::pow(sm / 10, 0.02);  // E, GPa
+      o.responses[2] = 0.207 * std::pow(km / 1.45, 0.6) * std::pow(ki / 1.45, 0.1) *
+                       std::pow(em / 16, -0.03);  // nu
+      out.push_back(o);
+    }
+    return out;
+  }
+
+ private:
+  const CalibrationInput& input_;
+};
+
+void expect_input_error(const std::filesystem::path& file, const std::string& key,
+                        const std::string& words) {
+  try {
+    read_calibration_input(file);
+    ADD_FAILURE() << "no InputError for " << key;
+  } catch (const cdem::InputError& e) {
+    EXPECT_EQ(e.key(), key) << e.what();
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cal.toml"), std::string::npos) << e.what();
+  }
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(CalibrateInput, ReadsTheSample) {
+  const auto in =
+      read_calibration_input(std::filesystem::path(CDEM_SOURCE_DIR) / "samples/c30_calibrate.toml");
+  EXPECT_EQ(in.strategy, CalibrationStrategy::Fast);
+  EXPECT_EQ(read_calibration_input(in.file, CalibrationStrategy::Paper).strategy,
+            CalibrationStrategy::Paper);  // cdem calibrate --strategy paper
+  ASSERT_EQ(in.targets.size(), 3u);
+  EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::SigmaU), 40);
+  EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::E), 30);
+  EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::Nu), 0.2);
+  EXPECT_TRUE(std::isnan(in.target_value(CalibrationTarget::SigmaT)));
+  ASSERT_EQ(in.parameters.size(), 8u);
+  EXPECT_DOUBLE_EQ(in.parameters[0].start, 16);
+  EXPECT_EQ(in.parameters[0].role, ParameterRole::Modulus);
+  EXPECT_EQ(in.parameters[3].role, ParameterRole::StiffnessRatio);
+  EXPECT_EQ(in.parameters[6].role, ParameterRole::TensileStrength);
+  EXPECT_EQ(in.parameters[7].role, ParameterRole::ShearStrength);
+  EXPECT_DOUBLE_EQ(in.parameters[7].start, 15);
+  EXPECT_EQ(in.verification_seeds, (std::vector<std::uint64_t>{2, 3, 4, 5, 6}));
+  EXPECT_TRUE(in.needs_uniaxial());
+  EXPECT_FALSE(in.needs_brazilian());
+  // The materials are inline in the base test, integers written as floats (a campaign would
+  // round values written to an integer key).
+  EXPECT_NE(in.uniaxial_test.find("emod_GPa = 16.0"), std::string::npos) << in.uniaxial_test;
+}
+
+TEST(CalibrateInput, RejectsBadInput) {
+  const std::string head = kC30Targets;
+  expect_input_error(make_calibration("inverted", head,
+                                      replace(kParameters, "bounds = [8, 40]", "bounds = [40, 8]")),
+                     "parameters[0].bounds", "inverted");
+  expect_input_error(make_calibration("unknown_key", head,
+                                      replace(kParameters, "mortar.emod_GPa", "mortar.emodd_GPa")),
+                     "parameters[0].key", "not a key of the material table");
+  expect_input_error(
+      make_calibration("not_set", head,
+                       replace(kParameters, "mortar.emod_GPa", "mortar.pb_emod_GPa")),
+      "parameters[0].key", "do not set it");
+  expect_input_error(make_calibration("not_material", head,
+                                      replace(kParameters, "materials.mortar.emod_GPa", "seed")),
+                     "parameters[0].key", "not a material key");
+  expect_input_error(make_calibration("bound_out_of_range", head,
+                                      replace(kParameters, "bounds = [1, 4]", "bounds = [-1, 4]")),
+                     "parameters[2].bounds", "outside what the material table accepts");
+  expect_input_error(make_calibration("duplicate", head,
+                                      kParameters + "[[parameters]]\nkey = "
+                                                    "\"materials.itz.kratio\"\n"
+                                                    "bounds = [1, 2]\n"),
+                     "parameters[8].key", "already a parameter");
+  expect_input_error(make_calibration("no_parameters", head, ""), "parameters", "at least one");
+  expect_input_error(
+      make_calibration("zero_target", replace(head, "sigma_u_MPa = 40", "sigma_u_MPa = 0")),
+      "targets.sigma_u_MPa", "");
+  expect_input_error(
+      make_calibration("negative_target", replace(head, "E_GPa = 30", "E_GPa = -30")),
+      "targets.E_GPa", "");
+  expect_input_error(make_calibration("no_target", "[targets]\n"), "targets", "at least one");
+  expect_input_error(make_calibration("bad_strategy", "strategy = \"quick\"\n" + head), "strategy",
+                     "quick");
+  // The fast strategy needs a free key for every target: E without a modulus.
+  std::string no_modulus =
+      replace(kParameters, "key = \"materials.mortar.emod_GPa\"\nbounds = [8, 40]",
+              "key = \"materials.mortar.friction\"\nbounds = [0.2, 1]");
+  no_modulus = replace(no_modulus, "key = \"materials.itz.emod_GPa\"\nbounds = [4, 20]",
+                       "key = \"materials.itz.friction\"\nbounds = [0.2, 1]");
+  expect_input_error(make_calibration("fast_without_modulus", head, no_modulus), "parameters",
+                     "target E");
+  // Bounds of one group that admit no common scale of the start values (mortar E* 16 must go
+  // above 1.25 x, ITZ 8 below 1.25 x).
+  expect_input_error(
+      make_calibration("no_common_scale", head,
+                       replace(replace(kParameters, "bounds = [8, 40]", "bounds = [20, 40]"),
+                               "bounds = [4, 20]", "bounds = [4, 9]")),
+      "parameters", "no common scale");
+  expect_input_error(make_calibration("same_seed", "verification_seeds = [2, 2]\n" + head),
+                     "verification_seeds", "repeats");
+}
+
+TEST(CalibrateFast, ConvergesOnTheAnalyticModel) {
+  const auto in = read_calibration_input(make_calibration("fast", kC30Targets));
+  AnalyticModel model(in);
+  const auto r = calibrate_fast(in, model);
+  EXPECT_TRUE(r.converged) << r.stop_reason;
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  // Iterations until all three targets are within 2 %, then 5 verification runs. The count is
+  // what the strategy needs on this model: 4 iterations (semi-analytical start, proportional
+  // step, two secant steps), one verification.
+  EXPECT_LE(static_cast<int>(r.iterations.size()), 5);
+  EXPECT_EQ(r.simulation_count, model.points);
+  EXPECT_EQ(r.simulation_count, static_cast<int>(r.iterations.size()) + 5);
+  for (const auto& s : r.verifications.back().targets)
+    EXPECT_LE(std::abs(s.relative_error), 0.05) << target_name(s.target);
+  // The ratios not set free by the strategy stay: ITZ / mortar modulus, cohesion / tensile.
+  const auto& x = r.calibrated;
+  EXPECT_NEAR(x[1] / x[0], 8.0 / 16.0, 1e-12);
+  EXPECT_NEAR(x[5] / x[4], 3.0, 1e-12);
+  EXPECT_NEAR(x[6] / x[4], 0.5, 1e-12);
+  EXPECT_NEAR(x[3] / x[2], 1.0, 1e-12);
+  // And the result meets the targets on the calibration specimen.
+  AnalyticModel check(in);
+  const auto y = check.run("check", {{x, in.calibration_seed}}).front();
+  EXPECT_NEAR(y.response(CalibrationTarget::SigmaU) / 40, 1, 0.02);
+  EXPECT_NEAR(y.response(CalibrationTarget::E) / 30, 1, 0.02);
+  EXPECT_NEAR(y.response(CalibrationTarget::Nu) / 0.2, 1, 0.02);
+}
+
+TEST(CalibrateFast, ReportsATargetOutOfReachWithTheClosestValue) {
+  // Bond strengths capped at 2 x their start: sigma_u cannot pass about 2^0.88 x 11.7 MPa.
+  std::string capped = replace(kParameters, "bounds = [10, 80]", "bounds = [10, 20]");
+  capped = replace(capped, "bounds = [30, 240]", "bounds = [30, 60]");
+  capped = replace(capped, "bounds = [5, 40]", "bounds = [5, 10]");
+  capped = replace(capped, "bounds = [15, 120]", "bounds = [15, 30]");
+  const auto file = make_calibration("out_of_reach", kC30Targets, capped);
+  const auto in = read_calibration_input(file);
+  AnalyticModel model(in);
+  const auto r = calibrate_fast(in, model);
+  EXPECT_FALSE(r.success());
+  EXPECT_FALSE(r.converged);
+  ASSERT_EQ(r.out_of_reach.size(), 1u);
+  EXPECT_EQ(r.out_of_reach[0].target, CalibrationTarget::SigmaU);
+  // The closest value is the model at the upper bounds of every strength.
+  AnalyticModel at_bound(in);
+  const auto y = at_bound.run("check", {{r.calibrated, in.calibration_seed}}).front();
+  EXPECT_DOUBLE_EQ(r.calibrated[4], 20);
+  EXPECT_DOUBLE_EQ(r.calibrated[7], 30);
+  EXPECT_NEAR(r.out_of_reach[0].closest, y.response(CalibrationTarget::SigmaU), 1e-9);
+  EXPECT_LT(r.out_of_reach[0].closest, 30);
+  EXPECT_TRUE(r.verifications.empty());  // nothing to verify: it is not a fit
+  // The outputs never call it calibrated.
+  const auto out = write_calibration(in, r, file.parent_path() / "out");
+  EXPECT_EQ(out.materials.filename(), "closest_materials.toml");
+  EXPECT_FALSE(std::filesystem::exists(file.parent_path() / "out/calibrated_materials.toml"));
+  std::ifstream report(out.report);
+  const std::string text((std::istreambuf_iterator<char>(report)), {});
+  EXPECT_NE(text.find("NOT calibrated"), std::string::npos);
+  EXPECT_NE(text.find("Out of reach"), std::string::npos);
+}
+
+TEST(CalibratePaper, RunsEndToEndOnTheAnalyticModel) {
+  const auto in = read_calibration_input(
+      make_calibration("paper", "strategy = \"paper\"\n" + kC30Targets +
+                                    "[paper]\nmax_factors = 4\n[budget]\nmax_simulations = 60\n"));
+  AnalyticModel model(in);
+  const auto r = calibrate_paper(in, model);
+  ASSERT_TRUE(r.converged) << r.stop_reason;
+  // PB-12 screen over 8 keys, an inscribed CCD on 4 kept keys (16 + 8 + 1), 5 verification runs.
+  EXPECT_EQ(r.simulation_count, 12 + 25 + 5);
+  ASSERT_EQ(r.kept.size(), 4u);
+  // The screening finds the keys the model depends on most: mortar E*, mortar kn/ks, mortar
+  // sigma_b (indices 0, 2, 4).
+  for (const int key : {0, 2, 4})
+    EXPECT_NE(std::find(r.kept.begin(), r.kept.end(), key), r.kept.end()) << key;
+  ASSERT_EQ(r.surfaces.size(), 3u);
+  for (const auto& s : r.surfaces) EXPECT_GT(s.surface.r_squared(), 0.99);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  for (const auto& s : r.verifications.back().targets)
+    EXPECT_LE(std::abs(s.relative_error), 0.05) << target_name(s.target);
+}
+
+TEST(CalibrateReport, WritesAMaterialFileTheMaterialTableReads) {
+  const auto file = make_calibration("materials_file", kC30Targets);
+  const auto in = read_calibration_input(file);
+  AnalyticModel model(in);
+  const auto out = write_calibration(in, calibrate_fast(in, model), file.parent_path() / "out");
+  ASSERT_EQ(out.materials.filename(), "calibrated_materials.toml");
+  const auto table = cdem::dem::read_material_table(out.materials);
+  const auto& x = out.result.calibrated;
+  const auto mortar = static_cast<std::size_t>(cdem::dem::ContactClass::Mortar);
+  EXPECT_NEAR(table.linear[mortar].emod, x[0] * 1e9, 1e-3);
+  EXPECT_NEAR(table.linear[mortar].kappa, x[2], 1e-15);
+  const auto json = calibration_report_json(in, out.result);
+  EXPECT_EQ(json["simulations"].get<int>(), out.result.simulation_count);
+  EXPECT_TRUE(json["success"].get<bool>());
+}
+
+}  // namespace
