@@ -132,7 +132,7 @@ def plot(rows, path):
             ax.errorbar(r["speedup"], abs(err) * scale, yerr=[[low], [scatter * scale]], fmt="o",
                         color=groups[group], ms=5, capsize=2,
                         label=group if group not in ax.get_legend_handles_labels()[1] else None)
-            ax.annotate(r["level"].split("_", 1)[-1], (r["speedup"], abs(err) * scale),
+            ax.annotate(r["level"].replace(group + "_", ""), (r["speedup"], abs(err) * scale),
                         fontsize=6, xytext=(3, 3), textcoords="offset points")
         ax.axhline(LIMITS[FIGURES.index(fig_key)] * scale, color="grey", ls="--", lw=0.8)
         ax.set_xscale("log")

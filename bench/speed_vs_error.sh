@@ -126,8 +126,11 @@ density_kg_m3 = 2000
 sigma0_MPa = 0.1
 packing_emod_GPa = 16""")
 PY
+    # A refused input (e.g. discs larger than the smallest scaled aggregate) is reported here;
+    # the level's runs then fail on the missing specimen and are listed as failed.
     "$cdem" generate "$out/specimens/c30_r${r}_s${seed}.toml" -o "$file" --seed "$seed" \
-      --summary "$out/specimens/c30_r${r}_s${seed}.json" > /dev/null 2>&1
+      --summary "$out/specimens/c30_r${r}_s${seed}.json" > "$out/specimens/c30_r${r}_s${seed}.log" 2>&1 ||
+      echo "speed_vs_error: cdem generate failed: $(tail -1 "$out/specimens/c30_r${r}_s${seed}.log")" >&2
   fi
   echo "$file"
 }

@@ -16,7 +16,7 @@ struct TestPreset {
   std::string name;
   double platen_velocity;   // m/s, each platen (grip band)
   double time_step_safety;  // fraction of the critical step
-  bool density_scaling;     // every preset keeps true inertia (see docs/speed_vs_error.md)
+  bool density_scaling;     // off in every preset (see test_presets.cpp)
   double local_damping;     // alpha
 };
 
