@@ -17,13 +17,8 @@
 
 namespace cdem::test {
 
-// A mortar-only specimen packed at sigma0 in a mould (no aggregates), discs of mean radius
-// 0.4 mm: a 10 x 20 mm rectangle holds about 320 discs after genesis.
-inline Specimen packed_specimen(const Container& mould, std::uint64_t seed) {
-  mesogen::MortarPackingControls controls;
-  controls.r_mean = 0.4e-3;
-  Rng rng(seed);
-  const auto p = mesogen::pack_mortar(mould, controls, rng);
+// The specimen of a mortar packing without aggregates: every disc free and in contact.
+inline Specimen mortar_only_specimen(const Container& mould, const mesogen::MortarPacking& p) {
   Specimen s;
   s.container = mould;
   s.x = p.x;
@@ -32,6 +27,15 @@ inline Specimen packed_specimen(const Container& mould, std::uint64_t seed) {
   s.clump.assign(p.r.size(), -1);
   s.contact_active.assign(p.r.size(), 1);
   return s;
+}
+
+// A mortar-only specimen packed at sigma0 in a mould (no aggregates), discs of mean radius
+// 0.4 mm: a 10 x 20 mm rectangle holds about 320 discs after genesis.
+inline Specimen packed_specimen(const Container& mould, std::uint64_t seed) {
+  mesogen::MortarPackingControls controls;
+  controls.r_mean = 0.4e-3;
+  Rng rng(seed);
+  return mortar_only_specimen(mould, mesogen::pack_mortar(mould, controls, rng));
 }
 
 // The 10 mm wide, 20 mm high specimen of the small tests (packed once per process).

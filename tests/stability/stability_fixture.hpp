@@ -23,6 +23,7 @@
 #include "dem/result_file.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/mortar_packing.hpp"
+#include "tests/lab_test_fixtures.hpp"
 
 namespace cdem::stability {
 
@@ -47,15 +48,8 @@ inline fs::path mortar_specimen(const std::string& name, double width_mm, double
   controls.expansion_steps = expansion_steps;
   const Container mould{ContainerShape::Rectangle, width_mm * 1e-3, height_mm * 1e-3};
   Rng rng(seed);
-  const mesogen::MortarPacking p = mesogen::pack_mortar(mould, controls, rng);
-  Specimen s;
-  s.container = mould;
-  s.x = p.x;
-  s.y = p.y;
-  s.r = p.r;
-  s.clump.assign(p.r.size(), -1);
-  s.contact_active.assign(p.r.size(), 1);
-  write_specimen(s, file);
+  write_specimen(test::mortar_only_specimen(mould, mesogen::pack_mortar(mould, controls, rng)),
+                 file);
   return file;
 }
 
