@@ -3,8 +3,8 @@
 // (calib/campaign.hpp) of `cdem run` jobs, one campaign per test type and specimen, whose factors
 // are the free material keys and whose explicit design holds the batch's points; the campaigns of
 // a batch run side by side. So the runs go in parallel (-j), a calibration interrupted and
-// started again re-uses every completed run, and a failed run is a failed outcome. Specimens are made first by a campaign of `cdem generate`
-// jobs whose factor is the generator's seed.
+// started again re-uses every completed run, and a failed run is a failed outcome. Specimens are
+// made first by a campaign of `cdem generate` jobs whose factor is the generator's seed.
 #include <filesystem>
 #include <map>
 
