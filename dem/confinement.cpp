@@ -39,7 +39,7 @@ Confinement::Confinement(World& world, double sigma3, double platen_velocity, in
   left_ = world.add_wall(x0, y1 + reach, x0, y0 - reach);
   for (const int wall : {left_, right_})
     world.servos.add(world, wall, sigma3, max_velocity_, options.relaxation);
-  set_targets(world);
+  update_targets(world);
 }
 
 double Confinement::width(const World& world) const {
@@ -59,17 +59,13 @@ double Confinement::side_stress(const World& world) const {
   return 0.5 * (face_stress(world, left_, h) + face_stress(world, right_, h));
 }
 
-void Confinement::set_targets(World& world) const {
+void Confinement::update_targets(World& world) const {
   const double w = width(world), h = height(world);
   for (WallServo& s : world.servos.servos) {
     const double length = world.walls.length(s.wall);
     if (s.wall == left_ || s.wall == right_) s.target_stress = sigma3_ * h / length;
     if (s.wall == bottom_ || s.wall == top_) s.target_stress = sigma3_ * w / length;
   }
-}
-
-void Confinement::update_targets(World& world) const {
-  set_targets(world);
 }
 
 ConsolidationReport Confinement::consolidate(World& world) {
@@ -79,7 +75,7 @@ ConsolidationReport Confinement::consolidate(World& world) {
   long within = 0;
   double worst_held = 0;
   for (long n = 1;; ++n) {
-    set_targets(world);
+    update_targets(world);
     world.step();
     const double w = width(world), h = height(world);
     double worst = 0;

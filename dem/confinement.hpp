@@ -50,8 +50,8 @@ class Confinement {
   // velocity). Throws RunError with the error reached after max_consolidation_steps.
   ConsolidationReport consolidate(World& world);
 
-  // Rescales the side-wall servo targets to the current platen gap; call before every step of
-  // the loading phase.
+  // Rescales every servo target of the confinement to the current wall gaps (side walls: the
+  // platen gap; platens: the side-wall gap); call before every step of the loading phase.
   void update_targets(World& world) const;
 
   double sigma3() const { return sigma3_; }
@@ -62,7 +62,6 @@ class Confinement {
 
  private:
   double face_stress(const World& world, int wall, double face) const;
-  void set_targets(World& world) const;
 
   double sigma3_;        // Pa
   double max_velocity_;  // m/s, servo cap

@@ -344,9 +344,12 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   LabHistory& h = res.history;
   const long max_records = c.max_steps / c.history_interval + 2;
   h.reserve(static_cast<std::size_t>(std::min<long>(max_records, 1'000'000)));
-  // The stress the peak and the stop rule follow: axial, or the deviator of a biaxial test.
   const bool biaxial = c.type == LabTestType::Biaxial;
   double boundary_work = 0, peak = 0, strain_at_peak = 0;
+  // The stress (Pa) the peak and the stop rule follow: axial, or the deviator of a biaxial test.
+  const auto last_loading_stress = [&] {
+    return biaxial ? h.axial_stress.back() - h.confining_stress.back() : h.axial_stress.back();
+  };
   const auto record = [&] {
     const double force = loading.force(world);
     const ContactEnergy energy = contact_energy(world);
@@ -366,8 +369,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     h.breakage_energy.push_back(energy.bond_breakage);
     h.boundary_work.push_back(boundary_work);
     h.bonds_broken.push_back(static_cast<long>(world.cracks.size()));
-    const double loading_stress =
-        biaxial ? h.axial_stress.back() - h.confining_stress.back() : h.axial_stress.back();
+    const double loading_stress = last_loading_stress();
     if (loading_stress > peak) {
       peak = loading_stress;
       strain_at_peak = h.axial_strain.back();
@@ -390,9 +392,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
       // SPEC 6 stop rule, once the specimen has started to break (the first records of the
       // loading are tiny and noisy; a fall there is not a post-peak branch) and confirmed by a
       // margin of strain beyond the peak (a local drop that recovers is not the failure).
-      const double loading_stress =
-          biaxial ? h.axial_stress.back() - h.confining_stress.back() : h.axial_stress.back();
-      done = !world.cracks.cracks.empty() && past_peak(loading_stress, peak, c.stop_fraction) &&
+      done = !world.cracks.cracks.empty() &&
+             past_peak(last_loading_stress(), peak, c.stop_fraction) &&
              h.axial_strain.back() >= strain_at_peak * (1 + c.stop_strain_margin);
     }
     if (done || s >= c.max_steps) {
