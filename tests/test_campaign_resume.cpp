@@ -60,9 +60,18 @@ TEST(CampaignResume, SigkillMidwayThenRestartRunsOnlyUnfinished) {
 
   const pid_t pid = spawn_group(argv, dir / "first.err");
   ASSERT_GT(pid, 0);
-  // Kill once a few runs are complete and others are under way (10 runs of 0.4 s, 2 at a time).
+  // Kill once a few runs are complete and another is under way (10 runs of 0.4 s, 2 at a time):
+  // started (in the jobs' log) but not completed. Waiting for the completions alone could kill
+  // in the gap between one run ending and the next starting on a loaded machine.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (completed_runs(runs).size() < 3 && std::chrono::steady_clock::now() < deadline)
+  const auto under_way = [&] {
+    const std::set<std::string> done = completed_runs(runs);
+    if (done.size() < 3) return false;
+    for (const auto& run : executions(read_lines(dir / "log.txt")))
+      if (!done.count(run)) return true;
+    return false;
+  };
+  while (!under_way() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   ASSERT_EQ(::kill(-pid, SIGKILL), 0);
   int status = 0;
