@@ -39,19 +39,65 @@ T rows_of(const T& m, const std::vector<int>& rows) {
   return out;
 }
 
+bool is_strength(ParameterRole role) {
+  return role == ParameterRole::TensileStrength || role == ParameterRole::ShearStrength;
+}
+
+// How well a kept key of role `leader` can lead a dropped key of role `follower`: 2 same role,
+// 1 the other bond strength, 0 not at all.
+int affinity(ParameterRole follower, ParameterRole leader) {
+  if (follower == ParameterRole::Other) return 0;
+  if (follower == leader) return 2;
+  return is_strength(follower) && is_strength(leader) ? 1 : 0;
+}
+
 }  // namespace
+
+std::vector<int> paper_leaders(const CalibrationInput& input, const std::vector<int>& kept,
+                               const std::vector<double>& score) {
+  const auto& ps = input.parameters;
+  std::vector<int> leaders(ps.size(), -1);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (std::find(kept.begin(), kept.end(), static_cast<int>(i)) != kept.end()) continue;
+    int best_affinity = 0;
+    for (const int j : kept) {
+      // A leader whose start is zero gives no ratio to keep.
+      if (ps[j].start == 0) continue;
+      const int a = affinity(ps[i].role, ps[j].role);
+      if (a > best_affinity || (a > 0 && a == best_affinity && score[j] > score[leaders[i]])) {
+        best_affinity = a;
+        leaders[i] = j;
+      }
+    }
+  }
+  return leaders;
+}
+
+Eigen::VectorXd paper_values(const CalibrationInput& input, const std::vector<int>& kept,
+                             const std::vector<int>& leaders, const Eigen::VectorXd& kept_values) {
+  const auto& ps = input.parameters;
+  const auto k = static_cast<Eigen::Index>(ps.size());
+  Eigen::VectorXd v(k);
+  for (Eigen::Index i = 0; i < k; ++i) v[i] = ps[i].start;
+  for (std::size_t j = 0; j < kept.size(); ++j)
+    v[kept[j]] = kept_values[static_cast<Eigen::Index>(j)];
+  for (Eigen::Index i = 0; i < k; ++i) {
+    if (leaders[i] >= 0) v[i] = ps[i].start * v[leaders[i]] / ps[leaders[i]].start;
+    v[i] = std::clamp(v[i], ps[i].lower, ps[i].upper);
+  }
+  return v;
+}
 
 CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simulator) {
   CalibrationResult result;
   result.strategy = CalibrationStrategy::Paper;
   const int k = static_cast<int>(input.parameters.size());
-  Eigen::VectorXd lower(k), upper(k), fixed(k);
+  Eigen::VectorXd lower(k), upper(k);
   std::vector<std::string> names;
   for (int i = 0; i < k; ++i) {
     const auto& p = input.parameters[i];
     lower[i] = p.lower;
     upper[i] = p.upper;
-    fixed[i] = std::clamp(p.start, p.lower, p.upper);
     names.push_back(p.key);
   }
   const auto run_design =
@@ -94,6 +140,7 @@ CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simu
   const Eigen::MatrixXd screen_design_ok = rows_of(screen_coded, screen_ok);
   std::vector<double> score(k, 0.0);
   std::vector<bool> significant(k, false);
+  std::vector<int> strongest;  // per target, the key of the largest range
   for (const auto& t : input.targets) {
     ScreeningAnalysis a;
     a.target = t.target;
@@ -108,7 +155,13 @@ CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simu
       // Failed runs unbalanced the design: the range analysis alone decides.
     }
     double max_range = 0;
-    for (const auto& f : a.range.factors) max_range = std::max(max_range, f.range);
+    int max_at = 0;
+    for (int i = 0; i < k; ++i)
+      if (a.range.factors[i].range > max_range) {
+        max_range = a.range.factors[i].range;
+        max_at = i;
+      }
+    strongest.push_back(max_at);
     for (int i = 0; i < k; ++i) {
       const double relative = max_range > 0 ? a.range.factors[i].range / max_range : 0.0;
       score[i] = std::max(score[i], relative);
@@ -121,17 +174,27 @@ CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simu
   std::vector<int> order(k);
   for (int i = 0; i < k; ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return score[a] > score[b]; });
-  for (const int i : order)
-    if (significant[i] && static_cast<int>(result.kept.size()) < input.paper.max_factors)
+  const auto is_kept = [&](int i) {
+    return std::find(result.kept.begin(), result.kept.end(), i) != result.kept.end();
+  };
+  // Every target first gets the key that moves it most: a strength capped by its weakest bond
+  // family shows small, interaction-laden main effects that an F test on a saturated screen
+  // misses, and a surface design without any key of a target cannot move it.
+  for (const int i : strongest)
+    if (!is_kept(i) && static_cast<int>(result.kept.size()) < input.paper.max_factors)
       result.kept.push_back(i);
   for (const int i : order)
-    if (result.kept.size() < 2 &&
-        std::find(result.kept.begin(), result.kept.end(), i) == result.kept.end())
+    if (significant[i] && !is_kept(i) &&
+        static_cast<int>(result.kept.size()) < input.paper.max_factors)
       result.kept.push_back(i);
+  for (const int i : order)
+    if (result.kept.size() < 2 && !is_kept(i)) result.kept.push_back(i);
   std::sort(result.kept.begin(), result.kept.end());
   const int m = static_cast<int>(result.kept.size());
 
-  // 2. Response-surface design on the kept keys, the others at their start values.
+  // 2. Response-surface design on the kept keys, the others following a kept key of their role
+  // or at their start values.
+  result.leaders = paper_leaders(input, result.kept, score);
   Eigen::VectorXd kept_lower(m), kept_upper(m);
   std::vector<std::string> kept_names;
   for (int j = 0; j < m; ++j) {
@@ -141,9 +204,7 @@ CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simu
   }
   const Eigen::MatrixXd kept_natural = to_natural(surface_design(input, m), kept_lower, kept_upper);
   const auto full = [&](const Eigen::VectorXd& kept_values) {
-    Eigen::VectorXd v = fixed;
-    for (int j = 0; j < m; ++j) v[result.kept[j]] = kept_values[j];
-    return v;
+    return paper_values(input, result.kept, result.leaders, kept_values);
   };
   Eigen::MatrixXd surface_natural(kept_natural.rows(), k);
   for (Eigen::Index r = 0; r < kept_natural.rows(); ++r)

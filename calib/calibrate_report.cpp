@@ -148,6 +148,18 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
        << input.paper.max_factors << "):";
     for (const int i : r.kept) md << " `" << input.parameters[i].key << "`";
     md << "\n";
+    bool any_follower = false;
+    for (std::size_t i = 0; i < r.leaders.size(); ++i) {
+      if (r.leaders[i] < 0) continue;
+      if (!any_follower)
+        md << "\nKeys left out that follow a kept key of their role (the ratio of "
+              "their start values kept, clipped into their bounds):\n\n";
+      any_follower = true;
+      const auto& follower = input.parameters[i];
+      const auto& leader = input.parameters[static_cast<std::size_t>(r.leaders[i])];
+      md << "- `" << follower.key << "` = " << shortest_number(follower.start / leader.start)
+         << " x `" << leader.key << "`\n";
+    }
   }
   if (!r.surfaces.empty()) {
     md << "\n## Response surfaces (" << input.paper.surface << ", quadratic)\n\n";
@@ -238,6 +250,10 @@ nlohmann::json calibration_report_json(const CalibrationInput& input, const Cali
   }
   j["groups"] = r.group_names;
   for (const int i : r.kept) j["kept"].push_back(input.parameters[i].key);
+  for (std::size_t i = 0; i < r.leaders.size(); ++i)
+    if (r.leaders[i] >= 0)
+      j["followers"][input.parameters[i].key] =
+          input.parameters[static_cast<std::size_t>(r.leaders[i])].key;
   for (const auto& s : r.surfaces) {
     json e{{"target", target_name(s.target)},
            {"r2", s.surface.r_squared()},

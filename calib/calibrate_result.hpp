@@ -83,7 +83,8 @@ struct CalibrationResult {
   std::vector<FastIteration> iterations;
 
   // paper strategy
-  std::vector<int> kept;  // parameter indices carried into the surface design
+  std::vector<int> kept;     // parameter indices carried into the surface design
+  std::vector<int> leaders;  // per parameter: the kept key it follows, or -1 (paper_leaders)
   std::vector<ScreeningAnalysis> screening;
   std::vector<SurfaceFit> surfaces;
   std::optional<InversionResult> inversion;

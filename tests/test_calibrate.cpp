@@ -85,6 +85,10 @@ class AnalyticModel : public Simulator {
  public:
   explicit AnalyticModel(const CalibrationInput& input) : input_(input) {}
   int points = 0;
+  // When set, the strength is that of the weakest bond family, as in the DEM (the mortar
+  // tensile strength, its cohesion / 3 or twice the ITZ tensile strength, whichever is least):
+  // one strength raised alone cannot raise sigma_u past the others.
+  bool weakest_link = false;
   std::vector<SimulationOutcome> run(const std::string&,
                                      const std::vector<SimulationPoint>& batch) override {
     std::vector<SimulationOutcome> out;
@@ -107,7 +111,8 @@ class AnalyticModel : public Simulator {
       SimulationOutcome o;
       o.ok = true;
       o.simulations = 1;
-      o.responses[0] = scatter * 1.17 * std::pow(sm, 0.85) * std::pow(si / 0.5, 0.15) *
+      const double strength = weakest_link ? std::min({sm, cm / 3, 2 * si}) : sm;
+      o.responses[0] = scatter * 1.17 * std::pow(strength, 0.85) * std::pow(si / 0.5, 0.15) *
                        std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
       o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
                        std::pow(1.45 / km, 0.15) * std::pow(sm / 10, 0.02);  // E, GPa
@@ -297,6 +302,58 @@ TEST(CalibratePaper, RunsEndToEndOnTheAnalyticModel) {
   ASSERT_TRUE(r.success()) << r.stop_reason;
   for (const auto& s : r.verifications.back().targets)
     EXPECT_LE(std::abs(s.relative_error), 0.05) << target_name(s.target);
+}
+
+TEST(CalibratePaper, DroppedKeysFollowAKeptKeyOfTheirRole) {
+  const auto in = read_calibration_input(make_calibration("leaders", kC30Targets));
+  // Kept: mortar E*, ITZ E*, mortar kn/ks, mortar sigma_b (what the C30 screen kept).
+  const std::vector<int> kept{0, 1, 2, 4};
+  const std::vector<double> score{1.0, 0.6, 0.9, 0.1, 0.8, 0.5, 0.3, 0.2};
+  const auto leaders = paper_leaders(in, kept, score);
+  EXPECT_EQ(leaders, (std::vector<int>{-1, -1, -1, 2, -1, 4, 4, 4}));
+  // With the ITZ cohesion kept too, the mortar cohesion follows it (same role) rather than the
+  // mortar sigma_b; the ITZ tensile strength still follows the mortar sigma_b.
+  EXPECT_EQ(paper_leaders(in, {0, 2, 4, 7}, score), (std::vector<int>{-1, 0, -1, 2, -1, 7, 4, -1}));
+  // Values: the start ratios (ITZ / mortar 1/2, c_b / sigma_b 3) kept, clipped into the bounds.
+  Eigen::VectorXd kept_values(4);
+  kept_values << 20, 9, 2.5, 35;
+  const auto v = paper_values(in, kept, leaders, kept_values);
+  EXPECT_DOUBLE_EQ(v[0], 20);
+  EXPECT_DOUBLE_EQ(v[1], 9);
+  EXPECT_DOUBLE_EQ(v[3], 2.5);   // ITZ kn/ks: 1.45 / 1.45 x 2.5
+  EXPECT_DOUBLE_EQ(v[5], 105);   // mortar c_b: 30 / 10 x 35
+  EXPECT_DOUBLE_EQ(v[6], 17.5);  // ITZ sigma_b: 5 / 10 x 35
+  EXPECT_DOUBLE_EQ(v[7], 52.5);  // ITZ c_b: 15 / 10 x 35
+  // Clipped: the mortar c_b would be 30 / 10 x 80 = 240 MPa, above its bound of 200.
+  const auto capped = read_calibration_input(
+      make_calibration("leaders_capped", kC30Targets,
+                       replace(kParameters, "bounds = [30, 240]", "bounds = [30, 200]")));
+  kept_values[3] = 80;
+  EXPECT_DOUBLE_EQ(paper_values(capped, kept, leaders, kept_values)[5], 200);
+}
+
+TEST(CalibratePaper, ReachesAWeakestLinkStrengthThroughTheFollowers) {
+  // The DEM's strength is capped by the weakest bond family. A paper calibration that leaves the
+  // strengths it did not keep at their start cannot pass that cap (on the C30 sample it stopped
+  // at 30.6 of 40 MPa); following the kept strength, it reaches the target and verifies.
+  const auto in = read_calibration_input(make_calibration(
+      "paper_weakest_link", "strategy = \"paper\"\n" + kC30Targets + "[paper]\nmax_factors = 4\n"));
+  AnalyticModel model(in);
+  model.weakest_link = true;
+  const auto r = calibrate_paper(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  for (const auto& s : r.verifications.back().targets)
+    EXPECT_LE(std::abs(s.relative_error), 0.05) << target_name(s.target);
+  // Every strength left out moved with its leader.
+  ASSERT_EQ(r.leaders.size(), in.parameters.size());
+  for (std::size_t i = 0; i < r.leaders.size(); ++i) {
+    if (r.leaders[i] < 0) continue;
+    const auto j = static_cast<std::size_t>(r.leaders[i]);
+    EXPECT_NEAR(
+        r.calibrated[static_cast<Eigen::Index>(i)] / r.calibrated[static_cast<Eigen::Index>(j)],
+        in.parameters[i].start / in.parameters[j].start, 1e-12)
+        << in.parameters[i].key;
+  }
 }
 
 TEST(CalibrateReport, WritesAMaterialFileTheMaterialTableReads) {
