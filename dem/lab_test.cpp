@@ -38,11 +38,26 @@ const char* lab_test_name(LabTestType type) {
 namespace {
 
 LabTestControls read_controls(const InputTable& t) {
-  t.reject_unknown_keys({"type", "platen_velocity", "stop_fraction", "stop_strain_margin",
-                         "local_damping", "time_step_safety", "density_scaling", "scaled_time_step",
-                         "history_interval", "snapshot_interval", "max_steps", "grip_fraction",
-                         "gauge_fraction", "platen_overhang", "threads", "min_contacts",
-                         "bond_gap_ratio", "confining_stresses", "preset"});
+  t.reject_unknown_keys({"type",
+                         "platen_velocity",
+                         "stop_fraction",
+                         "stop_strain_margin",
+                         "local_damping",
+                         "time_step_safety",
+                         "density_scaling",
+                         "scaled_time_step",
+                         "history_interval",
+                         "snapshot_interval",
+                         "max_steps",
+                         "grip_fraction",
+                         "gauge_fraction",
+                         "platen_overhang",
+                         "threads",
+                         "min_contacts",
+                         "bond_gap_ratio",
+                         "max_genesis_broken_fraction",
+                         "confining_stresses",
+                         "preset"});
   LabTestControls c;
   apply_test_preset(t, c);  // speed knobs of the preset; the keys below override them
   const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial"});
@@ -75,6 +90,8 @@ LabTestControls read_controls(const InputTable& t) {
       static_cast<int>(t.integer_or("min_contacts", c.genesis.min_contacts, 0, 12));
   c.genesis.bond_gap_ratio =
       t.number_or("bond_gap_ratio", c.genesis.bond_gap_ratio, Range::closed(0, 0.1));
+  c.genesis.max_broken_fraction = t.number_or("max_genesis_broken_fraction",
+                                              c.genesis.max_broken_fraction, Range::closed(0, 1));
   if (c.type == LabTestType::Biaxial)
     c.confining_stresses = read_confining_stresses(t);
   else if (t.has("confining_stresses"))  // any unit suffix

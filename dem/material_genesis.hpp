@@ -23,6 +23,12 @@ struct GenesisOptions {
   double relax_tolerance = 1e-2;
   long relax_min_steps = 200;
   long relax_max_steps = 50'000;
+  // Largest fraction of a contact class's bonds the relaxation may break. More means the
+  // specimen is damaged before the test (a law much stiffer than the packing modulus, or bonds
+  // weaker than the locked-in packing stress): install_test_bonds stops with the cause rather
+  // than hand a damaged specimen to the test. 1 accepts any damage (a deliberately pre-cracked
+  // ITZ, say).
+  double max_broken_fraction = 0.05;
 };
 
 struct GenesisReport {
@@ -34,6 +40,7 @@ struct GenesisReport {
   long relaxation_steps = 0;
   double relaxation_unbalanced_ratio = 0;  // at the end of the relaxation
   long relaxation_cracks = 0;              // bonds broken while relaxing (then cleared)
+  std::array<long, kContactClassCount> relaxation_cracks_by_class{};
 };
 
 // The specimen without floating mortar discs. Removal is repeated until every remaining mortar
@@ -50,7 +57,9 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
 // lets the bonded specimen relax out of the mould (the packing's locked-in sigma0 is released
 // against the bonds; PFC practice), then sets every velocity to zero and clears the crack log.
 // The caller takes the relaxed positions as the reference of the displacements and adds the
-// test's walls. Fills report.discs, report.bonds and the relaxation figures.
+// test's walls. Fills report.discs, report.bonds and the relaxation figures. Throws RunError
+// naming the class, the count and the likely causes when the relaxation breaks more than
+// options.max_broken_fraction of a class's bonds.
 void install_test_bonds(World& world, const GenesisOptions& options, GenesisReport& report);
 
 }  // namespace cdem::dem
