@@ -1,5 +1,6 @@
 #include "dem/integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cdem::dem {
@@ -57,10 +58,15 @@ namespace {
 // kBook = false is the same loop without the energy terms (instantiated separately so the fast
 // path carries no branch per degree of freedom).
 template <bool kBook>
-long integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledger) {
+StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledger) {
   const std::size_t n = b.size();
-  long bad = static_cast<long>(n);
   double damped = 0, applied = 0, prescribed = 0, power = 0;
+  // Sum of every position: non-finite exactly when some position is (positions are far from
+  // overflow), so the loop carries one addition per body instead of a test and a branch; the
+  // body is looked for only when the sum says there is one.
+  double position_sum = 0;
+  // Largest squared speed of a free disc and largest pebble speed bound of a clump (m/s).
+  double disc_speed2 = 0, pebble_speed = 0;
   for (std::size_t k = 0; k < n; ++k) {
     if (!b.prescribed[k]) {
       if constexpr (kBook) {
@@ -87,9 +93,10 @@ long integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger
     b.y[k] += dt * b.vy[k];
     b.theta[k] += dt * b.omega[k];
     // Positions integrate the velocities, so a non-finite velocity shows in them already.
-    if (!std::isfinite(b.x[k] + b.y[k] + b.theta[k])) bad = std::min(bad, static_cast<long>(k));
+    position_sum += b.x[k] + b.y[k] + b.theta[k];
     const std::int32_t first = b.first_disc[k];
     if (!b.is_clump[k]) {
+      disc_speed2 = std::max(disc_speed2, b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]);
       d.x[first] = b.x[k];
       d.y[first] = b.y[k];
       d.vx[first] = b.vx[k];
@@ -98,9 +105,14 @@ long integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger
       continue;
     }
     const double c = std::cos(b.theta[k]), s = std::sin(b.theta[k]);
+    // A pebble moves by at most |v| dt + |omega| dt |offset| in a step (the chord of its arc is
+    // shorter than the arc); |ox| + |oy| >= |offset|.
+    const double speed = std::sqrt(b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]);
     for (std::int32_t i = first; i < first + b.disc_count[k]; ++i) {
       const double ox = c * d.offset_x[i] - s * d.offset_y[i];
       const double oy = s * d.offset_x[i] + c * d.offset_y[i];
+      pebble_speed =
+          std::max(pebble_speed, speed + std::abs(b.omega[k]) * (std::abs(ox) + std::abs(oy)));
       d.x[i] = b.x[k] + ox;
       d.y[i] = b.y[k] + oy;
       // Rigid-body velocity of the pebble centre: v + omega x offset.
@@ -115,12 +127,20 @@ long integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger
     ledger.prescribed_work += dt * prescribed;
     ledger.strain_to_half_step -= 0.5 * dt * power;
   }
-  return bad == static_cast<long>(n) ? -1 : bad;
+  StepMotion motion;
+  motion.max_displacement = dt * std::max(std::sqrt(disc_speed2), pebble_speed);
+  if (!std::isfinite(position_sum))
+    for (std::size_t k = 0; k < n; ++k)
+      if (!std::isfinite(b.x[k] + b.y[k] + b.theta[k])) {
+        motion.bad_body = static_cast<long>(k);
+        break;
+      }
+  return motion;
 }
 
 }  // namespace
 
-long integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger) {
+StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger) {
   if (ledger) return integrate_bodies<true>(b, d, dt, alpha, *ledger);
   EnergyLedger unused;
   return integrate_bodies<false>(b, d, dt, alpha, unused);

@@ -31,8 +31,11 @@ void gather_body_forces(Bodies& bodies, const Discs& discs);
 // damping and the work of the applied loads (force . mean of the two half-step velocities . dt,
 // which is exactly what the kinetic energy at the half step sees) and of the prescribed bodies
 // (measured on the reference specimen: about 55 more instructions per body, +9 % of the
-// instructions of a cycle); nullptr skips them. Returns the first body whose state became
-// non-finite, or -1.
-long integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger);
+// instructions of a cycle); nullptr skips them.
+struct StepMotion {
+  long bad_body = -1;           // the first body whose state became non-finite, or -1
+  double max_displacement = 0;  // m, bound on the largest disc displacement of the step
+};
+StepMotion integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger);
 
 }  // namespace cdem::dem

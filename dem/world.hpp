@@ -3,6 +3,7 @@
 // one cycle at a time. Data are public structure-of-arrays (read them freely; change positions
 // or radii only through the functions below so the neighbour list stays valid).
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,10 @@ class World {
   double friction_dissipated_ = 0, bond_energy_released_ = 0;  // J/m
   long steps_ = 0;
   bool rebuild_pending_ = true;
+  // m, bound on the largest disc displacement since the last neighbour build, summed from the
+  // integration's speeds; infinite until the first build and after a radius change. Lets the
+  // rebuild check skip its pass over every disc while the bound alone rules a rebuild out.
+  double moved_bound_ = std::numeric_limits<double>::infinity();
   ForcePassResult last_pass_;
   std::vector<double> stiffness_, rot_stiffness_;  // per body, scratch of update_time_step
 };
