@@ -29,38 +29,48 @@ void gather_body_forces(Bodies& b, const Discs& d) {
 
 namespace {
 
-// Energy terms of one body over one step, before the common factors: damping and applied work
-// as force x (v_old + v_new) (times dt / 2 later), contact power as force x v_new (times dt).
+// Energy terms of one body over one step, before the common factor dt / 2: damping and
+// applied work as force x (v_old + v_new).
 struct StepEnergy {
-  double damped = 0, applied = 0, power = 0;
+  double damped = 0, applied = 0;
 };
 
+// Local damping of one degree of freedom; with kDamped = false (alpha = 0) the force itself,
+// which is what local_damping returns for alpha = 0 (F minus a signed zero), so the velocities
+// have the same bits either way.
+template <bool kDamped>
+double damped_force(double force, double velocity, double alpha) {
+  if constexpr (kDamped)
+    return local_damping(force, velocity, alpha);
+  else
+    return force;
+}
+
 // One degree of freedom of a free body: updates the half-step velocity and adds its share of
-// the energy removed by damping, (F - F_damped) . v_mean dt, of the applied work,
-// F_applied . v_mean dt, and of the power of the contact force at the new velocity,
-// (F - F_applied) v. The three sums per body are added to the step totals once per body, which
-// keeps the serial dependency chains of the accumulators short.
-inline void advance(double& v, double force, double applied, double inv_inertia, double dt,
-                    double alpha, StepEnergy& e) {
-  const double f_damped = local_damping(force, v, alpha);
+// the energy removed by damping, (F - F_damped) . v_mean dt, and of the applied work,
+// F_applied . v_mean dt. The sums per body are added to the step totals once per body, which
+// keeps the serial dependency chains of the accumulators short. The power of the contact
+// forces, which carries the strain energy to the half step, is not summed here: it is needed
+// only when the energies are read, and strain_to_half_step (dem/energy.hpp) forms it then from
+// the forces and velocities the step leaves behind.
+template <bool kDamped>
+void advance(double& v, double force, double applied, double inv_inertia, double dt, double alpha,
+             StepEnergy& e) {
+  const double f_damped = damped_force<kDamped>(force, v, alpha);
   const double v_old = v;
   v += dt * inv_inertia * f_damped;
   const double v_sum = v_old + v;
-  e.damped += (force - f_damped) * v_sum;
+  if constexpr (kDamped) e.damped += (force - f_damped) * v_sum;
   e.applied += applied * v_sum;
-  e.power += (force - applied) * v;
 }
 
-}  // namespace
-
-namespace {
-
-// kBook = false is the same loop without the energy terms (instantiated separately so the fast
-// path carries no branch per degree of freedom).
-template <bool kBook>
+// kBook = false is the same loop without the energy terms, kDamped = false without local
+// damping (alpha = 0: its force and energy terms are zero); each combination is instantiated
+// separately so the loop carries no branch per degree of freedom.
+template <bool kBook, bool kDamped>
 StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledger) {
   const std::size_t n = b.size();
-  double damped = 0, applied = 0, prescribed = 0, power = 0;
+  double damped = 0, applied = 0, prescribed = 0;
   // Sum of every position: non-finite exactly when some position is (positions are far from
   // overflow), so the loop carries one addition per body instead of a test and a branch; the
   // body is looked for only when the sum says there is one.
@@ -71,23 +81,21 @@ StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, Energy
     if (!b.prescribed[k]) {
       if constexpr (kBook) {
         StepEnergy e;
-        advance(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
-        advance(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
-        advance(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, e);
+        advance<kDamped>(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
+        advance<kDamped>(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
+        advance<kDamped>(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, e);
         damped += e.damped;
         applied += e.applied;
-        power += e.power;
       } else {
-        b.vx[k] += dt * b.inv_mass_dyn[k] * local_damping(b.fx[k], b.vx[k], alpha);
-        b.vy[k] += dt * b.inv_mass_dyn[k] * local_damping(b.fy[k], b.vy[k], alpha);
-        b.omega[k] += dt * b.inv_inertia_dyn[k] * local_damping(b.moment[k], b.omega[k], alpha);
+        b.vx[k] += dt * b.inv_mass_dyn[k] * damped_force<kDamped>(b.fx[k], b.vx[k], alpha);
+        b.vy[k] += dt * b.inv_mass_dyn[k] * damped_force<kDamped>(b.fy[k], b.vy[k], alpha);
+        b.omega[k] +=
+            dt * b.inv_inertia_dyn[k] * damped_force<kDamped>(b.moment[k], b.omega[k], alpha);
       }
     } else if constexpr (kBook) {
       // The contacts push on the body with F - F_applied; it does the opposite work on them.
-      const double p = (b.fx[k] - b.fx_applied[k]) * b.vx[k] +
-                       (b.fy[k] - b.fy_applied[k]) * b.vy[k] + b.moment[k] * b.omega[k];
-      prescribed -= p;
-      power += p;
+      prescribed -= (b.fx[k] - b.fx_applied[k]) * b.vx[k] + (b.fy[k] - b.fy_applied[k]) * b.vy[k] +
+                    b.moment[k] * b.omega[k];
     }
     b.x[k] += dt * b.vx[k];
     b.y[k] += dt * b.vy[k];
@@ -125,7 +133,6 @@ StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, Energy
     ledger.damping += 0.5 * dt * damped;
     ledger.applied_work += 0.5 * dt * applied;
     ledger.prescribed_work += dt * prescribed;
-    ledger.strain_to_half_step -= 0.5 * dt * power;
   }
   StepMotion motion;
   motion.max_displacement = dt * std::max(std::sqrt(disc_speed2), pebble_speed);
@@ -141,9 +148,12 @@ StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, Energy
 }  // namespace
 
 StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger) {
-  if (ledger) return integrate_bodies<true>(b, d, dt, alpha, *ledger);
   EnergyLedger unused;
-  return integrate_bodies<false>(b, d, dt, alpha, unused);
+  if (alpha != 0)
+    return ledger ? integrate_bodies<true, true>(b, d, dt, alpha, *ledger)
+                  : integrate_bodies<false, true>(b, d, dt, alpha, unused);
+  return ledger ? integrate_bodies<true, false>(b, d, dt, alpha, *ledger)
+                : integrate_bodies<false, false>(b, d, dt, alpha, unused);
 }
 
 }  // namespace cdem::dem

@@ -239,7 +239,8 @@ void World::account_wall_work() {
     energy.last_dy[w] = dy;
   }
   energy.wall_work += work;
-  energy.strain_to_half_step = -0.5 * work_this_step;  // integrate adds the bodies' share
+  energy.wall_strain_to_half_step = -0.5 * work_this_step;
+  energy.last_step = dt_;
 }
 
 // Every energy_check_interval steps (an O(bodies + pairs) pass, about 1/6 of a cycle on the
