@@ -45,10 +45,10 @@ struct WorldSettings {
   // when the scheme creates energy. A stable run stays within O(dt^2) of a factor 1.
   double runaway_energy_factor = 2.0;
   long energy_check_interval = 100;
-  // Energy bookkeeping in the integration (damping, applied and prescribed work). Off saves
-  // about 9 % of the instructions of a cycle (callgrind, reference specimen; not resolvable in
-  // wall time on the shared test machine) and switches the runaway check off too (it needs the
-  // work put in); the wall work is booked either way.
+  // Energy bookkeeping in the integration (damping, applied and prescribed work). Off saves a
+  // few % of a cycle (its terms were 17 % of the integration's time, which is about 15 % of a
+  // cycle; docs/performance.md) and switches the runaway check off too (it needs the work put
+  // in); the wall work is booked either way.
   bool energy_tracking = true;
 };
 
