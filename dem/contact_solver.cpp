@@ -20,34 +20,50 @@ void resize(ContactForces& f, std::size_t n, bool walls) {
   }
 }
 
+// Pairs per block of the force pass: their geometries (sqrt, division) are computed first, in
+// a loop with no dependency between iterations, then their laws. 64 geometries fit in L1.
+constexpr std::size_t kGeometryBlock = 64;
+
 // Evaluates all disc-disc pairs and adds them onto the discs (whose accumulators must be zero).
-// One thread: evaluate and add in one sweep, the pair's result still in registers. Several:
+// One thread: evaluate and add block by block, each pair's result still in registers. Several:
 // evaluate in parallel into `out.evaluated`, then add serially. Both add the same values in the
 // same order, so the bits do not depend on the thread count. Returns the first pair tripping
 // the guard, or -1.
 long disc_disc_pass(Discs& d, NeighborList& list, ContactForces& out, const ContactLaws& laws,
                     const BondModels& bonds, double dt, double guard, int threads,
                     ForcePassResult& result) {
+  using Geometry = DiscPairKernel::Geometry;
   const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard);
   const std::size_t count = list.keys.size();
+  const std::size_t blocks = (count + kGeometryBlock - 1) / kGeometryBlock;
   long bad = static_cast<long>(count);
   out.broken.clear();
   if (threads > 1) {
     out.evaluated.resize(count);
     PairForce* evaluated = out.evaluated.data();
 #pragma omp parallel for schedule(static) reduction(min : bad) num_threads(threads)
-    for (std::size_t k = 0; k < count; ++k) {
-      bool within_guard;
-      evaluated[k] = kernel.evaluate(k, within_guard);
-      if (!within_guard) bad = std::min(bad, static_cast<long>(k));
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t start = b * kGeometryBlock, end = std::min(start + kGeometryBlock, count);
+      Geometry g[kGeometryBlock];
+      for (std::size_t k = start; k < end; ++k) g[k - start] = kernel.geometry(k);
+      for (std::size_t k = start; k < end; ++k) {
+        bool within_guard;
+        evaluated[k] = kernel.evaluate(k, g[k - start], within_guard);
+        if (!within_guard) bad = std::min(bad, static_cast<long>(k));
+      }
     }
     for (std::size_t k = 0; k < count; ++k) kernel.add(k, evaluated[k], result, out.broken);
   } else {
-    for (std::size_t k = 0; k < count; ++k) {
-      bool within_guard;
-      const PairForce f = kernel.evaluate(k, within_guard);
-      if (!within_guard) bad = std::min(bad, static_cast<long>(k));
-      kernel.add(k, f, result, out.broken);
+    Geometry g[kGeometryBlock];
+    for (std::size_t start = 0; start < count; start += kGeometryBlock) {
+      const std::size_t end = std::min(start + kGeometryBlock, count);
+      for (std::size_t k = start; k < end; ++k) g[k - start] = kernel.geometry(k);
+      for (std::size_t k = start; k < end; ++k) {
+        bool within_guard;
+        const PairForce f = kernel.evaluate(k, g[k - start], within_guard);
+        if (!within_guard) bad = std::min(bad, static_cast<long>(k));
+        kernel.add(k, f, result, out.broken);
+      }
     }
   }
   result.bonds_broken = static_cast<long>(out.broken.size());

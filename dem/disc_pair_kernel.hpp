@@ -18,6 +18,42 @@ namespace cdem::dem {
 
 class DiscPairKernel {
  public:
+  struct Geometry {
+    std::int32_t i, j;
+    double ri, rj;
+    double overlap;         // m, reach - centre distance
+    double nx, ny;          // unit normal from i to j
+    double inverse_length;  // 1/m, 1 / (R_i + R_j)
+  };
+
+  // Geometry of pair k. sqrt and division share one unit of the core, so 1 / dist and
+  // 1 / (R_i + R_j) come from one reciprocal of their product. The pass computes the geometry
+  // of a block of pairs before their laws (see disc_disc_pass): the geometries are
+  // independent of each other, so their sqrt and division latencies overlap instead of
+  // stalling each pair's law.
+  Geometry geometry(std::size_t k) const {
+    Geometry g;
+    g.i = first_[k];
+    g.j = second_[k];
+    const double dx = x_[g.j] - x_[g.i], dy = y_[g.j] - y_[g.i];
+    g.ri = r_[g.i];
+    g.rj = r_[g.j];
+    const double reach = g.ri + g.rj;
+    const double dist = std::sqrt(dx * dx + dy * dy);
+    g.overlap = reach - dist;
+    if (dist > 0) {
+      const double inv = 1.0 / (dist * reach);
+      const double inverse_dist = reach * inv;
+      g.nx = dx * inverse_dist;
+      g.ny = dy * inverse_dist;
+      g.inverse_length = dist * inv;
+    } else {  // coincident centres: no normal (the guard stops the run)
+      g.nx = g.ny = 0;
+      g.inverse_length = 1.0 / reach;
+    }
+    return g;
+  }
+
   DiscPairKernel(Discs& d, NeighborList& list, ContactForces& out, const ContactLaws& laws,
                  const BondModels& bonds, double dt, double guard)
       : first_(list.first.data()),
@@ -54,13 +90,12 @@ class DiscPairKernel {
     }
   }
 
-  // Evaluates pair k: updates its shear and bond state, stores normal, overlap, fx, fy (and, if
-  // its bond breaks, failure and released energy). `within_guard` is false when the overlap
-  // exceeds the instability guard. Unbonded pairs (all of them in an unbonded run) take the
+  // Evaluates pair k of geometry g: updates its shear and bond state, stores normal, overlap, fx,
+  // fy (and, if its bond breaks, failure and released energy). `within_guard` is false when the
+  // overlap exceeds the instability guard. Unbonded pairs (all of them in an unbonded run) take the
   // short linear path and never touch the bond arrays; the branch follows the bond kind, which
   // changes only when a bond breaks, so it is well predicted.
-  PairForce evaluate(std::size_t k, bool& within_guard) const {
-    const Geometry g = geometry(k);
+  PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
     within_guard = g.overlap <= guard_ * std::min(g.ri, g.rj);
     const PairForce f =
         bond_[k] == static_cast<std::uint8_t>(BondKind::None) ? linear(k, g) : bonded(k, g);
@@ -97,39 +132,6 @@ class DiscPairKernel {
   }
 
  private:
-  struct Geometry {
-    std::int32_t i, j;
-    double ri, rj;
-    double overlap;         // m, reach - centre distance
-    double nx, ny;          // unit normal from i to j
-    double inverse_length;  // 1/m, 1 / (R_i + R_j)
-  };
-
-  // sqrt and division share one unit of the core, so 1 / dist and 1 / (R_i + R_j) come from
-  // one reciprocal of their product.
-  Geometry geometry(std::size_t k) const {
-    Geometry g;
-    g.i = first_[k];
-    g.j = second_[k];
-    const double dx = x_[g.j] - x_[g.i], dy = y_[g.j] - y_[g.i];
-    g.ri = r_[g.i];
-    g.rj = r_[g.j];
-    const double reach = g.ri + g.rj;
-    const double dist = std::sqrt(dx * dx + dy * dy);
-    g.overlap = reach - dist;
-    if (dist > 0) {
-      const double inv = 1.0 / (dist * reach);
-      const double inverse_dist = reach * inv;
-      g.nx = dx * inverse_dist;
-      g.ny = dy * inverse_dist;
-      g.inverse_length = dist * inv;
-    } else {  // coincident centres: no normal (the guard stops the run)
-      g.nx = g.ny = 0;
-      g.inverse_length = 1.0 / reach;
-    }
-    return g;
-  }
-
   // Tangential velocity of j's contact point relative to i's (m/s), spins included; the arms
   // are R - overlap / 2.
   double tangential_velocity(const Geometry& g) const {

@@ -26,12 +26,25 @@ double kinetic_energy_dynamic(const World& world) {
   return e;
 }
 
+double strain_to_half_step(const World& world) {
+  const EnergyLedger& l = world.energy;
+  if (!world.settings.energy_tracking) return l.wall_strain_to_half_step;
+  // Power of the contact forces (F - F_applied) . v at the new half-step velocity, in body
+  // order, prescribed bodies included.
+  const Bodies& b = world.bodies;
+  double power = 0;
+  for (std::size_t k = 0; k < b.size(); ++k)
+    power += (b.fx[k] - b.fx_applied[k]) * b.vx[k] + (b.fy[k] - b.fy_applied[k]) * b.vy[k] +
+             b.moment[k] * b.omega[k];
+  return l.wall_strain_to_half_step - 0.5 * l.last_step * power;
+}
+
 void restart_energy_reference(World& world) {
   EnergyLedger& e = world.energy;
   // Called by World::step after the integration: kinetic energy and work terms at t + dt/2,
   // strain energy carried there from x(t).
   const ContactEnergy c = contact_energy(world);
-  const double present = kinetic_energy_dynamic(world) + c.strain() + e.strain_to_half_step;
+  const double present = kinetic_energy_dynamic(world) + c.strain() + strain_to_half_step(world);
   // Friction and bond breakage accumulate from the world's start, like damping: what they hold
   // already is explained.
   e.reference = present + e.damping + c.friction + c.bond_breakage -
@@ -52,7 +65,7 @@ Energies energies(const World& world) {
   e.bond_strain = c.bond_strain;
   // The half-step correction comes from the work of the total contact forces, bonds included;
   // it is booked with the linear springs.
-  e.contact_strain = c.linear_strain + l.strain_to_half_step;
+  e.contact_strain = c.linear_strain + strain_to_half_step(world);
   e.friction = c.friction;
   e.bond_breakage = c.bond_breakage;
   e.damping = l.damping;

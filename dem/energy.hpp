@@ -28,13 +28,10 @@ struct EnergyLedger {
   // energy check), because they add or remove energy outside the step.
   double reference = 0;
   bool reference_pending = true;
-  // Change of the contact strain energy from x(t) to x(t + dt/2), J/m: minus half the work of
-  // the contact forces of this step over the displacements of this step (walls: set by
-  // World::step; bodies: added by integrate). The stored energy is reported at the half step,
-  // where the kinetic energy and the work terms are; for linear springs this makes the
-  // discrete balance exact (U(x_n) alone is off by the energy exchanged in half a step, which
-  // at omega dt ~ 0.5 is a sizeable fraction of each contact's energy).
-  double strain_to_half_step = 0;
+  // The walls' share of strain_to_half_step (below) for the last step, J/m: minus half the
+  // work of the wall forces over the wall displacements of the step (set by World::step).
+  double wall_strain_to_half_step = 0;
+  double last_step = 0;  // s, time step of the last step
   // Wall displacement of the previous step, m (mid-step rule).
   std::vector<double> last_dx, last_dy;
 
@@ -48,7 +45,7 @@ struct Energies {
   double kinetic_dynamic = 0;  // the same with the integration inertia (differs under density
                                // scaling; the balance holds for this one)
   // Linear springs of the contacts, Fn^2 / 2kn + Fs^2 / 2ks, carried to the half step t + dt/2
-  // (see EnergyLedger::strain_to_half_step); contact_strain_now is the value at x(t).
+  // (see strain_to_half_step); contact_strain_now is the value at x(t).
   double contact_strain = 0;
   double contact_strain_now = 0;
   // From the contact kernel (dem/contact_energy.hpp): strain energy stored in the parallel bonds
@@ -73,6 +70,15 @@ struct Energies {
   double relative_error() const;
 };
 
+// Change of the contact strain energy from x(t) to x(t + dt/2) in the last step, J/m: minus half
+// the work of the contact forces of the step over its displacements (walls: from the ledger;
+// bodies: the contact forces and half-step velocities the step left in world.bodies, zero with
+// energy tracking off). The stored energy is reported at the half step, where the kinetic
+// energy and the work terms are; for linear springs this makes the discrete balance exact
+// (U(x_n) alone is off by the energy exchanged in half a step, which at omega dt ~ 0.5 is a
+// sizeable fraction of each contact's energy). Formed when read (an O(bodies) pass), not summed
+// in every step.
+double strain_to_half_step(const World& world);
 // Strain energy of the contact springs and bonds from the last force pass, J/m
 // (contact_energy(world).strain()).
 double contact_strain_energy(const World& world);

@@ -158,8 +158,7 @@ RunawayCheck runaway_check(const World& w) {
       largest_body = static_cast<long>(k);
     }
   }
-  r.accounted =
-      r.kinetic + contact_strain_energy(w) + w.energy.strain_to_half_step + w.energy.damping;
+  r.accounted = r.kinetic + contact_strain_energy(w) + strain_to_half_step(w) + w.energy.damping;
   r.input = w.energy.input();
   if (r.accounted > 0 && r.accounted > w.settings.runaway_energy_factor * r.input)
     r.body = largest_body;

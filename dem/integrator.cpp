@@ -1,5 +1,6 @@
 #include "dem/integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cdem::dem {
@@ -28,68 +29,82 @@ void gather_body_forces(Bodies& b, const Discs& d) {
 
 namespace {
 
-// Energy terms of one body over one step, before the common factors: damping and applied work
-// as force x (v_old + v_new) (times dt / 2 later), contact power as force x v_new (times dt).
+// Energy terms of one body over one step, before the common factor dt / 2: damping and
+// applied work as force x (v_old + v_new).
 struct StepEnergy {
-  double damped = 0, applied = 0, power = 0;
+  double damped = 0, applied = 0;
 };
 
+// Local damping of one degree of freedom; with kDamped = false (alpha = 0) the force itself,
+// which is what local_damping returns for alpha = 0 (F minus a signed zero), so the velocities
+// have the same bits either way.
+template <bool kDamped>
+double damped_force(double force, double velocity, double alpha) {
+  if constexpr (kDamped)
+    return local_damping(force, velocity, alpha);
+  else
+    return force;
+}
+
 // One degree of freedom of a free body: updates the half-step velocity and adds its share of
-// the energy removed by damping, (F - F_damped) . v_mean dt, of the applied work,
-// F_applied . v_mean dt, and of the power of the contact force at the new velocity,
-// (F - F_applied) v. The three sums per body are added to the step totals once per body, which
-// keeps the serial dependency chains of the accumulators short.
-inline void advance(double& v, double force, double applied, double inv_inertia, double dt,
-                    double alpha, StepEnergy& e) {
-  const double f_damped = local_damping(force, v, alpha);
+// the energy removed by damping, (F - F_damped) . v_mean dt, and of the applied work,
+// F_applied . v_mean dt. The sums per body are added to the step totals once per body, which
+// keeps the serial dependency chains of the accumulators short. The power of the contact
+// forces, which carries the strain energy to the half step, is not summed here: it is needed
+// only when the energies are read, and strain_to_half_step (dem/energy.hpp) forms it then from
+// the forces and velocities the step leaves behind.
+template <bool kDamped>
+void advance(double& v, double force, double applied, double inv_inertia, double dt, double alpha,
+             StepEnergy& e) {
+  const double f_damped = damped_force<kDamped>(force, v, alpha);
   const double v_old = v;
   v += dt * inv_inertia * f_damped;
   const double v_sum = v_old + v;
-  e.damped += (force - f_damped) * v_sum;
+  if constexpr (kDamped) e.damped += (force - f_damped) * v_sum;
   e.applied += applied * v_sum;
-  e.power += (force - applied) * v;
 }
 
-}  // namespace
-
-namespace {
-
-// kBook = false is the same loop without the energy terms (instantiated separately so the fast
-// path carries no branch per degree of freedom).
-template <bool kBook>
-long integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledger) {
+// kBook = false is the same loop without the energy terms, kDamped = false without local
+// damping (alpha = 0: its force and energy terms are zero); each combination is instantiated
+// separately so the loop carries no branch per degree of freedom.
+template <bool kBook, bool kDamped>
+StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledger) {
   const std::size_t n = b.size();
-  long bad = static_cast<long>(n);
-  double damped = 0, applied = 0, prescribed = 0, power = 0;
+  double damped = 0, applied = 0, prescribed = 0;
+  // Sum of every position: non-finite exactly when some position is (positions are far from
+  // overflow), so the loop carries one addition per body instead of a test and a branch; the
+  // body is looked for only when the sum says there is one.
+  double position_sum = 0;
+  // Largest squared speed of a free disc and largest pebble speed bound of a clump (m/s).
+  double disc_speed2 = 0, pebble_speed = 0;
   for (std::size_t k = 0; k < n; ++k) {
     if (!b.prescribed[k]) {
       if constexpr (kBook) {
         StepEnergy e;
-        advance(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
-        advance(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
-        advance(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, e);
+        advance<kDamped>(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
+        advance<kDamped>(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
+        advance<kDamped>(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, e);
         damped += e.damped;
         applied += e.applied;
-        power += e.power;
       } else {
-        b.vx[k] += dt * b.inv_mass_dyn[k] * local_damping(b.fx[k], b.vx[k], alpha);
-        b.vy[k] += dt * b.inv_mass_dyn[k] * local_damping(b.fy[k], b.vy[k], alpha);
-        b.omega[k] += dt * b.inv_inertia_dyn[k] * local_damping(b.moment[k], b.omega[k], alpha);
+        b.vx[k] += dt * b.inv_mass_dyn[k] * damped_force<kDamped>(b.fx[k], b.vx[k], alpha);
+        b.vy[k] += dt * b.inv_mass_dyn[k] * damped_force<kDamped>(b.fy[k], b.vy[k], alpha);
+        b.omega[k] +=
+            dt * b.inv_inertia_dyn[k] * damped_force<kDamped>(b.moment[k], b.omega[k], alpha);
       }
     } else if constexpr (kBook) {
       // The contacts push on the body with F - F_applied; it does the opposite work on them.
-      const double p = (b.fx[k] - b.fx_applied[k]) * b.vx[k] +
-                       (b.fy[k] - b.fy_applied[k]) * b.vy[k] + b.moment[k] * b.omega[k];
-      prescribed -= p;
-      power += p;
+      prescribed -= (b.fx[k] - b.fx_applied[k]) * b.vx[k] + (b.fy[k] - b.fy_applied[k]) * b.vy[k] +
+                    b.moment[k] * b.omega[k];
     }
     b.x[k] += dt * b.vx[k];
     b.y[k] += dt * b.vy[k];
     b.theta[k] += dt * b.omega[k];
     // Positions integrate the velocities, so a non-finite velocity shows in them already.
-    if (!std::isfinite(b.x[k] + b.y[k] + b.theta[k])) bad = std::min(bad, static_cast<long>(k));
+    position_sum += b.x[k] + b.y[k] + b.theta[k];
     const std::int32_t first = b.first_disc[k];
     if (!b.is_clump[k]) {
+      disc_speed2 = std::max(disc_speed2, b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]);
       d.x[first] = b.x[k];
       d.y[first] = b.y[k];
       d.vx[first] = b.vx[k];
@@ -98,9 +113,14 @@ long integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger
       continue;
     }
     const double c = std::cos(b.theta[k]), s = std::sin(b.theta[k]);
+    // A pebble moves by at most |v| dt + |omega| dt |offset| in a step (the chord of its arc is
+    // shorter than the arc); |ox| + |oy| >= |offset|.
+    const double speed = std::sqrt(b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]);
     for (std::int32_t i = first; i < first + b.disc_count[k]; ++i) {
       const double ox = c * d.offset_x[i] - s * d.offset_y[i];
       const double oy = s * d.offset_x[i] + c * d.offset_y[i];
+      pebble_speed =
+          std::max(pebble_speed, speed + std::abs(b.omega[k]) * (std::abs(ox) + std::abs(oy)));
       d.x[i] = b.x[k] + ox;
       d.y[i] = b.y[k] + oy;
       // Rigid-body velocity of the pebble centre: v + omega x offset.
@@ -113,17 +133,27 @@ long integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger
     ledger.damping += 0.5 * dt * damped;
     ledger.applied_work += 0.5 * dt * applied;
     ledger.prescribed_work += dt * prescribed;
-    ledger.strain_to_half_step -= 0.5 * dt * power;
   }
-  return bad == static_cast<long>(n) ? -1 : bad;
+  StepMotion motion;
+  motion.max_displacement = dt * std::max(std::sqrt(disc_speed2), pebble_speed);
+  if (!std::isfinite(position_sum))
+    for (std::size_t k = 0; k < n; ++k)
+      if (!std::isfinite(b.x[k] + b.y[k] + b.theta[k])) {
+        motion.bad_body = static_cast<long>(k);
+        break;
+      }
+  return motion;
 }
 
 }  // namespace
 
-long integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger) {
-  if (ledger) return integrate_bodies<true>(b, d, dt, alpha, *ledger);
+StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger) {
   EnergyLedger unused;
-  return integrate_bodies<false>(b, d, dt, alpha, unused);
+  if (alpha != 0)
+    return ledger ? integrate_bodies<true, true>(b, d, dt, alpha, *ledger)
+                  : integrate_bodies<false, true>(b, d, dt, alpha, unused);
+  return ledger ? integrate_bodies<true, false>(b, d, dt, alpha, *ledger)
+                : integrate_bodies<false, false>(b, d, dt, alpha, unused);
 }
 
 }  // namespace cdem::dem

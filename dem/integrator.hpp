@@ -29,10 +29,15 @@ void gather_body_forces(Bodies& bodies, const Discs& discs);
 // for the rotation. Prescribed bodies keep their velocity. Then carries the body motion to the
 // discs (pebble positions from their offsets). With a ledger, adds to it the energy removed by
 // damping and the work of the applied loads (force . mean of the two half-step velocities . dt,
-// which is exactly what the kinetic energy at the half step sees) and of the prescribed bodies
-// (measured on the reference specimen: about 55 more instructions per body, +9 % of the
-// instructions of a cycle); nullptr skips them. Returns the first body whose state became
-// non-finite, or -1.
-long integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger);
+// which is exactly what the kinetic energy at the half step sees) and of the prescribed bodies;
+// nullptr skips them (they were 17 % of the integration's CPU time with the contact power,
+// which strain_to_half_step now forms only when read; docs/performance.md). Returns the
+// first non-finite body and a bound on how far any disc moved (the neighbour list's rebuild
+// check sums it).
+struct StepMotion {
+  long bad_body = -1;           // the first body whose state became non-finite, or -1
+  double max_displacement = 0;  // m, bound on the largest disc displacement of the step
+};
+StepMotion integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger);
 
 }  // namespace cdem::dem

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dem/linear_contact.hpp"
 
@@ -53,24 +54,46 @@ void split_keys(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t
 
 }  // namespace
 
+namespace {
+
+// m, largest displacement of a wall's first end point since the reference.
+double largest_wall_move(const Walls& walls, const std::vector<double>& ax0,
+                         const std::vector<double>& ay0) {
+  double move2 = 0;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const double dx = walls.ax[w] - ax0[w], dy = walls.ay[w] - ay0[w];
+    move2 = std::max(move2, dx * dx + dy * dy);
+  }
+  return std::sqrt(move2);
+}
+
+// A disc-disc gap closes by at most 2 (move + growth), a disc-wall gap by move + growth + wall
+// move; either must stay below the skin.
+double gap_closure(double disc, double wall) {
+  return std::max(2.0 * disc, disc + wall);
+}
+
+}  // namespace
+
 bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls) const {
+  double moved = std::numeric_limits<double>::infinity();
+  return needs_rebuild(discs, walls, moved);
+}
+
+bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls,
+                                 double& moved_bound) const {
   const std::size_t n = discs.size();
   if (x0_.size() != n || wall_ax0_.size() != walls.size()) return true;
+  const double wall = largest_wall_move(walls, wall_ax0_, wall_ay0_);
+  if (gap_closure(moved_bound, wall) <= skin * (1 - 1e-6)) return false;
   double move2 = 0, grow = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double dx = discs.x[i] - x0_[i], dy = discs.y[i] - y0_[i];
     move2 = std::max(move2, dx * dx + dy * dy);
     grow = std::max(grow, discs.r[i] - r0_[i]);
   }
-  double wall_move2 = 0;
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    const double dx = walls.ax[w] - wall_ax0_[w], dy = walls.ay[w] - wall_ay0_[w];
-    wall_move2 = std::max(wall_move2, dx * dx + dy * dy);
-  }
-  // A disc-disc gap closes by at most 2 (move + growth), a disc-wall gap by move + growth +
-  // wall move; either must stay below the skin.
-  const double disc = std::sqrt(move2) + grow;
-  return std::max(2.0 * disc, disc + std::sqrt(wall_move2)) > skin;
+  if (std::isfinite(moved_bound)) moved_bound = std::sqrt(move2);
+  return gap_closure(std::sqrt(move2) + grow, wall) > skin;
 }
 
 void NeighborList::build_grid(const Discs& discs) {

@@ -73,6 +73,11 @@ class NeighborList {
   // pair not in the list could be touching: 2 (max displacement + max radius growth) > skin, or
   // that plus the largest wall displacement > skin for disc-wall pairs. Walls only translate.
   bool needs_rebuild(const Discs& discs, const Walls& walls) const;
+  // The same answer, given `moved_bound`, a bound on the largest disc displacement since the
+  // last build (m), finite only if no radius has changed since: while the bound alone rules a
+  // rebuild out (with a margin of 1e-6 of the skin for rounding), the pass over every disc is
+  // skipped; when the pass runs, a finite bound is tightened to the measured displacement.
+  bool needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound) const;
   void build(const Discs& discs, const Walls& walls);
 
  private:

@@ -93,6 +93,7 @@ void World::add_container_walls(const Container& mould, int polygon_sides) {
 
 void World::scale_radii(double factor) {
   for (double& r : discs.r) r *= factor;
+  moved_bound_ = std::numeric_limits<double>::infinity();
   energy.reference_pending = true;
   const double f2 = factor * factor;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -133,6 +134,7 @@ void World::rebuild() {
     }
   }
   neighbors.build(discs, walls);
+  moved_bound_ = 0;
   update_time_step();
   rebuild_pending_ = false;
 }
@@ -210,7 +212,7 @@ void World::update_time_step() {
 }
 
 void World::refresh_neighbors() {
-  if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls)) rebuild();
+  if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls, moved_bound_)) rebuild();
 }
 
 void World::fail(const std::string& what, long disc) const {
@@ -237,7 +239,8 @@ void World::account_wall_work() {
     energy.last_dy[w] = dy;
   }
   energy.wall_work += work;
-  energy.strain_to_half_step = -0.5 * work_this_step;  // integrate adds the bodies' share
+  energy.wall_strain_to_half_step = -0.5 * work_this_step;
+  energy.last_step = dt_;
 }
 
 // Every energy_check_interval steps (an O(bodies + pairs) pass, about 1/6 of a cycle on the
@@ -261,7 +264,7 @@ void World::check_energy() {
 }
 
 void World::step() {
-  if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls)) rebuild();
+  if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls, moved_bound_)) rebuild();
   last_pass_ =
       compute_contact_forces(discs, walls, neighbors, pair_forces, wall_forces, settings.laws,
                              settings.bonds, dt_, settings.max_overlap_ratio, settings.threads);
@@ -290,9 +293,11 @@ void World::step() {
   if (!servos.empty()) update_wall_servos(*this);
   account_wall_work();
   gather_body_forces(bodies, discs);
-  const long bad = integrate(bodies, discs, dt_, settings.local_damping,
-                             settings.energy_tracking ? &energy : nullptr);
-  if (bad >= 0) fail("has a non-finite position or velocity", bodies.first_disc[bad]);
+  const StepMotion motion = integrate(bodies, discs, dt_, settings.local_damping,
+                                      settings.energy_tracking ? &energy : nullptr);
+  if (motion.bad_body >= 0)
+    fail("has a non-finite position or velocity", bodies.first_disc[motion.bad_body]);
+  moved_bound_ += motion.max_displacement;
   check_energy();
   move_walls(walls, dt_);
   time_ += dt_;

@@ -3,6 +3,7 @@
 // one cycle at a time. Data are public structure-of-arrays (read them freely; change positions
 // or radii only through the functions below so the neighbour list stays valid).
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -44,10 +45,10 @@ struct WorldSettings {
   // when the scheme creates energy. A stable run stays within O(dt^2) of a factor 1.
   double runaway_energy_factor = 2.0;
   long energy_check_interval = 100;
-  // Energy bookkeeping in the integration (damping, applied and prescribed work). Off saves
-  // about 9 % of the instructions of a cycle (callgrind, reference specimen; not resolvable in
-  // wall time on the shared test machine) and switches the runaway check off too (it needs the
-  // work put in); the wall work is booked either way.
+  // Energy bookkeeping in the integration (damping, applied and prescribed work). Off saves a
+  // few % of a cycle (its terms were 17 % of the integration's time, which is about 15 % of a
+  // cycle; docs/performance.md) and switches the runaway check off too (it needs the work put
+  // in); the wall work is booked either way.
   bool energy_tracking = true;
 };
 
@@ -131,6 +132,10 @@ class World {
   double friction_dissipated_ = 0, bond_energy_released_ = 0;  // J/m
   long steps_ = 0;
   bool rebuild_pending_ = true;
+  // m, bound on the largest disc displacement since the last neighbour build, summed from the
+  // integration's speeds; infinite until the first build and after a radius change. Lets the
+  // rebuild check skip its pass over every disc while the bound alone rules a rebuild out.
+  double moved_bound_ = std::numeric_limits<double>::infinity();
   ForcePassResult last_pass_;
   std::vector<double> stiffness_, rot_stiffness_;  // per body, scratch of update_time_step
 };

@@ -88,6 +88,46 @@ TEST(NeighborList, ShearStateSurvivesRebuilds) {
   EXPECT_NEAR(w.bodies.fy[1], fs, 1e-12 * fs);
 }
 
+// The rebuild check skips its pass over the discs while the integration's displacement bound
+// rules a rebuild out (dem/neighbor_list.hpp). Free discs crossing each other at random and a
+// fast-spinning clump (its pebbles move on arcs, faster than any free disc) must still never touch
+// a disc outside the list, through many rebuilds.
+TEST(NeighborList, NoTouchingPairIsMissedBetweenRebuilds) {
+  WorldSettings s;
+  s.fixed_time_step = 1e-6;
+  s.local_damping = 0;
+  s.max_overlap_ratio = INFINITY;
+  s.energy_tracking = false;
+  s.laws.fill(LinearContact{1e3, 1.0, 0.5});  // soft: the discs fly through each other
+  World w(s);
+  cdem::Rng rng(11);
+  for (int k = 0; k < 150; ++k) {
+    const int b =
+        w.add_disc(rng.uniform(0, 0.02), rng.uniform(0, 0.02), rng.uniform(2e-4, 5e-4), 2000);
+    w.set_body_velocity(b, rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), 0);
+  }
+  const int clump =
+      w.add_clump(0.01, 0.01, 1e-3, 1e-9, {0.008, 0.012}, {0.01, 0.01}, {4e-4, 4e-4}, {1, 1});
+  // The pebbles, at 2 m/s on a 4 mm circle, are the fastest discs: they set the bound.
+  w.set_body_velocity(clump, 0, 0, 1000.0);
+  const auto& d = w.discs;
+  long checked = 0;
+  for (int n = 0; n < 600; ++n) {
+    w.step();
+    for (std::size_t i = 0; i < d.size(); ++i)
+      for (std::size_t j = i + 1; j < d.size(); ++j) {
+        if (d.body[i] == d.body[j]) continue;
+        if (std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) >= d.r[i] + d.r[j]) continue;
+        ++checked;
+        ASSERT_TRUE(std::binary_search(w.neighbors.keys.begin(), w.neighbors.keys.end(),
+                                       cdem::dem::pair_key(i, j)))
+            << "step " << n << " pair " << i << ' ' << j;
+      }
+  }
+  EXPECT_GT(checked, 1000);
+  EXPECT_GT(w.neighbors.build_count, 10);  // a rebuild every ~20 steps
+}
+
 TEST(NeighborList, OpeningContactForgetsItsShear) {
   const double dt = 1e-7;
   World w(frictional(dt));
