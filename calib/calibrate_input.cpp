@@ -361,8 +361,9 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
     in.fast.max_refinements = static_cast<int>(fast->integer_or("max_refinements", 1, 0, 10));
   }
   if (const auto paper = root.optional_table("paper")) {
-    paper->reject_unknown_keys(
-        {"screen", "surface", "significance", "max_factors", "optimizer", "optimizer_seed"});
+    paper->reject_unknown_keys({"screen", "surface", "significance", "max_factors", "optimizer",
+                                "optimizer_seed", "max_refinements"});
+    in.paper.max_refinements = static_cast<int>(paper->integer_or("max_refinements", 1, 0, 10));
     in.paper.screen =
         paper->string_or("screen", "plackett_burman", {"plackett_burman", "taguchi_l27"});
     in.paper.surface =

@@ -68,6 +68,10 @@ struct PaperSettings {
   int max_factors = 5;                        // factors carried into the response-surface design
   Optimizer optimizer = Optimizer::kGenetic;
   unsigned optimizer_seed = 20240601;
+  // Inversions of the bias-corrected surfaces after a verification that misses (each costs
+  // one verification): the surfaces were fitted on one specimen, the verification mean
+  // measures how far the others sit from it.
+  int max_refinements = 1;
 };
 
 struct CalibrationInput {

@@ -89,6 +89,9 @@ class AnalyticModel : public Simulator {
   // tensile strength, its cohesion / 3 or twice the ITZ tensile strength, whichever is least):
   // one strength raised alone cannot raise sigma_u past the others.
   bool weakest_link = false;
+  // Strength of every specimen but the calibration one, relative to it (1 = no bias): the
+  // calibration specimen on the weak side of the others, as seed 1 of the C30 sample is.
+  double other_specimens_strength = 1.0;
   std::vector<SimulationOutcome> run(const std::string&,
                                      const std::vector<SimulationPoint>& batch) override {
     std::vector<SimulationOutcome> out;
@@ -111,7 +114,9 @@ class AnalyticModel : public Simulator {
       SimulationOutcome o;
       o.ok = true;
       o.simulations = 1;
-      const double strength = weakest_link ? std::min({sm, cm / 3, 2 * si}) : sm;
+      const double strength =
+          (weakest_link ? std::min({sm, cm / 3, 2 * si}) : sm) *
+          (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_strength);
       o.responses[0] = scatter * 1.17 * std::pow(strength, 0.85) * std::pow(si / 0.5, 0.15) *
                        std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
       o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
@@ -302,6 +307,33 @@ TEST(CalibratePaper, RunsEndToEndOnTheAnalyticModel) {
   ASSERT_TRUE(r.success()) << r.stop_reason;
   for (const auto& s : r.verifications.back().targets)
     EXPECT_LE(std::abs(s.relative_error), 0.05) << target_name(s.target);
+}
+
+TEST(CalibratePaper, CorrectsTheSurfacesByTheVerificationMean) {
+  // The other specimens are 8 % stronger (in sigma_b^0.85) than the one the surfaces are fitted
+  // on: the first verification misses sigma_u by about 7 %; one inversion of the surfaces
+  // aimed at 40 MPa / bias and a second verification meet it.
+  const auto in = read_calibration_input(make_calibration(
+      "paper_refined", "strategy = \"paper\"\n" + kC30Targets + "[paper]\nmax_factors = 4\n"));
+  AnalyticModel model(in);
+  model.other_specimens_strength = 1.08;
+  const auto r = calibrate_paper(in, model);
+  ASSERT_EQ(r.verifications.size(), 2u) << r.stop_reason;
+  EXPECT_FALSE(r.verifications[0].passed);
+  EXPECT_GT(r.verifications[0].targets[0].relative_error, 0.05);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  for (const auto& s : r.verifications.back().targets)
+    EXPECT_LE(std::abs(s.relative_error), 0.02) << target_name(s.target);
+  EXPECT_EQ(r.simulation_count, 12 + 25 + 5 + 5);
+  // With no refinement allowed, the miss is reported, not hidden.
+  const auto once = read_calibration_input(make_calibration(
+      "paper_not_refined",
+      "strategy = \"paper\"\n" + kC30Targets + "[paper]\nmax_factors = 4\nmax_refinements = 0\n"));
+  AnalyticModel model_once(once);
+  model_once.other_specimens_strength = 1.08;
+  const auto r_once = calibrate_paper(once, model_once);
+  EXPECT_EQ(r_once.verifications.size(), 1u);
+  EXPECT_FALSE(r_once.success());
 }
 
 TEST(CalibratePaper, DroppedKeysFollowAKeptKeyOfTheirRole) {
