@@ -55,14 +55,14 @@ velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0
 velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0
 velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0
 velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0
+fast            $ref_r 0.02   1.0         $ref_alpha 0
+balanced        $ref_r 0.01   1.0         $ref_alpha 0
 safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0
 density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2
 density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4
 damping_0.3     $ref_r $ref_v $ref_safety 0.3        0
 r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0
 r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0
-fast            $ref_r 0.05   0.9         $ref_alpha 0
-balanced        $ref_r 0.02   $ref_safety $ref_alpha 0
 r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0
 "
 else
@@ -87,8 +87,8 @@ damping_0.9     $ref_r $ref_v $ref_safety 0.9        0
 r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0
 r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0
 r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0
-fast            $ref_r 0.05   0.9         $ref_alpha 0
-balanced        $ref_r 0.02   $ref_safety $ref_alpha 0
+fast            $ref_r 0.02   1.0         $ref_alpha 0
+balanced        $ref_r 0.01   1.0         $ref_alpha 0
 accurate        $ref_r $ref_v $ref_safety $ref_alpha 0
 "
 fi
