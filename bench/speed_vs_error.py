@@ -113,7 +113,7 @@ def table(rows):
     return "\n".join(lines) + "\n"
 
 
-def plot(rows, path):
+def plot(rows, path, title):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -140,7 +140,7 @@ def plot(rows, path):
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
-    fig.suptitle("Speed against error, reduced C30 UCS (mean over seeds, bars = seed scatter)",
+    fig.suptitle(f"Speed against error, {title} (mean over seeds, bars = seed scatter)",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(path)
@@ -151,6 +151,7 @@ def main():
     parser.add_argument("out_dir")
     parser.add_argument("--table", help="write the markdown table here (default: stdout)")
     parser.add_argument("--plot", help="write the PNG plot here")
+    parser.add_argument("--title", default="C30 UCS", help="what was swept, for the plot title")
     args = parser.parse_args()
     rows = analyse(load(args.out_dir))
     text = table(rows)
@@ -160,7 +161,7 @@ def main():
     else:
         sys.stdout.write(text)
     if args.plot:
-        plot(rows, args.plot)
+        plot(rows, args.plot, args.title)
 
 
 if __name__ == "__main__":
