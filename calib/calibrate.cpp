@@ -5,6 +5,7 @@
 #include "calib/calibrate_campaign.hpp"
 #include "calib/calibrate_fast.hpp"
 #include "calib/calibrate_paper.hpp"
+#include "calib/calibrate_plots.hpp"
 #include "calib/calibrate_report.hpp"
 #include "core/atomic_output.hpp"
 
@@ -38,7 +39,14 @@ CalibrateOutcome write_calibration(const CalibrationInput& input, CalibrationRes
   } else {
     out.materials.clear();
   }
-  write_text_atomically(out.report, calibration_report_markdown(input, result));
+  std::string report = calibration_report_markdown(input, result);
+  const auto plots = write_calibration_plots(input, result, output_dir);
+  if (!plots.empty()) {
+    report += "\n## Plots\n\n";
+    for (const auto& p : plots)
+      report += "![" + p.stem().string() + "](" + p.filename().string() + ")\n\n";
+  }
+  write_text_atomically(out.report, report);
   write_text_atomically(output_dir / "report.json",
                         calibration_report_json(input, result).dump(2) + "\n");
   out.result = std::move(result);

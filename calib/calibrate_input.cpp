@@ -47,6 +47,10 @@ const char* target_name(CalibrationTarget target) {
 const char* target_unit(CalibrationTarget target) {
   return info(target).unit;
 }
+std::string target_with_unit(CalibrationTarget target) {
+  const std::string unit = target_unit(target);
+  return std::string(target_name(target)) + (unit.empty() ? "" : " (" + unit + ")");
+}
 const char* target_summary_field(CalibrationTarget target) {
   return info(target).summary_field;
 }

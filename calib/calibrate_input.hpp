@@ -24,6 +24,8 @@ inline constexpr int kCalibrationTargetCount = 4;
 
 const char* target_name(CalibrationTarget target);  // "sigma_u", "E", "nu", "sigma_t"
 const char* target_unit(CalibrationTarget target);  // "MPa", "GPa", "", "MPa"
+// "sigma_u (MPa)", "nu": the name with its unit, for tables and axes.
+std::string target_with_unit(CalibrationTarget target);
 // The field of `cdem run --summary` that measures the target.
 const char* target_summary_field(CalibrationTarget target);
 bool target_needs_brazilian(CalibrationTarget target);

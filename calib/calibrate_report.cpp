@@ -28,11 +28,6 @@ std::string percent(double x, bool sign = true) {
   return buf;
 }
 
-std::string with_unit(CalibrationTarget t) {
-  const std::string unit = target_unit(t);
-  return std::string(target_name(t)) + (unit.empty() ? "" : " (" + unit + ")");
-}
-
 const char* strategy_name(CalibrationStrategy s) {
   return s == CalibrationStrategy::Fast ? "fast" : "paper";
 }
@@ -48,8 +43,8 @@ void verification_table(std::ostringstream& md, const Verification& v, double to
   md << "| target | target value | mean | SD | CV | relative error | runs |\n"
         "|---|---|---|---|---|---|---|\n";
   for (const auto& s : v.targets)
-    md << "| " << with_unit(s.target) << " | " << fixed(s.target_value) << " | " << fixed(s.mean)
-       << " | " << fixed(s.sd, 3) << " | " << percent(s.cv, false) << " | "
+    md << "| " << target_with_unit(s.target) << " | " << fixed(s.target_value) << " | "
+       << fixed(s.mean) << " | " << fixed(s.sd, 3) << " | " << percent(s.cv, false) << " | "
        << percent(s.relative_error) << " | " << s.values.size() << " |\n";
   md << "\nPer specimen:\n\n";
   for (std::size_t i = 0; i < v.seeds.size(); ++i) {
@@ -97,7 +92,7 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
 
   md << "## Targets\n\n| target | value |\n|---|---|\n";
   for (const auto& t : input.targets)
-    md << "| " << with_unit(t.target) << " | " << fixed(t.value) << " |\n";
+    md << "| " << target_with_unit(t.target) << " | " << fixed(t.value) << " |\n";
 
   md << "\n## Parameters\n\n| key | role | lower | upper | start | result |\n"
         "|---|---|---|---|---|---|\n";
@@ -113,7 +108,7 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
     md << "\n## Out of reach\n\n| target | target value | closest reached | why |\n"
           "|---|---|---|---|\n";
     for (const auto& o : r.out_of_reach)
-      md << "| " << with_unit(o.target) << " | " << fixed(o.target_value) << " | "
+      md << "| " << target_with_unit(o.target) << " | " << fixed(o.target_value) << " | "
          << fixed(o.closest) << " | " << o.why << " |\n";
   }
 
@@ -139,7 +134,7 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
   if (r.strategy == CalibrationStrategy::Paper && !r.screening.empty()) {
     md << "\n## Screening (" << input.paper.screen << ")\n\n";
     for (const auto& a : r.screening) {
-      md << "### " << with_unit(a.target) << "\n\n";
+      md << "### " << target_with_unit(a.target) << "\n\n";
       if (a.anova) md << "ANOVA of the main effects:\n\n```\n" << a.anova->format() << "```\n\n";
       md << "Range analysis:\n\n```\n" << a.range.format() << "```\n\n";
     }
@@ -165,7 +160,7 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
     md << "\n## Response surfaces (" << input.paper.surface << ", quadratic)\n\n";
     for (const auto& s : r.surfaces) {
       const auto& f = s.surface;
-      md << "### " << with_unit(s.target) << "\n\nR2 = " << fixed(f.r_squared(), 5)
+      md << "### " << target_with_unit(s.target) << "\n\nR2 = " << fixed(f.r_squared(), 5)
          << ", adjusted R2 = " << fixed(f.adjusted_r_squared(), 5) << ", " << f.runs()
          << " runs, residual df " << f.residual_df() << ".\n\n"
          << "| term (coded) | coefficient | p |\n|---|---|---|\n";
@@ -197,7 +192,7 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
 
   md << "\n## Every simulation\n\n| # | stage | what | seed | status |";
   for (const auto& p : input.parameters) md << " `" << p.key << "` |";
-  for (const auto& t : input.targets) md << " " << with_unit(t.target) << " |";
+  for (const auto& t : input.targets) md << " " << target_with_unit(t.target) << " |";
   md << "\n|---|---|---|---|---|";
   for (std::size_t j = 0; j < input.parameters.size() + input.targets.size(); ++j) md << "---|";
   md << "\n";

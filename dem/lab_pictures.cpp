@@ -8,49 +8,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/atomic_output.hpp"
+#include "core/png_drawing.hpp"
 
 namespace cdem::dem {
-
-namespace {
-
-// Ends the drawing: releases the context, writes the surface atomically, and releases the
-// surface whether or not the write succeeded.
-void finish_png(cairo_t* cr, cairo_surface_t* surface, const std::filesystem::path& png) {
-  cairo_destroy(cr);
-  AtomicOutput out(png);
-  const cairo_status_t status = cairo_surface_write_to_png(surface, out.temp_path().c_str());
-  cairo_surface_destroy(surface);
-  if (status != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error("cannot write " + png.string() + ": " +
-                             cairo_status_to_string(status));
-  out.commit();
-}
-
-// A "nice" tick step (1, 2 or 5 x 10^k) giving about `count` ticks over `span`.
-double tick_step(double span, int count) {
-  const double raw = span / count;
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  for (const double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * p >= raw) return m * p;
-  return 10 * p;
-}
-
-void text(cairo_t* cr, double x, double y, const std::string& s, double align_x = 0.5,
-          double align_y = 0.5) {
-  cairo_text_extents_t e;
-  cairo_text_extents(cr, s.c_str(), &e);
-  cairo_move_to(cr, x - align_x * e.width - e.x_bearing, y - align_y * e.height - e.y_bearing);
-  cairo_show_text(cr, s.c_str());
-}
-
-std::string format(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
-}
-
-}  // namespace
 
 void draw_stress_strain_png(const LabHistory& h, LabTestType type, const std::filesystem::path& png,
                             int width_px, int height_px) {
@@ -88,7 +48,7 @@ void draw_stress_strain_png(const LabHistory& h, LabTestType type, const std::fi
     cairo_line_to(cr, px(x), top + ph);
     cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    text(cr, px(x), top + ph + 16, format(x));
+    draw_text(cr, px(x), top + ph + 16, tick_label(x));
   }
   for (double y = 0; y <= ymax; y += ys) {
     cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
@@ -96,21 +56,22 @@ void draw_stress_strain_png(const LabHistory& h, LabTestType type, const std::fi
     cairo_line_to(cr, left + pw, py(y));
     cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    text(cr, left - 8, py(y), format(y), 1.0);
+    draw_text(cr, left - 8, py(y), tick_label(y), 1.0);
   }
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_rectangle(cr, left, top, pw, ph);
   cairo_stroke(cr);
-  text(cr, left + 0.5 * pw, height_px - 22,
-       "strain (1e-3): axial (right), lateral (left = extension)");
+  draw_text(cr, left + 0.5 * pw, height_px - 22,
+            "strain (1e-3): axial (right), lateral (left = extension)");
   cairo_save(cr);
   cairo_translate(cr, 24, top + 0.5 * ph);
   cairo_rotate(cr, -M_PI / 2);
-  text(cr, 0, 0,
-       type == LabTestType::DirectTension ? "axial tensile stress (MPa)" : "axial stress (MPa)");
+  draw_text(
+      cr, 0, 0,
+      type == LabTestType::DirectTension ? "axial tensile stress (MPa)" : "axial stress (MPa)");
   cairo_restore(cr);
   cairo_set_font_size(cr, 16);
-  text(cr, left + 0.5 * pw, 24, std::string(lab_test_name(type)) + " test");
+  draw_text(cr, left + 0.5 * pw, 24, std::string(lab_test_name(type)) + " test");
 
   const auto curve = [&](const std::vector<double>& strain, double r, double g, double b) {
     cairo_set_source_rgb(cr, r, g, b);
@@ -128,9 +89,9 @@ void draw_stress_strain_png(const LabHistory& h, LabTestType type, const std::fi
   curve(h.lateral_strain, 0.85, 0.2, 0.1);
   cairo_set_font_size(cr, 14);
   cairo_set_source_rgb(cr, 0.1, 0.3, 0.8);
-  text(cr, left + pw - 10, top + 20, "axial", 1.0);
+  draw_text(cr, left + pw - 10, top + 20, "axial", 1.0);
   cairo_set_source_rgb(cr, 0.85, 0.2, 0.1);
-  text(cr, left + pw - 10, top + 40, "lateral", 1.0);
+  draw_text(cr, left + pw - 10, top + 40, "lateral", 1.0);
   finish_png(cr, surface, png);
 }
 
@@ -192,7 +153,7 @@ void draw_crack_map_png(const Specimen& s, const std::vector<Crack>& cracks,
       cairo_arc(cr, lx + 6, ly, 5, 0, 2 * M_PI);
       cairo_fill(cr);
       cairo_set_source_rgb(cr, 0, 0, 0);
-      text(cr, lx + 16, ly, names[m][c], 0.0);
+      draw_text(cr, lx + 16, ly, names[m][c], 0.0);
       ly += 0.04 * hp;
     }
   finish_png(cr, surface, png);

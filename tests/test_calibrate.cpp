@@ -10,6 +10,7 @@
 #include "calib/calibrate.hpp"
 #include "calib/calibrate_fast.hpp"
 #include "calib/calibrate_paper.hpp"
+#include "calib/calibrate_plots.hpp"
 #include "calib/calibrate_report.hpp"
 #include "core/input_error.hpp"
 #include "core/input_table.hpp"
@@ -307,6 +308,12 @@ TEST(CalibratePaper, RunsEndToEndOnTheAnalyticModel) {
   ASSERT_TRUE(r.success()) << r.stop_reason;
   for (const auto& s : r.verifications.back().targets)
     EXPECT_LE(std::abs(s.relative_error), 0.05) << target_name(s.target);
+  // One picture of each target's surface.
+  const auto dir = cdem::test::scratch_dir("calibrate", "paper_plots");
+  const auto plots = write_calibration_plots(in, r, dir);
+  ASSERT_EQ(plots.size(), 3u);
+  for (const auto& p : plots) EXPECT_GT(std::filesystem::file_size(p), 1000u) << p;
+  EXPECT_EQ(plots[0].filename(), "surface_sigma_u.png");
 }
 
 TEST(CalibratePaper, CorrectsTheSurfacesByTheVerificationMean) {
@@ -401,6 +408,11 @@ TEST(CalibrateReport, WritesAMaterialFileTheMaterialTableReads) {
   EXPECT_NEAR(table.linear[mortar].kappa, x[2], 1e-15);
   const auto json = calibration_report_json(in, out.result);
   EXPECT_EQ(json["simulations"].get<int>(), out.result.simulation_count);
+  // The fast strategy's convergence picture, linked from the report.
+  EXPECT_GT(std::filesystem::file_size(file.parent_path() / "out/convergence.png"), 1000u);
+  std::ifstream report(out.report);
+  const std::string text((std::istreambuf_iterator<char>(report)), {});
+  EXPECT_NE(text.find("(convergence.png)"), std::string::npos);
   EXPECT_TRUE(json["success"].get<bool>());
 }
 

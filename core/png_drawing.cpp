@@ -1,0 +1,44 @@
+#include "core/png_drawing.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "core/atomic_output.hpp"
+
+namespace cdem {
+
+void finish_png(cairo_t* cr, cairo_surface_t* surface, const std::filesystem::path& png) {
+  cairo_destroy(cr);
+  AtomicOutput out(png);
+  const cairo_status_t status = cairo_surface_write_to_png(surface, out.temp_path().c_str());
+  cairo_surface_destroy(surface);
+  if (status != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error("cannot write " + png.string() + ": " +
+                             cairo_status_to_string(status));
+  out.commit();
+}
+
+double tick_step(double span, int count) {
+  const double raw = span / count;
+  const double p = std::pow(10.0, std::floor(std::log10(raw)));
+  for (const double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * p >= raw) return m * p;
+  return 10 * p;
+}
+
+void draw_text(cairo_t* cr, double x, double y, const std::string& s, double align_x,
+               double align_y) {
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, s.c_str(), &e);
+  cairo_move_to(cr, x - align_x * e.width - e.x_bearing, y - align_y * e.height - e.y_bearing);
+  cairo_show_text(cr, s.c_str());
+}
+
+std::string tick_label(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", std::abs(v) < 1e-12 ? 0.0 : v);
+  return buf;
+}
+
+}  // namespace cdem
