@@ -40,8 +40,13 @@ void draw_xy_chart_png(const XyChart& chart, const std::filesystem::path& png, i
   if (!(ymin <= ymax)) ymin = 0, ymax = 1;
   if (xmax - xmin <= 0) xmin -= 0.5, xmax += 0.5;
   if (ymax - ymin <= 0) ymin -= 0.5, ymax += 0.5;
+  if (chart.y_from_zero) {
+    ymin = 0;
+    if (ymax <= 0) ymax = 1;
+  }
   const double xpad = 0.05 * (xmax - xmin), ypad = 0.08 * (ymax - ymin);
-  xmin -= xpad, xmax += xpad, ymin -= ypad, ymax += ypad;
+  xmin -= xpad, xmax += xpad, ymax += ypad;
+  if (!chart.y_from_zero) ymin -= ypad;
 
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_px, height_px);
   cairo_t* cr = cairo_create(surface);

@@ -26,6 +26,7 @@ struct XyChart {
   std::string title, x_label, y_label;
   std::vector<ChartSeries> series;
   std::vector<ChartLine> lines;
+  bool y_from_zero = false;  // the y axis starts at 0 (a quantity that cannot be negative)
 };
 
 // Colour number i of a fixed palette (cycles), for series that need distinct colours.

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/png_drawing.hpp"
+#include "core/xy_chart.hpp"
 
 namespace cdem::dem {
 
@@ -16,83 +17,22 @@ void draw_stress_strain_png(const LabHistory& h, LabTestType type, const std::fi
                             int width_px, int height_px) {
   // Strains in units of 1e-3, stress in MPa, both strains as recorded (contraction positive):
   // axial shortening to the right, lateral extension (negative, a bulging specimen) to the left.
-  double xmin = 0, xmax = 0, ymax = 0;
+  XyChart chart;
+  chart.title = std::string(lab_test_name(type)) + " test";
+  chart.x_label = "strain (1e-3): axial (right), lateral (left = extension)";
+  chart.y_label =
+      type == LabTestType::DirectTension ? "axial tensile stress (MPa)" : "axial stress (MPa)";
+  chart.y_from_zero = true;
+  ChartSeries axial{"axial", {}, {}, {0.1, 0.3, 0.8}, true, false};
+  ChartSeries lateral{"lateral", {}, {}, {0.85, 0.2, 0.1}, true, false};
   for (std::size_t i = 0; i < h.size(); ++i) {
-    xmin = std::min({xmin, 1e3 * h.lateral_strain[i], 1e3 * h.axial_strain[i]});
-    xmax = std::max({xmax, 1e3 * h.lateral_strain[i], 1e3 * h.axial_strain[i]});
-    ymax = std::max(ymax, 1e-6 * h.axial_stress[i]);
+    axial.x.push_back(1e3 * h.axial_strain[i]);
+    lateral.x.push_back(1e3 * h.lateral_strain[i]);
+    axial.y.push_back(1e-6 * h.axial_stress[i]);
+    lateral.y.push_back(1e-6 * h.axial_stress[i]);
   }
-  if (xmax - xmin <= 0) xmax = xmin + 1;
-  if (ymax <= 0) ymax = 1;
-  const double pad = 0.05 * (xmax - xmin);
-  xmin -= pad;
-  xmax += pad;
-  ymax *= 1.08;
-
-  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_px, height_px);
-  cairo_t* cr = cairo_create(surface);
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
-  const double left = 90, right = 30, top = 50, bottom = 70;
-  const double pw = width_px - left - right, ph = height_px - top - bottom;
-  const auto px = [&](double x) { return left + (x - xmin) / (xmax - xmin) * pw; };
-  const auto py = [&](double y) { return top + ph - y / ymax * ph; };
-
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, 14);
-  cairo_set_line_width(cr, 1);
-  const double xs = tick_step(xmax - xmin, 8), ys = tick_step(ymax, 6);
-  for (double x = std::ceil(xmin / xs) * xs; x <= xmax; x += xs) {
-    cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
-    cairo_move_to(cr, px(x), top);
-    cairo_line_to(cr, px(x), top + ph);
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    draw_text(cr, px(x), top + ph + 16, tick_label(x));
-  }
-  for (double y = 0; y <= ymax; y += ys) {
-    cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
-    cairo_move_to(cr, left, py(y));
-    cairo_line_to(cr, left + pw, py(y));
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    draw_text(cr, left - 8, py(y), tick_label(y), 1.0);
-  }
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_rectangle(cr, left, top, pw, ph);
-  cairo_stroke(cr);
-  draw_text(cr, left + 0.5 * pw, height_px - 22,
-            "strain (1e-3): axial (right), lateral (left = extension)");
-  cairo_save(cr);
-  cairo_translate(cr, 24, top + 0.5 * ph);
-  cairo_rotate(cr, -M_PI / 2);
-  draw_text(
-      cr, 0, 0,
-      type == LabTestType::DirectTension ? "axial tensile stress (MPa)" : "axial stress (MPa)");
-  cairo_restore(cr);
-  cairo_set_font_size(cr, 16);
-  draw_text(cr, left + 0.5 * pw, 24, std::string(lab_test_name(type)) + " test");
-
-  const auto curve = [&](const std::vector<double>& strain, double r, double g, double b) {
-    cairo_set_source_rgb(cr, r, g, b);
-    cairo_set_line_width(cr, 2);
-    for (std::size_t i = 0; i < h.size(); ++i) {
-      const double x = px(1e3 * strain[i]);
-      if (i == 0)
-        cairo_move_to(cr, x, py(1e-6 * h.axial_stress[i]));
-      else
-        cairo_line_to(cr, x, py(1e-6 * h.axial_stress[i]));
-    }
-    cairo_stroke(cr);
-  };
-  curve(h.axial_strain, 0.1, 0.3, 0.8);
-  curve(h.lateral_strain, 0.85, 0.2, 0.1);
-  cairo_set_font_size(cr, 14);
-  cairo_set_source_rgb(cr, 0.1, 0.3, 0.8);
-  draw_text(cr, left + pw - 10, top + 20, "axial", 1.0);
-  cairo_set_source_rgb(cr, 0.85, 0.2, 0.1);
-  draw_text(cr, left + pw - 10, top + 40, "lateral", 1.0);
-  finish_png(cr, surface, png);
+  chart.series = {std::move(axial), std::move(lateral)};
+  draw_xy_chart_png(chart, png, width_px, height_px);
 }
 
 void draw_crack_map_png(const Specimen& s, const std::vector<Crack>& cracks,
