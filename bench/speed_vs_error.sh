@@ -172,7 +172,8 @@ export out scale cdem root
 
 # Specimens and references first (density-scaled levels need the reference's step), then the
 # rest level by level, seeds of one level together.
-for seed in $(seq 1 "$seeds"); do run_level reference $ref_r $ref_v $ref_safety $ref_alpha 0 "$seed"; done
+for seed in $(seq 1 "$seeds"); do echo "reference $ref_r $ref_v $ref_safety $ref_alpha 0 $seed"; done |
+  xargs -P "$jobs" -L 1 bash -c 'run_level "$@"' _
 echo "$level_table" | while read -r name r v safety alpha density; do
   [ -z "$name" ] && continue
   echo "$name" | grep -qE -- "$only" || continue

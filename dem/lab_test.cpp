@@ -56,6 +56,7 @@ LabTestControls read_controls(const InputTable& t) {
                          "min_contacts",
                          "bond_gap_ratio",
                          "max_genesis_broken_fraction",
+                         "max_genesis_floating_fraction",
                          "confining_stresses",
                          "preset"});
   LabTestControls c;
@@ -92,6 +93,8 @@ LabTestControls read_controls(const InputTable& t) {
       t.number_or("bond_gap_ratio", c.genesis.bond_gap_ratio, Range::closed(0, 0.1));
   c.genesis.max_broken_fraction = t.number_or("max_genesis_broken_fraction",
                                               c.genesis.max_broken_fraction, Range::closed(0, 1));
+  c.genesis.max_floating_fraction = t.number_or(
+      "max_genesis_floating_fraction", c.genesis.max_floating_fraction, Range::closed(0, 1));
   if (c.type == LabTestType::Biaxial)
     c.confining_stresses = read_confining_stresses(t);
   else if (t.has("confining_stresses"))  // any unit suffix

@@ -13,6 +13,7 @@
 #include "core/input_error.hpp"
 #include "core/specimen_file.hpp"
 #include "dem/lab_test.hpp"
+#include "dem/material_genesis.hpp"
 #include "dem/material_table.hpp"
 #include "dem/result_file.hpp"
 #include "lab_test_fixtures.hpp"
@@ -171,6 +172,48 @@ TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
   // A corrupt HDF5 specimen.
   write_text(dir / "corrupt.h5", "not an HDF5 file");
   EXPECT_THROW(cdem::read_specimen(dir / "corrupt.h5"), InputError);
+}
+
+// Every third mortar disc taken out of a jammed packing: many of the rest lose contacts, the
+// floating removal would delete far more than a jammed packing loses, and the genesis stops
+// naming the key; with the key at 1 the loose specimen is accepted and the loss reported.
+TEST(LabTests, AGenesisThatRemovesTooManyFloatingDiscsStops) {
+  const Specimen& jammed = rectangle_specimen();
+  Specimen loose = jammed;
+  loose.x.clear();
+  loose.y.clear();
+  loose.r.clear();
+  loose.clump.clear();
+  loose.contact_active.clear();
+  long mortar = 0;
+  for (std::size_t i = 0; i < jammed.disc_count(); ++i) {
+    if (jammed.clump[i] < 0 && mortar++ % 3 == 0) continue;
+    loose.x.push_back(jammed.x[i]);
+    loose.y.push_back(jammed.y[i]);
+    loose.r.push_back(jammed.r[i]);
+    loose.clump.push_back(jammed.clump[i]);
+    loose.contact_active.push_back(jammed.contact_active[i]);
+  }
+  const WorldSettings settings;
+  GenesisOptions options;
+  GenesisReport report;
+  const Specimen kept = remove_floating_discs(jammed, settings, options, report);
+  EXPECT_LE(report.floating_area_removed,
+            options.max_floating_fraction * report.mortar_area_in_specimen);
+  try {
+    remove_floating_discs(loose, settings, options, report);
+    ADD_FAILURE() << "a loose specimen passed the genesis";
+  } catch (const cdem::RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("test.max_genesis_floating_fraction"), std::string::npos)
+        << e.what();
+  }
+  options.max_floating_fraction = 1;
+  const Specimen cleaned = remove_floating_discs(loose, settings, options, report);
+  EXPECT_GT(report.floating_area_removed,
+            GenesisOptions{}.max_floating_fraction * report.mortar_area_in_specimen);
+  EXPECT_EQ(static_cast<long>(cleaned.disc_count()),
+            static_cast<long>(loose.disc_count()) - report.floating_removed);
+  EXPECT_GT(kept.disc_count(), cleaned.disc_count());
 }
 
 TEST(LabTests, AFailedRunLeavesNoResultFile) {
