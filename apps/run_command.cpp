@@ -64,6 +64,10 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   g["discs_in_specimen"] = r.genesis.discs_in_specimen;
   g["floating_discs_removed"] = r.genesis.floating_removed;
   g["removal_passes"] = r.genesis.removal_passes;
+  g["floating_area_fraction"] =
+      r.genesis.mortar_area_in_specimen > 0
+          ? r.genesis.floating_area_removed / r.genesis.mortar_area_in_specimen
+          : 0.0;
   g["discs"] = r.genesis.discs;
   g["relaxation_steps"] = r.genesis.relaxation_steps;
   g["relaxation_unbalanced_ratio"] = r.genesis.relaxation_unbalanced_ratio;
