@@ -47,49 +47,59 @@ out=$(cd "$out" && pwd)
 ref_r=0.5 ref_v=0.005 ref_safety=0.8 ref_alpha=0.7
 
 # level name, R_mean (mm), platen velocity (m/s), safety, damping, density-scaling factor (the
-# scaled step as a multiple of the reference run's automatic step; 0 = off). Order = run order.
+# scaled step as a multiple of the reference run's automatic step, through the absolute key
+# scaled_time_step; 0 = off), relative density-scaling factor (test key
+# density_scaling_step_factor, the presets' way; 0 = off). Order = run order.
 if [ "$levels" = reduced ]; then
   level_table="
-reference       $ref_r $ref_v $ref_safety $ref_alpha 0
-velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0
-velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0
-velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0
-velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0
-fast            $ref_r 0.02   1.0         $ref_alpha 0
-balanced        $ref_r 0.01   1.0         $ref_alpha 0
-safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0
-density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2
-density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4
-damping_0.3     $ref_r $ref_v $ref_safety 0.3        0
-r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0
-r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0
-r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0
+reference       $ref_r $ref_v $ref_safety $ref_alpha 0 0
+velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0 0
+velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0 0
+velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0 0
+velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0 0
+fast            $ref_r 0.02   1.0         $ref_alpha 0 0
+balanced        $ref_r 0.01   1.0         $ref_alpha 0 0
+safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0 0
+density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2 0
+density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4 0
+damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
+density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
+density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
+v0.01_rel_x4    $ref_r 0.01   $ref_safety $ref_alpha 0 4
+v0.02_rel_x4    $ref_r 0.02   $ref_safety $ref_alpha 0 4
+r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
+r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
+r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0 0
 "
 else
   level_table="
-reference       $ref_r $ref_v $ref_safety $ref_alpha 0
-velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0
-velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0
-velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0
-velocity_0.1    $ref_r 0.1    $ref_safety $ref_alpha 0
-velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0
-safety_0.4      $ref_r $ref_v 0.4         $ref_alpha 0
-safety_0.6      $ref_r $ref_v 0.6         $ref_alpha 0
-safety_0.9      $ref_r $ref_v 0.9         $ref_alpha 0
-safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0
-density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2
-density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4
-density_x8      $ref_r $ref_v $ref_safety $ref_alpha 8
-damping_0.1     $ref_r $ref_v $ref_safety 0.1        0
-damping_0.3     $ref_r $ref_v $ref_safety 0.3        0
-damping_0.5     $ref_r $ref_v $ref_safety 0.5        0
-damping_0.9     $ref_r $ref_v $ref_safety 0.9        0
-r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0
-r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0
-r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0
-fast            $ref_r 0.02   1.0         $ref_alpha 0
-balanced        $ref_r 0.01   1.0         $ref_alpha 0
-accurate        $ref_r $ref_v $ref_safety $ref_alpha 0
+reference       $ref_r $ref_v $ref_safety $ref_alpha 0 0
+velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0 0
+velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0 0
+velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0 0
+velocity_0.1    $ref_r 0.1    $ref_safety $ref_alpha 0 0
+velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0 0
+safety_0.4      $ref_r $ref_v 0.4         $ref_alpha 0 0
+safety_0.6      $ref_r $ref_v 0.6         $ref_alpha 0 0
+safety_0.9      $ref_r $ref_v 0.9         $ref_alpha 0 0
+safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0 0
+density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2 0
+density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4 0
+density_x8      $ref_r $ref_v $ref_safety $ref_alpha 8 0
+density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
+density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
+v0.01_rel_x4    $ref_r 0.01   $ref_safety $ref_alpha 0 4
+v0.02_rel_x4    $ref_r 0.02   $ref_safety $ref_alpha 0 4
+damping_0.1     $ref_r $ref_v $ref_safety 0.1        0 0
+damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
+damping_0.5     $ref_r $ref_v $ref_safety 0.5        0 0
+damping_0.9     $ref_r $ref_v $ref_safety 0.9        0 0
+r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0 0
+r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
+r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
+fast            $ref_r 0.02   1.0         $ref_alpha 0 0
+balanced        $ref_r 0.01   1.0         $ref_alpha 0 0
+accurate        $ref_r $ref_v $ref_safety $ref_alpha 0 0
 "
 fi
 
@@ -135,8 +145,8 @@ PY
   echo "$file"
 }
 
-run_level() {  # name r v safety alpha density_factor seed
-  local name=$1 r=$2 v=$3 safety=$4 alpha=$5 density=$6 seed=$7
+run_level() {  # name r v safety alpha density_factor relative_factor seed
+  local name=$1 r=$2 v=$3 safety=$4 alpha=$5 density=$6 relative=$7 seed=$8
   local dir=$out/runs/$name/seed$seed
   [ -f "$dir/summary.json" ] && return 0
   mkdir -p "$dir"
@@ -160,6 +170,7 @@ run_level() {  # name r v safety alpha density_factor seed
       echo "density_scaling = true"
       echo "scaled_time_step_s = $dt"
     fi
+    [ "$relative" != 0 ] && echo "density_scaling_step_factor = $relative"
   } > "$dir/test.toml"
   if ! "$cdem" run "$dir/test.toml" --summary "$dir/summary.json" -q > /dev/null 2> "$dir/stderr.txt"; then
     echo "speed_vs_error: $name seed $seed failed: $(tail -1 "$dir/stderr.txt")" >&2
@@ -172,11 +183,11 @@ export out scale cdem root
 
 # Specimens and references first (density-scaled levels need the reference's step), then the
 # rest level by level, seeds of one level together.
-for seed in $(seq 1 "$seeds"); do echo "reference $ref_r $ref_v $ref_safety $ref_alpha 0 $seed"; done |
+for seed in $(seq 1 "$seeds"); do echo "reference $ref_r $ref_v $ref_safety $ref_alpha 0 0 $seed"; done |
   xargs -P "$jobs" -L 1 bash -c 'run_level "$@"' _
-echo "$level_table" | while read -r name r v safety alpha density; do
+echo "$level_table" | while read -r name r v safety alpha density relative; do
   [ -z "$name" ] && continue
   echo "$name" | grep -qE -- "$only" || continue
-  for seed in $(seq 1 "$seeds"); do echo "$name $r $v $safety $alpha $density $seed"; done
+  for seed in $(seq 1 "$seeds"); do echo "$name $r $v $safety $alpha $density $relative $seed"; done
 done | xargs -P "$jobs" -L 1 bash -c 'run_level "$@"' _
 echo "speed_vs_error: runs in $out/runs; analyse with bench/speed_vs_error.py $out"

@@ -46,6 +46,7 @@ LabTestControls read_controls(const InputTable& t) {
                          "time_step_safety",
                          "density_scaling",
                          "scaled_time_step",
+                         "density_scaling_step_factor",
                          "history_interval",
                          "snapshot_interval",
                          "max_steps",
@@ -78,6 +79,16 @@ LabTestControls read_controls(const InputTable& t) {
       t.quantity_or("scaled_time_step", Dimension::Time, c.scaled_time_step, Range::positive());
   if (t.has("scaled_time_step") && !c.density_scaling)
     t.fail("scaled_time_step", "only meaningful with density_scaling = true");
+  if (t.has("density_scaling_step_factor")) {
+    if (t.has("scaled_time_step"))
+      t.fail("density_scaling_step_factor",
+             "give either scaled_time_step (absolute) or density_scaling_step_factor (relative)");
+    if (t.has("density_scaling"))
+      t.fail("density_scaling_step_factor", "sets density scaling itself; drop density_scaling");
+    c.density_step_factor = t.number("density_scaling_step_factor", Range::left_open(0, 1000));
+  } else if (t.has("density_scaling") || t.has("scaled_time_step")) {
+    c.density_step_factor = 0;  // the explicit keys override a preset's relative scaling
+  }
   c.history_interval = t.integer_or("history_interval", c.history_interval, 1, 1'000'000'000);
   c.snapshot_interval = t.integer_or("snapshot_interval", c.snapshot_interval, 0, 1'000'000'000);
   c.max_steps = t.integer_or("max_steps", c.max_steps, 1, 1'000'000'000'000);
@@ -310,6 +321,17 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
   return l;
 }
 
+// Relative density scaling (test.density_scaling_step_factor): the automatic step of the true
+// masses with the test's walls in place, times the factor, becomes the scaled step; every body's
+// inertia is then set for it at the next rebuild. Velocities are zero here (end of genesis), so
+// no kinetic energy changes with the masses.
+void scale_density_from_here(World& world, double factor) {
+  world.refresh_neighbors();
+  world.settings.scaled_time_step = factor * world.time_step();
+  world.settings.density_scaling = true;
+  world.invalidate_neighbors();
+}
+
 }  // namespace
 
 LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
@@ -334,6 +356,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   const Extent e = disc_extent(world);
   const Walls platens = make_platens(c, e);
   Loading loading = set_up_loading(world, cleaned, input, platens, e);
+  if (c.density_step_factor > 0) scale_density_from_here(world, c.density_step_factor);
   // Biaxial: side walls, isotropic consolidation at sigma_3, then the platens load from the
   // consolidated state, which becomes the reference of strains, time and steps.
   std::optional<Confinement> confinement;

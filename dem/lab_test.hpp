@@ -40,6 +40,10 @@ struct LabTestControls {
   double time_step_safety = 0.8;
   bool density_scaling = false;
   double scaled_time_step = 1.0;  // s, the step under density scaling
+  // > 0: density scaling with the step set to this multiple of the automatic step the true
+  // masses give at the start of loading (genesis runs with the true masses). A speed knob that
+  // holds for any specimen, unlike scaled_time_step; 0 = off.
+  double density_step_factor = 0;
   long history_interval = 100;    // steps between history records
   long snapshot_interval = 0;     // steps between snapshots of the discs; 0 = none
   long max_steps = 5'000'000;     // bound on the run; reaching it is a RunError

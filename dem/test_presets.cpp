@@ -11,9 +11,9 @@ const std::vector<TestPreset>& test_presets() {
   // scaled step is an absolute time (test key scaled_time_step), which a preset cannot choose
   // for every specimen.
   static const std::vector<TestPreset> presets{
-      {"fast", 0.02, 1.0, false, 0.7},
-      {"balanced", 0.01, 1.0, false, 0.7},
-      {"accurate", 0.005, 0.8, false, 0.7},
+      {"fast", 0.02, 1.0, 0, 0.7},
+      {"balanced", 0.01, 1.0, 0, 0.7},
+      {"accurate", 0.005, 0.8, 0, 0.7},
   };
   return presets;
 }
@@ -31,7 +31,7 @@ void apply_test_preset(const InputTable& test, LabTestControls& controls) {
     if (p.name != name) continue;
     controls.platen_velocity = p.platen_velocity;
     controls.time_step_safety = p.time_step_safety;
-    controls.density_scaling = p.density_scaling;
+    controls.density_step_factor = p.density_step_factor;
     controls.local_damping = p.local_damping;
   }
 }

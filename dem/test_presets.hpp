@@ -14,10 +14,10 @@ namespace cdem::dem {
 
 struct TestPreset {
   std::string name;
-  double platen_velocity;   // m/s, each platen (grip band)
-  double time_step_safety;  // fraction of the critical step
-  bool density_scaling;     // off in every preset (see test_presets.cpp)
-  double local_damping;     // alpha
+  double platen_velocity;      // m/s, each platen (grip band)
+  double time_step_safety;     // fraction of the critical step
+  double density_step_factor;  // test.density_scaling_step_factor; 0 = true masses
+  double local_damping;        // alpha
 };
 
 // The presets, from the fastest to the most accurate.

@@ -76,6 +76,24 @@ std::string contact_bond_materials(double sigma_cn_MPa) {
          "[materials.aggregate]\nlaw = \"linear\"\nemod_GPa = 20\nkratio = 2\nfriction = 1.0\n";
 }
 
+// density_scaling_step_factor = k: the genesis is the true-mass run's, so the loading step is
+// exactly k x the true-mass step; the quasi-static figures stay within a few per cent (the
+// full-size C30 sweep measured -1 % on sigma_u at k = 4, docs/speed_vs_error.md).
+TEST(LabScaling, RelativeDensityScalingMultipliesTheStepAndKeepsTheFigures) {
+  const fs::path dir = scratch_dir("test_lab_scaling", "density");
+  const LabTestResult a =
+      run_lab_test(ucs_specimen(), lab_test_input(dir, ucs_specimen(), kUcs, c30_materials()));
+  const LabTestResult b = run_lab_test(
+      ucs_specimen(), lab_test_input(dir, ucs_specimen(),
+                                     kUcs + "density_scaling_step_factor = 4\n", c30_materials()));
+  EXPECT_DOUBLE_EQ(b.time_step, 4 * a.time_step);
+  EXPECT_EQ(b.genesis.relaxation_steps, a.genesis.relaxation_steps);
+  EXPECT_LT(b.steps, 0.3 * a.steps);
+  EXPECT_NEAR(b.ucs.peak_stress / a.ucs.peak_stress, 1, 0.05);
+  EXPECT_NEAR(b.ucs.young_modulus / a.ucs.young_modulus, 1, 0.03);
+  EXPECT_NEAR(b.ucs.poisson_ratio, a.ucs.poisson_ratio, 0.02);
+}
+
 TEST(LabScaling, ContactBondBrazilianStrengthIsProportionalToSigmaCn) {
   static const Specimen disc = packed_specimen({ContainerShape::Disc, 20e-3, 20e-3}, 8);
   const std::vector<double> sigma_cn{5e6, 10e6, 20e6};  // Pa

@@ -57,7 +57,7 @@ TEST(TestPresets, EachPresetSetsItsKnobs) {
     const LabTestControls c = controls("preset = \"" + p.name + "\"\n");
     EXPECT_DOUBLE_EQ(c.platen_velocity, p.platen_velocity) << p.name;
     EXPECT_DOUBLE_EQ(c.time_step_safety, p.time_step_safety) << p.name;
-    EXPECT_EQ(c.density_scaling, p.density_scaling) << p.name;
+    EXPECT_DOUBLE_EQ(c.density_step_factor, p.density_step_factor) << p.name;
     EXPECT_DOUBLE_EQ(c.local_damping, p.local_damping) << p.name;
   }
 }
@@ -90,7 +90,32 @@ TEST(TestPresets, NoPresetKeepsTheDefaults) {
   EXPECT_DOUBLE_EQ(c.platen_velocity, defaults.platen_velocity);
   EXPECT_DOUBLE_EQ(c.time_step_safety, defaults.time_step_safety);
   EXPECT_EQ(c.density_scaling, defaults.density_scaling);
+  EXPECT_DOUBLE_EQ(c.density_step_factor, defaults.density_step_factor);
   EXPECT_DOUBLE_EQ(c.local_damping, defaults.local_damping);
+}
+
+TEST(TestPresets, RelativeDensityScalingIsOneKeyThatExcludesTheAbsoluteOne) {
+  const LabTestControls c = controls("density_scaling_step_factor = 4\n");
+  EXPECT_DOUBLE_EQ(c.density_step_factor, 4);
+  EXPECT_FALSE(c.density_scaling);  // switched on at the start of loading, not for the genesis
+  const auto refused = [](const std::string& keys) {
+    try {
+      controls(keys);
+    } catch (const cdem::InputError& e) {
+      return std::string(e.what()).find("test.density_scaling_step_factor") != std::string::npos;
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused("density_scaling_step_factor = 0\n"));
+  EXPECT_TRUE(refused("density_scaling_step_factor = 2000\n"));
+  EXPECT_TRUE(refused("density_scaling_step_factor = 4\ndensity_scaling = true\n"));
+  EXPECT_TRUE(refused(
+      "density_scaling_step_factor = 4\ndensity_scaling = true\nscaled_time_step_s = 1e-7\n"));
+  // The absolute keys, written, override a preset's relative factor.
+  const LabTestControls d =
+      controls("preset = \"fast\"\ndensity_scaling = true\nscaled_time_step_s = 1e-7\n");
+  EXPECT_DOUBLE_EQ(d.density_step_factor, 0);
+  EXPECT_TRUE(d.density_scaling);
 }
 
 TEST(TestPresets, AnUnknownNameIsAnInputErrorListingTheAllowedValues) {
