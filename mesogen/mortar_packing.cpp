@@ -218,9 +218,18 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   // normal means nothing and the instability guard (rightly) stops the run.
   const long ramp = std::max(1L, c.expansion_steps);
   const double growth = std::pow(out.expansion_factor, 1.0 / static_cast<double>(ramp));
-  for (long s = 0; s < ramp && world.step_count() < c.max_steps; ++s) {
-    world.scale_radii(growth);
-    world.step();
+  try {
+    for (long s = 0; s < ramp && world.step_count() < c.max_steps; ++s) {
+      world.scale_radii(growth);
+      world.step();
+    }
+  } catch (const RunError& e) {
+    std::ostringstream msg;
+    msg << "mortar packing, radius expansion over " << ramp
+        << " cycles (mortar.expansion_steps): " << e.what()
+        << ". A wide radius range needs a slower expansion: raise "
+        << "mortar.expansion_steps (R_max / R_min = 10 packs with 20,000)";
+    throw RunError(msg.str());
   }
 
   // Cycle at the expanded radii until the violent start has calmed down.

@@ -42,6 +42,7 @@ expect pk_above_one 2 "gradation.p_k" "$(variant pk_above_one 's/^p_k = 0.75/p_k
 expect pk_zero 2 "(0, 1]" "$(variant pk_zero 's/^p_k = 0.75/p_k = 0/')"
 expect specimen_too_small 2 "gradation.d_max" "$(variant specimen_too_small 's/^width_mm = 100/width_mm = 12/')"
 expect unknown_gradation 2 "unknown value 'talbot'" "$(variant unknown_gradation 's/^type = "walraven"/type = "talbot"/')"
+expect expansion_zero 2 "mortar.expansion_steps" "$(variant expansion_zero 's/^porosity = 0.12/porosity = 0.12\nexpansion_steps = 0/')"
 expect misspelt_key 2 "unknown key" "$(variant misspelt_key 's/^porosity = 0.12/porosty = 0.12/')"
 expect bad_unit 2 "unknown unit" "$(variant bad_unit 's/^density_kg_m3 = 2000/density = "2000 furlongs"/')"
 expect toml_syntax 2 "TOML syntax error" "$(variant toml_syntax 's/^seed = 1/seed = = 1/')"
