@@ -16,6 +16,7 @@ std::filesystem::path convergence_plot(const CalibrationInput& input,
   chart.title = "fast strategy: convergence on the calibration specimen";
   chart.x_label = "iteration";
   chart.y_label = "relative error (%)";
+  chart.x_integer = true;
   for (std::size_t t = 0; t < input.targets.size(); ++t) {
     ChartSeries s;
     s.label = target_name(input.targets[t].target);

@@ -60,7 +60,9 @@ void draw_xy_chart_png(const XyChart& chart, const std::filesystem::path& png, i
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 14);
   cairo_set_line_width(cr, 1);
-  const double xs = tick_step(xmax - xmin, 8), ys = tick_step(ymax - ymin, 6);
+  const double xs =
+      chart.x_integer ? std::max(1.0, tick_step(xmax - xmin, 8)) : tick_step(xmax - xmin, 8);
+  const double ys = tick_step(ymax - ymin, 6);
   for (double x = std::ceil(xmin / xs) * xs; x <= xmax; x += xs) {
     cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
     cairo_move_to(cr, px(x), top);

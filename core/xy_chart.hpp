@@ -27,6 +27,7 @@ struct XyChart {
   std::vector<ChartSeries> series;
   std::vector<ChartLine> lines;
   bool y_from_zero = false;  // the y axis starts at 0 (a quantity that cannot be negative)
+  bool x_integer = false;    // x ticks only at whole numbers (iterations, run counts)
 };
 
 // Colour number i of a fixed palette (cycles), for series that need distinct colours.
