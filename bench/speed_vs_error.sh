@@ -65,8 +65,8 @@ density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4 0
 damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
 density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
 density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
-v0.01_rel_x4    $ref_r 0.01   $ref_safety $ref_alpha 0 4
-v0.02_rel_x4    $ref_r 0.02   $ref_safety $ref_alpha 0 4
+combo_v0.01_x4  $ref_r 0.01   $ref_safety $ref_alpha 0 4
+combo_v0.02_x4  $ref_r 0.02   $ref_safety $ref_alpha 0 4
 r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
 r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
 r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0 0
@@ -88,8 +88,8 @@ density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4 0
 density_x8      $ref_r $ref_v $ref_safety $ref_alpha 8 0
 density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
 density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
-v0.01_rel_x4    $ref_r 0.01   $ref_safety $ref_alpha 0 4
-v0.02_rel_x4    $ref_r 0.02   $ref_safety $ref_alpha 0 4
+combo_v0.01_x4  $ref_r 0.01   $ref_safety $ref_alpha 0 4
+combo_v0.02_x4  $ref_r 0.02   $ref_safety $ref_alpha 0 4
 damping_0.1     $ref_r $ref_v $ref_safety 0.1        0 0
 damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
 damping_0.5     $ref_r $ref_v $ref_safety 0.5        0 0
