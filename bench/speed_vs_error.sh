@@ -53,6 +53,10 @@ ref_r=0.5 ref_v=0.005 ref_safety=0.8 ref_alpha=0.7
 if [ "$levels" = reduced ]; then
   level_table="
 reference       $ref_r $ref_v $ref_safety $ref_alpha 0 0
+density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
+density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
+combo_v0.01_x4  $ref_r 0.01   $ref_safety $ref_alpha 0 4
+combo_v0.02_x4  $ref_r 0.02   $ref_safety $ref_alpha 0 4
 velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0 0
 velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0 0
 velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0 0
@@ -63,10 +67,6 @@ safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0 0
 density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2 0
 density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4 0
 damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
-density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
-density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
-combo_v0.01_x4  $ref_r 0.01   $ref_safety $ref_alpha 0 4
-combo_v0.02_x4  $ref_r 0.02   $ref_safety $ref_alpha 0 4
 r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
 r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
 r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0 0
