@@ -64,8 +64,6 @@ velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0 0
 fast            $ref_r 0.02   1.0         $ref_alpha 0 0
 balanced        $ref_r 0.01   1.0         $ref_alpha 0 0
 safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0 0
-density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2 0
-density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4 0
 damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
 r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
 r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
