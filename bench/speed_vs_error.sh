@@ -46,60 +46,40 @@ out=$(cd "$out" && pwd)
 # issue 6), safety 0.8, true inertia, local damping 0.7.
 ref_r=0.5 ref_v=0.005 ref_safety=0.8 ref_alpha=0.7
 
-# level name, R_mean (mm), platen velocity (m/s), safety, damping, density-scaling factor (the
-# scaled step as a multiple of the reference run's automatic step, through the absolute key
+# Columns: set (both = in the reduced and the full sweep, full = the full sweep only), level
+# name, R_mean (mm), platen velocity (m/s), safety, damping, density-scaling factor (the scaled
+# step as a multiple of the reference run's automatic step, through the absolute key
 # scaled_time_step; 0 = off), relative density-scaling factor (test key
 # density_scaling_step_factor, the presets' way; 0 = off). Order = run order.
-if [ "$levels" = reduced ]; then
-  level_table="
-reference       $ref_r $ref_v $ref_safety $ref_alpha 0 0
-density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
-density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
-combo_v0.01_x4  $ref_r 0.01   $ref_safety $ref_alpha 0 4
-combo_v0.02_x4  $ref_r 0.02   $ref_safety $ref_alpha 0 4
-velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0 0
-velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0 0
-velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0 0
-velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0 0
-fast            $ref_r 0.02   1.0         $ref_alpha 0 0
-balanced        $ref_r 0.01   1.0         $ref_alpha 0 0
-safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0 0
-damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
-r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
-r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
-r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0 0
+level_table="
+both reference       $ref_r $ref_v $ref_safety $ref_alpha 0 0
+both density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
+both density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
+both combo_v0.01_x4  $ref_r 0.01   $ref_safety $ref_alpha 0 4
+both combo_v0.02_x4  $ref_r 0.02   $ref_safety $ref_alpha 0 4
+both velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0 0
+both velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0 0
+both velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0 0
+full velocity_0.1    $ref_r 0.1    $ref_safety $ref_alpha 0 0
+both velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0 0
+full safety_0.4      $ref_r $ref_v 0.4         $ref_alpha 0 0
+full safety_0.6      $ref_r $ref_v 0.6         $ref_alpha 0 0
+full safety_0.9      $ref_r $ref_v 0.9         $ref_alpha 0 0
+both safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0 0
+full density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2 0
+full density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4 0
+full density_x8      $ref_r $ref_v $ref_safety $ref_alpha 8 0
+full damping_0.1     $ref_r $ref_v $ref_safety 0.1        0 0
+both damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
+full damping_0.5     $ref_r $ref_v $ref_safety 0.5        0 0
+full damping_0.9     $ref_r $ref_v $ref_safety 0.9        0 0
+both fast            $ref_r 0.02   1.0         $ref_alpha 0 0
+both balanced        $ref_r 0.01   1.0         $ref_alpha 0 0
+full accurate        $ref_r $ref_v $ref_safety $ref_alpha 0 0
+both r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
+both r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
+both r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0 0
 "
-else
-  level_table="
-reference       $ref_r $ref_v $ref_safety $ref_alpha 0 0
-velocity_0.01   $ref_r 0.01   $ref_safety $ref_alpha 0 0
-velocity_0.02   $ref_r 0.02   $ref_safety $ref_alpha 0 0
-velocity_0.05   $ref_r 0.05   $ref_safety $ref_alpha 0 0
-velocity_0.1    $ref_r 0.1    $ref_safety $ref_alpha 0 0
-velocity_0.2    $ref_r 0.2    $ref_safety $ref_alpha 0 0
-safety_0.4      $ref_r $ref_v 0.4         $ref_alpha 0 0
-safety_0.6      $ref_r $ref_v 0.6         $ref_alpha 0 0
-safety_0.9      $ref_r $ref_v 0.9         $ref_alpha 0 0
-safety_1.0      $ref_r $ref_v 1.0         $ref_alpha 0 0
-density_x2      $ref_r $ref_v $ref_safety $ref_alpha 2 0
-density_x4      $ref_r $ref_v $ref_safety $ref_alpha 4 0
-density_x8      $ref_r $ref_v $ref_safety $ref_alpha 8 0
-density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
-density_rel_x8  $ref_r $ref_v $ref_safety $ref_alpha 0 8
-combo_v0.01_x4  $ref_r 0.01   $ref_safety $ref_alpha 0 4
-combo_v0.02_x4  $ref_r 0.02   $ref_safety $ref_alpha 0 4
-damping_0.1     $ref_r $ref_v $ref_safety 0.1        0 0
-damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
-damping_0.5     $ref_r $ref_v $ref_safety 0.5        0 0
-damping_0.9     $ref_r $ref_v $ref_safety 0.9        0 0
-r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0 0
-r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
-r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
-fast            $ref_r 0.02   1.0         $ref_alpha 0 0
-balanced        $ref_r 0.01   1.0         $ref_alpha 0 0
-accurate        $ref_r $ref_v $ref_safety $ref_alpha 0 0
-"
-fi
 
 # The C30 generator input (samples/c30_specimen.toml) with the size and the gradation scaled.
 specimen() {  # R_mean seed -> specimen file
@@ -183,8 +163,9 @@ export out scale cdem root
 # rest level by level, seeds of one level together.
 for seed in $(seq 1 "$seeds"); do echo "reference $ref_r $ref_v $ref_safety $ref_alpha 0 0 $seed"; done |
   xargs -P "$jobs" -L 1 bash -c 'run_level "$@"' _
-echo "$level_table" | while read -r name r v safety alpha density relative; do
+echo "$level_table" | while read -r set name r v safety alpha density relative; do
   [ -z "$name" ] && continue
+  [ "$levels" = reduced ] && [ "$set" = full ] && continue
   echo "$name" | grep -qE -- "$only" || continue
   for seed in $(seq 1 "$seeds"); do echo "$name $r $v $safety $alpha $density $relative $seed"; done
 done | xargs -P "$jobs" -L 1 bash -c 'run_level "$@"' _
