@@ -1,7 +1,7 @@
 #pragma once
 // Speed presets of a lab test: `preset = "fast" | "balanced" | "accurate"` in a test file's
-// [test] table sets every speed knob (platen velocity, time-step safety, density scaling, local
-// damping) at once; a key written in the same table overrides its preset value.
+// [test] table sets every speed knob (platen velocity, time-step safety, relative density
+// scaling, local damping) at once; a key written in the same table overrides its preset value.
 // The values come from the measured speed-vs-error front of docs/speed_vs_error.md, which
 // quotes the time and error of each preset.
 #include <string>
