@@ -50,7 +50,8 @@ ref_r=0.5 ref_v=0.005 ref_safety=0.8 ref_alpha=0.7
 # name, R_mean (mm), platen velocity (m/s), safety, damping, density-scaling factor (the scaled
 # step as a multiple of the reference run's automatic step, through the absolute key
 # scaled_time_step; 0 = off), relative density-scaling factor (test key
-# density_scaling_step_factor, the presets' way; 0 = off). Order = run order.
+# density_scaling_step_factor, the presets' way; 0 = off). A velocity of `preset` runs the
+# test file with `preset = "<name without preset_>"` instead of the knobs. Order = run order.
 level_table="
 both reference       $ref_r $ref_v $ref_safety $ref_alpha 0 0
 both density_rel_x4  $ref_r $ref_v $ref_safety $ref_alpha 0 4
@@ -73,9 +74,11 @@ full damping_0.1     $ref_r $ref_v $ref_safety 0.1        0 0
 both damping_0.3     $ref_r $ref_v $ref_safety 0.3        0 0
 full damping_0.5     $ref_r $ref_v $ref_safety 0.5        0 0
 full damping_0.9     $ref_r $ref_v $ref_safety 0.9        0 0
-both fast            $ref_r 0.02   1.0         $ref_alpha 0 0
-both balanced        $ref_r 0.01   1.0         $ref_alpha 0 0
-full accurate        $ref_r $ref_v $ref_safety $ref_alpha 0 0
+both velocity_0.02_safety_1.0 $ref_r 0.02 1.0 $ref_alpha 0 0
+both velocity_0.01_safety_1.0 $ref_r 0.01 1.0 $ref_alpha 0 0
+both preset_fast     $ref_r preset - - 0 0
+both preset_balanced $ref_r preset - - 0 0
+full preset_accurate $ref_r preset - - 0 0
 both r_mean_0.7      0.7    $ref_v $ref_safety $ref_alpha 0 0
 both r_mean_1.0      1.0    $ref_v $ref_safety $ref_alpha 0 0
 both r_mean_0.35     0.35   $ref_v $ref_safety $ref_alpha 0 0
@@ -136,9 +139,13 @@ run_level() {  # name r v safety alpha density_factor relative_factor seed
     echo "materials = \"$root/samples/c30_materials.toml\""
     echo "[test]"
     echo "type = \"uniaxial\""
-    echo "platen_velocity_m_s = $v"
-    echo "time_step_safety = $safety"
-    echo "local_damping = $alpha"
+    if [ "$v" = preset ]; then
+      echo "preset = \"${name#preset_}\""
+    else
+      echo "platen_velocity_m_s = $v"
+      echo "time_step_safety = $safety"
+      echo "local_damping = $alpha"
+    fi
     echo "history_interval = 50"
     echo "max_steps = 20000000"
     if [ "$density" != 0 ]; then
