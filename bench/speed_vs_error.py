@@ -121,7 +121,7 @@ def plot(rows, path, title):
     groups = {"reference": "k", "velocity": "tab:blue", "safety": "tab:orange",
               "density": "tab:green", "damping": "tab:red", "r_mean": "tab:purple",
               "fast": "tab:brown", "balanced": "tab:olive", "accurate": "tab:cyan",
-              "combo": "tab:pink"}
+              "combo": "tab:pink", "preset": "tab:olive"}
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), dpi=80)
     for ax, fig_key, scale, label in zip(
             axes, FIGURES, (100, 100, 1),
