@@ -78,7 +78,7 @@ std::string contact_bond_materials(double sigma_cn_MPa) {
 
 // density_scaling_step_factor = k: the genesis is the true-mass run's, so the loading step is
 // exactly k x the true-mass step; the quasi-static figures stay within a few per cent (the
-// full-size C30 sweep measured -1 % on sigma_u at k = 4, docs/speed_vs_error.md).
+// full-size C30 sweep measured -0.7 +- 2.2 % on sigma_u at k = 4, docs/speed_vs_error.md).
 TEST(LabScaling, RelativeDensityScalingMultipliesTheStepAndKeepsTheFigures) {
   const fs::path dir = scratch_dir("test_lab_scaling", "density");
   const LabTestResult a =
