@@ -27,7 +27,7 @@ constexpr double kFastDecompressionAbove = 100.0;  // x sigma0
 // relaxation of the packing crosses the mould at a speed in diameters per cycle, so the rates
 // hold up to this span and are scaled down in proportion above it: unscaled, R_mean 0.35 mm
 // (286 diameters) unjammed (coordination 2.7-3.2, 19-32 % floating discs); scaled, every
-// packing measured has 3.65-3.68.
+// packing measured has 3.60-3.68 (C30 moulds at R_mean 0.35-0.7 mm, 3 seeds each).
 constexpr double kRateSpanDiameters = 100.0;
 constexpr double kHoldGain = 0.5;     // fraction of the wall-stress error corrected per interval
 constexpr long kCheckEvery = 50;      // cycles between convergence checks
