@@ -39,7 +39,9 @@ friction = 1.0
 
 // Reads a test file whose [test] table holds `test_keys` (the specimen only has to exist).
 LabTestControls controls(const std::string& test_keys) {
-  const auto dir = cdem::test::scratch_dir("test_presets", "read");
+  // One directory per test: CTest runs the tests of this file as parallel processes.
+  const auto dir = cdem::test::scratch_dir(
+      "test_presets", ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::ofstream(dir / "specimen.h5") << "placeholder";
   const std::string text = std::string("specimen = \"specimen.h5\"\n") + kMaterials +
                            "\n[test]\ntype = \"uniaxial\"\n" + test_keys;
