@@ -60,8 +60,8 @@ void draw_xy_chart_png(const XyChart& chart, const std::filesystem::path& png, i
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 14);
   cairo_set_line_width(cr, 1);
-  const double xs =
-      chart.x_integer ? std::max(1.0, tick_step(xmax - xmin, 8)) : tick_step(xmax - xmin, 8);
+  double xs = tick_step(xmax - xmin, 8);
+  if (chart.x_integer) xs = std::max(1.0, xs);
   const double ys = tick_step(ymax - ymin, 6);
   for (double x = std::ceil(xmin / xs) * xs; x <= xmax; x += xs) {
     cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);

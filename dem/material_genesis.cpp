@@ -35,6 +35,34 @@ void check_floating_loss(const GenesisOptions& options, const GenesisReport& rep
   throw RunError(why.str());
 }
 
+// The specimen left the mould with more than options.max_broken_fraction of a class's bonds
+// broken: say which class, how many, and why that happens.
+void check_genesis_damage(const WorldSettings& settings, const GenesisOptions& options,
+                          const GenesisReport& report) {
+  for (std::size_t c = 0; c < kContactClassCount; ++c) {
+    const long bonds = report.bonds[c], broken = report.relaxation_cracks_by_class[c];
+    if (bonds == 0 || static_cast<double>(broken) <= options.max_broken_fraction * bonds) continue;
+    const char* name = contact_class_name(static_cast<ContactClass>(c));
+    std::ostringstream why;
+    why.precision(3);
+    why << "material genesis broke " << broken << " of the " << bonds << " " << name << " bonds ("
+        << 100.0 * static_cast<double>(broken) / static_cast<double>(bonds)
+        << " %) while the bonded specimen relaxed out of its mould, before any loading (allowed: "
+        << 100 * options.max_broken_fraction
+        << " %, test.max_genesis_broken_fraction): the specimen would be damaged before the "
+           "test. Likely causes: (1) the "
+        << name << " law (E* = " << settings.laws[c].emod / 1e9
+        << " GPa) is much stiffer than the modulus the specimen was packed with (packing_emod_GPa "
+           "of the generator input, 16 GPa by default), so the packing's overlaps carry forces "
+           "that many times larger: regenerate the specimen with packing_emod_GPa near the "
+           "stiffest class's E*; (2) the "
+        << name
+        << " bonds are weaker than the stress the packing locks in (sigma0_MPa of the generator "
+           "input). Set test.max_genesis_broken_fraction = 1 to accept a pre-damaged specimen.";
+    throw RunError(why.str());
+  }
+}
+
 }  // namespace
 
 Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& settings,
@@ -118,38 +146,6 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
   }
   return out;
 }
-
-namespace {
-
-// The specimen left the mould with more than options.max_broken_fraction of a class's bonds
-// broken: say which class, how many, and why that happens.
-void check_genesis_damage(const WorldSettings& settings, const GenesisOptions& options,
-                          const GenesisReport& report) {
-  for (std::size_t c = 0; c < kContactClassCount; ++c) {
-    const long bonds = report.bonds[c], broken = report.relaxation_cracks_by_class[c];
-    if (bonds == 0 || static_cast<double>(broken) <= options.max_broken_fraction * bonds) continue;
-    const char* name = contact_class_name(static_cast<ContactClass>(c));
-    std::ostringstream why;
-    why.precision(3);
-    why << "material genesis broke " << broken << " of the " << bonds << " " << name << " bonds ("
-        << 100.0 * static_cast<double>(broken) / static_cast<double>(bonds)
-        << " %) while the bonded specimen relaxed out of its mould, before any loading (allowed: "
-        << 100 * options.max_broken_fraction
-        << " %, test.max_genesis_broken_fraction): the specimen would be damaged before the "
-           "test. Likely causes: (1) the "
-        << name << " law (E* = " << settings.laws[c].emod / 1e9
-        << " GPa) is much stiffer than the modulus the specimen was packed with (packing_emod_GPa "
-           "of the generator input, 16 GPa by default), so the packing's overlaps carry forces "
-           "that many times larger: regenerate the specimen with packing_emod_GPa near the "
-           "stiffest class's E*; (2) the "
-        << name
-        << " bonds are weaker than the stress the packing locks in (sigma0_MPa of the generator "
-           "input). Set test.max_genesis_broken_fraction = 1 to accept a pre-damaged specimen.";
-    throw RunError(why.str());
-  }
-}
-
-}  // namespace
 
 void install_test_bonds(World& world, const GenesisOptions& options, GenesisReport& report) {
   BondInstallation installation;
