@@ -4,6 +4,9 @@
 // platens loading it at 0.02 m/s each, as at the start of a uniaxial compression test. Reports
 // disc-steps/s and contact updates/s (candidate pairs evaluated, disc-disc + disc-wall) on 1
 // and 2 threads, and the bonds broken while timing (0 = all bonds intact throughout).
+// The `law` argument picks the mortar and ITZ law on the same specimen: 0 = parallel bonds
+// (samples/c30_materials.toml), 1 = flat joints (samples/materials/c30_flat_joint.toml), so the
+// cost of the flat joint is a ratio within one run.
 //
 // Needs the specimen file (not generated here: about a minute):
 //   build/bin/cdem generate samples/c30_specimen.toml -o /tmp/c30.h5
@@ -43,34 +46,42 @@ struct C30World {
   cdem::dem::GenesisReport genesis;
 };
 
-// The specimen after genesis, with its platens, built once per process and copied per run.
-const C30World& c30_world() {
-  static const C30World built = [] {
-    using namespace cdem::dem;
-    const cdem::Specimen specimen = cdem::read_specimen(specimen_path());
-    WorldSettings settings;
-    read_material_table(fs::path(CDEM_SOURCE_DIR) / "samples/c30_materials.toml").apply(settings);
-    GenesisOptions options;
-    options.relax_max_steps = kRelaxationMaxSteps;
-    GenesisReport report;
-    const cdem::Specimen cleaned = remove_floating_discs(specimen, settings, options, report);
-    World w = world_from_specimen(cleaned, settings);
-    install_test_bonds(w, options, report);
-    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-    for (std::size_t i = 0; i < w.discs.size(); ++i) {
-      xmin = std::min(xmin, w.discs.x[i] - w.discs.r[i]);
-      xmax = std::max(xmax, w.discs.x[i] + w.discs.r[i]);
-      ymin = std::min(ymin, w.discs.y[i] - w.discs.r[i]);
-      ymax = std::max(ymax, w.discs.y[i] + w.discs.r[i]);
-    }
-    const double over = kPlatenOverhang * (xmax - xmin);
-    const int bottom = w.add_wall(xmin - over, ymin, xmax + over, ymin);
-    const int top = w.add_wall(xmax + over, ymax, xmin - over, ymax);
-    w.walls.vy[bottom] = kPlatenVelocity;
-    w.walls.vy[top] = -kPlatenVelocity;
-    return C30World{std::move(w), report};
-  }();
-  return built;
+const char* const kMaterials[] = {"samples/c30_materials.toml",
+                                  "samples/materials/c30_flat_joint.toml"};
+
+// The specimen after genesis with the materials of `law`, with its platens, built once per
+// process and law and copied per run.
+C30World build_c30_world(int law) {
+  using namespace cdem::dem;
+  const cdem::Specimen specimen = cdem::read_specimen(specimen_path());
+  WorldSettings settings;
+  read_material_table(fs::path(CDEM_SOURCE_DIR) / kMaterials[law]).apply(settings);
+  GenesisOptions options;
+  options.relax_max_steps = kRelaxationMaxSteps;
+  GenesisReport report;
+  const cdem::Specimen cleaned = remove_floating_discs(specimen, settings, options, report);
+  World w = world_from_specimen(cleaned, settings);
+  install_test_bonds(w, options, report);
+  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+  for (std::size_t i = 0; i < w.discs.size(); ++i) {
+    xmin = std::min(xmin, w.discs.x[i] - w.discs.r[i]);
+    xmax = std::max(xmax, w.discs.x[i] + w.discs.r[i]);
+    ymin = std::min(ymin, w.discs.y[i] - w.discs.r[i]);
+    ymax = std::max(ymax, w.discs.y[i] + w.discs.r[i]);
+  }
+  const double over = kPlatenOverhang * (xmax - xmin);
+  const int bottom = w.add_wall(xmin - over, ymin, xmax + over, ymin);
+  const int top = w.add_wall(xmax + over, ymax, xmin - over, ymax);
+  w.walls.vy[bottom] = kPlatenVelocity;
+  w.walls.vy[top] = -kPlatenVelocity;
+  return C30World{std::move(w), report};
+}
+
+const C30World& c30_world(int law) {
+  static const C30World parallel_bond = build_c30_world(0);
+  if (law == 0) return parallel_bond;
+  static const C30World flat_joint = build_c30_world(1);
+  return flat_joint;
 }
 
 void BM_C30BondedSpecimenCycles(benchmark::State& state) {
@@ -81,7 +92,7 @@ void BM_C30BondedSpecimenCycles(benchmark::State& state) {
                             .c_str());
     return;
   }
-  const C30World& c30 = c30_world();
+  const C30World& c30 = c30_world(static_cast<int>(state.range(1)));
   cdem::dem::World w = c30.world;
   w.settings.threads = static_cast<int>(state.range(0));
   const auto by_class = cdem::dem::intact_bond_count(w);
@@ -101,9 +112,8 @@ void BM_C30BondedSpecimenCycles(benchmark::State& state) {
 }
 
 BENCHMARK(BM_C30BondedSpecimenCycles)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgNames({"threads", "law"})
+    ->ArgsProduct({{1, 2}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(4)
     ->Repetitions(5)

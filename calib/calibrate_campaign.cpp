@@ -109,12 +109,18 @@ CampaignSimulator::CampaignSimulator(const CalibrationInput& input,
 
 void CampaignSimulator::make_specimens(const std::vector<std::uint64_t>& seeds) {
   if (input_.needs_uniaxial()) generate(false, seeds);
-  if (input_.needs_brazilian()) generate(true, seeds);
+  if (!input_.needs_tension_test()) return;
+  // Direct tension on the uniaxial generator's specimens: the same files, generated once.
+  if (input_.needs_uniaxial() && input_.tension_generator == input_.uniaxial_generator) {
+    for (const auto s : seeds) specimens_[{true, s}] = specimens_.at({false, s});
+    return;
+  }
+  generate(true, seeds);
 }
 
-void CampaignSimulator::generate(bool brazilian, const std::vector<std::uint64_t>& seeds) {
+void CampaignSimulator::generate(bool tension, const std::vector<std::uint64_t>& seeds) {
   CampaignFile c;
-  c.base_text = brazilian ? input_.brazilian_generator : input_.uniaxial_generator;
+  c.base_text = tension ? input_.tension_generator : input_.uniaxial_generator;
   c.factor_keys = {"seed"};
   for (const auto s : seeds) c.runs.push_back({static_cast<double>(s)});
   c.command = "generate";
@@ -122,7 +128,7 @@ void CampaignSimulator::generate(bool brazilian, const std::vector<std::uint64_t
   c.gather = {"discs"};
   c.outputs = {"specimen.h5"};
   c.timeout_s = input_.timeout_s;
-  const std::string name = brazilian ? "brazilian" : "uniaxial";
+  const std::string name = tension ? input_.tension_test_type : "uniaxial";
   const auto dir = output_dir_ / "specimens";
   const auto records = run_campaign_file(dir, name, c, jobs_, verbose_);
   for (std::size_t i = 0; i < seeds.size(); ++i) {
@@ -130,13 +136,13 @@ void CampaignSimulator::generate(bool brazilian, const std::vector<std::uint64_t
     if (r.status != RunStatus::Ok || r.outputs.empty() || r.outputs[0].empty())
       throw RunError("calibrate: the " + name + " specimen of seed " + std::to_string(seeds[i]) +
                      " could not be generated (" + (dir / name).string() + "): " + r.message);
-    specimens_[{brazilian, seeds[i]}] = std::filesystem::absolute(dir / name / r.outputs[0]);
+    specimens_[{tension, seeds[i]}] = std::filesystem::absolute(dir / name / r.outputs[0]);
     ++generated_;
   }
 }
 
-std::filesystem::path CampaignSimulator::specimen_file(bool brazilian, std::uint64_t seed) const {
-  const auto it = specimens_.find({brazilian, seed});
+std::filesystem::path CampaignSimulator::specimen_file(bool tension, std::uint64_t seed) const {
+  const auto it = specimens_.find({tension, seed});
   if (it == specimens_.end())
     throw std::logic_error("calibrate: no specimen generated for seed " + std::to_string(seed));
   return it->second;
@@ -161,16 +167,16 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
     std::vector<RunRecord> records;
   };
   std::vector<Batch> batches;
-  for (const bool brazilian : {false, true}) {
-    if (brazilian ? !input_.needs_brazilian() : !input_.needs_uniaxial()) continue;
+  for (const bool tension : {false, true}) {
+    if (tension ? !input_.needs_tension_test() : !input_.needs_uniaxial()) continue;
     for (const auto seed : seeds) {
       Batch b;
-      b.name = std::string(brazilian ? "brazilian" : "uniaxial") + "_seed" + std::to_string(seed);
+      b.name = (tension ? input_.tension_test_type : "uniaxial") + "_seed" + std::to_string(seed);
       for (const auto& t : input_.targets)
-        if (target_needs_brazilian(t.target) == brazilian) b.measured.push_back(t.target);
+        if (target_needs_tension_test(t.target) == tension) b.measured.push_back(t.target);
       CampaignFile& c = b.file;
-      c.base_text = test_with_specimen(brazilian ? input_.brazilian_test : input_.uniaxial_test,
-                                       specimen_file(brazilian, seed));
+      c.base_text = test_with_specimen(tension ? input_.tension_test : input_.uniaxial_test,
+                                       specimen_file(tension, seed));
       c.factor_keys = keys;
       c.seed = seed;
       c.command = "run";

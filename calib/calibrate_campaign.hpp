@@ -27,8 +27,9 @@ class CampaignSimulator : public Simulator {
                                      const std::vector<SimulationPoint>& points) override;
 
  private:
-  std::filesystem::path specimen_file(bool brazilian, std::uint64_t seed) const;
-  void generate(bool brazilian, const std::vector<std::uint64_t>& seeds);
+  // `tension`: the sigma_t test's specimen (Brazilian disc or direct-tension rectangle).
+  std::filesystem::path specimen_file(bool tension, std::uint64_t seed) const;
+  void generate(bool tension, const std::vector<std::uint64_t>& seeds);
 
   const CalibrationInput& input_;
   std::filesystem::path output_dir_;

@@ -55,7 +55,7 @@ const char* target_summary_field(CalibrationTarget target) {
   return info(target).summary_field;
 }
 
-bool target_needs_brazilian(CalibrationTarget target) {
+bool target_needs_tension_test(CalibrationTarget target) {
   return target == CalibrationTarget::SigmaT;
 }
 
@@ -83,20 +83,22 @@ ParameterRole parameter_role(const std::string& dotted_key) {
       name.resize(name.size() - unit.size());
   if (name == "emod" || name == "pb_emod") return ParameterRole::Modulus;
   if (name == "kratio" || name == "pb_kratio") return ParameterRole::StiffnessRatio;
-  if (name == "pb_tensile_strength" || name == "cb_tensile_strength")
+  if (name == "pb_tensile_strength" || name == "cb_tensile_strength" ||
+      name == "fj_tensile_strength")
     return ParameterRole::TensileStrength;
-  if (name == "pb_cohesion" || name == "cb_shear_strength") return ParameterRole::ShearStrength;
+  if (name == "pb_cohesion" || name == "cb_shear_strength" || name == "fj_cohesion")
+    return ParameterRole::ShearStrength;
   return ParameterRole::Other;
 }
 
 bool CalibrationInput::needs_uniaxial() const {
   return std::any_of(targets.begin(), targets.end(),
-                     [](const TargetValue& t) { return !target_needs_brazilian(t.target); });
+                     [](const TargetValue& t) { return !target_needs_tension_test(t.target); });
 }
 
-bool CalibrationInput::needs_brazilian() const {
+bool CalibrationInput::needs_tension_test() const {
   return std::any_of(targets.begin(), targets.end(),
-                     [](const TargetValue& t) { return target_needs_brazilian(t.target); });
+                     [](const TargetValue& t) { return target_needs_tension_test(t.target); });
 }
 
 double CalibrationInput::target_value(CalibrationTarget target) const {
@@ -300,26 +302,33 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
 
   // Base tests; the uniaxial test's materials are the start point of every test.
   const InputTable tests = root.table("tests");
-  tests.reject_unknown_keys({"uniaxial", "brazilian"});
-  std::optional<toml::table> uniaxial, brazilian;
+  tests.reject_unknown_keys({"uniaxial", "brazilian", "direct_tension"});
+  std::optional<toml::table> uniaxial, tension;
   if (in.needs_uniaxial()) uniaxial = read_test(tests, "uniaxial", file, "uniaxial");
-  if (in.needs_brazilian()) brazilian = read_test(tests, "brazilian", file, "brazilian");
-  const toml::table& first = uniaxial ? *uniaxial : *brazilian;
+  if (in.needs_tension_test()) {
+    if (tests.has("brazilian") == tests.has("direct_tension"))
+      tests.fail("brazilian",
+                 "sigma_t is a target: name exactly one tension test, brazilian = "
+                 "\"FILE\" or direct_tension = \"FILE\"");
+    in.tension_test_type = tests.has("brazilian") ? "brazilian" : "direct_tension";
+    tension = read_test(tests, in.tension_test_type, file, in.tension_test_type);
+  }
+  const toml::table& first = uniaxial ? *uniaxial : *tension;
   toml::table materials = *first["materials"].as_table();
   floats_only(materials);
   const std::string materials_label =
-      tests.string(uniaxial ? "uniaxial" : "brazilian") + " (materials)";
+      tests.string(uniaxial ? "uniaxial" : in.tension_test_type) + " (materials)";
   in.materials = to_text(toml::table{{"materials", materials}});
   if (const auto problem = material_table_problem(in.materials, materials_label); !problem.empty())
-    tests.fail(uniaxial ? "uniaxial" : "brazilian", problem);
-  for (auto* test : {uniaxial ? &*uniaxial : nullptr, brazilian ? &*brazilian : nullptr}) {
+    tests.fail(uniaxial ? "uniaxial" : in.tension_test_type, problem);
+  for (auto* test : {uniaxial ? &*uniaxial : nullptr, tension ? &*tension : nullptr}) {
     if (!test) continue;
     test->insert_or_assign("materials", materials);
     test->insert_or_assign("specimen", "");
     test->erase("seed");
   }
   if (uniaxial) in.uniaxial_test = to_text(*uniaxial);
-  if (brazilian) in.brazilian_test = to_text(*brazilian);
+  if (tension) in.tension_test = to_text(*tension);
 
   const auto parameter_tables = root.tables("parameters");
   if (parameter_tables.empty())
@@ -334,8 +343,9 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
   const InputTable specimen = root.table("specimen");
   specimen.reject_unknown_keys({"generator", "brazilian_generator", "seed"});
   if (in.needs_uniaxial()) in.uniaxial_generator = generator_text(specimen, "generator", file);
-  if (in.needs_brazilian())
-    in.brazilian_generator = generator_text(specimen, "brazilian_generator", file);
+  if (in.needs_tension_test())
+    in.tension_generator = generator_text(
+        specimen, in.tension_test_type == "brazilian" ? "brazilian_generator" : "generator", file);
   constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
   in.calibration_seed = static_cast<std::uint64_t>(specimen.integer_or("seed", 1, 0, kMaxSeed));
 

@@ -18,7 +18,7 @@ enum class CalibrationTarget {
   SigmaU,  // uniaxial compressive strength, MPa
   E,       // Young's modulus (tangent at 50 % of peak, uniaxial), GPa
   Nu,      // Poisson's ratio at 50 % of peak (uniaxial), dimensionless
-  SigmaT,  // Brazilian splitting strength, MPa
+  SigmaT,  // tensile strength, MPa: Brazilian splitting or direct tension (named in [tests])
 };
 inline constexpr int kCalibrationTargetCount = 4;
 
@@ -28,7 +28,8 @@ const char* target_unit(CalibrationTarget target);  // "MPa", "GPa", "", "MPa"
 std::string target_with_unit(CalibrationTarget target);
 // The field of `cdem run --summary` that measures the target.
 const char* target_summary_field(CalibrationTarget target);
-bool target_needs_brazilian(CalibrationTarget target);
+// True for the target measured by the tension test (sigma_t), false for the uniaxial ones.
+bool target_needs_tension_test(CalibrationTarget target);
 
 struct TargetValue {
   CalibrationTarget target = CalibrationTarget::SigmaU;
@@ -39,8 +40,8 @@ struct TargetValue {
 enum class ParameterRole {
   Modulus,          // emod, pb_emod: E scales with them
   StiffnessRatio,   // kratio, pb_kratio: nu is set by them
-  TensileStrength,  // pb_tensile_strength, cb_tensile_strength
-  ShearStrength,    // pb_cohesion, cb_shear_strength
+  TensileStrength,  // pb_tensile_strength, cb_tensile_strength, fj_tensile_strength
+  ShearStrength,    // pb_cohesion, cb_shear_strength, fj_cohesion
   Other,            // friction, bond geometry: moved only by the paper strategy
 };
 const char* role_name(ParameterRole role);
@@ -86,13 +87,17 @@ struct CalibrationInput {
   // The base lab tests as TOML text with the materials inline and the specimen key to be set
   // per run; integers of the material table are written as floats so that campaign values are
   // never rounded.
-  std::string uniaxial_test;   // empty when no target needs it
-  std::string brazilian_test;  // empty when sigma_t is not a target
-  std::string materials;       // the base [materials.*] tables as TOML text (start values)
+  std::string uniaxial_test;  // empty when no target needs it
+  std::string tension_test;   // empty when sigma_t is not a target
+  // Which test measures sigma_t: "brazilian" or "direct_tension" (the [tests] key given).
+  std::string tension_test_type;
+  std::string materials;  // the base [materials.*] tables as TOML text (start values)
 
   // Specimens: the generator inputs as text; each specimen is `cdem generate` with a seed.
   std::string uniaxial_generator;
-  std::string brazilian_generator;
+  // The tension test's specimens: `brazilian_generator` for a Brazilian disc; for direct
+  // tension the uniaxial `generator` (the same rectangular specimen, generated once).
+  std::string tension_generator;
   std::uint64_t calibration_seed = 1;             // specimen the strategy iterates on
   std::vector<std::uint64_t> verification_seeds;  // independent specimens (default 5)
 
@@ -104,7 +109,7 @@ struct CalibrationInput {
   PaperSettings paper;
 
   bool needs_uniaxial() const;
-  bool needs_brazilian() const;
+  bool needs_tension_test() const;
   double target_value(CalibrationTarget target) const;  // NaN when not a target
 };
 

@@ -34,6 +34,18 @@ InstalledBonds install_bonds(World& world, const BondInstallation& options) {
     state.bond[k] = static_cast<std::uint8_t>(kind);
     state.bond_normal[k] = state.bond_shear[k] = state.bond_moment[k] = 0;
     state.bond_gap[k] = kind == BondKind::Contact ? std::max(gap, 0.0) : 0.0;
+    if (kind == BondKind::FlatJoint) {
+      // The interface takes over the linear contact's forces: its normal force follows from
+      // the overlap (zero-force reference at the installation gap, if any), its elements share
+      // the linear shear force.
+      const FlatJointParams& p = world.settings.bonds[cls].flat_joint;
+      const bool slit = flat_joint_is_slit(list.keys[k], p.slit_fraction);
+      state.joint[k] =
+          list.flat_joints.add(p.elements, std::max(gap, 0.0), state.shear_force[k], slit);
+      state.shear_force[k] = 0;
+      installed.by_class[cls] += slit ? 0 : p.elements;
+      continue;
+    }
     ++installed.by_class[cls];
   }
   world.invalidate_neighbors();
@@ -44,7 +56,7 @@ std::array<long, kContactClassCount> intact_bond_count(const World& world) {
   std::array<long, kContactClassCount> count{};
   const NeighborList& list = world.neighbors;
   for (std::size_t k = 0; k < list.keys.size(); ++k)
-    if (list.state.bond[k]) ++count[list.contact_class[k]];
+    count[list.contact_class[k]] += list.intact_bonds(k);
   return count;
 }
 

@@ -19,18 +19,21 @@ struct BondInstallation {
 };
 
 struct InstalledBonds {
-  std::array<long, kContactClassCount> by_class{};  // bonds installed per ContactClass
+  std::array<long, kContactClassCount> by_class{};  // bonds (flat-joint elements) per class
   long total() const { return by_class[0] + by_class[1] + by_class[2] + by_class[3]; }
 };
 
 // Installs the bonds (pairs already bonded keep their bond and force). A parallel bond starts
 // at zero force; a contact bond takes the current gap (if any) as its zero-force reference, so
-// the linear part keeps the force it had. The time step is recomputed at the next step (the
+// the linear part keeps the force it had; a flat joint does the same and takes over the linear
+// shear force (a slit interface, see FlatJointParams::slit_fraction, has no bonded element).
+// Counts are of bonds, and for flat joints of bonded elements (each element breaks on its own
+// and is one crack). The time step is recomputed at the next step (the
 // parallel bonds add stiffness). Throws std::invalid_argument when the tolerance reaches the
 // neighbour skin (the candidate list would miss pairs).
 InstalledBonds install_bonds(World& world, const BondInstallation& options = {});
 
-// Number of intact bonds per ContactClass.
+// Number of intact bonds (flat joints: bonded elements) per ContactClass.
 std::array<long, kContactClassCount> intact_bond_count(const World& world);
 
 }  // namespace cdem::dem

@@ -12,6 +12,19 @@ ContactEnergy contact_energy(const World& world) {
     const std::int32_t i = list.first[k], j = list.second[k];
     const std::uint8_t cls = list.contact_class[k];
     const LinearContact& law = world.settings.laws[cls];
+    if (state.bond[k] == static_cast<std::uint8_t>(BondKind::FlatJoint)) {
+      // The interface carries the whole contact: its energy is booked as bond strain.
+      const FlatJointStates& joints = list.flat_joints;
+      const auto joint = static_cast<std::size_t>(state.joint[k]);
+      const double inverse_length = 1.0 / (d.r[i] + d.r[j]);
+      const FlatJointGeometry g = flat_joint_geometry(world.settings.bonds[cls].flat_joint, law,
+                                                      d.r[i], d.r[j], inverse_length);
+      const double gap = -pair.overlap[k] - joints.gap0[joint];
+      e.bond_strain +=
+          flat_joint_strain_energy(g, joints.bonded[joint], gap, joints.theta[joint],
+                                   joints.element_shear.data() + joints.first_element[joint]);
+      continue;
+    }
     const double kn = law.normal_stiffness(d.r[i], d.r[j]);
     const double ks = law.shear_stiffness(kn);
     // The total normal force holds the parallel bond's tension with a minus sign.

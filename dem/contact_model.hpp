@@ -1,24 +1,28 @@
 #pragma once
 // The contact model of each contact class (SPEC 4): the linear part lives in
 // WorldSettings::laws (LinearContact), the bond a class installs lives here. A class is
-// `linear` (no bond), `contact_bond` (linear + point bond) or `parallel_bond` (linear in
-// parallel with a bond). Disc-wall contacts (class W) are linear only.
+// `linear` (no bond), `contact_bond` (linear + point bond), `parallel_bond` (linear in
+// parallel with a bond) or `flat_joint` (a bonded interface that replaces the linear contact
+// and takes its E*, kn/ks and mu as deformability and residual friction). Disc-wall contacts
+// (class W) are linear only.
 #include <array>
 #include <cstdint>
 
 #include "dem/contact_bond.hpp"
+#include "dem/flat_joint.hpp"
 #include "dem/linear_contact.hpp"
 #include "dem/parallel_bond.hpp"
 
 namespace cdem::dem {
 
 // Kind of the bond a pair carries; a pair whose bond broke holds None (plain linear).
-enum class BondKind : std::uint8_t { None = 0, Contact = 1, Parallel = 2 };
+enum class BondKind : std::uint8_t { None = 0, Contact = 1, Parallel = 2, FlatJoint = 3 };
 
 struct BondModel {
   BondKind kind = BondKind::None;  // the bond that install_bonds puts on pairs of this class
   ContactBondParams contact;       // used when kind == Contact
   ParallelBondParams parallel;     // used when kind == Parallel
+  FlatJointParams flat_joint;      // used when kind == FlatJoint
 };
 
 // By ContactClass (M, ITZ, A, W); the default is linear everywhere.
@@ -39,6 +43,12 @@ struct BondStiffness {
 inline BondStiffness parallel_bond_stiffness(const ParallelBondParams& p, double r1, double r2) {
   const ParallelBondGeometry g = parallel_bond_geometry(p, r1, r2);
   return {g.kn * g.area, g.ks * g.area, g.kn * g.inertia};
+}
+
+// The interface of a flat joint of class law `law` between discs of radii r1, r2.
+inline FlatJointGeometry flat_joint_geometry(const FlatJointParams& p, const LinearContact& law,
+                                             double r1, double r2, double inverse_length) {
+  return flat_joint_geometry(p, law.emod, law.kappa, r1, r2, inverse_length);
 }
 
 }  // namespace cdem::dem

@@ -13,6 +13,8 @@ void resize(ContactForces& f, std::size_t n, bool walls) {
   if (f.normal.size() == n) return;
   for (auto* v : {&f.normal, &f.overlap, &f.fx, &f.fy, &f.bond_energy_released}) v->resize(n);
   f.failure.resize(n);
+  f.failed_elements.resize(n);
+  f.failed_shear.resize(n);
   if (walls) {
     f.moment.resize(n);
     f.cx.resize(n);
@@ -66,7 +68,6 @@ long disc_disc_pass(Discs& d, NeighborList& list, ContactForces& out, const Cont
       }
     }
   }
-  result.bonds_broken = static_cast<long>(out.broken.size());
   return bad == static_cast<long>(count) ? -1 : bad;
 }
 

@@ -25,6 +25,9 @@ struct PairForce {
   double slip_work = 0;               // J, dissipated by friction slip in this pass
   double released = 0;                // J, strain energy of a bond that broke in this pass
   BondFailure failure = BondFailure::None;
+  // Flat joint: bit e = element e broke in this pass (failure is then Tension if any of them
+  // broke in tension), and broke in shear.
+  std::uint32_t failed_elements = 0, failed_shear = 0;
 };
 
 // Per-pair results of the last force pass, aligned with the neighbour list.
@@ -40,6 +43,7 @@ struct ContactForces {
   // and the strain energy it held (J).
   std::vector<std::uint8_t> failure;
   std::vector<double> bond_energy_released;
+  std::vector<std::uint32_t> failed_elements, failed_shear;  // flat joints (bits per element)
   // Pairs whose bond broke in this pass, ascending (disc-disc only; walls are not bonded).
   std::vector<std::int32_t> broken;
   // Multi-thread pass only: every pair's result from the parallel kernel, added onto the discs
@@ -61,7 +65,7 @@ struct ForcePassResult {
   double slip_work = 0;
   // Strain energy released by the bonds that broke in this pass, in pair order (J per m).
   double bond_energy_released = 0;
-  long bonds_broken = 0;  // bonds that failed in this pass
+  long bonds_broken = 0;  // bonds (flat joints: elements) that failed in this pass
 };
 
 using ContactLaws = std::array<LinearContact, kContactClassCount>;

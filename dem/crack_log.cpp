@@ -19,16 +19,35 @@ void CrackLog::record(const ContactForces& pair, const NeighborList& list, const
     // Contact point at arm_i = R_i - overlap / 2 from the centre of i along the normal.
     const double arm = discs.r[i] - 0.5 * pair.overlap[k];
     const double s = dist > 0 ? arm / dist : 0.0;
+    const std::uint8_t cls = list.contact_class[k];
     Crack c;
     c.time = time;
     c.x = discs.x[i] + s * dx;
     c.y = discs.y[i] + s * dy;
     c.mode = static_cast<BondFailure>(pair.failure[k]);
-    c.contact_class = static_cast<ContactClass>(list.contact_class[k]);
-    c.bond = bonds[list.contact_class[k]].kind;
+    c.contact_class = static_cast<ContactClass>(cls);
+    c.bond = bonds[cls].kind;
     c.first = i;
     c.second = j;
-    cracks.push_back(c);
+    const std::uint32_t failed = pair.failed_elements[k];
+    if (!failed) {
+      cracks.push_back(c);
+      continue;
+    }
+    const Crack contact = c;
+    const double nx = dist > 0 ? dx / dist : 0.0, ny = dist > 0 ? dy / dist : 0.0;
+    for (int e = 0; e < kMaxFlatJointElements; ++e) {
+      if (!(failed & (1u << e))) continue;
+      // Element centroid: along t = (-ny, nx) from the contact point.
+      const double along =
+          flat_joint_element_centroid(bonds[cls].flat_joint, discs.r[i], discs.r[j], e);
+      c = contact;
+      c.x -= along * ny;
+      c.y += along * nx;
+      c.mode = pair.failed_shear[k] & (1u << e) ? BondFailure::Shear : BondFailure::Tension;
+      c.element = static_cast<std::int8_t>(e);
+      cracks.push_back(c);
+    }
   }
 }
 

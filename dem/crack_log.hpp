@@ -1,5 +1,6 @@
 #pragma once
-// Crack records (SPEC 6): every bond failure with its time, position, mode and contact class.
+// Crack records (SPEC 6): every bond failure with its time, position, mode and contact class;
+// a flat joint logs one crack per element that breaks, at the element's centroid.
 // Cracks of one force pass are appended in ascending pair key, so the log is deterministic
 // (and independent of the thread count).
 #include <array>
@@ -15,12 +16,15 @@
 namespace cdem::dem {
 
 struct Crack {
-  double time = 0;      // s, simulation time of the force pass in which the bond broke
-  double x = 0, y = 0;  // m, contact point (on the line of centres, mid-gap when apart)
+  double time = 0;  // s, simulation time of the force pass in which the bond broke
+  // m, contact point (on the line of centres, mid-gap when apart); for a flat-joint element the
+  // element's centroid on the interface
+  double x = 0, y = 0;
   BondFailure mode = BondFailure::None;               // Tension or Shear
   ContactClass contact_class = ContactClass::Mortar;  // M, ITZ, A
   BondKind bond = BondKind::None;                     // the law of the bond that broke
   std::int32_t first = -1, second = -1;               // the two discs (first < second)
+  std::int8_t element = -1;  // flat joint: the element that broke (0 .. N_r - 1), else -1
 };
 
 struct CrackLog {

@@ -8,6 +8,7 @@
 // those on j (i gets the opposite). Sign conventions of the bonds: dem/parallel_bond.hpp.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -71,12 +72,20 @@ class DiscPairKernel {
         bond_shear_(list.state.bond_shear.data()),
         bond_moment_(list.state.bond_moment.data()),
         bond_gap_(list.state.bond_gap.data()),
+        joint_(list.state.joint.data()),
+        joint_gap0_(list.flat_joints.gap0.data()),
+        joint_theta_(list.flat_joints.theta.data()),
+        joint_bonded_(list.flat_joints.bonded.data()),
+        joint_first_element_(list.flat_joints.first_element.data()),
+        joint_element_shear_(list.flat_joints.element_shear.data()),
         normal_(out.normal.data()),
         overlap_(out.overlap.data()),
         fx_(out.fx.data()),
         fy_(out.fy.data()),
         failure_(out.failure.data()),
         released_(out.bond_energy_released.data()),
+        failed_elements_(out.failed_elements.data()),
+        failed_shear_(out.failed_shear.data()),
         disc_fx_(d.fx.data()),
         disc_fy_(d.fy.data()),
         disc_m_(d.moment.data()),
@@ -86,6 +95,7 @@ class DiscPairKernel {
         guard_(guard) {
     for (int c = 0; c < kContactClassCount; ++c) {
       tan_friction_angle_[c] = std::tan(bonds[c].parallel.friction_angle);
+      tan_joint_friction_angle_[c] = std::tan(bonds[c].flat_joint.friction_angle);
       shear_per_normal_stiffness_[c] = 1.0 / laws[c].kappa;
     }
   }
@@ -106,6 +116,8 @@ class DiscPairKernel {
     if (f.failure != BondFailure::None) {
       failure_[k] = static_cast<std::uint8_t>(f.failure);
       released_[k] = f.released;
+      failed_elements_[k] = f.failed_elements;
+      failed_shear_[k] = f.failed_shear;
     }
     return f;
   }
@@ -128,6 +140,8 @@ class DiscPairKernel {
     if (f.failure != BondFailure::None) {
       broken.push_back(static_cast<std::int32_t>(k));
       result.bond_energy_released += f.released;
+      // One crack per bond, or per flat-joint element that broke.
+      result.bonds_broken += f.failed_elements ? std::popcount(f.failed_elements) : 1;
     }
   }
 
@@ -192,9 +206,10 @@ class DiscPairKernel {
   // A pair with an intact contact or parallel bond (SPEC 4; docs/dem_design.md "Bonds in the
   // contact loop"). In the pass where a bond breaks the contact is already plain linear.
   PairForce bonded(std::size_t k, const Geometry& g) const {
+    const BondKind kind = static_cast<BondKind>(bond_[k]);
+    if (kind == BondKind::FlatJoint) return flat_joint(k, g);
     const int cls = contact_class_[k];
     const LinearContact& law = laws_[cls];
-    const BondKind kind = static_cast<BondKind>(bond_[k]);
     const double kn = law.normal_stiffness(g.ri, g.rj, g.inverse_length);
     const double ks = shear_stiffness(cls, kn);
     const double vt = tangential_velocity(g);
@@ -242,19 +257,60 @@ class DiscPairKernel {
     return f;
   }
 
+  // A pair with a flat joint (dem/flat_joint.hpp): the interface carries the whole contact.
+  // Its gap is measured from the installation gap, its rotation accumulated from the spins.
+  // An interface with no bonded element that has opened over its whole length is removed
+  // (the pair is plain linear, and apart, from then on).
+  PairForce flat_joint(std::size_t k, const Geometry& g) const {
+    const int cls = contact_class_[k];
+    const LinearContact& law = laws_[cls];
+    const FlatJointParams& p = bonds_[cls].flat_joint;
+    const FlatJointGeometry jg = flat_joint_geometry(p, law, g.ri, g.rj, g.inverse_length);
+    const std::int32_t joint = joint_[k];
+    double& theta = joint_theta_[joint];
+    theta += (w_[g.j] - w_[g.i]) * dt_;
+    const double gap = -g.overlap - joint_gap0_[joint];
+    std::uint32_t& bonded = joint_bonded_[joint];
+    const FlatJointForce jf = flat_joint_update(
+        jg, p, law.mu, tan_joint_friction_angle_[cls], gap, theta, tangential_velocity(g) * dt_,
+        joint_element_shear_ + joint_first_element_[joint], bonded);
+    PairForce f;
+    f.slip_work = jf.slip_work;
+    if (jf.failed) {
+      f.failure = (jf.failed & ~jf.failed_shear) ? BondFailure::Tension : BondFailure::Shear;
+      f.released = jf.released;
+      f.failed_elements = jf.failed;
+      f.failed_shear = jf.failed_shear;
+    }
+    if (flat_joint_is_open(jg, bonded, gap, theta)) {
+      bond_[k] = static_cast<std::uint8_t>(BondKind::None);
+      joint_[k] = -1;
+    }
+    shear_[k] = 0;
+    resolve(g, -jf.fn, jf.fs, jf.moment, f);
+    return f;
+  }
+
   const std::int32_t *first_, *second_;
   const std::uint8_t* contact_class_;
   const double *x_, *y_, *r_, *vx_, *vy_, *w_;
   double* shear_;
   std::uint8_t* bond_;
   double *bond_normal_, *bond_shear_, *bond_moment_, *bond_gap_;
+  std::int32_t* joint_;
+  double *joint_gap0_, *joint_theta_;
+  std::uint32_t* joint_bonded_;
+  const std::int32_t* joint_first_element_;
+  double* joint_element_shear_;
   double *normal_, *overlap_, *fx_, *fy_;
   std::uint8_t* failure_;
   double* released_;
+  std::uint32_t *failed_elements_, *failed_shear_;
   double *disc_fx_, *disc_fy_, *disc_m_;
   const ContactLaws& laws_;
   const BondModels& bonds_;
   std::array<double, kContactClassCount> tan_friction_angle_{};          // tan(phi_b) by class
+  std::array<double, kContactClassCount> tan_joint_friction_angle_{};    // flat joint tan(phi)
   std::array<double, kContactClassCount> shear_per_normal_stiffness_{};  // 1 / kappa* by class
   double dt_, guard_;
 };

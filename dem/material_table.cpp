@@ -8,7 +8,7 @@ namespace cdem::dem {
 
 namespace {
 
-const std::vector<std::string> kLaws{"linear", "contact_bond", "parallel_bond"};
+const std::vector<std::string> kLaws{"linear", "contact_bond", "parallel_bond", "flat_joint"};
 
 // Keys common to every class, then those of each bond law.
 const std::vector<std::string> kLinearKeys{"law", "emod", "kratio", "friction"};
@@ -20,11 +20,15 @@ const std::vector<std::string> kParallelBondKeys{"pb_emod",
                                                  "pb_friction_angle_deg",
                                                  "pb_radius_multiplier",
                                                  "pb_moment_factor"};
+const std::vector<std::string> kFlatJointKeys{"fj_tensile_strength",   "fj_cohesion",
+                                              "fj_friction_angle_deg", "fj_radius_multiplier",
+                                              "fj_elements",           "fj_slit_fraction"};
 
 std::vector<std::string> known_keys(const std::string& law) {
   std::vector<std::string> keys = kLinearKeys;
   const auto& extra = law == "contact_bond"    ? kContactBondKeys
                       : law == "parallel_bond" ? kParallelBondKeys
+                      : law == "flat_joint"    ? kFlatJointKeys
                                                : std::vector<std::string>{};
   keys.insert(keys.end(), extra.begin(), extra.end());
   return keys;
@@ -67,6 +71,17 @@ void read_class(const InputTable& t, ContactClass cls, const LinearContact* fall
                        std::numbers::pi / 180.0;
     p.radius_multiplier = t.number_or("pb_radius_multiplier", 1.0, Range::positive());
     p.moment_factor = t.number_or("pb_moment_factor", 1.0, Range::closed(0, 1));
+  } else if (law == "flat_joint") {
+    // Deformability (E*, kn/ks) and residual friction are the class's emod, kratio, friction.
+    bond.kind = BondKind::FlatJoint;
+    FlatJointParams& p = bond.flat_joint;
+    p.tensile_strength = t.quantity("fj_tensile_strength", Dimension::Stress, Range::positive());
+    p.cohesion = t.quantity("fj_cohesion", Dimension::Stress, Range::positive());
+    p.friction_angle = t.number_or("fj_friction_angle_deg", 0.0, Range::right_open(0, 90)) *
+                       std::numbers::pi / 180.0;
+    p.radius_multiplier = t.number_or("fj_radius_multiplier", 1.0, Range::positive());
+    p.elements = static_cast<int>(t.integer_or("fj_elements", 2, 1, kMaxFlatJointElements));
+    p.slit_fraction = t.number_or("fj_slit_fraction", 0.0, Range::closed(0, 1));
   }
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The contact material table (SPEC 4, SPEC 8): one TOML table per contact class,
 //   [materials.mortar] (M), [materials.itz] (ITZ), [materials.aggregate] (A), [materials.wall] (W),
-// each naming its law ("linear", "contact_bond", "parallel_bond") and its parameters with
+// each naming its law ("linear", "contact_bond", "parallel_bond", "flat_joint"; the wall is
+// linear only) and its parameters with
 // explicit units (docs/materials.md lists every key). Converted to SI here, once.
 #include <filesystem>
 

@@ -1,9 +1,11 @@
 #include "dem/neighbor_list.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
+#include "dem/contact_model.hpp"
 #include "dem/linear_contact.hpp"
 
 namespace cdem::dem {
@@ -218,6 +220,11 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
   wall_ax0_ = walls.ax;
   wall_ay0_ = walls.ay;
   ++build_count;
+}
+
+int NeighborList::intact_bonds(std::size_t k) const {
+  if (state.bond[k] != static_cast<std::uint8_t>(BondKind::FlatJoint)) return state.bond[k] != 0;
+  return std::popcount(flat_joints.bonded[static_cast<std::size_t>(state.joint[k])]);
 }
 
 }  // namespace cdem::dem

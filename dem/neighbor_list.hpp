@@ -9,6 +9,7 @@
 
 #include "dem/bodies.hpp"
 #include "dem/discs.hpp"
+#include "dem/flat_joint_states.hpp"
 #include "dem/wall.hpp"
 
 namespace cdem::dem {
@@ -24,6 +25,8 @@ struct ContactStates {
   // Contact bond: gap at installation (m, >= 0); the bonded linear part is at zero normal
   // force at this gap, Fn = kn (overlap + bond_gap).
   std::vector<double> bond_gap;
+  // Flat joint: index of the interface's entry in NeighborList::flat_joints.
+  std::vector<std::int32_t> joint;
 
   void resize(std::size_t n) {
     shear_force.assign(n, 0.0);
@@ -32,6 +35,7 @@ struct ContactStates {
     bond_shear.assign(n, 0.0);
     bond_moment.assign(n, 0.0);
     bond_gap.assign(n, 0.0);
+    joint.assign(n, -1);
   }
   void copy_from(std::size_t to, const ContactStates& from, std::size_t from_index) {
     shear_force[to] = from.shear_force[from_index];
@@ -40,11 +44,13 @@ struct ContactStates {
     bond_shear[to] = from.bond_shear[from_index];
     bond_moment[to] = from.bond_moment[from_index];
     bond_gap[to] = from.bond_gap[from_index];
+    joint[to] = from.joint[from_index];
   }
   // Removes the bond of pair k (after a failure): the contact is plain linear from then on.
   void break_bond(std::size_t k) {
     bond[k] = 0;
     bond_normal[k] = bond_shear[k] = bond_moment[k] = bond_gap[k] = 0;
+    joint[k] = -1;
   }
   std::size_t size() const { return shear_force.size(); }
 };
@@ -65,6 +71,11 @@ class NeighborList {
   std::vector<std::uint64_t> wall_keys;
   std::vector<std::int32_t> wall_disc, wall_index;
   ContactStates wall_state;
+  // The flat joints' interfaces, referred to by state.joint (entries outlive their pairs).
+  FlatJointStates flat_joints;
+
+  // Intact bonds of disc-disc pair k: 0 or 1, or a flat joint's bonded elements.
+  int intact_bonds(std::size_t k) const;
 
   double skin = 0;  // m, extra gap under which a pair is kept as a candidate
   long build_count = 0;

@@ -88,7 +88,7 @@ void ResultFile::snapshot(const World& world, long step, double time) {
   bond_count_.assign(d.size(), 0);
   const NeighborList& list = world.neighbors;
   for (std::size_t k = 0; k < list.keys.size(); ++k)
-    if (list.state.bond[k] != static_cast<std::uint8_t>(BondKind::None)) {
+    if (list.intact_bonds(k) > 0) {
       ++bond_count_[list.first[k]];
       ++bond_count_[list.second[k]];
     }

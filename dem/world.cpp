@@ -157,11 +157,20 @@ void World::update_time_step() {
         settings.laws[static_cast<int>(discs.material[i]) + static_cast<int>(discs.material[j])];
     double kn = law.normal_stiffness(discs.r[i], discs.r[j]);
     double ks = law.shear_stiffness(kn);
-    // A parallel bond acts in parallel with the linear part: its stiffnesses add.
+    // A parallel bond acts in parallel with the linear part: its stiffnesses add. A flat
+    // joint replaces the linear part.
     BondStiffness bond;
-    if (neighbors.state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel))
+    const auto kind = static_cast<BondKind>(neighbors.state.bond[k]);
+    if (kind == BondKind::Parallel)
       bond = parallel_bond_stiffness(settings.bonds[neighbors.contact_class[k]].parallel,
                                      discs.r[i], discs.r[j]);
+    if (kind == BondKind::FlatJoint) {
+      const FlatJointStiffness joint = flat_joint_stiffness(
+          flat_joint_geometry(settings.bonds[neighbors.contact_class[k]].flat_joint, law,
+                              discs.r[i], discs.r[j], 1.0 / (discs.r[i] + discs.r[j])));
+      kn = ks = 0;
+      bond = {joint.normal, joint.shear, joint.rotation};
+    }
     kn += bond.normal;
     ks += bond.shear;
     const double kt = std::max(kn, ks);

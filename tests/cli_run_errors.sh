@@ -88,6 +88,27 @@ porosity = 0.12
 [test]
 type = \"biaxial\"
 confining_stresses_MPa = [1, 3]"
+# Flat-joint materials (docs/flat_joint.md): a copy of the C30 flat-joint sample edited by sed;
+# the message must name the full key and its allowed range.
+fj_case() {
+  local name=$1 pattern=$2 edit=$3
+  sed -e "$edit" "$SRC/samples/materials/c30_flat_joint.toml" > "$work/$name.materials.toml"
+  expect "$name" "$pattern" "specimen = \"corrupt.h5\"
+materials = \"$name.materials.toml\"
+$good"
+}
+fj_case fj_unknown_key "materials.mortar.fj_tensile_strenght_MPa" \
+  '0,/^fj_tensile_strength_MPa/s//fj_tensile_strenght_MPa/'
+fj_case fj_zero_elements "materials.mortar.fj_elements.*1.*16" '0,/^fj_elements = 2/s//fj_elements = 0/'
+fj_case fj_17_elements "materials.itz.fj_elements.*1.*16" \
+  '/^\[materials.itz\]/,/^fj_elements/s/^fj_elements = 2/fj_elements = 17/'
+fj_case fj_negative_strength "materials.mortar.fj_cohesion_MPa.*(0, inf)" \
+  '0,/^fj_cohesion_MPa = 30/s//fj_cohesion_MPa = -30/'
+fj_case fj_angle_90 "materials.itz.fj_friction_angle_deg.*\[0, 90)" \
+  '/^\[materials.itz\]/,/^fj_friction/s/^fj_friction_angle_deg = 0/fj_friction_angle_deg = 90/'
+fj_case fj_on_wall "materials.wall.law.*linear" \
+  '/^\[materials.wall\]/,$s/^law = "linear"/law = "flat_joint"/'
+
 # A test file that does not exist.
 "$CDEM" run "$work/none.toml" -q 2>"$work/none.err" >/dev/null
 rc=$?

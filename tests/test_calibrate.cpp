@@ -171,10 +171,33 @@ TEST(CalibrateInput, ReadsTheSample) {
   EXPECT_DOUBLE_EQ(in.parameters[7].start, 15);
   EXPECT_EQ(in.verification_seeds, (std::vector<std::uint64_t>{2, 3, 4, 5, 6}));
   EXPECT_TRUE(in.needs_uniaxial());
-  EXPECT_FALSE(in.needs_brazilian());
+  EXPECT_FALSE(in.needs_tension_test());
   // The materials are inline in the base test, integers written as floats (a campaign would
   // round values written to an integer key).
   EXPECT_NE(in.uniaxial_test.find("emod_GPa = 16.0"), std::string::npos) << in.uniaxial_test;
+}
+
+// Four targets with sigma_t by direct tension on flat joints (issue #12): the tension test runs
+// on the uniaxial generator's specimens, each strength target gets its own flat-joint keys.
+TEST(CalibrateInput, ReadsTheFlatJointSampleWithDirectTension) {
+  const auto in = read_calibration_input(std::filesystem::path(CDEM_SOURCE_DIR) /
+                                         "samples/c30_flat_joint_calibrate.toml");
+  ASSERT_EQ(in.targets.size(), 4u);
+  EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::SigmaT), 2.9);
+  EXPECT_TRUE(in.needs_uniaxial());
+  EXPECT_TRUE(in.needs_tension_test());
+  EXPECT_EQ(in.tension_test_type, "direct_tension");
+  EXPECT_EQ(in.tension_generator, in.uniaxial_generator);
+  EXPECT_NE(in.tension_test.find("direct_tension"), std::string::npos);
+  EXPECT_EQ(in.parameters[4].role, ParameterRole::TensileStrength);  // fj_tensile_strength
+  EXPECT_EQ(in.parameters[7].role, ParameterRole::ShearStrength);    // fj_cohesion
+  for (const auto& g : fast_groups(in)) {
+    if (g.target != CalibrationTarget::SigmaU && g.target != CalibrationTarget::SigmaT) continue;
+    const auto role = g.target == CalibrationTarget::SigmaU ? ParameterRole::ShearStrength
+                                                            : ParameterRole::TensileStrength;
+    ASSERT_EQ(g.parameters.size(), 2u);
+    for (const int i : g.parameters) EXPECT_EQ(in.parameters[i].role, role);
+  }
 }
 
 TEST(CalibrateInput, RejectsBadInput) {
@@ -227,6 +250,10 @@ TEST(CalibrateInput, RejectsBadInput) {
       "parameters", "no common scale");
   expect_input_error(make_calibration("same_seed", "verification_seeds = [2, 2]\n" + head),
                      "verification_seeds", "repeats");
+  // sigma_t needs exactly one tension test.
+  expect_input_error(
+      make_calibration("no_tension_test", replace(head, "nu = 0.20", "nu = 0.20\nsigma_t_MPa = 3")),
+      "tests.brazilian", "exactly one tension test");
 }
 
 TEST(CalibrateFast, ConvergesOnTheAnalyticModel) {

@@ -131,7 +131,7 @@ void expect_error(const std::string& from, const std::string& to, const std::str
 
 TEST(MaterialTable, BadInputNamesTheKey) {
   expect_error("[materials.itz]", "[materials.itx]", "materials.itx");  // unknown class
-  expect_error("law = \"contact_bond\"", "law = \"flat_joint\"", "materials.aggregate.law");
+  expect_error("law = \"contact_bond\"", "law = \"smooth_joint\"", "materials.aggregate.law");
   expect_error("pb_cohesion_MPa = 30\n", "", "materials.mortar.pb_cohesion");   // missing
   expect_error("emod_GPa = 8", "", "materials.itz.emod");                       // missing
   expect_error("emod_GPa = 16", "emod_GPa = 0", "materials.mortar.emod_GPa");   // zero stiffness
@@ -162,4 +162,52 @@ TEST(MaterialTable, BadInputNamesTheKey) {
   }
 }
 
+TEST(MaterialTable, FlatJointKeysInSI) {
+  const MaterialTable t = read_material_table(InputTable::parse_string(R"(
+[materials.mortar]
+law = "flat_joint"
+emod_GPa = 16
+kratio = 1.45
+friction = 0.5
+fj_tensile_strength_MPa = 7
+fj_cohesion_MPa = 21
+fj_friction_angle_deg = 30
+fj_elements = 4
+fj_radius_multiplier = 0.8
+fj_slit_fraction = 0.2
+[materials.itz]
+law = "flat_joint"
+emod_GPa = 8
+kratio = 1.45
+friction = 0.5
+fj_tensile_strength_MPa = 3
+fj_cohesion_MPa = 9
+[materials.aggregate]
+law = "linear"
+emod_GPa = 20
+kratio = 2
+friction = 1
+)",
+                                                                       "fj.toml"));
+  const BondModel& m = bond(t, ContactClass::Mortar);
+  EXPECT_EQ(m.kind, BondKind::FlatJoint);
+  EXPECT_EQ(m.flat_joint.tensile_strength, 7e6);
+  EXPECT_EQ(m.flat_joint.cohesion, 21e6);
+  EXPECT_NEAR(m.flat_joint.friction_angle, std::numbers::pi / 6, 1e-15);
+  EXPECT_EQ(m.flat_joint.elements, 4);
+  EXPECT_EQ(m.flat_joint.radius_multiplier, 0.8);
+  EXPECT_EQ(m.flat_joint.slit_fraction, 0.2);
+  EXPECT_EQ(linear(t, ContactClass::Mortar).mu, 0.5);  // residual friction
+  // Defaults: N_r = 2, lambda = 1, phi = 0, no slit.
+  const FlatJointParams& itz = bond(t, ContactClass::Itz).flat_joint;
+  EXPECT_EQ(itz.elements, 2);
+  EXPECT_EQ(itz.radius_multiplier, 1);
+  EXPECT_EQ(itz.friction_angle, 0);
+  EXPECT_EQ(itz.slit_fraction, 0);
+  // The shipped flat-joint sample parses.
+  const MaterialTable sample = read_material_table(std::filesystem::path(CDEM_SOURCE_DIR) /
+                                                   "samples/materials/c30_flat_joint.toml");
+  EXPECT_EQ(bond(sample, ContactClass::Mortar).kind, BondKind::FlatJoint);
+  EXPECT_EQ(bond(sample, ContactClass::Itz).kind, BondKind::FlatJoint);
+}
 }  // namespace

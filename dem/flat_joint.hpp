@@ -1,0 +1,227 @@
+#pragma once
+// Flat-joint contact (Potyondy 2012; Itasca's "Flat-Joint Model", 2D, t = 1 m). The interface
+// between two discs is a straight segment of half-length R = lambda min(R1, R2) across the
+// contact normal, split into N_r equal elements. Each element is bonded (carries tension, cannot
+// slip) or unbonded (compression only, Coulomb friction mu); a bonded element breaks on its own,
+// in tension or in shear, so an interface is damaged element by element (partial damage).
+// The flat joint replaces the linear contact of its pair: it carries the whole contact force.
+//
+// Sign conventions are those of dem/parallel_bond.hpp: n from disc 1 to disc 2, t = (-n_y, n_x),
+// forces and moments are those on disc 2. Along the interface x runs along t from its centre
+// (the contact point). The opening of the interface at x is
+//     g(x) = g_s - theta x                                                      (m)
+// with g_s the surface gap (centre distance - R1 - R2 - g_0, g_0 the gap at installation) and
+// theta the relative rotation of disc 2 with respect to disc 1 since installation (rad): a
+// counter-clockwise rotation of disc 2 closes the interface at x > 0. Per unit area the normal
+// traction is kn g(x) (tension positive) with kn = E* / (R1 + R2) (Pa/m), the shear traction
+// increment -ks d_shear with ks = kn / kappa* (the parallel bond's stiffnesses, SPEC 4).
+//
+// Per element e, over [a_e, b_e] of length l = 2 R / N_r and area A_e = l t:
+//   bonded:   Fn_e = kn int g dx,      M_e = kn int x g dx          (tension allowed)
+//   unbonded: Fn_e = -kn int (-g)+ dx, M_e = -kn int x (-g)+ dx     (only where it closes)
+// Fn_e is the normal force (tension positive) and M_e the moment on disc 2 about its centre
+// from that element's normal tractions (for a bonded element under pure rotation the sum over
+// elements is -kn I theta with I = (2R)^3 t / 12, the parallel bond's kbn Ib). The shear force
+// Fs_e is incremental, Fs_e -= ks A_e d_shear; all elements share d_shear in 2D.
+//
+// Strength, checked at each bonded element's centroid (PFC's fj_sigma, fj_tau):
+//   sigma_e = Fn_e / A_e (tension positive), tau_e = |Fs_e| / A_e,
+//   tension failure when sigma_e >= sigma_c, else shear failure when tau_e >= c - sigma_e tan phi.
+// A broken element is unbonded from that pass on; its shear force is clipped to the friction
+// limit mu (-Fn_e) (the drop is booked as slip work, as for the contact bond).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "dem/bond_failure.hpp"
+
+namespace cdem::dem {
+
+inline constexpr int kMaxFlatJointElements = 16;  // N_r range 1..16 (issue #12)
+
+struct FlatJointParams {
+  double tensile_strength = 0;   // sigma_c, Pa
+  double cohesion = 0;           // c, Pa
+  double friction_angle = 0;     // phi, rad (bonded shear strength c - sigma tan phi)
+  double radius_multiplier = 1;  // lambda
+  int elements = 2;              // N_r
+  // Fraction of the class's interfaces installed with every element unbonded (PFC's slit
+  // fraction of a flat-jointed material); which ones is fixed by the pair (see
+  // flat_joint_is_slit), so it is the same for the same specimen.
+  double slit_fraction = 0;
+};
+
+// Geometry and stiffness of one interface, from the radii (fixed at installation).
+struct FlatJointGeometry {
+  double half_length = 0;     // R = lambda min(R1, R2), m
+  double element_length = 0;  // l = 2 R / N_r, m (element area A_e = l t)
+  double kn = 0;              // Pa/m, normal stiffness per unit area, E* / (R1 + R2)
+  double ks = 0;              // Pa/m, kn / kappa*
+  int elements = 0;           // N_r
+};
+
+// `emod` E* (Pa) and `kappa` kn/ks are the class's deformability (the linear keys emod, kratio).
+inline FlatJointGeometry flat_joint_geometry(const FlatJointParams& p, double emod, double kappa,
+                                             double r1, double r2, double inverse_length) {
+  FlatJointGeometry g;
+  g.half_length = p.radius_multiplier * std::min(r1, r2);
+  g.element_length = 2 * g.half_length / p.elements;
+  g.kn = emod * inverse_length;
+  g.ks = g.kn / kappa;
+  g.elements = p.elements;
+  return g;
+}
+
+// Whole-interface stiffnesses for the critical time step: normal kn A (N/m), shear ks A (N/m),
+// rotation kn I (N m / rad), A = 2 R t, I = (2 R)^3 t / 12.
+struct FlatJointStiffness {
+  double normal = 0, shear = 0, rotation = 0;
+};
+
+inline FlatJointStiffness flat_joint_stiffness(const FlatJointGeometry& g) {
+  const double length = 2 * g.half_length;  // m, t = 1
+  return {g.kn * length, g.ks * length, g.kn * length * length * length / 12.0};
+}
+
+// Integrals over [u, v] of a function f linear between f(u) = fu and f(v) = fv: int f dx,
+// int x f dx and int f^2 dx (exact for a linear f; no division by the slope).
+struct LinearIntegrals {
+  double f = 0, xf = 0, ff = 0;
+};
+
+inline LinearIntegrals integrate_linear(double u, double v, double fu, double fv) {
+  const double l = v - u;
+  return {0.5 * l * (fu + fv), l * (u * (2 * fu + fv) + v * (fu + 2 * fv)) / 6.0,
+          l * (fu * fu + fu * fv + fv * fv) / 3.0};
+}
+
+// The same for the positive part f+ = max(f, 0).
+inline LinearIntegrals integrate_positive(double u, double v, double fu, double fv) {
+  if (fu >= 0 && fv >= 0) return integrate_linear(u, v, fu, fv);
+  if (fu <= 0 && fv <= 0) return {};
+  const double root = u + (v - u) * fu / (fu - fv);  // f changes sign once, inside (u, v)
+  return fu > 0 ? integrate_linear(u, root, fu, 0.0) : integrate_linear(root, v, 0.0, fv);
+}
+
+// Normal force (N, tension positive), moment on disc 2 (N m) and normal strain energy (J/m) of
+// element e of an interface with surface gap `gap` (m) and relative rotation `theta` (rad).
+struct FlatJointElementForce {
+  double fn = 0, moment = 0, energy = 0;
+};
+
+inline FlatJointElementForce flat_joint_element_force(const FlatJointGeometry& g, int e,
+                                                      bool bonded, double gap, double theta) {
+  const double a = -g.half_length + e * g.element_length, b = a + g.element_length;
+  const double ga = gap - theta * a, gb = gap - theta * b;  // opening at the two ends, m
+  if (bonded) {
+    const LinearIntegrals i = integrate_linear(a, b, ga, gb);
+    return {g.kn * i.f, g.kn * i.xf, 0.5 * g.kn * i.ff};
+  }
+  const LinearIntegrals i = integrate_positive(a, b, -ga, -gb);  // closure, where it is > 0
+  return {-g.kn * i.f, -g.kn * i.xf, 0.5 * g.kn * i.ff};
+}
+
+// The failure of a bonded element with normal force fn (N, tension positive) and shear force
+// fs (N); tension is checked first, as in PFC.
+inline BondFailure flat_joint_element_failure(const FlatJointParams& p, double area, double fn,
+                                              double fs, double tan_friction_angle) {
+  const double sigma = fn / area, tau = std::fabs(fs) / area;
+  if (sigma >= p.tensile_strength) return BondFailure::Tension;
+  if (tau >= p.cohesion - sigma * tan_friction_angle) return BondFailure::Shear;
+  return BondFailure::None;
+}
+
+// Result of one update of an interface.
+struct FlatJointForce {
+  double fn = 0;               // N, total normal force on the interface, tension positive
+  double fs = 0;               // N, total shear force on disc 2 along t
+  double moment = 0;           // N m, moment on disc 2 about its centre from the normal tractions
+  double compression_max = 0;  // N, largest compressive element force (for diagnostics)
+  double slip_work = 0;        // J, dissipated by slip of unbonded elements in this pass
+  double released = 0;         // J, normal strain energy lost by elements that broke
+  std::uint32_t failed = 0;    // bit e: element e broke in this pass
+  std::uint32_t failed_shear = 0;  // bit e: ... and it broke in shear (else in tension)
+};
+
+// One pass over an interface: increments each element's shear force by -ks A_e d_shear (m),
+// evaluates the normal forces from the current gap (m) and rotation (rad), breaks the bonded
+// elements that reach their strength, applies friction `mu` to the unbonded ones. `shear`
+// holds the N_r element shear forces (N) and `bonded` the bond state (bit e = element e).
+inline FlatJointForce flat_joint_update(const FlatJointGeometry& g, const FlatJointParams& p,
+                                        double mu, double tan_friction_angle, double gap,
+                                        double theta, double d_shear, double* shear,
+                                        std::uint32_t& bonded) {
+  FlatJointForce out;
+  const double area = g.element_length;  // m^2, t = 1
+  const double dfs = -g.ks * area * d_shear;
+  for (int e = 0; e < g.elements; ++e) {
+    const std::uint32_t bit = 1u << e;
+    const double trial = shear[e] + dfs;
+    FlatJointElementForce f = flat_joint_element_force(g, e, bonded & bit, gap, theta);
+    double fs = trial;
+    if (bonded & bit) {
+      const BondFailure failure =
+          flat_joint_element_failure(p, area, f.fn, trial, tan_friction_angle);
+      if (failure != BondFailure::None) {
+        bonded &= ~bit;
+        out.failed |= bit;
+        if (failure == BondFailure::Shear) out.failed_shear |= bit;
+        const FlatJointElementForce unbonded = flat_joint_element_force(g, e, false, gap, theta);
+        out.released += f.energy - unbonded.energy;
+        f = unbonded;
+      }
+    }
+    if (!(bonded & bit)) {
+      const double limit = mu * -f.fn;  // f.fn <= 0 for an unbonded element
+      fs = std::clamp(trial, -limit, limit);
+      const double mean_twice = shear[e] + fs, excess = trial - fs;
+      if (mean_twice * excess != 0) out.slip_work += 0.5 * mean_twice * excess / (g.ks * area);
+    }
+    shear[e] = fs;
+    out.fn += f.fn;
+    out.fs += fs;
+    out.moment += f.moment;
+    out.compression_max = std::max(out.compression_max, -f.fn);
+  }
+  return out;
+}
+
+// Strain energy held by an interface (J per m of thickness): normal and bending of every
+// element plus the shear springs, fs^2 / (2 ks A_e).
+inline double flat_joint_strain_energy(const FlatJointGeometry& g, std::uint32_t bonded, double gap,
+                                       double theta, const double* shear) {
+  double energy = 0;
+  for (int e = 0; e < g.elements; ++e) {
+    energy += flat_joint_element_force(g, e, bonded & (1u << e), gap, theta).energy;
+    energy += 0.5 * shear[e] * shear[e] / (g.ks * g.element_length);
+  }
+  return energy;
+}
+
+// True when an interface has no bonded element and is open over its whole length: the flat
+// joint is then removed and the pair becomes a plain linear contact (PFC's activity-deletion
+// criterion), which carries no force while apart.
+inline bool flat_joint_is_open(const FlatJointGeometry& g, std::uint32_t bonded, double gap,
+                               double theta) {
+  return bonded == 0 && gap - std::fabs(theta) * g.half_length > 0;
+}
+
+// Centroid of element e along t from the contact point, m.
+inline double flat_joint_element_centroid(const FlatJointParams& p, double r1, double r2, int e) {
+  const double half_length = p.radius_multiplier * std::min(r1, r2);
+  return half_length * (-1.0 + (2.0 * e + 1.0) / p.elements);
+}
+
+// Whether the interface of pair (i, j) is installed slit (all elements unbonded) for a slit
+// fraction `fraction`: a fixed hash of the pair (splitmix64) compared with the fraction, so the
+// choice depends on the specimen only and is independent of the thread count.
+inline bool flat_joint_is_slit(std::uint64_t pair_key, double fraction) {
+  if (fraction <= 0) return false;
+  std::uint64_t z = pair_key + 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-53 < fraction;
+}
+
+}  // namespace cdem::dem
