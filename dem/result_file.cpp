@@ -187,6 +187,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
 
     std::vector<double> t, x, y;
     std::vector<std::uint8_t> mode, cls;
+    std::vector<std::int32_t> element;
     std::vector<std::int32_t> first, second;
     for (const Crack& c : r.cracks) {
       t.push_back(c.time);
@@ -196,6 +197,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
       cls.push_back(static_cast<std::uint8_t>(c.contact_class));
       first.push_back(c.first);
       second.push_back(c.second);
+      element.push_back(c.element);
     }
     H5::Group cg = where.createGroup("cracks");
     write_array(cg, "time", t, "s");
@@ -205,6 +207,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_array(cg, "class", cls, "", "0 = M (mortar), 1 = ITZ, 2 = A (aggregate)");
     write_array(cg, "first", first, "", "world disc index");
     write_array(cg, "second", second, "", "world disc index");
+    write_array(cg, "element", element, "", "flat-joint element 0 .. N_r - 1, -1 = not a flat joint");
     for (int m = 0; m < 2; ++m)
       for (int c = 0; c < 3; ++c)
         write_scalar_attr<long>(
