@@ -204,7 +204,8 @@ class DiscPairKernel {
   }
 
   // A pair with an intact contact or parallel bond (SPEC 4; docs/dem_design.md "Bonds in the
-  // contact loop"). In the pass where a bond breaks the contact is already plain linear.
+  // contact loop"). In the pass where a bond breaks the contact is already plain linear. A flat
+  // joint, which replaces the linear part, has its own path.
   PairForce bonded(std::size_t k, const Geometry& g) const {
     const BondKind kind = static_cast<BondKind>(bond_[k]);
     if (kind == BondKind::FlatJoint) return flat_joint(k, g);

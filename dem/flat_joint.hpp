@@ -133,13 +133,12 @@ inline BondFailure flat_joint_element_failure(const FlatJointParams& p, double a
 
 // Result of one update of an interface.
 struct FlatJointForce {
-  double fn = 0;               // N, total normal force on the interface, tension positive
-  double fs = 0;               // N, total shear force on disc 2 along t
-  double moment = 0;           // N m, moment on disc 2 about its centre from the normal tractions
-  double compression_max = 0;  // N, largest compressive element force (for diagnostics)
-  double slip_work = 0;        // J, dissipated by slip of unbonded elements in this pass
-  double released = 0;         // J, normal strain energy lost by elements that broke
-  std::uint32_t failed = 0;    // bit e: element e broke in this pass
+  double fn = 0;             // N, total normal force on the interface, tension positive
+  double fs = 0;             // N, total shear force on disc 2 along t
+  double moment = 0;         // N m, moment on disc 2 about its centre from the normal tractions
+  double slip_work = 0;      // J, dissipated by slip of unbonded elements in this pass
+  double released = 0;       // J, normal strain energy lost by elements that broke
+  std::uint32_t failed = 0;  // bit e: element e broke in this pass
   std::uint32_t failed_shear = 0;  // bit e: ... and it broke in shear (else in tension)
 };
 
@@ -181,7 +180,6 @@ inline FlatJointForce flat_joint_update(const FlatJointGeometry& g, const FlatJo
     out.fn += f.fn;
     out.fs += fs;
     out.moment += f.moment;
-    out.compression_max = std::max(out.compression_max, -f.fn);
   }
   return out;
 }

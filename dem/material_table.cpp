@@ -1,5 +1,6 @@
 #include "dem/material_table.hpp"
 
+#include <cmath>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -80,7 +81,11 @@ void read_class(const InputTable& t, ContactClass cls, const LinearContact* fall
     p.friction_angle = t.number_or("fj_friction_angle_deg", 0.0, Range::right_open(0, 90)) *
                        std::numbers::pi / 180.0;
     p.radius_multiplier = t.number_or("fj_radius_multiplier", 1.0, Range::positive());
-    p.elements = static_cast<int>(t.integer_or("fj_elements", 2, 1, kMaxFlatJointElements));
+    // Read as a number, then checked whole: calibration writes every material value as a float.
+    const double elements = t.number_or("fj_elements", 2, Range::closed(1, kMaxFlatJointElements));
+    if (elements != std::floor(elements))
+      t.fail("fj_elements", "must be a whole number in [1, 16], got " + std::to_string(elements));
+    p.elements = static_cast<int>(elements);
     p.slit_fraction = t.number_or("fj_slit_fraction", 0.0, Range::closed(0, 1));
   }
 }
