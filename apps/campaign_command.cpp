@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "apps/commands.hpp"
+#include "apps/job_input_check.hpp"
 #include "calib/campaign.hpp"
 
 namespace cdem::apps {
@@ -38,6 +39,7 @@ Action add_campaign_command(CLI::App& app) {
     if (output->count()) o->campaign.output_dir = o->output;
     if (timeout->count()) o->campaign.timeout_s = o->timeout_s;
     o->campaign.verbose = !o->quiet;
+    o->campaign.check_run = check_campaign_run;
     calib::run_campaign(o->campaign);
   };
 }

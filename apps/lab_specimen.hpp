@@ -45,11 +45,17 @@ class ScratchDirectory {
 // Reads or generates the specimen of `input` (generation seeded with input.seed). Throws
 // InputError for a bad inline table (named "<test file> [specimen]") or specimen file, RunError
 // when generation cannot reach its targets.
+// Checks the inline generator table of `input`, if any; errors name the test file's [specimen].
+inline void check_inline_generator(const dem::LabTestInput& input) {
+  if (input.specimen_generator.empty()) return;
+  mesogen::read_generator_input(
+      InputTable::parse_string(input.specimen_generator, input.specimen_path.string()));
+}
+
 inline Specimen lab_test_specimen(const dem::LabTestInput& input, bool verbose) {
   if (input.specimen_generator.empty()) return read_specimen(input.specimen_path);
   // Validated here first so that errors name the test file rather than the scratch copy.
-  mesogen::read_generator_input(
-      InputTable::parse_string(input.specimen_generator, input.specimen_path.string()));
+  check_inline_generator(input);
   const ScratchDirectory scratch;
   mesogen::GenerateRequest request;
   request.input = scratch.path() / "specimen.toml";

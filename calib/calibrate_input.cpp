@@ -333,9 +333,14 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
 
   const InputTable specimen = root.table("specimen");
   specimen.reject_unknown_keys({"generator", "brazilian_generator", "seed"});
-  if (in.needs_uniaxial()) in.uniaxial_generator = generator_text(specimen, "generator", file);
-  if (in.needs_brazilian())
+  if (in.needs_uniaxial()) {
+    in.uniaxial_generator = generator_text(specimen, "generator", file);
+    in.uniaxial_generator_file = relative_to(file, specimen.string("generator"));
+  }
+  if (in.needs_brazilian()) {
     in.brazilian_generator = generator_text(specimen, "brazilian_generator", file);
+    in.brazilian_generator_file = relative_to(file, specimen.string("brazilian_generator"));
+  }
   constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
   in.calibration_seed = static_cast<std::uint64_t>(specimen.integer_or("seed", 1, 0, kMaxSeed));
 

@@ -93,6 +93,8 @@ struct CalibrationInput {
   // Specimens: the generator inputs as text; each specimen is `cdem generate` with a seed.
   std::string uniaxial_generator;
   std::string brazilian_generator;
+  std::filesystem::path uniaxial_generator_file;  // where each came from, for messages
+  std::filesystem::path brazilian_generator_file;
   std::uint64_t calibration_seed = 1;             // specimen the strategy iterates on
   std::vector<std::uint64_t> verification_seeds;  // independent specimens (default 5)
 

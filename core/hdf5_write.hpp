@@ -37,6 +37,27 @@ inline void write_string_attr(H5::H5Object& o, const std::string& name, const st
   o.createAttribute(name, st, H5::DataSpace(H5S_SCALAR)).write(st, value);
 }
 
+// Object-creation property lists without modification times (HDF5 stores them by default):
+// the same specimen and seed must give the same bytes. A file-creation list covers the root
+// group.
+template <class PropList>
+PropList untimed() {
+  PropList p;
+  H5Pset_obj_track_times(p.getId(), false);
+  return p;
+}
+
+// A new group `name` in `parent`, untimed.
+inline H5::Group create_group(const H5::H5Location& parent, const std::string& name) {
+  const H5::PropList gcpl(H5P_GROUP_CREATE);  // a class id: a new list of that class
+  H5Pset_obj_track_times(gcpl.getId(), false);
+  const hid_t id = H5Gcreate2(parent.getId(), name.c_str(), H5P_DEFAULT, gcpl.getId(), H5P_DEFAULT);
+  if (id < 0) throw H5::GroupIException("create_group", "cannot create group " + name);
+  H5::Group g(id);  // takes a reference of its own
+  H5Idec_ref(id);
+  return g;
+}
+
 template <class T>
 void write_scalar_attr(H5::H5Object& o, const std::string& name, T value) {
   o.createAttribute(name, type_of<T>(), H5::DataSpace(H5S_SCALAR)).write(type_of<T>(), &value);
@@ -49,7 +70,8 @@ void write_array(H5::Group& g, const std::string& name, const std::vector<T>& v,
                  const std::string& units = "", const std::string& meaning = "",
                  hsize_t columns = 1) {
   const hsize_t dims[2] = {columns == 1 ? v.size() : v.size() / columns, columns};
-  H5::DataSet ds = g.createDataSet(name, type_of<T>(), H5::DataSpace(columns == 1 ? 1 : 2, dims));
+  H5::DataSet ds = g.createDataSet(name, type_of<T>(), H5::DataSpace(columns == 1 ? 1 : 2, dims),
+                                   untimed<H5::DSetCreatPropList>());
   if (!v.empty()) ds.write(v.data(), type_of<T>());
   if (!units.empty()) write_string_attr(ds, "units", units);
   if (!meaning.empty()) write_string_attr(ds, "meaning", meaning);
