@@ -141,7 +141,7 @@ void check_values(const Reader& rd, const Specimen& s) {
     if (!std::isfinite(s.r[i]) || s.r[i] <= 0)
       entry("discs/r", i, "is " + number(s.r[i]) + " m; a radius must be finite and > 0");
     if (!inside({s.x[i], s.y[i]}, s.r[i]))
-      entry("discs/x", i,
+      entry("discs/x, discs/y", i,
             "(disc at x " + number(s.x[i]) + " m, y " + number(s.y[i]) + " m, r " + number(s.r[i]) +
                 " m) lies outside the mould (" + number(c.width) + " x " + number(c.height) +
                 " m)");
