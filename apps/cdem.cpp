@@ -36,6 +36,12 @@ int main(int argc, char** argv) {
   CLI::App app{"cdem: concrete mesostructures and 2D bonded-particle DEM"};
   app.set_version_flag("--version", std::string("cdem ") + cdem::kVersion);
   app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 success; 1 bad command line; 2 bad input (file, key or dataset out of range, "
+      "or an output path that is an input, another output, or not a regular file or new name); "
+      "3 the run could not complete (target not reached, unstable run, output not writable, out "
+      "of memory); 128+N killed by signal N. Outputs are renamed into place together when the "
+      "command succeeds; nothing is left otherwise.");
 
   const std::vector<cdem::apps::Action> actions{
       cdem::apps::add_generate_command(app),
