@@ -3,12 +3,11 @@
 #include <memory>
 
 #include "apps/commands.hpp"
-#include "apps/job_input_check.hpp"
 #include "calib/campaign.hpp"
 
 namespace cdem::apps {
 
-Action add_campaign_command(CLI::App& app) {
+Action add_campaign_command(CLI::App& app, calib::RunInputCheck check_run) {
   struct Options {
     calib::CampaignOptions campaign;
     std::string output;
@@ -16,6 +15,7 @@ Action add_campaign_command(CLI::App& app) {
     bool quiet = false;
   };
   auto o = std::make_shared<Options>();
+  o->campaign.check_run = std::move(check_run);
   auto* c = app.add_subcommand(
       "campaign",
       "Run every run of a design (factors = keys of a base input, x seeds) as its own cdem job, "
@@ -39,7 +39,6 @@ Action add_campaign_command(CLI::App& app) {
     if (output->count()) o->campaign.output_dir = o->output;
     if (timeout->count()) o->campaign.timeout_s = o->timeout_s;
     o->campaign.verbose = !o->quiet;
-    o->campaign.check_run = check_campaign_run;
     calib::run_campaign(o->campaign);
   };
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "apps/commands.hpp"
+#include "apps/job_input_check.hpp"
 #include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
 #include "core/version.hpp"
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
 
   const std::vector<cdem::apps::Action> actions{
       cdem::apps::add_generate_command(app),
-      cdem::apps::add_campaign_command(app),
+      cdem::apps::add_campaign_command(app, cdem::apps::check_campaign_run),
       cdem::apps::add_run_command(app),
       cdem::apps::add_calibrate_command(app),
   };

@@ -9,8 +9,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 
+#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
 #include "core/input_table.hpp"
 #include "core/specimen_file.hpp"
@@ -29,6 +31,7 @@ class ScratchDirectory {
       throw RunError("cannot create a scratch directory under " +
                      std::filesystem::temp_directory_path().string());
     path_ = pattern;
+    on_signal_ = std::make_unique<RemovedOnSignal>(path_);
   }
   ~ScratchDirectory() {
     std::error_code ignored;
@@ -40,6 +43,7 @@ class ScratchDirectory {
 
  private:
   std::filesystem::path path_;
+  std::unique_ptr<RemovedOnSignal> on_signal_;
 };
 
 // Reads or generates the specimen of `input` (generation seeded with input.seed). Throws
@@ -62,6 +66,7 @@ inline Specimen lab_test_specimen(const dem::LabTestInput& input, bool verbose) 
   request.output = scratch.path() / "specimen.h5";
   request.seed = input.seed;
   request.verbose = verbose;
+  const RemovedOnSignal input_on_signal(request.input), output_on_signal(request.output);
   {
     std::ofstream text(request.input);
     text << input.specimen_generator;

@@ -51,6 +51,8 @@ constexpr std::array<int, 3> kCleanupSignals = {SIGINT, SIGTERM, SIGHUP};
 extern "C" void remove_temps_and_die(int signal) {
   for (auto& slot : temp_slots)
     if (slot.state.load() == 2) ::unlink(slot.path);
+  for (auto& slot : temp_slots)  // directories, once their files are gone
+    if (slot.state.load() == 2) ::rmdir(slot.path);
   ::signal(signal, SIG_DFL);
   ::raise(signal);
 }
@@ -121,7 +123,12 @@ void install_output_cleanup_on_signals() {
   sigemptyset(&action.sa_mask);
   for (int s : kCleanupSignals) sigaddset(&action.sa_mask, s);
   for (int s : kCleanupSignals) ::sigaction(s, &action, nullptr);
+  ::signal(SIGXFSZ, SIG_IGN);
 }
+
+RemovedOnSignal::RemovedOnSignal(const std::filesystem::path& path) : slot_(register_temp(path)) {}
+
+RemovedOnSignal::~RemovedOnSignal() { unregister_temp(slot_); }
 
 AtomicOutput::AtomicOutput(std::filesystem::path target) : target_(std::move(target)) {
   if (target_.has_parent_path() && !std::filesystem::exists(target_.parent_path()))

@@ -61,8 +61,23 @@ class OutputTransaction {
   std::vector<Pending> pending_;
 };
 
-// SIGINT, SIGTERM and SIGHUP remove every registered temporary file, then end the process with
-// the signal's default action (exit status 128 + signal in a shell).
+// A scratch path (a file, or a directory emptied of its registered files) that the cleanup
+// signals remove too, for the life of the object; removing it otherwise is the owner's job.
+class RemovedOnSignal {
+ public:
+  explicit RemovedOnSignal(const std::filesystem::path& path);
+  ~RemovedOnSignal();
+  RemovedOnSignal(const RemovedOnSignal&) = delete;
+  RemovedOnSignal& operator=(const RemovedOnSignal&) = delete;
+
+ private:
+  int slot_;
+};
+
+// SIGINT, SIGTERM and SIGHUP remove every registered temporary file (then the registered
+// directories), then end the process with the signal's default action (exit status 128 + signal
+// in a shell). SIGXFSZ is ignored, so that a write beyond the file-size limit is an error cdem
+// reports (exit 3) rather than a crash.
 void install_output_cleanup_on_signals();
 
 // The temporary name of `target` for process `pid`, and whether `name` is the temporary name of

@@ -175,7 +175,7 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
   // H5::Exception is not a std::exception: translate it, or no caller would catch it. The
   // temporary file is removed by `out` on the way out.
   try {
-    H5::H5File f(out.temp_path().string(), H5F_ACC_TRUNC, hdf5::untimed<H5::FileCreatPropList>());
+    H5::H5File f = hdf5::create_file_in_memory(out.temp_path().string());
     write_string_attr(f, "format", kFormat);
     write_scalar_attr<std::int32_t>(f, "format_version", kFormatVersion);
     write_string_attr(f, "cdem_version", kVersion);
@@ -218,7 +218,7 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
     write_array(g, "bin", bin);
     write_array(g, "vertex_offset", offset);
     write_array(g, "vertices", vertices, "m", "", 2);
-    f.close();
+    hdf5::save_and_close(f, out);
   } catch (const H5::Exception& e) {
     throw RunError("cannot write specimen file " + path.string() + " (" + e.getDetailMsg() + ")");
   }

@@ -180,6 +180,15 @@ head -c 3000 specimen.h5 > cut.h5
 test_file cut.h5 > cut.toml
 expect specimen_cut_short 2 "cut.h5" "HDF5" "cut_out.h5" -- "$CDEM" run cut.toml -o cut_out.h5 -q
 
+# --- write errors: the file-size limit (ulimit -f, in KiB) cuts the writes short -------------------
+# (tests run as root, where permission bits do not stop a write; a size limit does.)
+limited=(bash -c 'ulimit -f 8; exec "$@"' limited)
+expect write_error_generate 3 "fs.h5" "File too large" "fs.h5 fs.json fs.png" -- \
+  "${limited[@]}" "$CDEM" generate spec.toml -o fs.h5 --summary fs.json --picture fs.png -q
+printf 'seed = 1\nspecimen = "specimen.h5"\nmaterials = "materials.toml"\n[test]\ntype = "uniaxial"\nmax_steps = 20000\nsnapshot_interval = 500\n' > snapshots.toml
+expect write_error_run 3 "fs_run.h5" "File too large" "fs_run.h5 fs_run.xmf fs_run.json fs_run_cracks.png" -- \
+  "${limited[@]}" "$CDEM" run snapshots.toml -o fs_run.h5 --summary fs_run.json -q
+
 # --- cdem campaign: checked before any run -------------------------------------------------------
 campaign() {  # campaign NAME COMMAND BASE GATHER FACTOR_TABLE
   cat > "$1.toml" <<TOML
