@@ -128,7 +128,9 @@ void install_output_cleanup_on_signals() {
 
 RemovedOnSignal::RemovedOnSignal(const std::filesystem::path& path) : slot_(register_temp(path)) {}
 
-RemovedOnSignal::~RemovedOnSignal() { unregister_temp(slot_); }
+RemovedOnSignal::~RemovedOnSignal() {
+  unregister_temp(slot_);
+}
 
 AtomicOutput::AtomicOutput(std::filesystem::path target) : target_(std::move(target)) {
   if (target_.has_parent_path() && !std::filesystem::exists(target_.parent_path()))

@@ -115,6 +115,21 @@ try() {
   echo "ok   $what"
 }
 
+# Stale temporary files of a process that is gone are removed by the next run of the command;
+# those of a live process (this shell) are left alone: it may still be writing them.
+true &
+dead=$!
+wait "$dead"
+printf 'stale' > "g.h5.tmp$dead"
+printf 'live' > "g.h5.tmp$$"
+rm -f $gen_outputs
+"${gen_cmd[@]}" || fail "generate beside stale temporary files"
+if [ -e "g.h5.tmp$dead" ]; then fail "the temporary file of dead process $dead was not removed"; fi
+if [ ! -e "g.h5.tmp$$" ]; then fail "the temporary file of live process $$ was removed"; fi
+if ! complete_generate; then fail "generate beside stale temporary files: outputs incomplete"; fi
+rm -f "g.h5.tmp$$" $gen_outputs
+echo "stale temporary files: the dead process's removed, the live one's kept"
+
 for sig in INT TERM KILL; do
   for ((k = 0; k < TRIES; ++k)); do
     try generate "$sig" "$gen_ms" "$gen_outputs" complete_generate "${gen_cmd[@]}"
