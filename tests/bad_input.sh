@@ -17,23 +17,7 @@ passed=0
 
 # A tiny specimen (20 x 20 mm, 2.5-5 mm aggregates) and a uniaxial test on it: a run takes a
 # fraction of a second.
-cat > spec.toml <<'TOML'
-seed = 1
-[specimen]
-shape = "rectangle"
-width_mm = 20
-height_mm = 20
-[gradation]
-type = "walraven"
-p_k = 0.5
-d_min_mm = 2.5
-d_max_mm = 5
-bin_count = 2
-[mortar]
-r_mean_mm = 0.5
-r_ratio = 2
-porosity = 0.12
-TOML
+cp "$SRC/tests/tiny_specimen.toml" spec.toml
 cp "$SRC/samples/c30_materials.toml" materials.toml
 "$CDEM" generate spec.toml -o specimen.h5 -q || { echo "FAIL: cannot generate the specimen"; exit 1; }
 test_file() { printf 'seed = 1\nspecimen = "%s"\nmaterials = "materials.toml"\n[test]\ntype = "uniaxial"\nmax_steps = 20000\n' "$1"; }

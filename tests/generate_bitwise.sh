@@ -8,23 +8,7 @@ set -eu
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-cat > spec.toml <<'TOML'
-seed = 1
-[specimen]
-shape = "rectangle"
-width_mm = 20
-height_mm = 20
-[gradation]
-type = "walraven"
-p_k = 0.5
-d_min_mm = 2.5
-d_max_mm = 5
-bin_count = 2
-[mortar]
-r_mean_mm = 0.5
-r_ratio = 2
-porosity = 0.12
-TOML
+cp "$SRC/tests/tiny_specimen.toml" spec.toml
 mkdir first second
 "$CDEM" generate spec.toml -o first/specimen.h5 --seed 7 -q
 sleep 1.1  # HDF5 timestamps have a resolution of one second

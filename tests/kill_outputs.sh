@@ -21,23 +21,7 @@ failures=0
 passed=0
 RANDOM=13  # the kill times are the same on every run of the test
 
-cat > spec.toml <<'TOML'
-seed = 1
-[specimen]
-shape = "rectangle"
-width_mm = 20
-height_mm = 20
-[gradation]
-type = "walraven"
-p_k = 0.5
-d_min_mm = 2.5
-d_max_mm = 5
-bin_count = 2
-[mortar]
-r_mean_mm = 0.5
-r_ratio = 2
-porosity = 0.12
-TOML
+cp "$SRC/tests/tiny_specimen.toml" spec.toml
 cp "$SRC/samples/c30_materials.toml" materials.toml
 printf 'seed = 1\nspecimen = "specimen.h5"\nmaterials = "materials.toml"\n[test]\ntype = "uniaxial"\nsnapshot_interval = 1000\n' > test.toml
 
