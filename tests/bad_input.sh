@@ -113,6 +113,12 @@ expect run_output_symlink 2 "link_to_specimen.h5" "symbolic link" "" -- "${R[@]}
 expect run_crack_map_directory 2 "adir" "--crack-map" "r7.h5" -- "${R[@]}" -o r7.h5 --crack-map adir
 expect run_summary_fifo 2 "fifo" "--summary" "r8.h5" -- "${R[@]}" -o r8.h5 --summary fifo
 
+# A biaxial series writes one picture per confinement, "_cK" before the extension: those names
+# are outputs too.
+printf 'seed = 1\nspecimen = "specimen.h5"\nmaterials = "materials.toml"\n[test]\ntype = "biaxial"\nconfining_stresses_MPa = [0.5, 2]\n' > biaxial.toml
+expect run_biaxial_picture_is_summary 2 "bx_c1.png" "--plot" "bx.h5 bx_c1.png" -- \
+  "$CDEM" run biaxial.toml -o bx.h5 --plot bx.png --summary bx_c1.png -q
+
 # --- cdem run: corrupt specimen files (values set with h5py) --------------------------------------
 # corrupt NAME DATASET INDEX VALUE: a copy of the specimen with one value replaced, and its test.
 corrupt() {
