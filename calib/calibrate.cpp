@@ -1,6 +1,8 @@
 #include "calib/calibrate.hpp"
 
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 
 #include "calib/calibrate_campaign.hpp"
 #include "calib/calibrate_fast.hpp"
@@ -58,14 +60,14 @@ CalibrateOutcome run_calibration(const CalibrateOptions& options) {
   const CalibrationInput input = read_calibration_input(options.file, options.strategy);
   const auto output_dir = std::filesystem::absolute(options.output_dir.value_or(input.output_dir));
   std::vector<NamedPath> inputs{{"calibration file", input.file}};
-  for (const auto& [text, file] :
-       {std::pair{&input.uniaxial_generator, &input.uniaxial_generator_file},
-        std::pair{&input.brazilian_generator, &input.brazilian_generator_file}}) {
-    if (text->empty()) continue;
-    inputs.push_back({"generator", *file});
-    if (options.check_generator)
-      options.check_generator(*text,
-                              file->string() + " (generator of " + input.file.string() + ")");
+  for (const auto& generator : input.generator_files) {
+    inputs.push_back({"generator", generator});
+    if (!options.check_generator) continue;
+    std::ifstream in(generator, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    options.check_generator(text.str(),
+                            generator.string() + " (generator of " + input.file.string() + ")");
   }
   check_output_directory(inputs, {options.output_dir ? "-o" : "output_dir", output_dir});
   CampaignSimulator simulator(input, output_dir, options.jobs, options.verbose);

@@ -333,14 +333,9 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
 
   const InputTable specimen = root.table("specimen");
   specimen.reject_unknown_keys({"generator", "brazilian_generator", "seed"});
-  if (in.needs_uniaxial()) {
-    in.uniaxial_generator = generator_text(specimen, "generator", file);
-    in.uniaxial_generator_file = relative_to(file, specimen.string("generator"));
-  }
-  if (in.needs_brazilian()) {
+  if (in.needs_uniaxial()) in.uniaxial_generator = generator_text(specimen, "generator", file);
+  if (in.needs_brazilian())
     in.brazilian_generator = generator_text(specimen, "brazilian_generator", file);
-    in.brazilian_generator_file = relative_to(file, specimen.string("brazilian_generator"));
-  }
   constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
   in.calibration_seed = static_cast<std::uint64_t>(specimen.integer_or("seed", 1, 0, kMaxSeed));
 
@@ -357,6 +352,8 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
     root.fail("verification_seeds", "repeats a seed; verification specimens must be independent");
   in.verification_tolerance =
       root.number_or("verification_tolerance", 0.05, Range::left_open(0, 1));
+  for (const char* key : {"generator", "brazilian_generator"})
+    if (specimen.has(key)) in.generator_files.push_back(relative_to(file, specimen.string(key)));
 
   if (const auto budget = root.optional_table("budget")) {
     budget->reject_unknown_keys({"max_simulations", "timeout"});

@@ -93,14 +93,15 @@ struct CalibrationInput {
   // Specimens: the generator inputs as text; each specimen is `cdem generate` with a seed.
   std::string uniaxial_generator;
   std::string brazilian_generator;
-  std::filesystem::path uniaxial_generator_file;  // where each came from, for messages
-  std::filesystem::path brazilian_generator_file;
   std::uint64_t calibration_seed = 1;             // specimen the strategy iterates on
   std::vector<std::uint64_t> verification_seeds;  // independent specimens (default 5)
 
   double verification_tolerance = 0.05;  // mean relative error accepted per target
-  int max_simulations = 200;             // lab-test runs, every stage together
-  double timeout_s = 0;                  // per run; 0 = none
+  // Every generator file [specimen] names, as written there (resolved against this file): what
+  // `cdem calibrate` checks before any job starts, so that errors name them.
+  std::vector<std::filesystem::path> generator_files;
+  int max_simulations = 200;  // lab-test runs, every stage together
+  double timeout_s = 0;       // per run; 0 = none
 
   FastSettings fast;
   PaperSettings paper;
