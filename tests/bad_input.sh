@@ -230,6 +230,44 @@ campaign output_is_file generate spec.toml '"discs"' 'key = "mortar.porosity"
 values = [0.1, 0.12]'
 expect campaign_output_is_a_file 2 "somefile" "-o" "" -- "$CDEM" campaign output_is_file.toml -o somefile -q
 
+# Controls: gathering every field of a real summary passes the check and the campaign runs, so
+# the checks above refuse the misspelt fields, not everything.
+leaf_paths() {
+  "$PY" - "$1" <<'PY'
+import json, sys
+def walk(node, path):
+    if isinstance(node, dict):
+        for k, v in node.items():
+            yield from walk(v, path + [k])
+    elif isinstance(node, list) and node and isinstance(node[0], (dict, list)):
+        yield from walk(node[0], path + ["0"])
+    else:
+        yield ".".join(path)
+print(", ".join(json.dumps(p) for p in walk(json.load(open(sys.argv[1])), [])))
+PY
+}
+control() {  # control NAME: the campaign must run and every gathered column must be filled
+  timeout 120 "$CDEM" campaign "$1.toml" -j 2 -q >/dev/null 2>"$1.err"
+  local rc=$? empty
+  empty=$("$PY" -c 'import csv,sys; rows=list(csv.DictReader(open(sys.argv[1])));
+print(sum(1 for r in rows for k, v in r.items() if v == "" and k != "message"))' \
+    "$1_out/results.csv" 2>/dev/null)
+  if [ "$rc" -ne 0 ] || [ "${empty:-x}" != 0 ]; then
+    echo "FAIL control $1: exit $rc, empty cells ${empty:-none read}"; cat "$1.err"
+    failures=$((failures + 1))
+  else
+    echo "ok   control $1: every summary field gathered, none empty"; passed=$((passed + 1))
+  fi
+}
+"$CDEM" generate spec.toml -o control.h5 --summary control_generate.json -q
+campaign all_generate_fields generate spec.toml "$(leaf_paths control_generate.json)" 'key = "mortar.porosity"
+values = [0.11, 0.12]'
+control all_generate_fields
+"$CDEM" run run_base.toml --summary control_run.json -q
+campaign all_run_fields run run_base.toml "$(leaf_paths control_run.json)" 'key = "test.max_steps"
+values = [20000, 30000]'
+control all_run_fields
+
 # --- cdem calibrate: the generator file checked before any job -----------------------------------
 cp "$SRC/samples/c30_calibrate.toml" "$SRC/samples/c30_calibrate_ucs.toml" \
   "$SRC/samples/c30_calibrate_specimen.toml" "$SRC/samples/c30_materials.toml" .
