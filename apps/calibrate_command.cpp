@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "apps/commands.hpp"
+#include "apps/job_input_check.hpp"
 #include "calib/calibrate.hpp"
 #include "core/input_error.hpp"
 
@@ -39,6 +40,7 @@ Action add_calibrate_command(CLI::App& app) {
       o->calibrate.strategy = o->strategy == "paper" ? calib::CalibrationStrategy::Paper
                                                      : calib::CalibrationStrategy::Fast;
     o->calibrate.verbose = !o->quiet;
+    o->calibrate.check_generator = check_generator_text;
     const auto out = calib::run_calibration(o->calibrate);
     const auto& r = out.result;
     std::cout << "report: " << out.report.string() << "\n";

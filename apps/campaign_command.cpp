@@ -7,7 +7,7 @@
 
 namespace cdem::apps {
 
-Action add_campaign_command(CLI::App& app) {
+Action add_campaign_command(CLI::App& app, calib::RunInputCheck check_run) {
   struct Options {
     calib::CampaignOptions campaign;
     std::string output;
@@ -15,6 +15,7 @@ Action add_campaign_command(CLI::App& app) {
     bool quiet = false;
   };
   auto o = std::make_shared<Options>();
+  o->campaign.check_run = std::move(check_run);
   auto* c = app.add_subcommand(
       "campaign",
       "Run every run of a design (factors = keys of a base input, x seeds) as its own cdem job, "

@@ -2,6 +2,8 @@
 #include <memory>
 
 #include "apps/commands.hpp"
+#include "core/atomic_output.hpp"
+#include "core/output_paths.hpp"
 #include "mesogen/generate.hpp"
 
 namespace cdem::apps {
@@ -31,7 +33,12 @@ Action add_generate_command(CLI::App& app) {
     if (!o->summary.empty()) o->request.summary = o->summary;
     if (!o->picture.empty()) o->request.picture = o->picture;
     o->request.verbose = !o->quiet;
+    std::vector<NamedPath> outputs{{"-o", o->request.output}};
+    if (o->request.summary) outputs.push_back({"--summary", *o->request.summary});
+    if (o->request.picture) outputs.push_back({"--picture", *o->request.picture});
+    OutputTransaction transaction(check_output_files({{"spec", o->request.input}}, outputs));
     mesogen::run_generate(o->request);
+    transaction.commit();
   };
 }
 

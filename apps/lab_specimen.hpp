@@ -9,8 +9,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 
+#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
 #include "core/input_table.hpp"
 #include "core/specimen_file.hpp"
@@ -29,6 +31,7 @@ class ScratchDirectory {
       throw RunError("cannot create a scratch directory under " +
                      std::filesystem::temp_directory_path().string());
     path_ = pattern;
+    on_signal_ = std::make_unique<RemovedOnSignal>(path_);
   }
   ~ScratchDirectory() {
     std::error_code ignored;
@@ -40,22 +43,30 @@ class ScratchDirectory {
 
  private:
   std::filesystem::path path_;
+  std::unique_ptr<RemovedOnSignal> on_signal_;
 };
 
 // Reads or generates the specimen of `input` (generation seeded with input.seed). Throws
 // InputError for a bad inline table (named "<test file> [specimen]") or specimen file, RunError
 // when generation cannot reach its targets.
+// Checks the inline generator table of `input`, if any; errors name the test file's [specimen].
+inline void check_inline_generator(const dem::LabTestInput& input) {
+  if (input.specimen_generator.empty()) return;
+  mesogen::read_generator_input(
+      InputTable::parse_string(input.specimen_generator, input.specimen_path.string()));
+}
+
 inline Specimen lab_test_specimen(const dem::LabTestInput& input, bool verbose) {
   if (input.specimen_generator.empty()) return read_specimen(input.specimen_path);
   // Validated here first so that errors name the test file rather than the scratch copy.
-  mesogen::read_generator_input(
-      InputTable::parse_string(input.specimen_generator, input.specimen_path.string()));
+  check_inline_generator(input);
   const ScratchDirectory scratch;
   mesogen::GenerateRequest request;
   request.input = scratch.path() / "specimen.toml";
   request.output = scratch.path() / "specimen.h5";
   request.seed = input.seed;
   request.verbose = verbose;
+  const RemovedOnSignal input_on_signal(request.input), output_on_signal(request.output);
   {
     std::ofstream text(request.input);
     text << input.specimen_generator;

@@ -9,11 +9,14 @@
 #include <numbers>
 #include <optional>
 
+#include <toml++/toml.h>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.hpp"
+#include "apps/job_input_check.hpp"
 #include "apps/lab_specimen.hpp"
 #include "core/atomic_output.hpp"
+#include "core/output_paths.hpp"
 #include "dem/biaxial_test.hpp"
 #include "dem/lab_pictures.hpp"
 #include "dem/lab_test.hpp"
@@ -141,7 +144,28 @@ std::string numbered(const std::string& png, std::size_t k) {
   return beside(p, "_c" + std::to_string(k) + p.extension().string()).string();
 }
 
+// The files a run reads: the test file, its specimen file and its material file.
+std::vector<NamedPath> run_inputs(const dem::LabTestInput& input) {
+  std::vector<NamedPath> inputs{{"test", input.file}};
+  if (input.specimen_generator.empty()) inputs.push_back({"specimen", input.specimen_path});
+  const std::filesystem::path test = input.file;
+  if (const auto materials = toml::parse(input.text)["materials"].value<std::string>()) {
+    const std::filesystem::path m = *materials;
+    inputs.push_back({"materials", m.is_absolute() ? m : test.parent_path() / m});
+  }
+  return inputs;
+}
+
 }  // namespace
+
+nlohmann::ordered_json run_summary_fields(const dem::LabTestInput& input) {
+  dem::LabTestResult r;
+  r.type = input.controls.type;
+  if (r.type != dem::LabTestType::Biaxial) return summary_json(r, input);
+  dem::BiaxialSeries series;
+  series.runs = {r};
+  return series_json(series, input);
+}
 
 Action add_run_command(CLI::App& app) {
   struct Options {
@@ -166,6 +190,28 @@ Action add_run_command(CLI::App& app) {
     if (!r->parsed()) return;
     dem::LabTestInput input = dem::read_lab_test(std::filesystem::path(o->test));
     if (seed->count()) input.seed = o->seed;
+
+    std::string plot = o->plot, crack_map = o->crack_map;
+    if (!o->output.empty()) {
+      if (plot.empty()) plot = beside(o->output, "_stress_strain.png").string();
+      if (crack_map.empty()) crack_map = beside(o->output, "_cracks.png").string();
+    }
+    const bool biaxial = input.controls.type == dem::LabTestType::Biaxial;
+    const std::size_t runs = biaxial ? input.controls.confining_stresses.size() : 1;
+    std::vector<NamedPath> outputs;
+    if (!o->output.empty()) {
+      outputs.push_back({"-o", o->output});
+      // The XDMF file dem::ResultFile writes beside the result when it holds snapshots.
+      outputs.push_back(
+          {"-o (its XDMF file)", std::filesystem::path(o->output).replace_extension(".xmf")});
+    }
+    if (!o->summary.empty()) outputs.push_back({"--summary", o->summary});
+    for (std::size_t k = 0; k < runs; ++k) {
+      if (!plot.empty()) outputs.push_back({"--plot", biaxial ? numbered(plot, k) : plot});
+      if (!crack_map.empty())
+        outputs.push_back({"--crack-map", biaxial ? numbered(crack_map, k) : crack_map});
+    }
+    OutputTransaction transaction(check_output_files(run_inputs(input), outputs));
     const Specimen specimen = lab_test_specimen(input, !o->quiet);
     dem::check_specimen_for_test(specimen, input);
 
@@ -186,13 +232,8 @@ Action add_run_command(CLI::App& app) {
         };
       return hooks;
     };
-    std::string plot = o->plot, crack_map = o->crack_map;
-    if (!o->output.empty()) {
-      if (plot.empty()) plot = beside(o->output, "_stress_strain.png").string();
-      if (crack_map.empty()) crack_map = beside(o->output, "_cracks.png").string();
-    }
 
-    if (input.controls.type == dem::LabTestType::Biaxial) {
+    if (biaxial) {
       const dem::BiaxialSeries series =
           dem::run_biaxial_series(specimen, input, [&](std::size_t k) {
             progress.reset();
@@ -209,6 +250,7 @@ Action add_run_command(CLI::App& app) {
         if (!plot.empty()) dem::draw_stress_strain_png(r.history, r.type, numbered(plot, k));
         if (!crack_map.empty()) dem::draw_crack_map_png(specimen, r.cracks, numbered(crack_map, k));
       }
+      transaction.commit();
       if (!o->quiet) std::printf("%s\n", summary.dump(2).c_str());
       return;
     }
@@ -220,6 +262,7 @@ Action add_run_command(CLI::App& app) {
       write_text_atomically(o->summary, summary_json(result, input).dump(2) + "\n");
     if (!plot.empty()) dem::draw_stress_strain_png(result.history, result.type, plot);
     if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result.cracks, crack_map);
+    transaction.commit();
     if (!o->quiet) std::printf("%s\n", summary_json(result, input).dump(2).c_str());
   };
 }

@@ -1,6 +1,8 @@
 #include "calib/calibrate.hpp"
 
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 
 #include "calib/calibrate_campaign.hpp"
 #include "calib/calibrate_fast.hpp"
@@ -8,6 +10,7 @@
 #include "calib/calibrate_plots.hpp"
 #include "calib/calibrate_report.hpp"
 #include "core/atomic_output.hpp"
+#include "core/output_paths.hpp"
 
 namespace cdem::calib {
 
@@ -56,6 +59,17 @@ CalibrateOutcome write_calibration(const CalibrationInput& input, CalibrationRes
 CalibrateOutcome run_calibration(const CalibrateOptions& options) {
   const CalibrationInput input = read_calibration_input(options.file, options.strategy);
   const auto output_dir = std::filesystem::absolute(options.output_dir.value_or(input.output_dir));
+  std::vector<NamedPath> inputs{{"calibration file", input.file}};
+  for (const auto& generator : input.generator_files) {
+    inputs.push_back({"generator", generator});
+    if (!options.check_generator) continue;
+    std::ifstream in(generator, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    options.check_generator(text.str(),
+                            generator.string() + " (generator of " + input.file.string() + ")");
+  }
+  check_output_directory(inputs, {options.output_dir ? "-o" : "output_dir", output_dir});
   CampaignSimulator simulator(input, output_dir, options.jobs, options.verbose);
   std::vector<std::uint64_t> seeds{input.calibration_seed};
   for (const auto s : input.verification_seeds)

@@ -3,7 +3,9 @@
 // strategy through campaigns of `cdem run` jobs and writes the report and the calibrated
 // material table (docs/calibration.md).
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <string>
 
 #include "calib/calibrate_result.hpp"
 
@@ -15,6 +17,9 @@ struct CalibrateOptions {
   std::optional<CalibrationStrategy> strategy;      // overrides the file's strategy
   int jobs = 0;                                     // concurrent runs; 0 = one per hardware thread
   bool verbose = true;                              // campaign progress on stderr
+  // Checks a specimen generator input (text, and a label naming the user's file) before any job
+  // starts; throws InputError. calib/ has no generator: apps/ supplies it.
+  std::function<void(const std::string& text, const std::string& label)> check_generator;
 };
 
 struct CalibrateOutcome {

@@ -362,6 +362,8 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
     root.fail("verification_seeds", "repeats a seed; verification specimens must be independent");
   in.verification_tolerance =
       root.number_or("verification_tolerance", 0.05, Range::left_open(0, 1));
+  for (const char* key : {"generator", "brazilian_generator"})
+    if (specimen.has(key)) in.generator_files.push_back(relative_to(file, specimen.string(key)));
 
   if (const auto budget = root.optional_table("budget")) {
     budget->reject_unknown_keys({"max_simulations", "timeout"});

@@ -102,8 +102,11 @@ struct CalibrationInput {
   std::vector<std::uint64_t> verification_seeds;  // independent specimens (default 5)
 
   double verification_tolerance = 0.05;  // mean relative error accepted per target
-  int max_simulations = 200;             // lab-test runs, every stage together
-  double timeout_s = 0;                  // per run; 0 = none
+  // Every generator file [specimen] names, as written there (resolved against this file): what
+  // `cdem calibrate` checks before any job starts, so that errors name them.
+  std::vector<std::filesystem::path> generator_files;
+  int max_simulations = 200;  // lab-test runs, every stage together
+  double timeout_s = 0;       // per run; 0 = none
 
   FastSettings fast;
   PaperSettings paper;

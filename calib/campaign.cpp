@@ -14,8 +14,10 @@
 #include "calib/campaign_local.hpp"
 #include "calib/campaign_mpi.hpp"
 #include "calib/campaign_results.hpp"
+#include "calib/shortest_number.hpp"
 #include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
+#include "core/output_paths.hpp"
 
 namespace cdem::calib {
 
@@ -70,19 +72,37 @@ void say(bool verbose, const std::string& line) {
   if (verbose) std::cerr << "campaign: " << line << "\n" << std::flush;
 }
 
+// "c.toml, design point 3 (mortar.r_mean_mm = 0.5) of base b.toml": where a bad run input came
+// from, in the user's files.
+std::string point_label(const CampaignSpec& spec, const RunTask& task) {
+  std::string values;
+  for (std::size_t j = 0; j < spec.factors.size(); ++j)
+    values += (j ? ", " : "") + spec.factors[j].key + " = " + shortest_number(task.values[j]);
+  return spec.file.string() + ", design point " + std::to_string(task.point) + " (" + values +
+         ") of base " + spec.base.string();
+}
+
 Prepared prepare(const CampaignOptions& options) {
   Prepared p;
   p.spec = read_campaign_spec(options.file);
   if (options.output_dir) p.spec.output_dir = *options.output_dir;
   if (options.timeout_s) p.spec.job.timeout_s = *options.timeout_s;
   p.output_dir = std::filesystem::absolute(p.spec.output_dir).lexically_normal();
+  check_output_directory({{"campaign file", options.file}, {"base", p.spec.base}},
+                         {options.output_dir ? "-o" : "output_dir", p.output_dir});
+  const auto tasks = plan_campaign(p.spec, p.output_dir);
+  // Every design point's input is checked before the first run starts or anything is written.
+  if (options.check_run && p.spec.job.executable.empty())
+    for (const auto& task : tasks)
+      if (task.seed == p.spec.seeds.front())
+        options.check_run(p.spec, task, point_label(p.spec, task));
+
   std::filesystem::create_directories(p.output_dir / "runs");
   p.lock = std::make_unique<DirectoryLock>(p.output_dir);
   // Copies for the record: results.csv is meaningless without the design and base it came from.
   write_text_atomically(p.output_dir / "campaign.toml", p.spec.text);
   write_text_atomically(p.output_dir / "base.toml", p.spec.base_text);
 
-  const auto tasks = plan_campaign(p.spec, p.output_dir);
   p.total = static_cast<int>(tasks.size());
   for (const auto& task : tasks) {
     std::string why;

@@ -4,13 +4,22 @@
 // earlier, interrupted attempt are kept; results gathered in OUTPUT/results.csv. See
 // docs/campaign.md.
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "calib/campaign_run.hpp"
 #include "calib/campaign_spec.hpp"
 
 namespace cdem::calib {
+
+// Checks the input one run would read (task.input_text, written to task.dir) and the fields the
+// campaign gathers from its summary, before any run starts. Throws InputError naming `label` (the
+// campaign file and the design point). calib/ knows nothing of cdem's commands: apps/ supplies
+// the check for the runs of the cdem binary itself.
+using RunInputCheck =
+    std::function<void(const CampaignSpec& spec, const RunTask& task, const std::string& label)>;
 
 struct CampaignOptions {
   std::filesystem::path file;
@@ -19,6 +28,7 @@ struct CampaignOptions {
   std::optional<double> timeout_s;                  // overrides the file's job.timeout
   bool retry_failed = false;  // re-run completed runs whose status is failed or timeout
   bool verbose = true;        // progress lines on stderr
+  RunInputCheck check_run;    // called once per design point when job.executable is not set
 };
 
 struct CampaignOutcome {

@@ -2,9 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
-
 #include "core/atomic_output.hpp"
+#include "core/input_error.hpp"
 
 namespace cdem {
 
@@ -14,8 +13,7 @@ void finish_png(cairo_t* cr, cairo_surface_t* surface, const std::filesystem::pa
   const cairo_status_t status = cairo_surface_write_to_png(surface, out.temp_path().c_str());
   cairo_surface_destroy(surface);
   if (status != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error("cannot write " + png.string() + ": " +
-                             cairo_status_to_string(status));
+    throw RunError("cannot write " + png.string() + ": " + cairo_status_to_string(status));
   out.commit();
 }
 

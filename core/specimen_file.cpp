@@ -3,7 +3,9 @@
 #include <H5Cpp.h>
 
 #include <array>
+#include <cmath>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/atomic_output.hpp"
@@ -105,6 +107,65 @@ struct Reader {
   }
 };
 
+std::string number(double v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
+
+// Every value the DEM trusts, checked as it comes in: a NaN or a disc far outside the mould
+// would otherwise size the neighbour grid from garbage. Positions must lie in the mould grown
+// by the disc's own radius (or the clump's equivalent diameter): the generator keeps discs
+// inside the mould, and a lab test trims nothing.
+void check_values(const Reader& rd, const Specimen& s) {
+  const auto positive = [&](const std::string& what, double v) {
+    if (!std::isfinite(v) || v <= 0) rd.fail(what, "is " + number(v) + "; must be finite and > 0");
+  };
+  positive("mortar_density_kg_m3", s.mortar_density);
+  positive("aggregate_density_kg_m3", s.aggregate_density);
+  positive("container/width_m", s.container.width);
+  positive("container/height_m", s.container.height);
+  const Container& c = s.container;
+  const auto inside = [&c](const Eigen::Vector2d& p, double margin) {
+    if (c.shape == ContainerShape::Disc) return (p - c.centre()).norm() <= 0.5 * c.width + margin;
+    return p.x() >= -margin && p.x() <= c.width + margin && p.y() >= -margin &&
+           p.y() <= c.height + margin;
+  };
+  const auto entry = [&](const std::string& what, std::size_t i, const std::string& why) {
+    rd.fail(what, "entry " + std::to_string(i) + " " + why);
+  };
+  for (std::size_t i = 0; i < s.disc_count(); ++i) {
+    if (!std::isfinite(s.x[i])) entry("discs/x", i, "is " + number(s.x[i]) + "; must be finite");
+    if (!std::isfinite(s.y[i])) entry("discs/y", i, "is " + number(s.y[i]) + "; must be finite");
+    if (!std::isfinite(s.r[i]) || s.r[i] <= 0)
+      entry("discs/r", i, "is " + number(s.r[i]) + " m; a radius must be finite and > 0");
+    if (!inside({s.x[i], s.y[i]}, s.r[i]))
+      entry("discs/x, discs/y", i,
+            "(disc at x " + number(s.x[i]) + " m, y " + number(s.y[i]) + " m, r " + number(s.r[i]) +
+                " m) lies outside the mould (" + number(c.width) + " x " + number(c.height) +
+                " m)");
+    if (s.contact_active[i] > 1)
+      entry("discs/contact_active", i,
+            "is " + std::to_string(s.contact_active[i]) + "; must be 0 or 1");
+  }
+  for (std::size_t k = 0; k < s.clumps.size(); ++k) {
+    const Clump& cl = s.clumps[k];
+    if (!std::isfinite(cl.mass) || cl.mass <= 0)
+      entry("clumps/mass", k, "is " + number(cl.mass) + " kg; must be finite and > 0");
+    if (!std::isfinite(cl.inertia) || cl.inertia <= 0)
+      entry("clumps/inertia", k, "is " + number(cl.inertia) + " kg m^2; must be finite and > 0");
+    if (!std::isfinite(cl.equivalent_diameter) || cl.equivalent_diameter <= 0)
+      entry("clumps/equivalent_diameter", k,
+            "is " + number(cl.equivalent_diameter) + " m; must be finite and > 0");
+    if (!cl.centroid.allFinite() || !inside(cl.centroid, cl.equivalent_diameter))
+      entry("clumps/centroid", k, "is not a finite point inside the mould");
+    if (cl.vertices.size() < 3) entry("clumps/vertex_offset", k, "gives fewer than 3 vertices");
+    for (const auto& v : cl.vertices)
+      if (!v.allFinite()) entry("clumps/vertices", k, "(a vertex of this clump) is not finite");
+  }
+}
+
 }  // namespace
 
 void write_specimen(const Specimen& s, const std::filesystem::path& path) {
@@ -114,7 +175,7 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
   // H5::Exception is not a std::exception: translate it, or no caller would catch it. The
   // temporary file is removed by `out` on the way out.
   try {
-    H5::H5File f(out.temp_path().string(), H5F_ACC_TRUNC);
+    H5::H5File f = hdf5::create_file_in_memory(out.temp_path().string());
     write_string_attr(f, "format", kFormat);
     write_scalar_attr<std::int32_t>(f, "format_version", kFormatVersion);
     write_string_attr(f, "cdem_version", kVersion);
@@ -122,12 +183,12 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
     write_scalar_attr<double>(f, "aggregate_density_kg_m3", s.aggregate_density);
     for (const auto& [k, v] : s.attributes) write_string_attr(f, k, v);
 
-    H5::Group c = f.createGroup("container");
+    H5::Group c = hdf5::create_group(f, "container");
     write_string_attr(c, "shape", s.container.shape == ContainerShape::Disc ? "disc" : "rectangle");
     write_scalar_attr<double>(c, "width_m", s.container.width);
     write_scalar_attr<double>(c, "height_m", s.container.height);
 
-    H5::Group d = f.createGroup("discs");
+    H5::Group d = hdf5::create_group(f, "discs");
     write_array(d, "x", s.x, "m");
     write_array(d, "y", s.y, "m");
     write_array(d, "r", s.r, "m");
@@ -137,7 +198,7 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
     write_array(d, "clump", s.clump);
     write_array(d, "contact_active", s.contact_active);
 
-    H5::Group g = f.createGroup("clumps");
+    H5::Group g = hdf5::create_group(f, "clumps");
     std::vector<double> centroid, mass, inertia, deq, vertices;
     std::vector<std::int32_t> bin;
     std::vector<std::int64_t> offset{0};
@@ -157,7 +218,7 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
     write_array(g, "bin", bin);
     write_array(g, "vertex_offset", offset);
     write_array(g, "vertices", vertices, "m", "", 2);
-    f.close();
+    hdf5::save_and_close(f, out);
   } catch (const H5::Exception& e) {
     throw RunError("cannot write specimen file " + path.string() + " (" + e.getDetailMsg() + ")");
   }
@@ -234,6 +295,7 @@ Specimen read_specimen(const std::filesystem::path& path) {
       if (s.clump[i] < -1 || s.clump[i] >= static_cast<std::int32_t>(m))
         rd.fail("discs/clump", "disc " + std::to_string(i) + " names clump " +
                                    std::to_string(s.clump[i]) + " of " + std::to_string(m));
+    check_values(rd, s);
     return s;
   } catch (const H5::Exception& e) {
     rd.fail("", "cannot read HDF5 file (" + e.getDetailMsg() + ")");

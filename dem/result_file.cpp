@@ -38,7 +38,7 @@ void write_run(H5::Group& where, const LabTestResult& r);
 
 ResultFile::ResultFile(std::filesystem::path target, const LabTestInput& input)
     : out_(std::move(target)) {
-  file_ = std::make_unique<H5::H5File>(out_.temp_path().string(), H5F_ACC_TRUNC);
+  file_ = std::make_unique<H5::H5File>(hdf5::create_file_in_memory(out_.temp_path().string()));
   write_string_attr(*file_, "format", kFormat);
   write_scalar_attr<std::int32_t>(*file_, "format_version", kFormatVersion);
   write_string_attr(*file_, "cdem_version", kVersion);
@@ -59,7 +59,14 @@ void ResultFile::begin_confinement(std::size_t k, double sigma3) {
 }
 
 ResultFile::~ResultFile() {
-  if (file_) file_->close();
+  // Only on the error path (finish() closed it otherwise); the file is in memory, so nothing is
+  // written, but a close must still not throw out of a destructor (std::terminate).
+  if (file_) {
+    try {
+      file_->close();
+    } catch (const H5::Exception&) {
+    }
+  }
 }
 
 std::filesystem::path ResultFile::xdmf_path() const {
@@ -219,7 +226,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
 }  // namespace
 
 void ResultFile::finish() {
-  file_->close();
+  hdf5::save_and_close(*file_, out_);
   file_.reset();
   out_.commit();
 

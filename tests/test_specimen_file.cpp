@@ -4,8 +4,10 @@
 
 #include <H5Cpp.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include "core/input_error.hpp"
@@ -119,7 +121,15 @@ TEST(SpecimenFile, RoundTripDiscContainerAndRandomValues) {
   s.container = {cdem::ContainerShape::Disc, 0.05, 0.05};
   // Full-precision doubles: the file must keep every bit.
   cdem::Rng rng(17);
-  for (double& v : s.x) v = rng.uniform(0, 0.05);
+  // Positions inside the 25 mm radius of the disc mould (the reader refuses discs and clumps
+  // outside it): a random point of the 20 mm disc about the centre.
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    const double rho = 0.02 * std::sqrt(rng.uniform()),
+                 angle = rng.uniform(0, 2 * std::numbers::pi);
+    s.x[i] = 0.025 + rho * std::cos(angle);
+    s.y[i] = 0.025 + rho * std::sin(angle);
+  }
+  for (auto& clump : s.clumps) clump.centroid = {rng.uniform(0.02, 0.03), rng.uniform(0.02, 0.03)};
   for (double& v : s.r) v = rng.uniform(2e-4, 5e-4);
   s.clumps[1].inertia = rng.uniform();
   cdem::write_specimen(s, file);
