@@ -432,10 +432,17 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   h.reserve(static_cast<std::size_t>(std::min<long>(max_records, 1'000'000)));
   const bool biaxial = c.type == LabTestType::Biaxial;
   double boundary_work = 0;
-  long intact_bonds = -res.genesis.relaxation_cracks;
-  for (const long b : res.genesis.bonds) intact_bonds += b;
-  PeakStopRule stop(c.stop, e.xmax - e.xmin, e.ymax - e.ymin,
-                    intact_bonds - static_cast<long>(world.cracks.size()), world.cracks.size());
+  // Bonds intact when the loading starts: installed, less those the relaxation and (biaxial)
+  // the consolidation broke.
+  long installed = 0;
+  for (const long b : res.genesis.bonds) installed += b;
+  const long intact_bonds =
+      installed - res.genesis.relaxation_cracks - static_cast<long>(world.cracks.size());
+  if (installed > 0 && intact_bonds <= 0)
+    warn(res,
+         "every bond broke before the loading (genesis relaxation or consolidation): the "
+         "test loads a cohesionless packing, and its peak is friction's");
+  PeakStopRule stop(c.stop, e.xmax - e.xmin, e.ymax - e.ymin, intact_bonds, world.cracks.size());
   const long quiet_steps = static_cast<long>(kQuietFraction * static_cast<double>(c.max_steps));
   bool quiet_warned = false;
   // The stress (Pa) the peak and the stop rule follow: axial, or the deviator of a biaxial test.
