@@ -21,6 +21,11 @@ struct RatioCase {
   long expansion_steps;  // a wide range needs a slow expansion (docs/generator.md)
 };
 
+// Names the case in CTest's list (instead of the bytes of the struct).
+void PrintTo(const RatioCase& c, std::ostream* out) {
+  *out << "R_max/R_min " << c.r_ratio << ", " << c.expansion_steps << " expansion cycles";
+}
+
 class RadiusRatios : public ::testing::TestWithParam<RatioCase> {};
 
 TEST_P(RadiusRatios, PackJammedAndRunTheUniaxialTestToItsStop) {
