@@ -442,7 +442,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     warn(res,
          "every bond broke before the loading (genesis relaxation or consolidation): the "
          "test loads a cohesionless packing, and its peak is friction's");
-  PeakStopRule stop(c.stop, e.xmax - e.xmin, e.ymax - e.ymin, intact_bonds, world.cracks.size());
+  PeakStopRule stop(c.stop, e.xmin, e.ymin, e.xmax, e.ymax, intact_bonds, world.cracks.size());
   const long quiet_steps = static_cast<long>(kQuietFraction * static_cast<double>(c.max_steps));
   bool quiet_warned = false;
   // The stress (Pa) the peak and the stop rule follow: axial, or the deviator of a biaxial test.

@@ -1,7 +1,7 @@
 #include "dem/stop_rule.hpp"
 
 #include <algorithm>
-#include <limits>
+#include <cmath>
 #include <sstream>
 
 #include "dem/lab_analysis.hpp"
@@ -22,21 +22,33 @@ const char* stop_reason_name(StopReason reason) {
   return "?";
 }
 
-PeakStopRule::PeakStopRule(const StopRuleOptions& options, double width, double height,
-                           long intact_bonds, std::size_t first_crack)
+PeakStopRule::PeakStopRule(const StopRuleOptions& options, double xmin, double ymin, double xmax,
+                           double ymax, long intact_bonds, std::size_t first_crack)
     : o_(options),
-      width_(width),
-      height_(height),
+      xmin_(xmin),
+      ymin_(ymin),
+      width_(xmax - xmin),
+      height_(ymax - ymin),
       needed_cracks_(std::min(options.min_cracks, std::max(intact_bonds, 0L))),
-      next_crack_(first_crack),
-      xmin_(std::numeric_limits<double>::infinity()),
-      xmax_(-std::numeric_limits<double>::infinity()),
-      ymin_(xmin_),
-      ymax_(xmax_) {}
+      next_crack_(first_crack) {}
+
+namespace {
+
+// The band of [lo, lo + size] that holds v (a crack slightly outside, on a bulging side, counts
+// in the outermost band).
+int band_of(double v, double lo, double size) {
+  const int b = static_cast<int>(std::floor((v - lo) / size * kDamageBands));
+  return std::clamp(b, 0, kDamageBands - 1);
+}
+
+double fraction_held(const std::array<bool, kDamageBands>& bands) {
+  return static_cast<double>(std::count(bands.begin(), bands.end(), true)) / kDamageBands;
+}
+
+}  // namespace
 
 double PeakStopRule::damage_span() const {
-  if (cracks_ == 0) return 0;
-  return std::max((xmax_ - xmin_) / width_, (ymax_ - ymin_) / height_);
+  return std::max(fraction_held(x_band_), fraction_held(y_band_));
 }
 
 bool PeakStopRule::dropped(double strain, double stress) const {
@@ -56,8 +68,8 @@ StopReason PeakStopRule::observe(double strain, double stress, const CrackLog& l
                                  bool at_max_steps) {
   for (; next_crack_ < log.cracks.size(); ++next_crack_) {
     const Crack& k = log.cracks[next_crack_];
-    xmin_ = std::min(xmin_, k.x), xmax_ = std::max(xmax_, k.x);
-    ymin_ = std::min(ymin_, k.y), ymax_ = std::max(ymax_, k.y);
+    x_band_[static_cast<std::size_t>(band_of(k.x, xmin_, width_))] = true;
+    y_band_[static_cast<std::size_t>(band_of(k.y, ymin_, height_))] = true;
     ++cracks_;
   }
   if (stress > peak_) {
