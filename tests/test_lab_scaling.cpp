@@ -97,6 +97,15 @@ TEST(LabScaling, RelativeDensityScalingMultipliesTheStepAndKeepsTheFigures) {
   EXPECT_NEAR(b.ucs.peak_stress / a.ucs.peak_stress, 1, 0.05);
   EXPECT_NEAR(b.ucs.young_modulus / a.ucs.young_modulus, 1, 0.03);
   EXPECT_NEAR(b.ucs.poisson_ratio, a.ucs.poisson_ratio, 0.02);
+  // 4x lies in the measured range of docs/speed_vs_error.md (up to 8x); 16x does not and warns.
+  EXPECT_TRUE(a.warnings.empty());
+  EXPECT_TRUE(b.warnings.empty());
+  const LabTestResult c = run_lab_test(
+      ucs_specimen(), lab_test_input(dir, ucs_specimen(),
+                                     kUcs + "density_scaling_step_factor = 16\n", c30_materials()));
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_NE(c.warnings[0].find("beyond the measured range"), std::string::npos) << c.warnings[0];
+  EXPECT_EQ(c.stop_reason, StopReason::PostPeakDrop);
 }
 
 TEST(LabScaling, ContactBondBrazilianFirstFailureIsProportionalToSigmaCn) {
