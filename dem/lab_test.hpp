@@ -4,8 +4,8 @@
 // test (platens plus servo side walls at a confining stress; dem/biaxial_test.hpp runs the
 // series of confinements). The test file (docs/lab_tests.md) names the specimen, the material
 // table and the test controls; a run does the material genesis (SPEC 3.6), loads the specimen
-// until the stress falls below a fraction of its peak, and returns the histories, the cracks and
-// the lab figures.
+// until the stop rule confirms its peak (dem/stop_rule.hpp), and returns the histories, the
+// cracks and the lab figures.
 #include <array>
 #include <cstdint>
 #include <filesystem>
