@@ -60,6 +60,8 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   }
   cracks["total"] = total;
   j["cracks"] = cracks;
+  j["stop_reason"] = dem::stop_reason_name(r.stop_reason);
+  j["warnings"] = r.warnings;
   j["steps"] = r.steps;
   j["time_step_s"] = r.time_step;
   j["wall_time_s"] = r.wall_time;

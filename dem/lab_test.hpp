@@ -4,8 +4,8 @@
 // test (platens plus servo side walls at a confining stress; dem/biaxial_test.hpp runs the
 // series of confinements). The test file (docs/lab_tests.md) names the specimen, the material
 // table and the test controls; a run does the material genesis (SPEC 3.6), loads the specimen
-// until the stress falls below a fraction of its peak, and returns the histories, the cracks and
-// the lab figures.
+// until the stop rule confirms its peak (dem/stop_rule.hpp), and returns the histories, the
+// cracks and the lab figures.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -20,6 +20,7 @@
 #include "dem/lab_analysis.hpp"
 #include "dem/material_genesis.hpp"
 #include "dem/material_table.hpp"
+#include "dem/stop_rule.hpp"
 #include "dem/world.hpp"
 
 namespace cdem::dem {
@@ -32,10 +33,7 @@ struct LabTestControls {
   LabTestType type = LabTestType::Uniaxial;
   double platen_velocity =
       0.02;                    // m/s, of each platen (or grip band), toward / away from the other
-  double stop_fraction = 0.8;  // stop when the stress falls below this fraction of the peak
-  // ... and the axial strain has grown by at least this fraction of the strain at the peak, so a
-  // local, recovering drop (a disc crushed under a platen) does not end the test.
-  double stop_strain_margin = 0.05;
+  StopRuleOptions stop{};      // the peak and post-peak stop rule (dem/stop_rule.hpp)
   double local_damping = 0.7;  // alpha
   double time_step_safety = 0.8;
   bool density_scaling = false;
@@ -132,6 +130,12 @@ struct LabTestResult {
   double time_step = 0;         // s, at the start of loading (after bond installation)
   double wall_time = 0;         // s
   std::size_t gauge_discs = 0;  // discs in the lateral-strain region
+  // Why the run ended: a completed run always ends at a confirmed post-peak drop (an unconfirmed
+  // end is a RunError that names the reason).
+  StopReason stop_reason = StopReason::None;
+  // Where the model or the run may not be what the user meant (printed on stderr as they arise,
+  // and listed in the summary): docs/lab_tests.md "Warnings".
+  std::vector<std::string> warnings;
 };
 
 // Observers of a run: `progress` at every history record, `snapshot` every snapshot_interval
@@ -141,8 +145,9 @@ struct LabTestHooks {
   std::function<void(const World&, long step, double time)> snapshot;  // loading step, s
 };
 
-// Genesis + loading. Throws RunError (with the figures reached) when max_steps runs out
-// before the stress has fallen past the peak, or when the DEM run goes unstable.
+// Genesis + loading. Throws RunError (with the figures reached and the stop reason) when the run
+// ends at max_strain or max_steps before the stop rule has confirmed a peak, or when the DEM run
+// goes unstable.
 LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
                            const LabTestHooks& hooks = {});
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <numbers>
 #include <sstream>
@@ -129,6 +130,13 @@ void run_generate(const GenerateRequest& request) {
       {"height_mm", in.container.height / units::mm},
       {"area_mm2", area / (units::mm * units::mm)}};
 
+  // Where the specimen is not quite what the input asks for: stderr now, the summary later.
+  std::vector<std::string> warnings;
+  const auto warn = [&warnings](const std::string& message) {
+    std::fprintf(stderr, "cdem: warning: %s\n", message.c_str());
+    warnings.push_back(message);
+  };
+
   // Gradation -> bins -> aggregate shapes -> placement (-> compaction).
   std::vector<BinTarget> bins;
   std::vector<PlacedAggregate> aggregates;
@@ -143,6 +151,13 @@ void run_generate(const GenerateRequest& request) {
     bins = bin_targets(*gradation, in.gradation->bin_edges, area);
     int total = 0;
     for (const auto& b : bins) target_fraction += b.area_fraction, total += b.count;
+    for (const auto& b : bins)
+      if (b.count == 0)
+        warn("gradation bin " + PhaseLog::fixed(b.d_min / units::mm, 3) + "-" +
+             PhaseLog::fixed(b.d_max / units::mm, 3) + " mm rounds to 0 aggregates (its area " +
+             "fraction " + PhaseLog::fixed(b.area_fraction, 4) +
+             " of the specimen is under half of one aggregate of the bin's mean diameter): the "
+             "specimen has no aggregate of this size; use a larger specimen or a higher p_k");
     log.end(std::to_string(total) + " aggregates in " + std::to_string(bins.size()) +
             " bins, target area fraction " + PhaseLog::fixed(target_fraction, 4) +
             " (P_k = " + PhaseLog::fixed(p_k, 4) + ")");
@@ -187,6 +202,13 @@ void run_generate(const GenerateRequest& request) {
           PhaseLog::fixed(packing.porosity, 4) + ", residual stress " +
           PhaseLog::fixed(packing.residual_stress / units::MPa, 4) + " MPa, " +
           std::to_string(packing.steps) + " steps");
+
+  if (packing.r_ratio != in.mortar.r_ratio)
+    warn("mortar.r_ratio = " + PhaseLog::fixed(in.mortar.r_ratio, 3) +
+         " packs crystalline and unjammed; packed at R_max / R_min = " +
+         PhaseLog::fixed(packing.r_ratio, 3) + " (radii within +-" +
+         PhaseLog::fixed(100 * (packing.r_ratio - 1) / (packing.r_ratio + 1), 1) +
+         " % of R_mean; docs/generator.md)");
 
   log.begin("clumping");
   Specimen s;
@@ -247,10 +269,13 @@ void run_generate(const GenerateRequest& request) {
                         {"mean_overlap_ratio", packing.mean_overlap_ratio},
                         {"residual_stress_MPa", packing.residual_stress / units::MPa},
                         {"sigma0_MPa", in.mortar.sigma0 / units::MPa},
+                        {"r_ratio", packing.r_ratio},
                         {"coordination_number", packing.coordination_number},
                         {"floating_discs", packing.floating_discs},
                         {"steps", packing.steps},
                         {"converged", packing.converged}};
+
+  summary["warnings"] = warnings;
 
   // Provenance travels with the specimen.
   s.attributes["generator_input"] = in.source_text;

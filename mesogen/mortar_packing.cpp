@@ -184,7 +184,8 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   const auto n = static_cast<std::size_t>(out.disc_count_formula);
 
   // Radii uniform in [R_min, R_max] with mean R_mean: R_min = 2 R_mean / (1 + ratio).
-  const double r_min = 2.0 * c.r_mean / (1.0 + c.r_ratio), r_max = c.r_ratio * r_min;
+  out.r_ratio = std::max(c.r_ratio, kMinPackedRatio);
+  const double r_min = 2.0 * c.r_mean / (1.0 + out.r_ratio), r_max = out.r_ratio * r_min;
   Rng radius_rng = rng.split();
   Rng place_rng = rng.split();
   std::vector<double> half(n);

@@ -1,6 +1,7 @@
 // End-to-end generation: bins, exact non-overlap, disc count, residual stress, file round trip.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "core/specimen_file.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/gradation.hpp"
+#include "mesogen/mortar_packing.hpp"
 #include "polygon_fixtures.hpp"
 
 namespace fs = std::filesystem;
@@ -122,6 +124,42 @@ TEST(Generate, SmallRectangleHoldsEveryPromise) {
   }
 }
 
+// A gradation bin that rounds to no aggregate and a radius ratio packed other than asked are
+// model changes the user must hear of: one warning each in the summary (and on stderr).
+TEST(Generate, WarnsOfABinRoundedToZeroAndOfEqualDiscsPackedPolydisperse) {
+  // 12 x 24 mm at P_k 0.3: the 4-5 and 5-6 mm bins ask for 0.025 and 0.017 of the area, under
+  // half of one 4.5 mm (0.055) or 5.5 mm (0.082) circle's share.
+  const Generated g = generate(R"(
+[specimen]
+shape = "rectangle"
+width_mm = 12
+height_mm = 24
+[gradation]
+type = "walraven"
+p_k = 0.3
+d_min_mm = 3
+d_max_mm = 6
+bins_mm = [3, 4, 5, 6]
+[mortar]
+r_mean_mm = 0.5
+r_ratio = 1
+)",
+                               "warnings");
+  ASSERT_EQ(g.summary["bins"].size(), 3u);
+  EXPECT_EQ(g.summary["bins"][1]["target_count"].get<int>(), 0);
+  EXPECT_EQ(g.summary["bins"][2]["target_count"].get<int>(), 0);
+  EXPECT_DOUBLE_EQ(g.summary["packing"]["r_ratio"].get<double>(), mesogen::kMinPackedRatio);
+  const auto& w = g.summary["warnings"];
+  ASSERT_EQ(w.size(), 3u) << w.dump();
+  EXPECT_NE(w[0].get<std::string>().find("4.000-5.000 mm rounds to 0"), std::string::npos);
+  EXPECT_NE(w[1].get<std::string>().find("5.000-6.000 mm rounds to 0"), std::string::npos);
+  EXPECT_NE(w[2].get<std::string>().find("packed at R_max / R_min = 1.200"), std::string::npos);
+  double r_min = 1, r_max = 0;
+  for (const double r : g.specimen.r) r_min = std::min(r_min, r), r_max = std::max(r_max, r);
+  EXPECT_LE(r_max / r_min, mesogen::kMinPackedRatio * (1 + 1e-9));
+  EXPECT_GT(r_max / r_min, 1.1);  // drawn uniform over the range: hundreds of discs reach near it
+}
+
 TEST(Generate, SameSeedSameSpecimenOtherSeedOther) {
   const Generated a = generate(kSmall, "seed_a", 5), b = generate(kSmall, "seed_b", 5),
                   c = generate(kSmall, "seed_c", 6);
@@ -184,6 +222,7 @@ TEST(Generate, C30ReferenceSpecimen) {
             static_cast<std::size_t>(std::floor(0.02 * 0.88 / (std::numbers::pi * 0.25e-6))));
   EXPECT_NEAR(g.summary["residual_stress_MPa"].get<double>(), 0.1, 0.02);
   EXPECT_GT(g.summary["contacts"]["itz"].get<long>(), 0);
+  EXPECT_TRUE(g.summary["warnings"].empty()) << g.summary["warnings"].dump();
 }
 
 TEST(Generate, HighContentSampleReachesFiftyFivePercent) {
