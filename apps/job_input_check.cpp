@@ -31,7 +31,8 @@ const std::vector<std::string> kGenerateSummaryFields = {"cdem_version",
                                                          "residual_stress_MPa",
                                                          "contacts",
                                                          "packing",
-                                                         "timings_s"};
+                                                         "timings_s",
+                                                         "warnings"};
 
 bool is_index(const std::string& part) {
   return !part.empty() && std::all_of(part.begin(), part.end(), ::isdigit);

@@ -92,7 +92,7 @@ confining_stresses_MPa = [1, 3]"
 # the message must name the full key and its allowed range.
 fj_case() {
   local name=$1 pattern=$2 edit=$3
-  sed -e "$edit" "$SRC/samples/materials/c30_flat_joint.toml" > "$work/$name.materials.toml"
+  sed -e "$edit" "$SRC/samples/materials/c30_flat_joint_start.toml" > "$work/$name.materials.toml"
   expect "$name" "$pattern" "specimen = \"corrupt.h5\"
 materials = \"$name.materials.toml\"
 $good"
