@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "bonded_pair.hpp"
 #include "dem/bond_installation.hpp"
 #include "dem/world.hpp"
 
@@ -29,23 +30,11 @@ ParallelBondParams mortar_bond() {
   return p;
 }
 
-// Two mortar discs along x (disc 0 at the origin, disc 1 to its right) at a gap, both
-// prescribed, bonded with the class-M law.
+// Two mortar discs along x at a gap, both prescribed, bonded with the class-M law.
 World bonded_pair(const BondModel& bond, double gap = kGap, double mu = 0.5) {
-  WorldSettings s;
-  s.fixed_time_step = kDt;
-  s.local_damping = 0;
-  s.laws.fill(LinearContact{kE, kKappa, mu});
-  s.bonds[static_cast<int>(ContactClass::Mortar)] = bond;
-  World w(s);
-  w.add_disc(0, 0, kR1, 2000);
-  w.add_disc(kL + gap, 0, kR2, 2000);
-  w.bodies.prescribed[0] = w.bodies.prescribed[1] = 1;
-  BondInstallation options;
-  options.gap_ratio = 2 * gap / kR1 + 1e-9;
-  const InstalledBonds installed = install_bonds(w, options);
-  EXPECT_EQ(installed.total(), 1);
-  return w;
+  auto [w, installed] = cdem::test::bonded_pair(bond, {kR1, kR2, kE, kKappa, mu, gap, kDt});
+  EXPECT_EQ(installed, 1);
+  return std::move(w);
 }
 
 BondModel parallel(const ParallelBondParams& p) {

@@ -14,6 +14,7 @@
 #include <numbers>
 #include <vector>
 
+#include "bonded_pair.hpp"
 #include "core/rng.hpp"
 #include "dem/bond_installation.hpp"
 #include "dem/contact_energy.hpp"
@@ -263,23 +264,13 @@ TEST(FlatJointLaw, SlitChoiceIsAFixedFractionOfPairs) {
 
 constexpr double kDt = 1e-7;  // s
 
-World jointed_pair(const FlatJointParams& p, double gap = 1e-8) {
-  WorldSettings s;
-  s.fixed_time_step = kDt;
-  s.local_damping = 0;
-  s.laws.fill(LinearContact{kE, kKappa, kMu});
+World jointed_pair(const FlatJointParams& p) {
   BondModel m;
   m.kind = BondKind::FlatJoint;
   m.flat_joint = p;
-  s.bonds[static_cast<int>(ContactClass::Mortar)] = m;
-  World w(s);
-  w.add_disc(0, 0, kR1, 2000);
-  w.add_disc(kL + gap, 0, kR2, 2000);
-  w.bodies.prescribed[0] = w.bodies.prescribed[1] = 1;
-  BondInstallation options;
-  options.gap_ratio = 2 * gap / kR1 + 1e-9;
-  EXPECT_EQ(install_bonds(w, options).total(), p.elements);
-  return w;
+  auto [w, installed] = cdem::test::bonded_pair(m, {kR1, kR2, kE, kKappa, kMu, 1e-8, kDt});
+  EXPECT_EQ(installed, p.elements);
+  return std::move(w);
 }
 
 TEST(FlatJointWorld, DiscsFeelTheInterfaceForcesAndMoment) {
