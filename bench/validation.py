@@ -4,6 +4,7 @@
   validation.py law MATERIALS                 print the two mortar strength keys of the law
   validation.py vary MATERIALS OUT KEY=MPA..  copy MATERIALS to OUT with mortar keys set (MPa)
   validation.py tables RUN_DIR                results.{csv,md} and design.{csv,md} of a run dir
+  validation.py montage OUT.png PNG...        the pictures side by side, 64 colours (Pillow)
 
 Summaries are the JSON files `cdem run --summary` writes (docs/lab_tests.md); a quantity is
 reported over the seeds whose run finished, with n, mean, sample standard deviation and CV.
@@ -243,11 +244,34 @@ def write_design(run_dir):
     (run_dir / "design.md.tmp").replace(run_dir / "design.md")
 
 
+def cmd_montage(out, pictures):
+    """Side by side at a common height, quantised to a 64-colour palette: a crack map is a few
+    flat colours, so the palette keeps it readable at a fraction of the size (docs/ PNGs).
+    Octree, not median cut: median cut merged the rare legend colours (shear) into grey."""
+    try:
+        from PIL import Image
+    except ImportError:
+        fail("montage needs Pillow (python3-pil)")
+    images = [Image.open(p).convert("RGB") for p in pictures]
+    height = min(im.height for im in images)
+    images = [im.resize((round(im.width * height / im.height), height)) for im in images]
+    sheet = Image.new("RGB", (sum(im.width for im in images), height), "white")
+    x = 0
+    for im in images:
+        sheet.paste(im, (x, 0))
+        x += im.width
+    tmp = out + ".tmp.png"
+    sheet.quantize(colors=64, method=Image.Quantize.FASTOCTREE).save(tmp, optimize=True)
+    Path(tmp).replace(out)
+
+
 def main(argv):
     if len(argv) >= 2 and argv[0] == "law":
         cmd_law(argv[1])
     elif len(argv) >= 3 and argv[0] == "vary":
         cmd_vary(argv[1], argv[2], argv[3:])
+    elif len(argv) >= 3 and argv[0] == "montage":
+        cmd_montage(argv[1], argv[2:])
     elif len(argv) >= 2 and argv[0] == "tables":
         run_dir = Path(argv[1])
         seeds = [int(s) for s in (argv[2:] or ["1", "2", "3", "4", "5"])]

@@ -21,8 +21,9 @@
 set -euo pipefail
 src="$(cd "$(dirname "$0")/.." && pwd)"
 
-usage() { sed -n '2,22p' "$0" >&2; exit 2; }
+usage() { sed -n '2,22p' "$0" >&2; exit "${1:-2}"; }
 [ $# -ge 1 ] || usage
+case "$1" in -h|--help) usage 0 ;; esac
 materials="$1"; shift
 [ -f "$materials" ] || { echo "validation.sh: no materials file '$materials'" >&2; exit 2; }
 materials="$(cd "$(dirname "$materials")" && pwd)/$(basename "$materials")"
