@@ -237,6 +237,16 @@ def write_design(run_dir):
                f"| {key_b} {lo_b:g} -> {hi_b:g} MPa | {eff_b:+.2f} | "
                f"d sigma_u / d {key_b} = {eff_b / (hi_b - lo_b):+.3f} |",
                f"| interaction | {eff_ab:+.2f} | |"]
+        # The slope of each strength at each level of the other: with a strong interaction the
+        # main effect alone hides where a strength matters.
+        factor_a, factor_b = (key_a, lo_a, hi_a, 2), (key_b, lo_b, hi_b, 4)
+        for (k, lo, hi, col), (other, olo, ohi, ocol) in ((factor_a, factor_b),
+                                                           (factor_b, factor_a)):
+            for level in (olo, ohi):
+                change = (mean_at(lambda r: r[col] == hi and r[ocol] == level)
+                          - mean_at(lambda r: r[col] == lo and r[ocol] == level))
+                md.append(f"| {k} {lo:g} -> {hi:g} MPa at {other} = {level:g} MPa | "
+                          f"{change:+.2f} | {change / (hi - lo):+.3f} |")
     else:
         md += ["", f"Runs: {len(done)} of {len(runs)}: the four corners are not all measured, "
                "no slopes."]
