@@ -56,7 +56,8 @@ cp "$materials" "$out/materials.toml.tmp" && mv "$out/materials.toml.tmp" "$out/
 # Specimen generators: the C30 recipe as written, and the same mix in a D = 100 mm disc.
 cp "$src/samples/c30_specimen.toml" "$specimens/c30.toml"
 sed -e 's/^shape = "rectangle".*/shape = "disc"/' -e '/^width_mm = /d' \
-  -e 's/^height_mm = .*/diameter_mm = 100/' "$src/samples/c30_specimen.toml" > "$specimens/disc.toml"
+  -e 's/^height_mm = .*/diameter_mm = 100/' "$src/samples/c30_specimen.toml" \
+  > "$specimens/disc.toml"
 
 specimen() {  # recipe seed -> path; generated once, under a lock (parallel callers)
   local h5="$specimens/$1_$2.h5"
@@ -87,7 +88,8 @@ run() {  # label type recipe materials seed [pictures]
   local h5; h5="$(specimen "$recipe" "$seed")"
   test_file "$type" "$h5" "$mats" "$seed" > "$out/$label.toml"
   local extra=()
-  [ -z "$pics" ] || extra=(--crack-map "$out/${label}_cracks.png" --plot "$out/${label}_stress_strain.png")
+  [ -z "$pics" ] ||
+    extra=(--crack-map "$out/${label}_cracks.png" --plot "$out/${label}_stress_strain.png")
   if nice -n 19 "$cdem" run "$out/$label.toml" --summary "$out/$label.json" -q "${extra[@]}" \
     > "$out/$label.log" 2>&1; then
     echo "done $label"
