@@ -54,10 +54,12 @@ out="$(cd "$out" && pwd)" specimens="$(cd "$specimens" && pwd)"
 cp "$materials" "$out/materials.toml.tmp" && mv "$out/materials.toml.tmp" "$out/materials.toml"
 
 # Specimen generators: the C30 recipe as written, and the same mix in a D = 100 mm disc.
-cp "$src/samples/c30_specimen.toml" "$specimens/c30.toml"
+# Written to a temporary file and renamed: another invocation may be generating from them.
+cp "$src/samples/c30_specimen.toml" "$specimens/c30.toml.$$" &&
+  mv "$specimens/c30.toml.$$" "$specimens/c30.toml"
 sed -e 's/^shape = "rectangle".*/shape = "disc"/' -e '/^width_mm = /d' \
   -e 's/^height_mm = .*/diameter_mm = 100/' "$src/samples/c30_specimen.toml" \
-  > "$specimens/disc.toml"
+  > "$specimens/disc.toml.$$" && mv "$specimens/disc.toml.$$" "$specimens/disc.toml"
 
 specimen() {  # recipe seed -> path; generated once, under a lock (parallel callers)
   local h5="$specimens/$1_$2.h5"
