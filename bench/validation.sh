@@ -2,7 +2,7 @@
 # cdem against the published C30 model (docs/validation.md): for one material file, on the C30
 # recipe of samples/c30_specimen.toml, seeds 1-5: UCS (sigma_u, E, nu), direct tension and
 # Brazilian sigma_t (a D = 100 mm disc of the same mix), crack counts by mode and class, a crack
-# map of the first seed's UCS, and a 2^2 design on the mortar bond tensile strength and cohesion
+# map of the first seed's UCS (and of every Brazilian disc), and a 2^2 design on the mortar bond tensile strength and cohesion
 # (10 and 30 MPa) with the slopes of sigma_u.
 #
 #   bash bench/validation.sh MATERIALS.toml [--out DIR] [--build DIR] [--preset P]
@@ -124,7 +124,9 @@ for t in $tests; do
       [ "$t" = tension ] && type=direct_tension
       [ "$t" = brazilian ] && recipe=disc
       for s in $seeds; do
-        pics=""; [ "$s" = "$first_seed" ] && pics=yes
+        # Every Brazilian disc gets its crack map: with flat platens the failure mode (central
+        # split or a wedge under a platen) must be read from the picture.
+        pics=""; [ "$s" = "$first_seed" ] || [ "$t" = brazilian ] && pics=yes
         queue "${t}_s$s" "$type" "$recipe" "$out/materials.toml" "$s" "$pics"
       done ;;
     design)
