@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # cdem against the published C30 model (docs/validation.md): for one material file, on the C30
 # recipe of samples/c30_specimen.toml, seeds 1-5: UCS (sigma_u, E, nu), direct tension and
-# Brazilian sigma_t (a D = 100 mm disc of the same mix), crack counts by mode and class, a crack
-# map of the first seed's UCS (and of every Brazilian disc), and a 2^2 design on the mortar bond tensile strength and cohesion
-# (10 and 30 MPa) with the slopes of sigma_u.
+# Brazilian sigma_t (a D = 100 mm disc of the same mix), crack counts by mode and class, crack
+# maps (first seed's UCS and tension, every Brazilian disc), and a 2^2 design on the mortar bond
+# tensile strength and cohesion (10 and 30 MPa) with the slopes of sigma_u.
 #
 #   bash bench/validation.sh MATERIALS.toml [--out DIR] [--build DIR] [--preset P]
 #        [--seeds "1 2 3 4 5"] [--tests "ucs tension design brazilian"] [--design-seeds "1"]
