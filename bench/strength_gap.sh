@@ -18,7 +18,7 @@ sed -e 's/^width_mm = 100 /width_mm = 50 /' -e 's/^height_mm = 200 /height_mm = 
 cp "$src/samples/c30_materials.toml" materials_base.toml
 # Variant materials: moment contribution off (beta = 0), and an ITZ as stiff and strong as the
 # mortar.
-sed -e 's/^pb_cohesion_MPa = \(.*\)/pb_cohesion_MPa = \1\npb_moment_factor = 0/' \
+sed -e "s/^pb_moment_factor = 1 /pb_moment_factor = 0 /" \
   materials_base.toml > materials_beta0.toml
 sed -e '/materials.itz/,/materials.aggregate/{s/^emod_GPa = 8/emod_GPa = 16/' \
   -e 's/^pb_tensile_strength_MPa = 5/pb_tensile_strength_MPa = 10/' \
