@@ -21,13 +21,11 @@ struct FlatJointStates {
     const auto index = static_cast<std::int32_t>(gap0.size());
     gap0.push_back(gap_at_installation);
     theta.push_back(0.0);
-    bonded.push_back(slit ? 0u : (elements >= 32 ? ~0u : (1u << elements) - 1u));
+    bonded.push_back(slit ? 0u : (1u << elements) - 1u);  // elements <= 16 (the reader's range)
     first_element.push_back(static_cast<std::int32_t>(element_shear.size()));
     element_shear.insert(element_shear.end(), static_cast<std::size_t>(elements), shear / elements);
     return index;
   }
-  std::size_t size() const { return gap0.size(); }
-  void clear() { *this = FlatJointStates{}; }
 };
 
 }  // namespace cdem::dem
