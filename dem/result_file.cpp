@@ -48,14 +48,14 @@ ResultFile::ResultFile(std::filesystem::path target, const LabTestInput& input)
   write_string_attr(*file_, "input_text", input.text);
   write_string_attr(*file_, "materials_text", input.materials_text);
   write_string_attr(*file_, "specimen_file", input.specimen_path.string());
-  if (input.controls.type != LabTestType::Biaxial) file_->createGroup("snapshots");
+  if (input.controls.type != LabTestType::Biaxial) hdf5::create_group(*file_, "snapshots");
 }
 
 void ResultFile::begin_confinement(std::size_t k, double sigma3) {
   group_ = confinement_group(k);
-  H5::Group g = file_->createGroup(group_);
+  H5::Group g = hdf5::create_group(*file_, group_);
   write_scalar_attr<double>(g, "confining_stress_Pa", sigma3);
-  g.createGroup("snapshots");
+  hdf5::create_group(g, "snapshots");
 }
 
 ResultFile::~ResultFile() {
@@ -80,7 +80,7 @@ void ResultFile::snapshot(const World& world, long step, double time) {
   const std::size_t index = static_cast<std::size_t>(
       std::count_if(snapshots_.begin(), snapshots_.end(),
                     [this](const SnapshotIndex& s) { return s.group == group_; }));
-  H5::Group g = root.createGroup(snapshot_name(index));
+  H5::Group g = hdf5::create_group(root, snapshot_name(index));
   write_scalar_attr<long>(g, "step", step);
   write_scalar_attr<double>(g, "time_s", time);
   const auto copy = [&](const std::vector<double>& v, const char* name, const char* units) {
@@ -111,19 +111,19 @@ void ResultFile::commit(const LabTestResult& r) {
 
 void ResultFile::commit(const BiaxialSeries& series) {
   {
-    H5::Group s = file_->createGroup("summary");
+    H5::Group s = hdf5::create_group(*file_, "summary");
     write_scalar_attr<double>(s, "cohesion_Pa", series.envelope.cohesion);
     write_scalar_attr<double>(s, "friction_angle_deg",
                               series.envelope.friction_angle * 180 / std::numbers::pi);
     write_scalar_attr<double>(s, "mohr_coulomb_r2", series.envelope.r_squared);
     write_scalar_attr<long>(s, "confinements", static_cast<long>(series.runs.size()));
-    write_scalar_attr<double>(s, "wall_time_s", series.wall_time);
     for (std::size_t k = 0; k < series.runs.size(); ++k) {
       const std::string name = confinement_group(k);
-      H5::Group g = file_->nameExists(name) ? file_->openGroup(name) : file_->createGroup(name);
+      H5::Group g =
+          file_->nameExists(name) ? file_->openGroup(name) : hdf5::create_group(*file_, name);
       if (!g.attrExists("confining_stress_Pa"))
         write_scalar_attr<double>(g, "confining_stress_Pa", series.runs[k].confining_stress);
-      if (!g.nameExists("snapshots")) g.createGroup("snapshots");
+      if (!g.nameExists("snapshots")) hdf5::create_group(g, "snapshots");
       write_run(g, series.runs[k]);
     }
   }
@@ -134,7 +134,7 @@ namespace {
 
 void write_run(H5::Group& where, const LabTestResult& r) {
   {
-    H5::Group s = where.createGroup("summary");
+    H5::Group s = hdf5::create_group(where, "summary");
     write_scalar_attr<double>(s, "peak_stress_Pa", r.peak_stress);
     write_scalar_attr<double>(s, "peak_force_N_per_m", r.peak_force);
     if (r.type == LabTestType::Uniaxial || r.type == LabTestType::Biaxial) {
@@ -148,7 +148,6 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_scalar_attr<double>(s, "height_m", r.height);
     write_scalar_attr<long>(s, "steps", r.steps);
     write_scalar_attr<double>(s, "time_step_s", r.time_step);
-    write_scalar_attr<double>(s, "wall_time_s", r.wall_time);
     write_scalar_attr<long>(s, "gauge_discs", static_cast<long>(r.gauge_discs));
     if (r.type == LabTestType::Biaxial) {
       write_scalar_attr<double>(s, "confining_stress_Pa", r.confining_stress);
@@ -158,7 +157,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
       write_scalar_attr<double>(s, "consolidation_worst_error", r.consolidation.worst_error);
     }
 
-    H5::Group g = where.createGroup("genesis");
+    H5::Group g = hdf5::create_group(where, "genesis");
     write_scalar_attr<long>(g, "discs_in_specimen", r.genesis.discs_in_specimen);
     write_scalar_attr<long>(g, "floating_discs_removed", r.genesis.floating_removed);
     write_scalar_attr<std::int32_t>(g, "removal_passes", r.genesis.removal_passes);
@@ -172,7 +171,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
                               r.genesis.bonds[c]);
 
     const LabHistory& h = r.history;
-    H5::Group hg = where.createGroup("history");
+    H5::Group hg = hdf5::create_group(where, "history");
     write_array(hg, "step", h.step);
     write_array(hg, "time", h.time, "s");
     write_array(hg, "axial_strain", h.axial_strain, "1",
@@ -206,7 +205,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
       second.push_back(c.second);
       element.push_back(c.element);
     }
-    H5::Group cg = where.createGroup("cracks");
+    H5::Group cg = hdf5::create_group(where, "cracks");
     write_array(cg, "time", t, "s");
     write_array(cg, "x", x, "m");
     write_array(cg, "y", y, "m");
@@ -214,7 +213,8 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_array(cg, "class", cls, "", "0 = M (mortar), 1 = ITZ, 2 = A (aggregate)");
     write_array(cg, "first", first, "", "world disc index");
     write_array(cg, "second", second, "", "world disc index");
-    write_array(cg, "element", element, "", "flat-joint element 0 .. N_r - 1, -1 = not a flat joint");
+    write_array(cg, "element", element, "",
+                "flat-joint element 0 .. N_r - 1, -1 = not a flat joint");
     for (int m = 0; m < 2; ++m)
       for (int c = 0; c < 3; ++c)
         write_scalar_attr<long>(
