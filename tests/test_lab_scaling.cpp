@@ -108,6 +108,36 @@ TEST(LabScaling, RelativeDensityScalingMultipliesTheStepAndKeepsTheFigures) {
   EXPECT_EQ(c.stop_reason, StopReason::PostPeakDrop);
 }
 
+// A run where no bond breaks within the first 10 % of max_steps warns (issue 13: loading far
+// slower or gentler than meant). The same test is run with a bound 5 times the loading step of
+// its first bond failure (taken from the normal run, so the warning must fire and the run still
+// ends at its peak) and with the default-sized bound of kUcs (no warning).
+TEST(LabScaling, NoBondBrokenInTheFirstTenthOfMaxStepsWarns) {
+  const fs::path dir = scratch_dir("test_lab_scaling", "quiet");
+  const LabTestResult a =
+      run_lab_test(ucs_specimen(), lab_test_input(dir, ucs_specimen(), kUcs, c30_materials()));
+  EXPECT_TRUE(a.warnings.empty());
+  const auto& h = a.history;
+  long first_break = -1;
+  for (std::size_t k = 0; k < h.step.size(); ++k)
+    if (h.bonds_broken[k] > h.bonds_broken.front()) {
+      first_break = h.step[k];
+      break;
+    }
+  ASSERT_GT(first_break, 0);
+  const long bound = 5 * first_break;
+  ASSERT_GT(bound, a.steps + 1000) << "the run would reach the bound before its stop";
+  std::string test = kUcs;
+  test.replace(test.find("max_steps = 400000"), 18, "max_steps = " + std::to_string(bound));
+  const LabTestResult q =
+      run_lab_test(ucs_specimen(), lab_test_input(dir, ucs_specimen(), test, c30_materials()));
+  ASSERT_EQ(q.warnings.size(), 1u);
+  EXPECT_NE(q.warnings[0].find("no bond broke in the first 10 % of max_steps"), std::string::npos)
+      << q.warnings[0];
+  EXPECT_EQ(q.stop_reason, StopReason::PostPeakDrop);
+  EXPECT_EQ(q.ucs.peak_stress, a.ucs.peak_stress);  // the bound changes nothing else
+}
+
 TEST(LabScaling, ContactBondBrazilianFirstFailureIsProportionalToSigmaCn) {
   static const Specimen disc = packed_specimen({ContainerShape::Disc, 20e-3, 20e-3}, 8);
   const std::vector<double> sigma_cn{5e6, 10e6, 20e6};  // Pa
