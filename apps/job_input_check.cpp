@@ -7,32 +7,12 @@
 #include "calib/campaign_input.hpp"
 #include "core/input_error.hpp"
 #include "core/input_table.hpp"
+#include "mesogen/generate.hpp"
 #include "mesogen/generator_input.hpp"
 
 namespace cdem::apps {
 
 namespace {
-
-// The top-level fields of the summary `cdem generate` writes (mesogen/generate.cpp); their
-// contents depend on the gradation, so only the first part of a gather path is checked.
-const std::vector<std::string> kGenerateSummaryFields = {"cdem_version",
-                                                         "input",
-                                                         "seed",
-                                                         "specimen",
-                                                         "gradation",
-                                                         "bins",
-                                                         "aggregate_area_fraction",
-                                                         "porosity",
-                                                         "discs",
-                                                         "mortar_discs",
-                                                         "clumps",
-                                                         "pebbles_kept",
-                                                         "pebbles_dropped",
-                                                         "residual_stress_MPa",
-                                                         "contacts",
-                                                         "packing",
-                                                         "timings_s",
-                                                         "warnings"};
 
 bool is_index(const std::string& part) {
   return !part.empty() && std::all_of(part.begin(), part.end(), ::isdigit);
@@ -73,8 +53,8 @@ void check_campaign_run(const calib::CampaignSpec& spec, const calib::RunTask& t
     check_generator_text(task.input_text, label);
     for (const auto& path : spec.gather) {
       const std::string first = path.substr(0, path.find('.'));
-      if (std::find(kGenerateSummaryFields.begin(), kGenerateSummaryFields.end(), first) ==
-          kGenerateSummaryFields.end())
+      if (std::find(mesogen::kGenerateSummaryFields.begin(), mesogen::kGenerateSummaryFields.end(),
+                    first) == mesogen::kGenerateSummaryFields.end())
         refuse_gather(spec, path, command);
     }
   } else if (command == "run") {

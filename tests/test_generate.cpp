@@ -81,6 +81,15 @@ TEST(Generate, SmallRectangleHoldsEveryPromise) {
   const Generated g = generate(kSmall, "small_rect");
   const Specimen& s = g.specimen;
 
+  // The summary's top-level fields are the ones campaigns check gather paths against (the
+  // summary is read back unordered: compare sorted).
+  std::vector<std::string> fields,
+      listed(mesogen::kGenerateSummaryFields.begin(), mesogen::kGenerateSummaryFields.end());
+  for (const auto& [key, value] : g.summary.items()) fields.push_back(key);
+  std::sort(fields.begin(), fields.end());
+  std::sort(listed.begin(), listed.end());
+  EXPECT_EQ(fields, listed);
+
   // Bin counts are the SPEC 3.1 formula, recomputed here from the Walraven polynomial.
   const double area = 40e-3 * 60e-3;
   const double edges[] = {4e-3, 6e-3, 8e-3, 10e-3};
