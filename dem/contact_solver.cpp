@@ -72,7 +72,7 @@ long disc_disc_pass(Discs& d, NeighborList& list, ContactForces& out, const Cont
 }
 
 // One disc-wall contact: the wall is the first body, the disc the second; n points from the
-// closest point of the segment to the disc centre.
+// closest point of the segment or arc to the disc centre.
 long disc_wall_kernel(const Discs& d, const Walls& walls, const NeighborList& list,
                       ContactStates& state, ContactForces& out, const LinearContact& law, double dt,
                       double guard, double& slip_work) {
@@ -82,8 +82,7 @@ long disc_wall_kernel(const Discs& d, const Walls& walls, const NeighborList& li
   for (std::size_t k = 0; k < count; ++k) {
     const std::int32_t i = list.wall_disc[k], wi = list.wall_index[k];
     double px, py;
-    closest_on_segment(walls.ax[wi], walls.ay[wi], walls.bx[wi], walls.by[wi], d.x[i], d.y[i], px,
-                       py);
+    closest_on_wall(walls, wi, d.x[i], d.y[i], px, py);
     const double dx = d.x[i] - px, dy = d.y[i] - py, ri = d.r[i];
     const double d2 = dx * dx + dy * dy;
     if (d2 >= ri * ri) {
@@ -102,7 +101,7 @@ long disc_wall_kernel(const Discs& d, const Walls& walls, const NeighborList& li
     if (dist > 0) {
       nx = dx / dist;
       ny = dy / dist;
-    } else {  // centre on the segment: use the segment's left normal
+    } else {  // centre on the wall: use the chord's left normal
       const double ex = walls.bx[wi] - walls.ax[wi], ey = walls.by[wi] - walls.ay[wi];
       const double len = std::hypot(ex, ey);
       nx = -ey / len;

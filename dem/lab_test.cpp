@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -58,6 +59,8 @@ LabTestControls read_controls(const InputTable& t) {
                          "grip_fraction",
                          "gauge_fraction",
                          "platen_overhang",
+                         "platens",
+                         "jaw_radius_ratio",
                          "threads",
                          "min_contacts",
                          "bond_gap_ratio",
@@ -106,6 +109,13 @@ LabTestControls read_controls(const InputTable& t) {
     t.fail("grip_fraction", "only used by type = \"direct_tension\"");
   c.gauge_fraction = t.number_or("gauge_fraction", c.gauge_fraction, Range::left_open(0, 1));
   c.platen_overhang = t.number_or("platen_overhang", c.platen_overhang, Range::closed(0, 10));
+  if (t.has("platens")) {
+    if (c.type != LabTestType::Brazilian) t.fail("platens", "only used by type = \"brazilian\"");
+    c.curved_jaws = t.string("platens", {"flat", "curved_jaws"}) == "curved_jaws";
+  }
+  if (t.has("jaw_radius_ratio") && !c.curved_jaws)
+    t.fail("jaw_radius_ratio", "only used with platens = \"curved_jaws\"");
+  c.jaw_radius_ratio = t.number_or("jaw_radius_ratio", c.jaw_radius_ratio, Range::closed(1.05, 10));
   c.threads = static_cast<int>(t.integer_or("threads", c.threads, 1, 1024));
   c.genesis.min_contacts =
       static_cast<int>(t.integer_or("min_contacts", c.genesis.min_contacts, 0, 12));
@@ -272,13 +282,41 @@ Extent disc_extent(const World& w) {
   return e;
 }
 
+// The curved jaws of a Brazilian test (ISRM suggested method: jaw radius 1.5 x the disc's),
+// bottom then top: arcs about the disc's vertical axis covering +- jaw_cover of its boundary,
+// each placed where it touches the first disc of the relaxed specimen (the closest disc centre
+// to the jaw's circle, at r_i inside it: a jaw circle of radius R_j about (x_c, y_j) holds disc
+// i when |c_i - (x_c, y_j)| <= R_j - r_i).
+Walls make_jaws(const LabTestControls& c, const Discs& d, const Extent& e) {
+  const double radius = 0.5 * (e.xmax - e.xmin), xc = 0.5 * (e.xmin + e.xmax);
+  const double rj = c.jaw_radius_ratio * radius;
+  const double half_angle = std::asin(std::sin(c.jaw_cover) / c.jaw_radius_ratio);
+  const double reach = rj * std::sin(half_angle);  // m, half the chord
+  double y_bottom = std::numeric_limits<double>::infinity(), y_top = -y_bottom;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double dx = d.x[i] - xc;
+    if (std::abs(dx) > reach) continue;
+    const double h = std::sqrt((rj - d.r[i]) * (rj - d.r[i]) - dx * dx);
+    y_bottom = std::min(y_bottom, d.y[i] + h);  // bottom jaw: its centre above the disc
+    y_top = std::max(y_top, d.y[i] - h);
+  }
+  const double pi = std::numbers::pi;
+  Walls jaws;
+  jaws.add_arc(xc, y_bottom, rj, -0.5 * pi, half_angle);
+  jaws.add_arc(xc, y_top, rj, 0.5 * pi, half_angle);
+  jaws.vy[0] = c.platen_velocity;
+  jaws.vy[1] = -c.platen_velocity;
+  return jaws;
+}
+
 // The platens of a uniaxial or Brazilian test, as walls not yet in a world: bottom then top,
 // tangent to the outermost discs of the relaxed specimen (the mould faces were flat and every
 // boundary disc touched them, so a uniaxial specimen's ends are flat to within the relaxation),
-// wider than the specimen so a bulging specimen stays on them.
-Walls make_platens(const LabTestControls& c, const Extent& e) {
+// wider than the specimen so a bulging specimen stays on them; or the curved jaws.
+Walls make_platens(const LabTestControls& c, const Discs& d, const Extent& e) {
   Walls platens;
   if (c.type == LabTestType::DirectTension) return platens;
+  if (c.curved_jaws) return make_jaws(c, d, e);
   const double y0 = e.ymin, y1 = e.ymax, x0 = e.xmin, x1 = e.xmax;
   const double over = c.platen_overhang * (x1 - x0);
   platens.add(x0 - over, y0, x1 + over, y0);
@@ -294,13 +332,13 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
   Loading l;
   const double v = c.platen_velocity;
   if (c.type != LabTestType::DirectTension) {
-    l.bottom_wall = world.add_wall(platens.ax[0], platens.ay[0], platens.bx[0], platens.by[0]);
-    l.top_wall = world.add_wall(platens.ax[1], platens.ay[1], platens.bx[1], platens.by[1]);
-    world.walls.vy[l.bottom_wall] = platens.vy[0];
-    world.walls.vy[l.top_wall] = platens.vy[1];
+    l.bottom_wall = world.walls.append(platens, 0);
+    l.top_wall = world.walls.append(platens, 1);
+    // The platens' displacements are those of any of their points (they translate); the gauge
+    // is the specimen's extent between them, where flat platens sit.
     l.bottom_y0 = platens.ay[0];
     l.top_y0 = platens.ay[1];
-    l.gauge_length = l.top_y0 - l.bottom_y0;
+    l.gauge_length = e.ymax - e.ymin;
     l.section = specimen.container.width;
     return l;
   }
@@ -388,7 +426,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   install_test_bonds(world, c.genesis, res.genesis);
   // The relaxed state is the reference: displacements, strains, time and steps count from here.
   const Extent e = disc_extent(world);
-  const Walls platens = make_platens(c, e);
+  const Walls platens = make_platens(c, world.discs, e);
   Loading loading = set_up_loading(world, cleaned, input, platens, e);
   if (c.density_step_factor > 0) {
     scale_density_from_here(world, c.density_step_factor);

@@ -48,6 +48,11 @@ struct LabTestControls {
   double grip_fraction = 0.05;    // direct tension: grip bands, fraction of the height per end
   double gauge_fraction = 0.5;    // central region of the lateral-strain fit, fraction of H
   double platen_overhang = 0.25;  // platens reach this fraction of the width beyond each side
+  // Brazilian: flat platens, or curved jaws (ISRM): arcs of radius jaw_radius_ratio x the disc's
+  // radius covering +- jaw_cover of the disc's boundary about each pole.
+  bool curved_jaws = false;
+  double jaw_radius_ratio = 1.5;
+  double jaw_cover = 0.5235987755982988;  // rad, 30 degrees
   int threads = 1;
   GenesisOptions genesis{};
   // Biaxial: the confinements of the series (Pa, >= 0; 0 = unconfined, no side walls), and the

@@ -91,8 +91,7 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
   for (std::size_t i = 0; i < d.size(); ++i)
     for (std::size_t w = 0; w < mould.size(); ++w) {
       double cx, cy;
-      closest_on_segment(mould.ax[w], mould.ay[w], mould.bx[w], mould.by[w], d.x[i], d.y[i], cx,
-                         cy);
+      closest_on_wall(mould, w, d.x[i], d.y[i], cx, cy);
       if (std::hypot(d.x[i] - cx, d.y[i] - cy) - d.r[i] <= options.bond_gap_ratio * d.r[i])
         ++wall_contacts[i];
     }

@@ -188,18 +188,19 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
     const auto cell_y = [&](double v) {
       return std::clamp(static_cast<int>(std::floor((v - ymin_) / cell_)), 0, ny_ - 1);
     };
-    const int gx0 = cell_x(std::min(walls.ax[w], walls.bx[w]) - reach);
-    const int gx1 = cell_x(std::max(walls.ax[w], walls.bx[w]) + reach);
-    const int gy0 = cell_y(std::min(walls.ay[w], walls.by[w]) - reach);
-    const int gy1 = cell_y(std::max(walls.ay[w], walls.by[w]) + reach);
+    // An arc lies within its chord's box widened by its sagitta.
+    const double wall_reach = reach + walls.arc[w].sagitta();
+    const int gx0 = cell_x(std::min(walls.ax[w], walls.bx[w]) - wall_reach);
+    const int gx1 = cell_x(std::max(walls.ax[w], walls.bx[w]) + wall_reach);
+    const int gy0 = cell_y(std::min(walls.ay[w], walls.by[w]) - wall_reach);
+    const int gy1 = cell_y(std::max(walls.ay[w], walls.by[w]) + wall_reach);
     for (int gy = gy0; gy <= gy1; ++gy) {
       for (int gx = gx0; gx <= gx1; ++gx) {
         const int c = gy * nx_ + gx;
         for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
           const std::int32_t d = cell_discs_[k];
           double px, py;
-          closest_on_segment(walls.ax[w], walls.ay[w], walls.bx[w], walls.by[w], discs.x[d],
-                             discs.y[d], px, py);
+          closest_on_wall(walls, w, discs.x[d], discs.y[d], px, py);
           const double dx = discs.x[d] - px, dy = discs.y[d] - py, range = discs.r[d] + skin;
           if (dx * dx + dy * dy < range * range)
             new_keys_.push_back(

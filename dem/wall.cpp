@@ -12,8 +12,28 @@ int Walls::add(double ax_, double ay_, double bx_, double by_) {
   ay.push_back(ay_);
   bx.push_back(bx_);
   by.push_back(by_);
+  arc.emplace_back();
   for (auto* v : {&vx, &vy, &fx, &fy, &sxx, &sxy, &syx, &syy}) v->push_back(0.0);
   return static_cast<int>(ax.size()) - 1;
+}
+
+int Walls::add_arc(double ox, double oy, double radius, double mid_angle, double half_angle) {
+  if (!(radius > 0) || !(half_angle > 0 && half_angle < 0.5 * std::numbers::pi))
+    throw RunError("a wall arc needs a radius > 0 and a half-angle in (0, pi/2)");
+  const int w = add(ox + radius * std::cos(mid_angle - half_angle),
+                    oy + radius * std::sin(mid_angle - half_angle),
+                    ox + radius * std::cos(mid_angle + half_angle),
+                    oy + radius * std::sin(mid_angle + half_angle));
+  arc[w] = WallArc{ox, oy, radius, std::cos(mid_angle), std::sin(mid_angle), std::cos(half_angle)};
+  return w;
+}
+
+int Walls::append(const Walls& from, std::size_t k) {
+  const int w = add(from.ax[k], from.ay[k], from.bx[k], from.by[k]);
+  arc[w] = from.arc[k];
+  vx[w] = from.vx[k];
+  vy[w] = from.vy[k];
+  return w;
 }
 
 double Walls::length(int w) const {
@@ -26,6 +46,8 @@ void move_walls(Walls& walls, double dt) {
     walls.ay[w] += dt * walls.vy[w];
     walls.bx[w] += dt * walls.vx[w];
     walls.by[w] += dt * walls.vy[w];
+    walls.arc[w].ox += dt * walls.vx[w];
+    walls.arc[w].oy += dt * walls.vy[w];
   }
 }
 

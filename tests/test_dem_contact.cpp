@@ -146,4 +146,42 @@ TEST(DiscWallImpact, EndPointOfSegmentIsAContact) {
   EXPECT_NEAR(std::hypot(w.bodies.fx[0], w.bodies.fy[0]), 2 * kE * 1e-6, 1e-6 * 2 * kE * 1e-6);
 }
 
+TEST(DiscWallImpact, ArcPushesAlongItsRadius) {
+  // A disc inside a concave arc (radius 20 mm about the origin, +-0.3 rad about +y), its centre
+  // at 100 degrees and R_a - r + 1 um from the centre: overlap 1 um, normal force 2 E* x 1 um
+  // (the wall stiffness, as for a segment) toward the arc's centre.
+  const double r = 1e-3, ra = 0.02, overlap = 1e-6;
+  const double angle = 100 * pi / 180;
+  World w(undamped(1e-8));
+  w.walls.add_arc(0, 0, ra, 0.5 * pi, 0.3);
+  const double rc = ra - r + overlap;
+  w.add_disc(rc * std::cos(angle), rc * std::sin(angle), r, kRho);
+  w.step();
+  const double f = 2 * kE * overlap;
+  EXPECT_NEAR(w.bodies.fx[0], -f * std::cos(angle), 1e-6 * f);
+  EXPECT_NEAR(w.bodies.fy[0], -f * std::sin(angle), 1e-6 * f);
+  EXPECT_NEAR(w.walls.fx[0], f * std::cos(angle), 1e-6 * f);
+}
+
+TEST(DiscWallImpact, BeyondTheArcOnlyItsEndPointCounts) {
+  // The same arc: a disc at 140 degrees (beyond the end at 90 + 17.2 degrees) that would overlap
+  // the full circle by 1 um feels nothing; one touching the end point is pushed from it.
+  const double r = 1e-3, ra = 0.02;
+  World w(undamped(1e-8));
+  const int arc = w.walls.add_arc(0, 0, ra, 0.5 * pi, 0.3);
+  const double rc = ra - r + 1e-6, far = 140 * pi / 180;
+  w.add_disc(rc * std::cos(far), rc * std::sin(far), r, kRho);
+  const double ex = w.walls.bx[arc], ey = w.walls.by[arc];  // the end at 90 + 17.2 degrees
+  EXPECT_NEAR(std::atan2(ey, ex), 0.5 * pi + 0.3, 1e-12);
+  const double dist = r - 1e-6;  // centre 1 um closer than r to the end point, along -x
+  w.add_disc(ex - dist, ey, r, kRho);
+  w.step();
+  EXPECT_EQ(w.bodies.fx[0], 0);
+  EXPECT_EQ(w.bodies.fy[0], 0);
+  // The second disc's centre lies beyond the arc's angular range: pushed from the end, along -x.
+  ASSERT_GT(std::atan2(ey, ex - dist), 0.5 * pi + 0.3);
+  EXPECT_NEAR(w.bodies.fx[1], -2 * kE * 1e-6, 1e-6 * 2 * kE * 1e-6);
+  EXPECT_NEAR(w.bodies.fy[1], 0, 1e-9 * 2 * kE * 1e-6);
+}
+
 }  // namespace

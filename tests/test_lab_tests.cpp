@@ -114,6 +114,30 @@ TEST(LabTests, BrazilianStrengthFollowsThePlatenForceHistory) {
   EXPECT_NEAR(r.peak_stress, p_max / 20e-3, 1e-9 * r.peak_stress);
 }
 
+// Curved jaws (ISRM): each placed where it touches the first disc, so the test starts without a
+// load (the first record's platen force is that of touching discs, not of jaws pressed in), the
+// strain refers to the disc's extent as with flat platens, and the test runs to a confirmed peak
+// with sigma_t = 2 P_max / (pi D t).
+TEST(LabTests, BrazilianWithCurvedJawsStartsUnloadedAndSplits) {
+  const fs::path dir = scratch("brazilian_jaws");
+  const std::string test =
+      "[test]\ntype = \"brazilian\"\nhistory_interval = 20\nmax_steps = 400000\n";
+  const LabTestResult flat = run_lab_test(disc_specimen(), test_input(dir, disc_specimen(), test));
+  const LabTestResult jaws = run_lab_test(
+      disc_specimen(), test_input(dir, disc_specimen(), test + "platens = \"curved_jaws\"\n"));
+  ASSERT_GT(jaws.history.platen_force.size(), 2u);
+  double p_max = 0;
+  for (double p : jaws.history.platen_force) p_max = std::max(p_max, p);
+  EXPECT_LT(std::abs(jaws.history.platen_force.front()), 1e-3 * p_max);
+  EXPECT_DOUBLE_EQ(jaws.tensile_strength, 2 * p_max / (std::numbers::pi * 20e-3 * 1.0));
+  EXPECT_EQ(jaws.stop_reason, StopReason::PostPeakDrop);
+  EXPECT_GT(jaws.crack_count[0][0] + jaws.crack_count[0][1], 10);
+  // The jaws spread the load over more discs than flat platens: a different test, same order.
+  EXPECT_NE(jaws.tensile_strength, flat.tensile_strength);
+  EXPECT_GT(jaws.tensile_strength, 0.5 * flat.tensile_strength);
+  EXPECT_LT(jaws.tensile_strength, 2 * flat.tensile_strength);
+}
+
 TEST(LabTests, DirectTensionPullsTheGripsApart) {
   const fs::path dir = scratch("tension");
   const LabTestInput in =
@@ -169,6 +193,30 @@ TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
   const LabTestInput ucs_on_disc =
       read("specimen = \"disc.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n");
   expect_input_error([&] { run_lab_test(disc_specimen(), ucs_on_disc); }, "test.type");
+  // Curved jaws: Brazilian only, two shapes, the radius ratio only with them.
+  expect_input_error(
+      [&] {
+        read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\nplatens = \"flat\"\n");
+      },
+      "test.platens");
+  expect_input_error(
+      [&] {
+        read("specimen = \"disc.h5\"\n" + m +
+             "[test]\ntype = \"brazilian\"\nplatens = \"round\"\n");
+      },
+      "test.platens");
+  expect_input_error(
+      [&] {
+        read("specimen = \"disc.h5\"\n" + m +
+             "[test]\ntype = \"brazilian\"\njaw_radius_ratio = 1.5\n");
+      },
+      "test.jaw_radius_ratio");
+  expect_input_error(
+      [&] {
+        read("specimen = \"disc.h5\"\n" + m +
+             "[test]\ntype = \"brazilian\"\nplatens = \"curved_jaws\"\njaw_radius_ratio = 1\n");
+      },
+      "test.jaw_radius_ratio");
   // A corrupt HDF5 specimen.
   write_text(dir / "corrupt.h5", "not an HDF5 file");
   EXPECT_THROW(cdem::read_specimen(dir / "corrupt.h5"), InputError);
