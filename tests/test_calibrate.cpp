@@ -198,6 +198,18 @@ TEST(CalibrateInput, ReadsTheFlatJointSampleWithDirectTension) {
     ASSERT_EQ(g.parameters.size(), 2u);
     for (const int i : g.parameters) EXPECT_EQ(in.parameters[i].role, role);
   }
+  // The semi-analytical start holds the ratios of the parallel-bonded C30 model (E = 1.67 mortar
+  // E*): a flat-jointed mortar starts from its file's values instead (its E is about 0.8 E*).
+  for (const double s : fast_start_scales(in, fast_groups(in))) {
+    EXPECT_EQ(s, 1.0);
+  }
+  const auto pb = read_calibration_input(std::filesystem::path(CDEM_SOURCE_DIR) /
+                                         "samples/c30_parallel_bond_calibrate.toml");
+  const auto pb_groups = fast_groups(pb);
+  const auto pb_scales = fast_start_scales(pb, pb_groups);
+  for (std::size_t g = 0; g < pb_groups.size(); ++g) {
+    if (pb_groups[g].target == CalibrationTarget::E) EXPECT_NE(pb_scales[g], 1.0);
+  }
 }
 
 TEST(CalibrateInput, RejectsBadInput) {
