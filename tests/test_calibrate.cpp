@@ -208,7 +208,9 @@ TEST(CalibrateInput, ReadsTheFlatJointSampleWithDirectTension) {
   const auto pb_groups = fast_groups(pb);
   const auto pb_scales = fast_start_scales(pb, pb_groups);
   for (std::size_t g = 0; g < pb_groups.size(); ++g) {
-    if (pb_groups[g].target == CalibrationTarget::E) EXPECT_NE(pb_scales[g], 1.0);
+    if (pb_groups[g].target == CalibrationTarget::E) {
+      EXPECT_NE(pb_scales[g], 1.0);
+    }
   }
 }
 
