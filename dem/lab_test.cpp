@@ -200,6 +200,7 @@ LabTestInput read_lab_test(const std::filesystem::path& file) {
 }
 
 void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input) {
+  require_classes(input.materials, specimen.clumps.size(), input.specimen_path.string());
   const bool disc = specimen.container.shape == ContainerShape::Disc;
   const LabTestType type = input.controls.type;
   if (type == LabTestType::Brazilian && !disc)

@@ -3,7 +3,10 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <vector>
+
+#include "core/input_error.hpp"
 
 namespace cdem::dem {
 
@@ -96,9 +99,15 @@ MaterialTable read_material_table(const InputTable& input) {
   const InputTable materials = input.table("materials");
   materials.reject_unknown_keys({"mortar", "itz", "aggregate", "wall"});
   MaterialTable out;
+  out.file = input.file();
   read_class(materials.table("mortar"), ContactClass::Mortar, nullptr, out);
-  read_class(materials.table("itz"), ContactClass::Itz, nullptr, out);
-  read_class(materials.table("aggregate"), ContactClass::Aggregate, nullptr, out);
+  out.given[static_cast<int>(ContactClass::Mortar)] = true;
+  for (const auto& [name, cls] :
+       {std::pair{"itz", ContactClass::Itz}, std::pair{"aggregate", ContactClass::Aggregate}})
+    if (const auto t = materials.optional_table(name)) {
+      read_class(*t, cls, nullptr, out);
+      out.given[static_cast<int>(cls)] = true;
+    }
   // The wall defaults to the mortar's E* and kappa* with mu = 0 (SPEC 4), table optional.
   const LinearContact mortar = out.linear[static_cast<int>(ContactClass::Mortar)];
   if (const auto wall = materials.optional_table("wall"))
@@ -110,6 +119,19 @@ MaterialTable read_material_table(const InputTable& input) {
 
 MaterialTable read_material_table(const std::filesystem::path& file) {
   return read_material_table(InputTable::parse_file(file));
+}
+
+void require_classes(const MaterialTable& table, std::size_t clumps, const std::string& specimen) {
+  if (clumps == 0) return;
+  for (const auto& [name, cls, contacts] :
+       {std::tuple{"itz", ContactClass::Itz, "mortar-aggregate"},
+        std::tuple{"aggregate", ContactClass::Aggregate, "aggregate-aggregate"}})
+    if (!table.given[static_cast<int>(cls)])
+      throw InputError(table.file, std::string("materials.") + name,
+                       "missing: the specimen " + specimen + " holds " + std::to_string(clumps) +
+                           " aggregates, whose " + contacts +
+                           " contacts need this class (only a specimen without aggregates may "
+                           "leave it out)");
 }
 
 }  // namespace cdem::dem

@@ -54,7 +54,22 @@ materials = \"materials.toml\"
 [test]
 type = \"uniaxial\"
 platen_velocity_m_s = -0.02"
-expect class_without_law "materials.itz" "specimen = \"corrupt.h5\"
+# Mortar-only materials on a specimen with aggregates (the tiny sample's recipe, inline): the
+# ITZ class is missing (a specimen without aggregates may leave it out).
+expect class_missing_for_aggregates "materials.itz.*aggregates" "[specimen]
+shape = \"rectangle\"
+width_mm = 20
+height_mm = 20
+[specimen.gradation]
+type = \"walraven\"
+p_k = 0.5
+d_min_mm = 2.5
+d_max_mm = 5
+bin_count = 2
+[specimen.mortar]
+r_mean_mm = 0.5
+r_ratio = 2
+porosity = 0.12
 [materials.mortar]
 law = \"linear\"
 emod_GPa = 16
