@@ -25,12 +25,11 @@ InstalledBonds install_bonds(World& world, const BondInstallation& options) {
   InstalledBonds installed;
   for (std::size_t k = 0; k < list.keys.size(); ++k) {
     const std::int32_t i = list.first[k], j = list.second[k];
-    const double tolerance = options.gap_ratio * std::min(d.r[i], d.r[j]);
     const std::uint8_t cls = list.contact_class[k];
     const BondKind kind = world.settings.bonds[cls].kind;
     if (kind == BondKind::None || state.bond[k] != 0) continue;
-    const double gap = std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) - d.r[i] - d.r[j];
-    if (gap > tolerance) continue;
+    const double gap = disc_gap(d, i, j);
+    if (!within_bond_gap(gap, options.gap_ratio, std::min(d.r[i], d.r[j]))) continue;
     state.bond[k] = static_cast<std::uint8_t>(kind);
     state.bond_normal[k] = state.bond_shear[k] = state.bond_moment[k] = 0;
     state.bond_gap[k] = kind == BondKind::Contact ? std::max(gap, 0.0) : 0.0;

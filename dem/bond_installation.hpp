@@ -4,6 +4,8 @@
 // (WorldSettings::bonds), with zero bond force (PFC convention). Disc-wall contacts are never
 // bonded.
 #include <array>
+#include <cmath>
+#include <cstdint>
 
 #include "dem/world.hpp"
 
@@ -17,6 +19,17 @@ struct BondInstallation {
   // that would close only late in a test are not. Must stay below the neighbour skin.
   double gap_ratio = 1e-4;
 };
+
+// The gap of discs i and j (m): centre distance - R1 - R2, negative when they overlap.
+inline double disc_gap(const Discs& d, std::int32_t i, std::int32_t j) {
+  return std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) - d.r[i] - d.r[j];
+}
+
+// The bond test of BondInstallation, in one place: a gap (m) is a contact, and bonded, when it
+// is at most gap_ratio x r, r = min(R1, R2) for two discs and the disc's radius against a wall.
+inline bool within_bond_gap(double gap, double gap_ratio, double r) {
+  return gap <= gap_ratio * r;
+}
 
 struct InstalledBonds {
   std::array<long, kContactClassCount> by_class{};  // bonds (flat-joint elements) per class

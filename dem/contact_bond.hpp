@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dem/bond_failure.hpp"
+#include "dem/linear_contact.hpp"
 
 namespace cdem::dem {
 
@@ -23,7 +24,7 @@ struct ContactBondStrength {
 
 // For a disc-wall bond pass r2 = 0 (r = R1).
 inline ContactBondStrength contact_bond_strength(const ContactBondParams& p, double r1, double r2) {
-  constexpr double t = 1.0;  // m
+  constexpr double t = kThickness;  // m
   const double area = 2 * (r2 > 0 ? std::min(r1, r2) : r1) * t;
   return {p.normal_strength * area, p.shear_strength * area};
 }

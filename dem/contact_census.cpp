@@ -1,5 +1,7 @@
 #include "dem/contact_census.hpp"
 
+#include "dem/bond_installation.hpp"
+
 #include <cmath>
 
 namespace cdem::dem {
@@ -10,8 +12,7 @@ std::array<long, kContactClassCount> contact_census(const World& world, double g
   const Discs& d = world.discs;
   for (std::size_t k = 0; k < nl.keys.size(); ++k) {
     const auto i = nl.first[k], j = nl.second[k];
-    const double gap = std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) - d.r[i] - d.r[j];
-    if (gap <= gap_tolerance) ++count[nl.contact_class[k]];
+    if (disc_gap(d, i, j) <= gap_tolerance) ++count[nl.contact_class[k]];
   }
   return count;
 }

@@ -34,6 +34,7 @@
 #include <cstdint>
 
 #include "dem/bond_failure.hpp"
+#include "dem/linear_contact.hpp"
 
 namespace cdem::dem {
 
@@ -79,8 +80,9 @@ struct FlatJointStiffness {
 };
 
 inline FlatJointStiffness flat_joint_stiffness(const FlatJointGeometry& g) {
-  const double length = 2 * g.half_length;  // m, t = 1
-  return {g.kn * length, g.ks * length, g.kn * length * length * length / 12.0};
+  const double length = 2 * g.half_length;  // m
+  return {g.kn * length * kThickness, g.ks * length * kThickness,
+          g.kn * length * length * length * kThickness / 12.0};
 }
 
 // Integrals over [u, v] of a function f linear between f(u) = fu and f(v) = fv: int f dx,
@@ -151,7 +153,7 @@ inline FlatJointForce flat_joint_update(const FlatJointGeometry& g, const FlatJo
                                         double theta, double d_shear, double* shear,
                                         std::uint32_t& bonded) {
   FlatJointForce out;
-  const double area = g.element_length;  // m^2, t = 1
+  const double area = g.element_length * kThickness;  // m^2
   const double dfs = -g.ks * area * d_shear;
   for (int e = 0; e < g.elements; ++e) {
     const std::uint32_t bit = 1u << e;

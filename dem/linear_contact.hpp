@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/units.hpp"
+
 namespace cdem::dem {
 
 // Contact classes of the concrete model: mortar-mortar, mortar-aggregate (interfacial
@@ -13,7 +15,7 @@ namespace cdem::dem {
 enum class ContactClass : std::uint8_t { Mortar = 0, Itz = 1, Aggregate = 2, Wall = 3 };
 inline constexpr int kContactClassCount = 4;
 
-inline constexpr double kThickness = 1.0;  // m, PFC2D unit thickness
+inline constexpr double kThickness = units::thickness;  // m, PFC2D unit thickness
 
 struct LinearContact {
   double emod = 16e9;  // Pa, effective modulus E*

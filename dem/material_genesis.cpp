@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/input_error.hpp"
+#include "dem/bond_installation.hpp"
 #include "dem/measure.hpp"
 #include "dem/world_from_specimen.hpp"
 
@@ -78,8 +79,7 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
   std::vector<std::int32_t> first, second;
   for (std::size_t k = 0; k < list.keys.size(); ++k) {
     const std::int32_t i = list.first[k], j = list.second[k];
-    const double gap = std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) - d.r[i] - d.r[j];
-    if (gap <= options.bond_gap_ratio * std::min(d.r[i], d.r[j])) {
+    if (within_bond_gap(disc_gap(d, i, j), options.bond_gap_ratio, std::min(d.r[i], d.r[j]))) {
       first.push_back(i);
       second.push_back(j);
     }
@@ -92,7 +92,8 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
     for (std::size_t w = 0; w < mould.size(); ++w) {
       double cx, cy;
       closest_on_wall(mould, w, d.x[i], d.y[i], cx, cy);
-      if (std::hypot(d.x[i] - cx, d.y[i] - cy) - d.r[i] <= options.bond_gap_ratio * d.r[i])
+      if (within_bond_gap(std::hypot(d.x[i] - cx, d.y[i] - cy) - d.r[i], options.bond_gap_ratio,
+                          d.r[i]))
         ++wall_contacts[i];
     }
   std::vector<std::uint8_t> removed(d.size(), 0);

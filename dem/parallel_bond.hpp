@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "dem/bond_failure.hpp"
+#include "dem/linear_contact.hpp"
 
 namespace cdem::dem {
 
@@ -47,7 +48,7 @@ struct ParallelBondState {
 // `inverse_length` = 1 / L (the contact loop shares that reciprocal with the contact normal).
 inline ParallelBondGeometry parallel_bond_geometry(const ParallelBondParams& p, double r1,
                                                    double r2, double inverse_length) {
-  constexpr double t = 1.0;  // m, unit thickness
+  constexpr double t = kThickness;  // m
   const double r = r2 > 0 ? std::min(r1, r2) : r1;
   ParallelBondGeometry g;
   g.radius = p.radius_multiplier * r;
@@ -82,7 +83,7 @@ inline ParallelBondStress parallel_bond_stress(const ParallelBondState& s,
                                                const ParallelBondGeometry& g,
                                                const ParallelBondParams& p,
                                                double tan_friction_angle) {
-  constexpr double t = 1.0;  // m, unit thickness
+  constexpr double t = kThickness;  // m
   ParallelBondStress out;
   // One reciprocal serves the three stresses (this runs for every bond in every pass):
   // Rb / Ib = 3 / (2 Rb^2 t) = 6 t / Ab^2.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/units.hpp"
 #include "mesogen/aggregate_shape.hpp"
 
 namespace cdem::mesogen {
@@ -78,8 +79,8 @@ ClumpingReport form_clumps(Specimen& s, const std::vector<PlacedAggregate>& aggr
     c.vertices = a.vertices;
     c.centroid = polygon_centroid(a.vertices);
     const double area = polygon_area(a.vertices);
-    c.mass = aggregate_density * area;  // kg per 1 m thickness
-    c.inertia = aggregate_density * polygon_polar_moment(a.vertices);
+    c.mass = aggregate_density * area * units::thickness;  // kg
+    c.inertia = aggregate_density * polygon_polar_moment(a.vertices) * units::thickness;
     c.equivalent_diameter = 2 * std::sqrt(area / std::numbers::pi);
     c.bin = a.bin;
     s.clumps.push_back(std::move(c));
