@@ -51,4 +51,38 @@ inline FlatJointGeometry flat_joint_geometry(const FlatJointParams& p, const Lin
   return flat_joint_geometry(p, law.emod, law.kappa, r1, r2, inverse_length);
 }
 
+// Stiffness a contact gives the two bodies it joins: normal and shear (N/m) and rotation (N m /
+// rad, bond bending only). The critical time step (World::update_time_step) and the
+// instability diagnosis (dem/instability.cpp) both read it, so they agree.
+struct ContactStiffness {
+  double normal = 0, shear = 0, rotation = 0;
+};
+
+// A disc pair of radii r1, r2 (m) of a class with linear part `law` and bond model `bond`,
+// carrying a bond of kind `kind`: a parallel bond acts in parallel with the linear part (its
+// stiffnesses add), a flat joint replaces the linear part.
+inline ContactStiffness pair_stiffness(const LinearContact& law, const BondModel& bond,
+                                       BondKind kind, double r1, double r2) {
+  if (kind == BondKind::FlatJoint) {
+    const FlatJointStiffness j =
+        flat_joint_stiffness(flat_joint_geometry(bond.flat_joint, law, r1, r2, 1.0 / (r1 + r2)));
+    return {j.normal, j.shear, j.rotation};
+  }
+  const double kn = law.normal_stiffness(r1, r2);
+  ContactStiffness s{kn, law.shear_stiffness(kn), 0};
+  if (kind == BondKind::Parallel) {
+    const BondStiffness b = parallel_bond_stiffness(bond.parallel, r1, r2);
+    s.normal += b.normal;
+    s.shear += b.shear;
+    s.rotation = b.rotation;
+  }
+  return s;
+}
+
+// A disc-wall contact (linear only).
+inline ContactStiffness wall_stiffness(const LinearContact& law) {
+  const double kn = law.wall_normal_stiffness();
+  return {kn, law.shear_stiffness(kn), 0};
+}
+
 }  // namespace cdem::dem

@@ -17,8 +17,18 @@ namespace {
 // Stiffness contrast above which the message names it as part of the cause.
 constexpr double kStiffnessContrast = 100.0;
 
-// Current stiffness seen by body b (sum max(kn, ks) and sum ks arm^2 over its candidate
-// contacts, with the laws as they are now) and its kn range.
+// Candidate pair k of the world, with its current bond.
+ContactStiffness pair_stiffness(const World& w, std::size_t k) {
+  const NeighborList& list = w.neighbors;
+  const std::uint8_t cls = list.contact_class[k];
+  return dem::pair_stiffness(w.settings.laws[cls], w.settings.bonds[cls],
+                             static_cast<BondKind>(list.state.bond[k]), w.discs.r[list.first[k]],
+                             w.discs.r[list.second[k]]);
+}
+
+// Current stiffness seen by body b (sum max(kn, ks) and sum ks arm^2 + bond bending over its
+// candidate contacts, with the laws and bonds as they are now: the time step's sums) and its kn
+// range.
 struct BodyStiffness {
   double translational = 0, rotational = 0;
 };
@@ -26,25 +36,21 @@ struct BodyStiffness {
 BodyStiffness body_stiffness(const World& w, long body) {
   const Discs& d = w.discs;
   const NeighborList& list = w.neighbors;
-  const ContactLaws& laws = w.settings.laws;
   BodyStiffness s;
-  const auto add = [&](std::int32_t disc, double kn, double ks) {
+  const auto add = [&](std::int32_t disc, const ContactStiffness& c) {
     const double arm = std::hypot(d.offset_x[disc], d.offset_y[disc]) + d.r[disc];
-    s.translational += std::max(kn, ks);
-    s.rotational += ks * arm * arm;
+    s.translational += std::max(c.normal, c.shear);
+    s.rotational += c.shear * arm * arm + c.rotation;
   };
   for (std::size_t k = 0; k < list.keys.size(); ++k) {
     const std::int32_t i = list.first[k], j = list.second[k];
     if (d.body[i] != body && d.body[j] != body) continue;
-    const LinearContact& law = laws[list.contact_class[k]];
-    const double kn = law.normal_stiffness(d.r[i], d.r[j]);
-    add(d.body[i] == body ? i : j, kn, law.shear_stiffness(kn));
+    add(d.body[i] == body ? i : j, pair_stiffness(w, k));
   }
-  const LinearContact& wall_law = laws[static_cast<int>(ContactClass::Wall)];
-  const double kn_wall = wall_law.wall_normal_stiffness();
+  const ContactStiffness wall =
+      wall_stiffness(w.settings.laws[static_cast<int>(ContactClass::Wall)]);
   for (std::size_t k = 0; k < list.wall_keys.size(); ++k)
-    if (d.body[list.wall_disc[k]] == body)
-      add(list.wall_disc[k], kn_wall, wall_law.shear_stiffness(kn_wall));
+    if (d.body[list.wall_disc[k]] == body) add(list.wall_disc[k], wall);
   return s;
 }
 
@@ -81,14 +87,11 @@ StiffnessRange disc_stiffness_range(const World& w, long disc) {
     r.kn_max = std::max(r.kn_max, kn);
     ++r.contacts;
   };
-  const Discs& d = w.discs;
   const NeighborList& list = w.neighbors;
   for (std::size_t k = 0; k < list.keys.size(); ++k)
-    if (list.first[k] == disc || list.second[k] == disc)
-      add(w.settings.laws[list.contact_class[k]].normal_stiffness(d.r[list.first[k]],
-                                                                  d.r[list.second[k]]));
+    if (list.first[k] == disc || list.second[k] == disc) add(pair_stiffness(w, k).normal);
   const double kn_wall =
-      w.settings.laws[static_cast<int>(ContactClass::Wall)].wall_normal_stiffness();
+      wall_stiffness(w.settings.laws[static_cast<int>(ContactClass::Wall)]).normal;
   for (std::size_t k = 0; k < list.wall_keys.size(); ++k)
     if (list.wall_disc[k] == disc) add(kn_wall);
   if (r.contacts == 0) r.kn_min = 0;

@@ -153,36 +153,19 @@ void World::update_time_step() {
   };
   for (std::size_t k = 0; k < neighbors.keys.size(); ++k) {
     const std::int32_t i = neighbors.first[k], j = neighbors.second[k];
-    const LinearContact& law =
-        settings.laws[static_cast<int>(discs.material[i]) + static_cast<int>(discs.material[j])];
-    double kn = law.normal_stiffness(discs.r[i], discs.r[j]);
-    double ks = law.shear_stiffness(kn);
-    // A parallel bond acts in parallel with the linear part: its stiffnesses add. A flat
-    // joint replaces the linear part.
-    BondStiffness bond;
-    const auto kind = static_cast<BondKind>(neighbors.state.bond[k]);
-    if (kind == BondKind::Parallel)
-      bond = parallel_bond_stiffness(settings.bonds[neighbors.contact_class[k]].parallel,
-                                     discs.r[i], discs.r[j]);
-    if (kind == BondKind::FlatJoint) {
-      const FlatJointStiffness joint = flat_joint_stiffness(
-          flat_joint_geometry(settings.bonds[neighbors.contact_class[k]].flat_joint, law,
-                              discs.r[i], discs.r[j], 1.0 / (discs.r[i] + discs.r[j])));
-      kn = ks = 0;
-      bond = {joint.normal, joint.shear, joint.rotation};
-    }
-    kn += bond.normal;
-    ks += bond.shear;
-    const double kt = std::max(kn, ks);
+    const std::uint8_t cls = neighbors.contact_class[k];
+    const ContactStiffness c =
+        pair_stiffness(settings.laws[cls], settings.bonds[cls],
+                       static_cast<BondKind>(neighbors.state.bond[k]), discs.r[i], discs.r[j]);
+    const double kt = std::max(c.normal, c.shear);
     const double ai = arm(i), aj = arm(j);
     stiffness_[discs.body[i]] += kt;
     stiffness_[discs.body[j]] += kt;
-    rot_stiffness_[discs.body[i]] += ks * ai * ai + bond.rotation;
-    rot_stiffness_[discs.body[j]] += ks * aj * aj + bond.rotation;
+    rot_stiffness_[discs.body[i]] += c.shear * ai * ai + c.rotation;
+    rot_stiffness_[discs.body[j]] += c.shear * aj * aj + c.rotation;
   }
-  const LinearContact& wall_law = settings.laws[static_cast<int>(ContactClass::Wall)];
-  const double kn_wall = wall_law.wall_normal_stiffness();
-  const double ks_wall = wall_law.shear_stiffness(kn_wall);
+  const ContactStiffness wall = wall_stiffness(settings.laws[static_cast<int>(ContactClass::Wall)]);
+  const double kn_wall = wall.normal, ks_wall = wall.shear;
   for (std::size_t k = 0; k < neighbors.wall_keys.size(); ++k) {
     const std::int32_t i = neighbors.wall_disc[k];
     const double a = arm(i);
