@@ -203,9 +203,11 @@ Action add_run_command(CLI::App& app) {
     std::vector<NamedPath> outputs;
     if (!o->output.empty()) {
       outputs.push_back({"-o", o->output});
-      // The XDMF file dem::ResultFile writes beside the result when it holds snapshots.
-      outputs.push_back(
-          {"-o (its XDMF file)", std::filesystem::path(o->output).replace_extension(".xmf")});
+      // The XDMF files dem::ResultFile writes beside the result when it holds snapshots.
+      const auto xdmf = dem::ResultFile::xdmf_paths(o->output);
+      outputs.push_back({"-o (its XDMF file)", xdmf[0]});
+      outputs.push_back({"-o (its bonds XDMF file)", xdmf[1]});
+      outputs.push_back({"-o (its cracks XDMF file)", xdmf[2]});
     }
     if (!o->summary.empty()) outputs.push_back({"--summary", o->summary});
     for (std::size_t k = 0; k < runs; ++k) {

@@ -1,5 +1,6 @@
 #include "dem/crack_log.hpp"
 
+#include <bit>
 #include <cmath>
 
 namespace cdem::dem {
@@ -29,11 +30,13 @@ void CrackLog::record(const ContactForces& pair, const NeighborList& list, const
     c.bond = bonds[cls].kind;
     c.first = i;
     c.second = j;
+    c.energy = pair.bond_energy_released[k];
     const std::uint32_t failed = pair.failed_elements[k];
     if (!failed) {
       cracks.push_back(c);
       continue;
     }
+    c.energy /= std::popcount(failed);
     const Crack contact = c;
     const double nx = dist > 0 ? dx / dist : 0.0, ny = dist > 0 ? dy / dist : 0.0;
     for (int e = 0; e < kMaxFlatJointElements; ++e) {

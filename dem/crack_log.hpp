@@ -25,6 +25,9 @@ struct Crack {
   BondKind bond = BondKind::None;                     // the law of the bond that broke
   std::int32_t first = -1, second = -1;               // the two discs (first < second)
   std::int8_t element = -1;  // flat joint: the element that broke (0 .. N_r - 1), else -1
+  // J per m of thickness: strain energy the bond held when it broke (the energy ledger's
+  // bond_breakage); the elements of a flat joint that break in the same pass share it equally
+  double energy = 0;
 };
 
 struct CrackLog {

@@ -69,9 +69,17 @@ ResultFile::~ResultFile() {
   }
 }
 
+std::array<std::filesystem::path, 3> ResultFile::xdmf_paths(const std::filesystem::path& target) {
+  std::filesystem::path discs = target, bonds = target, cracks = target;
+  const std::string stem = target.stem().string();
+  discs.replace_extension(".xmf");
+  bonds.replace_filename(stem + "_bonds.xmf");
+  cracks.replace_filename(stem + "_cracks.xmf");
+  return {discs, bonds, cracks};
+}
+
 std::filesystem::path ResultFile::xdmf_path() const {
-  std::filesystem::path p = out_.target();
-  return p.replace_extension(".xmf");
+  return xdmf_paths(out_.target())[0];
 }
 
 void ResultFile::snapshot(const World& world, long step, double time) {
@@ -89,9 +97,28 @@ void ResultFile::snapshot(const World& world, long step, double time) {
   };
   copy(d.x, "x", "m");
   copy(d.y, "y", "m");
+  scratch_.resize(2 * d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    scratch_[2 * i] = d.x[i];
+    scratch_[2 * i + 1] = d.y[i];
+  }
+  write_array(g, "xy", scratch_, "m", "x, y per disc (the XDMF geometry)", 2);
   copy(d.r, "r", "m");
   copy(d.vx, "vx", "m/s");
   copy(d.vy, "vy", "m/s");
+  std::vector<std::int32_t> tag(d.size()), clump(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    tag[i] = static_cast<std::int32_t>(d.material[i]);
+    clump[i] = world.bodies.is_clump[d.body[i]] ? d.body[i] : -1;
+  }
+  write_array(g, "tag", tag, "", "0 = mortar disc, 1 = aggregate pebble");
+  write_array(g, "clump", clump, "", "body index of the disc's clump, -1 = a free disc");
+  if (index == 0) {  // the discs' indices, the XDMF topology of every snapshot of this run
+    std::vector<std::int32_t> vertices(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) vertices[i] = static_cast<std::int32_t>(i);
+    write_array(root, "vertices", vertices, "", "disc index (XDMF Polyvertex topology)");
+  }
+  snapshot_bonds(root, g, world, time);
   bond_count_.assign(d.size(), 0);
   const NeighborList& list = world.neighbors;
   for (std::size_t k = 0; k < list.keys.size(); ++k)
@@ -100,10 +127,60 @@ void ResultFile::snapshot(const World& world, long step, double time) {
       ++bond_count_[list.second[k]];
     }
   write_array(g, "bonds", bond_count_, "", "intact bonds of the disc");
-  snapshots_.push_back({group_, index, step, time, d.size()});
+  snapshots_.push_back({group_, index, step, time, d.size(), bond_keys_.size()});
+}
+
+// The bond network at a snapshot. At the run's first snapshot the pairs then bonded become the
+// network (their pairs, class and law in `root`); every snapshot stores each one's intact
+// bonds (flat joint: bonded elements; 0 = broken) and its latest failure from the crack log.
+void ResultFile::snapshot_bonds(H5::Group& root, H5::Group& g, const World& world, double time) {
+  const NeighborList& list = world.neighbors;
+  const auto& cracks = world.cracks.cracks;
+  if (bond_group_ != group_) {
+    bond_group_ = group_;
+    bond_keys_.clear();
+    std::vector<std::int32_t> pairs, cls, law;
+    for (std::size_t k = 0; k < list.keys.size(); ++k) {
+      if (list.intact_bonds(k) == 0) continue;
+      bond_keys_.push_back(list.keys[k]);
+      pairs.push_back(list.first[k]);
+      pairs.push_back(list.second[k]);
+      cls.push_back(list.contact_class[k]);
+      law.push_back(list.state.bond[k]);
+    }
+    bond_mode_.assign(bond_keys_.size(), 0);
+    bond_time_.assign(bond_keys_.size(), -1.0);
+    cracks_seen_ = cracks.size();  // earlier cracks broke bonds that are not in the network
+    write_array(root, "bond_pairs", pairs, "", "the two discs of each bond (XDMF lines)", 2);
+    write_array(root, "bond_class", cls, "", "0 = M (mortar), 1 = ITZ, 2 = A (aggregate)");
+    write_array(root, "bond_law", law, "", "1 = contact bond, 2 = parallel bond, 3 = flat joint");
+  }
+  // World time of the loading start: crack times are world times until the run ends.
+  const double time0 = world.time() - time;
+  for (; cracks_seen_ < cracks.size(); ++cracks_seen_) {
+    const Crack& c = cracks[cracks_seen_];
+    const std::uint64_t key =
+        pair_key(static_cast<std::uint32_t>(c.first), static_cast<std::uint32_t>(c.second));
+    const auto at = std::lower_bound(bond_keys_.begin(), bond_keys_.end(), key);
+    if (at == bond_keys_.end() || *at != key) continue;
+    const std::size_t b = static_cast<std::size_t>(at - bond_keys_.begin());
+    bond_mode_[b] = static_cast<std::int32_t>(c.mode);
+    bond_time_[b] = c.time - time0;
+  }
+  std::vector<std::int32_t> intact(bond_keys_.size(), 0);
+  for (std::size_t b = 0; b < bond_keys_.size(); ++b) {
+    const auto at = std::lower_bound(list.keys.begin(), list.keys.end(), bond_keys_[b]);
+    if (at != list.keys.end() && *at == bond_keys_[b])
+      intact[b] = list.intact_bonds(static_cast<std::size_t>(at - list.keys.begin()));
+  }
+  write_array(g, "bond_intact", intact, "",
+              "intact bonds of the pair (flat joint: bonded elements); 0 = broken");
+  write_array(g, "bond_mode", bond_mode_, "", "latest failure: 0 = none, 1 = tension, 2 = shear");
+  write_array(g, "bond_time", bond_time_, "s", "loading time of the latest failure, -1 = none");
 }
 
 void ResultFile::commit(const LabTestResult& r) {
+  crack_count_ = r.cracks.size();
   H5::Group root = file_->openGroup("/");
   write_run(root, r);
   finish();
@@ -191,14 +268,18 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_array(hg, "boundary_work", h.boundary_work, "J/m");
     write_array(hg, "bonds_broken", h.bonds_broken);
 
-    std::vector<double> t, x, y;
+    std::vector<double> t, x, y, xy, energy;
     std::vector<std::uint8_t> mode, cls;
-    std::vector<std::int32_t> element;
+    std::vector<std::int32_t> element, vertices;
     std::vector<std::int32_t> first, second;
     for (const Crack& c : r.cracks) {
+      vertices.push_back(static_cast<std::int32_t>(t.size()));
       t.push_back(c.time);
       x.push_back(c.x);
       y.push_back(c.y);
+      xy.push_back(c.x);
+      xy.push_back(c.y);
+      energy.push_back(c.energy);
       mode.push_back(static_cast<std::uint8_t>(c.mode));
       cls.push_back(static_cast<std::uint8_t>(c.contact_class));
       first.push_back(c.first);
@@ -215,6 +296,11 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_array(cg, "second", second, "", "world disc index");
     write_array(cg, "element", element, "",
                 "flat-joint element 0 .. N_r - 1, -1 = not a flat joint");
+    write_array(cg, "energy", energy, "J/m",
+                "strain energy the bond held when it broke (a flat joint's elements breaking in "
+                "one pass share it)");
+    write_array(cg, "xy", xy, "m", "x, y per crack (the XDMF geometry)", 2);
+    write_array(cg, "vertices", vertices, "", "crack index (XDMF Polyvertex topology)");
     for (int m = 0; m < 2; ++m)
       for (int c = 0; c < 3; ++c)
         write_scalar_attr<long>(
@@ -225,6 +311,28 @@ void write_run(H5::Group& where, const LabTestResult& r) {
 
 }  // namespace
 
+namespace {
+
+// An XDMF DataItem of the HDF5 dataset `path` in `h5` with `dims` ("n" or "n 2").
+std::string data_item(const std::string& h5, const std::string& path, const std::string& dims,
+                      const char* type, int precision) {
+  std::ostringstream s;
+  s << "     <DataItem Dimensions=\"" << dims << "\" NumberType=\"" << type << "\" Precision=\""
+    << precision << "\" Format=\"HDF\">" << h5 << ":" << path << "</DataItem>\n";
+  return s.str();
+}
+
+std::string attribute(const char* name, const char* center, const std::string& item) {
+  return std::string("    <Attribute Name=\"") + name + "\" AttributeType=\"Scalar\" Center=\"" +
+         center + "\">\n" + item + "    </Attribute>\n";
+}
+
+}  // namespace
+
+// XDMF 3 companions (docs/result_file.md), each one grid or one temporal collection so that a
+// reader of single grids (meshio) opens it: the discs (Polyvertex, XY geometry), the bond
+// network (Polyline of two nodes per bond on the discs' positions of each snapshot) and the
+// crack log (Polyvertex at the crack positions).
 void ResultFile::finish() {
   hdf5::save_and_close(*file_, out_);
   file_.reset();
@@ -232,37 +340,73 @@ void ResultFile::finish() {
 
   if (snapshots_.empty()) return;
   const std::string h5 = out_.target().filename().string();
-  std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
+  const auto paths = xdmf_paths(out_.target());
+  const char* head = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
+  const char* tail = " </Domain>\n</Xdmf>\n";
+  std::ostringstream x, b;
+  x << head;
+  b << head << "  <Grid Name=\"bonds\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (std::size_t k = 0; k < snapshots_.size(); ++k) {
-    const std::string& group = snapshots_[k].group;
-    if (k == 0 || group != snapshots_[k - 1].group) {
+    const SnapshotIndex& s = snapshots_[k];
+    if (k == 0 || s.group != snapshots_[k - 1].group) {
       if (k > 0) x << "  </Grid>\n";
-      x << "  <Grid Name=\"" << (group == "/" ? "discs" : group.substr(1))
+      x << "  <Grid Name=\"" << (s.group == "/" ? "discs" : s.group.substr(1))
         << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     }
-    const std::string path = h5 + ":" + (group == "/" ? "" : group) + "/snapshots/" +
-                             snapshot_name(snapshots_[k].index) + "/";
-    const std::size_t n = snapshots_[k].discs;
-    const auto item = [&](const char* name, const char* type, int precision) {
-      std::ostringstream s;
-      s << "     <DataItem Dimensions=\"" << n << "\" NumberType=\"" << type << "\" Precision=\""
-        << precision << "\" Format=\"HDF\">" << path << name << "</DataItem>\n";
-      return s.str();
-    };
-    x << "   <Grid Name=\"step " << snapshots_[k].step << "\" GridType=\"Uniform\">\n"
-      << "    <Time Value=\"" << snapshots_[k].time << "\"/>\n"
-      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
-      << "    <Geometry GeometryType=\"X_Y\">\n"
-      << item("x", "Float", 8) << item("y", "Float", 8) << "    </Geometry>\n";
+    const std::string root = (s.group == "/" ? "" : s.group) + "/snapshots/";
+    const std::string path = root + snapshot_name(s.index) + "/";
+    const std::string n = std::to_string(s.discs);
+    const std::string geometry = "    <Geometry GeometryType=\"XY\">\n" +
+                                 data_item(h5, path + "xy", n + " 2", "Float", 8) +
+                                 "    </Geometry>\n";
+    std::ostringstream header;
+    header.precision(17);
+    header << "   <Grid Name=\"step " << s.step << "\" GridType=\"Uniform\">\n    <Time Value=\""
+           << s.time << "\"/>\n";
+    const std::string grid = header.str();
+    x << grid << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+      << "\" NodesPerElement=\"1\">\n"
+      << data_item(h5, root + "vertices", n + " 1", "Int", 4) << "    </Topology>\n"
+      << geometry;
     for (const char* a : {"r", "vx", "vy"})
-      x << "    <Attribute Name=\"" << a << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-        << item(a, "Float", 8) << "    </Attribute>\n";
-    x << "    <Attribute Name=\"bonds\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-      << item("bonds", "Int", 4) << "    </Attribute>\n   </Grid>\n";
+      x << attribute(a, "Node", data_item(h5, path + a, n, "Float", 8));
+    for (const char* a : {"bonds", "tag", "clump"})
+      x << attribute(a, "Node", data_item(h5, path + a, n, "Int", 4));
+    x << "   </Grid>\n";
+    if (s.group != "/") continue;  // a biaxial series: discs only
+    const std::string m = std::to_string(s.bonds);
+    b << grid << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << m
+      << "\" NodesPerElement=\"2\">\n"
+      << data_item(h5, root + "bond_pairs", m + " 2", "Int", 4) << "    </Topology>\n"
+      << geometry;
+    for (const char* a : {"bond_class", "bond_law"})
+      b << attribute(a, "Cell", data_item(h5, root + a, m, "Int", 4));
+    for (const char* a : {"bond_intact", "bond_mode"})
+      b << attribute(a, "Cell", data_item(h5, path + a, m, "Int", 4));
+    b << attribute("bond_time", "Cell", data_item(h5, path + "bond_time", m, "Float", 8))
+      << "   </Grid>\n";
   }
-  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  write_text_atomically(xdmf_path(), x.str());
+  x << "  </Grid>\n" << tail;
+  b << "  </Grid>\n" << tail;
+  write_text_atomically(paths[0], x.str());
+  if (snapshots_.front().group != "/") return;
+  write_text_atomically(paths[1], b.str());
+  const std::string c = std::to_string(crack_count_);
+  std::ostringstream cx;
+  cx << head << "  <Grid Name=\"cracks\" GridType=\"Uniform\">\n"
+     << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << c
+     << "\" NodesPerElement=\"1\">\n"
+     << data_item(h5, "/cracks/vertices", c + " 1", "Int", 4) << "    </Topology>\n"
+     << "    <Geometry GeometryType=\"XY\">\n"
+     << data_item(h5, "/cracks/xy", c + " 2", "Float", 8) << "    </Geometry>\n";
+  for (const char* a : {"time", "energy"})
+    cx << attribute(a, "Node", data_item(h5, std::string("/cracks/") + a, c, "Float", 8));
+  for (const char* a : {"mode", "class"})
+    cx << attribute(a, "Node", data_item(h5, std::string("/cracks/") + a, c, "UInt", 1));
+  for (const char* a : {"element", "first", "second"})
+    cx << attribute(a, "Node", data_item(h5, std::string("/cracks/") + a, c, "Int", 4));
+  cx << "  </Grid>\n" << tail;
+  write_text_atomically(paths[2], cx.str());
 }
 
 }  // namespace cdem::dem

@@ -5,6 +5,8 @@
 // confinement's records in a group of its own (/confinement_K) and the Mohr-Coulomb envelope
 // at the root. Written to a temporary name and
 // renamed when complete: a failed run leaves no result file behind.
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -15,14 +17,16 @@
 
 namespace H5 {
 class H5File;
-}
+class Group;
+}  // namespace H5
 
 namespace cdem::dem {
 
 class ResultFile {
  public:
-  // Opens the temporary file. The XDMF file (same name, extension .xmf) is written at
-  // commit() when snapshots were taken.
+  // Opens the temporary file. The XDMF files (docs/result_file.md: NAME.xmf for the discs,
+  // NAME_bonds.xmf for the bond network, NAME_cracks.xmf for the crack log) are written at
+  // commit() when snapshots were taken (a biaxial series: the discs only).
   ResultFile(std::filesystem::path target, const LabTestInput& input);
   ~ResultFile();  // without commit(): closes and removes the temporary file
   ResultFile(const ResultFile&) = delete;
@@ -40,6 +44,8 @@ class ResultFile {
   void commit(const BiaxialSeries& series);
 
   std::filesystem::path xdmf_path() const;
+  // The XDMF companions of a result file `target`: discs, bonds, cracks.
+  static std::array<std::filesystem::path, 3> xdmf_paths(const std::filesystem::path& target);
 
  private:
   AtomicOutput out_;
@@ -53,10 +59,21 @@ class ResultFile {
     long step;
     double time;
     std::size_t discs;
+    std::size_t bonds;  // of the bond network
   };
   std::vector<SnapshotIndex> snapshots_;
   std::vector<double> scratch_;
   std::vector<std::int32_t> bond_count_;
+  // The bond network of the run in hand: the pairs bonded at its first snapshot (sorted keys),
+  // and per bond the mode (1 tension, 2 shear; 0 none) and loading time (s; -1 none) of its
+  // latest failure, read from the crack log as it grows.
+  std::string bond_group_;
+  std::vector<std::uint64_t> bond_keys_;
+  std::vector<std::int32_t> bond_mode_;
+  std::vector<double> bond_time_;
+  std::size_t cracks_seen_ = 0;
+  std::size_t crack_count_ = 0;  // cracks of a single test, for its XDMF
+  void snapshot_bonds(H5::Group& root, H5::Group& g, const World& world, double time);
 };
 
 }  // namespace cdem::dem

@@ -101,6 +101,8 @@ expect run_output_is_materials 2 "materials.toml" "-o" "" -- "${R[@]}" -o materi
 expect run_summary_is_output 2 "r1.h5" "--summary" "r1.h5 r1.xmf" -- "${R[@]}" -o r1.h5 --summary r1.h5
 expect run_summary_is_test 2 "test.toml" "--summary" "r2.h5" -- "${R[@]}" -o r2.h5 --summary test.toml
 expect run_output_is_its_xdmf 2 "r3.xmf" "XDMF" "" -- "${R[@]}" -o r3.xmf
+expect run_summary_is_its_bonds_xdmf 2 "r8_bonds.xmf" "bonds XDMF" "r8.h5 r8.xmf r8_cracks.xmf" -- \
+  "${R[@]}" -o r8.h5 --summary r8_bonds.xmf
 expect run_plot_is_summary 2 "r4.json" "--plot" "r4.h5 r4.json" -- \
   "${R[@]}" -o r4.h5 --summary r4.json --plot r4.json
 expect run_crack_map_is_plot 2 "r5.png" "--crack-map" "r5.h5" -- \

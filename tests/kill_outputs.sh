@@ -28,7 +28,7 @@ printf 'seed = 1\nspecimen = "specimen.h5"\nmaterials = "materials.toml"\n[test]
 gen_cmd=("$CDEM" generate spec.toml -o g.h5 --summary g.json --picture g.png -q)
 gen_outputs="g.h5 g.json g.png"
 run_cmd=("$CDEM" run test.toml -o r.h5 --summary r.json -q)
-run_outputs="r.h5 r.xmf r.json r_stress_strain.png r_cracks.png"
+run_outputs="r.h5 r.xmf r_bonds.xmf r_cracks.xmf r.json r_stress_strain.png r_cracks.png"
 
 now_ms() { date +%s%3N; }
 # The references: uninterrupted runs, timed.
@@ -54,7 +54,7 @@ complete_generate() {
 complete_run() {
   [ "$(peak r.json 2>/dev/null)" = "$reference_peak" ] &&
     "$PY" -c 'import h5py; h5py.File("r.h5", "r")["history"]' 2>/dev/null && [ -s r.xmf ] &&
-    [ -s r_stress_strain.png ] && [ -s r_cracks.png ]
+    [ -s r_bonds.xmf ] && [ -s r_cracks.xmf ] && [ -s r_stress_strain.png ] && [ -s r_cracks.png ]
 }
 
 fail() { echo "FAIL $1"; failures=$((failures + 1)); }
