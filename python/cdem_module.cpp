@@ -170,27 +170,28 @@ py::dict history_arrays(const dem::LabHistory& h) {
   return d;
 }
 
+// One field of every crack as a read-only numpy array.
+template <typename T, typename Field>
+py::array_t<T> crack_column(const std::vector<dem::Crack>& cracks, Field field) {
+  py::array_t<T> a(static_cast<py::ssize_t>(cracks.size()));
+  T* out = a.mutable_data();
+  for (const dem::Crack& k : cracks) *out++ = static_cast<T>(field(k));
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+// The crack log with the result file's names and codes (docs/result_file.md, /cracks).
 py::dict crack_arrays(const std::vector<dem::Crack>& cracks) {
-  std::vector<double> time, x, y;
-  std::vector<std::int8_t> mode, contact_class;
-  std::vector<std::int32_t> first, second;
-  for (const dem::Crack& k : cracks) {
-    time.push_back(k.time);
-    x.push_back(k.x);
-    y.push_back(k.y);
-    mode.push_back(static_cast<std::int8_t>(k.mode));
-    contact_class.push_back(static_cast<std::int8_t>(k.contact_class));
-    first.push_back(k.first);
-    second.push_back(k.second);
-  }
+  using dem::Crack;
   py::dict d;
-  d["time"] = copy(time);
-  d["x"] = copy(x);
-  d["y"] = copy(y);
-  d["mode"] = copy(mode);
-  d["contact_class"] = copy(contact_class);
-  d["first"] = copy(first);
-  d["second"] = copy(second);
+  d["time"] = crack_column<double>(cracks, [](const Crack& k) { return k.time; });
+  d["x"] = crack_column<double>(cracks, [](const Crack& k) { return k.x; });
+  d["y"] = crack_column<double>(cracks, [](const Crack& k) { return k.y; });
+  d["mode"] = crack_column<std::uint8_t>(cracks, [](const Crack& k) { return k.mode; });
+  d["class"] = crack_column<std::uint8_t>(cracks, [](const Crack& k) { return k.contact_class; });
+  d["first"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.first; });
+  d["second"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.second; });
+  d["element"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.element; });
   return d;
 }
 
@@ -322,31 +323,42 @@ PYBIND11_MODULE(_cdem, m) {
     }
   });
 
-  py::class_<PySpecimen>(m, "Specimen")
-      .def_property_readonly("x",
-                             [](py::object s) { return view(s.cast<PySpecimen&>().specimen.x, s); })
-      .def_property_readonly("y",
-                             [](py::object s) { return view(s.cast<PySpecimen&>().specimen.y, s); })
-      .def_property_readonly("r",
-                             [](py::object s) { return view(s.cast<PySpecimen&>().specimen.r, s); })
-      .def_property_readonly(
-          "clump", [](py::object s) { return view(s.cast<PySpecimen&>().specimen.clump, s); })
-      .def_property_readonly(
-          "contact_active",
-          [](py::object s) { return view(s.cast<PySpecimen&>().specimen.contact_active, s); })
+  py::class_<PySpecimen> specimen(
+      m, "Specimen",
+      "A generated specimen (cdem.generate, cdem.load_specimen): discs as read-only numpy views "
+      "(SI units), the mould, the aggregates and the generator's summary. len() is the disc "
+      "count.");
+  // A read-only numpy view of one per-disc array of the specimen, kept alive by the object.
+  const auto disc_array = [&specimen](const char* name, auto member, const char* doc) {
+    specimen.def_property_readonly(
+        name, [member](py::object s) { return view(s.cast<PySpecimen&>().specimen.*member, s); },
+        doc);
+  };
+  disc_array("x", &cdem::Specimen::x, "Disc centres, x (m), float64 (n,).");
+  disc_array("y", &cdem::Specimen::y, "Disc centres, y (m; the loading axis), float64 (n,).");
+  disc_array("r", &cdem::Specimen::r, "Disc radii (m), float64 (n,).");
+  disc_array("clump", &cdem::Specimen::clump,
+             "Per disc: -1 for mortar, else the index of its aggregate in `clumps`; int32.");
+  disc_array("contact_active", &cdem::Specimen::contact_active,
+             "Per disc: 0 for pebbles too deep inside an aggregate to touch anything; uint8.");
+  specimen
       .def_property_readonly(
           "shape",
           [](const PySpecimen& s) -> std::string {
             return s.specimen.container.shape == cdem::ContainerShape::Disc ? "disc" : "rectangle";
-          })
-      .def_property_readonly("width",
-                             [](const PySpecimen& s) { return s.specimen.container.width; })
-      .def_property_readonly("height",
-                             [](const PySpecimen& s) { return s.specimen.container.height; })
-      .def_property_readonly("mortar_density",
-                             [](const PySpecimen& s) { return s.specimen.mortar_density; })
-      .def_property_readonly("aggregate_density",
-                             [](const PySpecimen& s) { return s.specimen.aggregate_density; })
+          },
+          "The mould: \"rectangle\" ([0, width] x [0, height]) or \"disc\".")
+      .def_property_readonly(
+          "width", [](const PySpecimen& s) { return s.specimen.container.width; },
+          "Mould width (m; the diameter of a disc).")
+      .def_property_readonly(
+          "height", [](const PySpecimen& s) { return s.specimen.container.height; },
+          "Mould height (m; the diameter of a disc).")
+      .def_property_readonly(
+          "mortar_density", [](const PySpecimen& s) { return s.specimen.mortar_density; }, "kg/m3")
+      .def_property_readonly(
+          "aggregate_density", [](const PySpecimen& s) { return s.specimen.aggregate_density; },
+          "kg/m3")
       .def_property_readonly(
           "clumps",
           [](const PySpecimen& s) {
@@ -368,27 +380,43 @@ PYBIND11_MODULE(_cdem, m) {
               clumps.append(d);
             }
             return clumps;
-          })
-      .def_property_readonly("attributes",
-                             [](const PySpecimen& s) { return s.specimen.attributes; })
-      .def_property_readonly("summary_json", [](const PySpecimen& s) { return s.summary; })
-      .def_property_readonly("source", [](const PySpecimen& s) { return s.source; })
-      .def("__len__", [](const PySpecimen& s) { return s.specimen.disc_count(); })
-      .def("write", [](const PySpecimen& s, const std::string& path) {
-        cdem::OutputTransaction transaction(cdem::check_output_files({}, {{"path", path}}));
-        cdem::write_specimen(s.specimen, path);
-        transaction.commit();
-      });
+          },
+          "The aggregates, a list of dicts: vertices ((k, 2) array, m, counter-clockwise), "
+          "centroid (m), mass (kg per m of thickness), inertia (kg m, about the centroid), "
+          "equivalent_diameter (m), bin (gradation bin).")
+      .def_property_readonly(
+          "attributes", [](const PySpecimen& s) { return s.specimen.attributes; },
+          "Provenance stored with the specimen (generator input, seed, cdem version, figures).")
+      .def_property_readonly(
+          "summary_json", [](const PySpecimen& s) { return s.summary; },
+          "The generator's summary as JSON text (empty for a specimen read from a file).")
+      .def_property_readonly(
+          "source", [](const PySpecimen& s) { return s.source; },
+          "Where the specimen came from: its file, or cdem.generate(<input>).")
+      .def(
+          "__len__", [](const PySpecimen& s) { return s.specimen.disc_count(); },
+          "Number of discs.")
+      .def(
+          "write",
+          [](const PySpecimen& s, const std::string& path) {
+            cdem::OutputTransaction transaction(cdem::check_output_files({}, {{"path", path}}));
+            cdem::write_specimen(s.specimen, path);
+            transaction.commit();
+          },
+          py::arg("path"),
+          "Writes the specimen file (HDF5, docs/specimen_file.md) to `path`, atomically.");
 
   m.def("generate", &cdem::python::generate, py::arg("text"), py::arg("path"), py::arg("label"),
-        py::arg("seed"), py::arg("output"), py::arg("verbose"));
+        py::arg("seed"), py::arg("output"), py::arg("verbose"),
+        "Internal: cdem.generate with TOML text or a path (use cdem.generate).");
   m.def(
       "load_specimen",
       [](const std::string& path) {
         return PySpecimen{cdem::read_specimen(path), std::string(), path};
       },
-      py::arg("path"));
+      py::arg("path"), "Internal: use cdem.load_specimen.");
   m.def("run_test", &cdem::python::run_test, py::arg("text"), py::arg("path"), py::arg("label"),
         py::arg("base_dir"), py::arg("specimen"), py::arg("seed"), py::arg("callback"),
-        py::arg("every"), py::arg("output"), py::arg("summary"), py::arg("verbose"));
+        py::arg("every"), py::arg("output"), py::arg("summary"), py::arg("verbose"),
+        "Internal: cdem.run_test with TOML text or a path (use cdem.run_test).");
 }

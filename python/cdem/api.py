@@ -140,7 +140,8 @@ class RunResult(dict):
         (all in :attr:`histories`).
     cracks : dict of ndarray
         Every bond failure of the loading: ``time`` (s), ``x``, ``y`` (m), ``mode`` (1 tension,
-        2 shear), ``contact_class`` (0 mortar, 1 ITZ, 2 aggregate), ``first``, ``second`` (discs).
+        2 shear), ``class`` (0 mortar, 1 ITZ, 2 aggregate), ``first``, ``second`` (discs),
+        ``element`` (the flat-joint element, else -1): the result file's /cracks.
     histories, crack_lists : list
         Per confinement of a biaxial series (one entry otherwise).
     """

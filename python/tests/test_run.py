@@ -82,6 +82,31 @@ def test_output_files_match_the_result(tiny, tmp_path):
     f = cdem.read_result(tmp_path / "r.h5")
     assert np.array_equal(f["history"]["axial_stress"], r.history["axial_stress"])
     assert f["summary"]["attributes"]["peak_stress_Pa"] * 1e-6 == r["peak_stress_MPa"]
+    assert len(r.cracks["x"]) == r["cracks"]["total"]
+    for name in ("time", "x", "y", "mode", "class", "first", "second"):
+        assert np.array_equal(f["cracks"][name], r.cracks[name]), name
     import json
     with open(tmp_path / "r.json") as j:
         same_summary(json.load(j), cli, skip={"specimen"})  # named by its absolute path here
+
+
+def test_biaxial_series_equals_the_cli(tiny, monkeypatch):
+    import json
+    import subprocess
+    d, _ = tiny
+    monkeypatch.chdir(d)
+    (d / "biaxial.toml").write_text('seed = 1\nspecimen = "specimen.h5"\n'
+                                    'materials = "materials.toml"\n[test]\ntype = "biaxial"\n'
+                                    "confining_stresses_MPa = [0, 1]\nmax_steps = 40000\n")
+    subprocess.run([cdem.jobs.binary(), "run", "biaxial.toml", "--summary", "biaxial.json", "-q"],
+                   check=True)
+    with open("biaxial.json") as f:
+        cli = json.load(f)
+    seen = set()
+    r = cdem.run_test("biaxial.toml", callback=lambda s: seen.add(s.confinement), every=1000)
+    for run in r["confinements"] + cli["confinements"]:
+        run.pop("wall_time_s")
+    same_summary(r, cli)
+    assert len(r.histories) == 2 and seen == {0, 1}
+    for run, h in zip(r["confinements"], r.histories):
+        assert h["step"][-1] == run["steps"]
