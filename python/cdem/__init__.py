@@ -22,6 +22,8 @@ from .api import generate, load_specimen, run_test, RunResult, RunState
 from .files import read_result, read_specimen
 from .jobs import calibrate, run_campaign
 
+for _type in (InputError, RunError, Specimen):
+    _type.__module__ = "cdem"
 InputError.__doc__ = (
     "Bad input: a file, key or dataset out of range, or an output path that would replace an "
     "input. The message names the file (or dict), the key and the allowed range, as the CLI's "
