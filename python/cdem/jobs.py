@@ -35,7 +35,9 @@ def _run(args, verbose):
                              stderr=None if verbose else subprocess.PIPE, text=True)
     if process.returncode == 0:
         return process.stdout
-    message = (process.stderr or "").strip()
+    # CLI11's hint after a command-line error means nothing to a Python caller.
+    message = "\n".join(line for line in (process.stderr or "").strip().splitlines()
+                        if line != "Run with --help for more information.")
     for prefix in ("cdem: error: ", "cdem: "):
         lines = [line[len(prefix):] if line.startswith(prefix) else line
                  for line in message.splitlines()]
