@@ -110,3 +110,14 @@ def test_biaxial_series_equals_the_cli(tiny, monkeypatch):
     assert len(r.histories) == 2 and seen == {0, 1}
     for run, h in zip(r["confinements"], r.histories):
         assert h["step"][-1] == run["steps"]
+
+
+def test_generate_writes_the_cli_file_byte_for_byte(tiny, tmp_path):
+    import subprocess
+    d, _ = tiny
+    spec = str(d / "spec.toml")  # the same spelling for both: the file records its input's name
+    subprocess.run([cdem.jobs.binary(), "generate", spec, "-o", str(tmp_path / "cli.h5"),
+                    "--seed", "7", "-q"], check=True)
+    s = cdem.generate(spec, seed=7, output=tmp_path / "py.h5")
+    assert (tmp_path / "py.h5").read_bytes() == (tmp_path / "cli.h5").read_bytes()
+    assert s.source == str(tmp_path / "py.h5")
