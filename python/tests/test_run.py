@@ -1,6 +1,5 @@
 """cdem.run_test and cdem.generate against the command line on the tiny specimen."""
 
-import os
 import tomllib
 
 import numpy as np
