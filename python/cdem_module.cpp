@@ -198,12 +198,17 @@ py::dict crack_arrays(const std::vector<dem::Crack>& cracks) {
 // The state a callback sees: copies (the engine's arrays die with the run), read-only.
 py::dict world_state(const dem::World& world, const dem::LabHistory& h, std::size_t confinement) {
   const dem::Discs& d = world.discs;
-  std::vector<std::int32_t> intact(d.size(), 0);
+  // Per disc and per bonded pair: intact bonds (a flat joint's bonded elements).
+  std::vector<std::int32_t> intact(d.size(), 0), bond_first, bond_second, bond_intact;
   const dem::NeighborList& list = world.neighbors;
   for (std::size_t k = 0; k < list.keys.size(); ++k) {
     const int n = list.intact_bonds(k);
+    if (n == 0) continue;
     intact[static_cast<std::size_t>(list.first[k])] += n;
     intact[static_cast<std::size_t>(list.second[k])] += n;
+    bond_first.push_back(list.first[k]);
+    bond_second.push_back(list.second[k]);
+    bond_intact.push_back(n);
   }
   py::dict s;
   s["step"] = h.step.back();
@@ -217,6 +222,9 @@ py::dict world_state(const dem::World& world, const dem::LabHistory& h, std::siz
   s["fx"] = copy(d.fx);
   s["fy"] = copy(d.fy);
   s["intact_bonds"] = copy(intact);
+  s["bond_first"] = copy(bond_first);
+  s["bond_second"] = copy(bond_second);
+  s["bond_intact"] = copy(bond_intact);
   s["history"] = history_arrays(h);
   return s;
 }

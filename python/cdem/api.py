@@ -96,12 +96,15 @@ class RunState:
         Contact force on each disc, N per m of thickness.
     intact_bonds : ndarray (n,) int32
         Intact bonds of each disc (flat joints: bonded elements).
+    bond_first, bond_second, bond_intact : ndarray (m,) int32
+        The bonded pairs: the two discs (indices into the arrays above) and the pair's intact
+        bonds (1, or a flat joint's bonded elements).
     history : dict of ndarray
         The history so far (the fields of :attr:`RunResult.history`).
     """
 
     __slots__ = ("step", "time", "confinement", "x", "y", "vx", "vy", "r", "fx", "fy",
-                 "intact_bonds", "history")
+                 "intact_bonds", "bond_first", "bond_second", "bond_intact", "history")
 
     def __init__(self, fields):
         for k in self.__slots__:

@@ -52,6 +52,11 @@ def test_callback_state_shapes_and_units(tiny):
         installed = sum(cli["genesis"]["bonds"].values())
         broken = cli["genesis"]["relaxation_cracks"] + h["bonds_broken"][-1]
         assert state.intact_bonds.sum() == 2 * (installed - broken)
+        # The pairs say the same per disc: each pair counted at its two discs.
+        assert state.bond_intact.sum() == installed - broken
+        per_disc = (np.bincount(state.bond_first, state.bond_intact, n)
+                    + np.bincount(state.bond_second, state.bond_intact, n))
+        assert np.array_equal(per_disc, state.intact_bonds)
         seen["bonds_broken"] = int(h["bonds_broken"][-1])
         return h["bonds_broken"][-1] > 0
 
