@@ -510,6 +510,12 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     const StopReason reason =
         stop.observe(h.axial_strain.back(), last_loading_stress(), world.cracks, at_max_steps);
     if (hooks.progress) hooks.progress(h, stop.peak(), c.max_steps);
+    if (reason == StopReason::None && hooks.should_stop && hooks.should_stop(world, h)) {
+      warn(res,
+           "stopped by the caller before the stop rule confirmed a peak: the peak stress "
+           "is the largest so far, not a strength");
+      return StopReason::StoppedByUser;
+    }
     if (!quiet_warned && stop.cracks() == 0 && intact_bonds > 0 &&
         h.step.back() >= std::max(quiet_steps, 1L)) {
       quiet_warned = true;
@@ -537,7 +543,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     if (hooks.snapshot && c.snapshot_interval > 0 && s % c.snapshot_interval == 0)
       hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   }
-  if (reason != StopReason::PostPeakDrop) {
+  if (reason != StopReason::PostPeakDrop && reason != StopReason::StoppedByUser) {
     std::ostringstream msg;
     msg << "the " << lab_test_name(c.type) << " test stopped at "
         << (reason == StopReason::MaxSteps ? "max_steps = " + std::to_string(c.max_steps)

@@ -144,10 +144,13 @@ struct LabTestResult {
 };
 
 // Observers of a run: `progress` at every history record, `snapshot` every snapshot_interval
-// steps (and at the first and last step), both optional.
+// steps (and at the first and last step), `should_stop` at every history record (true ends the
+// run there with StopReason::StoppedByUser and a warning that no peak was confirmed), all
+// optional.
 struct LabTestHooks {
   std::function<void(const LabHistory&, double peak, long max_steps)> progress;
   std::function<void(const World&, long step, double time)> snapshot;  // loading step, s
+  std::function<bool(const World&, const LabHistory&)> should_stop;
 };
 
 // Genesis + loading. Throws RunError (with the figures reached and the stop reason) when the run

@@ -32,7 +32,9 @@ struct StopRuleOptions {
 };
 
 // Why a run ended; "post_peak_drop" is the only ending with a confirmed peak.
-enum class StopReason { None, PostPeakDrop, MaxStrain, MaxSteps };
+// StoppedByUser: an observer of the run (LabTestHooks::should_stop) ended it before the stop
+// rule confirmed a peak.
+enum class StopReason { None, PostPeakDrop, MaxStrain, MaxSteps, StoppedByUser };
 const char* stop_reason_name(StopReason reason);  // "none", "post_peak_drop", ...
 
 // Follows the records of one run. Feed every record in order with observe(); it returns the

@@ -1,0 +1,87 @@
+#include "apps/run_summary.hpp"
+
+#include <numbers>
+
+namespace cdem::apps {
+
+nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabTestInput& in) {
+  using dem::contact_class_name;
+  using dem::ContactClass;
+  nlohmann::ordered_json j;
+  j["test"] = dem::lab_test_name(r.type);
+  j["specimen"] = in.specimen_path.string();
+  j["seed"] = in.seed;
+  j["peak_stress_MPa"] = r.peak_stress * 1e-6;
+  if (r.type == dem::LabTestType::Biaxial) {
+    j["sigma3_MPa"] = r.confining_stress * 1e-6;
+    j["sigma3_at_peak_MPa"] = r.confining_stress_at_peak * 1e-6;
+    j["peak_deviator_MPa"] = r.peak_deviator * 1e-6;
+    j["consolidation_steps"] = r.consolidation.steps;
+  }
+  if (r.type == dem::LabTestType::Uniaxial || r.type == dem::LabTestType::Biaxial) {
+    j["young_modulus_GPa"] = r.ucs.young_modulus * 1e-9;
+    j["poisson_ratio"] = r.ucs.poisson_ratio;
+    j["strain_at_half_peak"] = r.ucs.strain_at_half_peak;
+  } else {
+    j["tensile_strength_MPa"] = r.tensile_strength * 1e-6;
+    j["peak_force_kN_per_m"] = r.peak_force * 1e-3;
+  }
+  nlohmann::ordered_json cracks;
+  long total = 0;
+  for (int m = 0; m < 2; ++m) {
+    nlohmann::ordered_json by_class;
+    for (int c = 0; c < 3; ++c) {
+      by_class[contact_class_name(ContactClass(c))] = r.crack_count[m][c];
+      total += r.crack_count[m][c];
+    }
+    cracks[m == 0 ? "tension" : "shear"] = by_class;
+  }
+  cracks["total"] = total;
+  j["cracks"] = cracks;
+  j["stop_reason"] = dem::stop_reason_name(r.stop_reason);
+  j["warnings"] = r.warnings;
+  j["steps"] = r.steps;
+  j["time_step_s"] = r.time_step;
+  j["wall_time_s"] = r.wall_time;
+  nlohmann::ordered_json g, bonds;
+  g["discs_in_specimen"] = r.genesis.discs_in_specimen;
+  g["floating_discs_removed"] = r.genesis.floating_removed;
+  g["removal_passes"] = r.genesis.removal_passes;
+  g["floating_area_fraction"] =
+      r.genesis.mortar_area_in_specimen > 0
+          ? r.genesis.floating_area_removed / r.genesis.mortar_area_in_specimen
+          : 0.0;
+  g["discs"] = r.genesis.discs;
+  g["relaxation_steps"] = r.genesis.relaxation_steps;
+  g["relaxation_unbalanced_ratio"] = r.genesis.relaxation_unbalanced_ratio;
+  g["relaxation_cracks"] = r.genesis.relaxation_cracks;
+  for (int c = 0; c < 3; ++c) bonds[contact_class_name(ContactClass(c))] = r.genesis.bonds[c];
+  g["bonds"] = bonds;
+  j["genesis"] = g;
+  return j;
+}
+
+nlohmann::ordered_json series_json(const dem::BiaxialSeries& series, const dem::LabTestInput& in) {
+  nlohmann::ordered_json j;
+  j["test"] = dem::lab_test_name(dem::LabTestType::Biaxial);
+  j["specimen"] = in.specimen_path.string();
+  j["seed"] = in.seed;
+  j["cohesion_MPa"] = series.envelope.cohesion * 1e-6;
+  j["friction_angle_deg"] = series.envelope.friction_angle * 180 / std::numbers::pi;
+  j["mohr_coulomb_r2"] = series.envelope.r_squared;
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  long steps = 0;
+  for (const dem::LabTestResult& r : series.runs) {
+    nlohmann::ordered_json run = summary_json(r, in);
+    for (const char* shared : {"test", "specimen", "seed"}) run.erase(shared);
+    runs.push_back(run);
+    steps += r.steps + r.consolidation.steps;
+  }
+  j["confinements"] = runs;
+  j["steps"] = steps;
+  j["time_step_s"] = series.runs.front().time_step;
+  j["wall_time_s"] = series.wall_time;
+  return j;
+}
+
+}  // namespace cdem::apps
