@@ -121,12 +121,8 @@ Action add_run_command(CLI::App& app) {
     const std::size_t runs = biaxial ? input.controls.confining_stresses.size() : 1;
     std::vector<NamedPath> outputs;
     if (!o->output.empty()) {
-      outputs.push_back({"-o", o->output});
-      // The XDMF files dem::ResultFile writes beside the result when it holds snapshots.
-      const auto xdmf = dem::ResultFile::xdmf_paths(o->output);
-      outputs.push_back({"-o (its XDMF file)", xdmf[0]});
-      outputs.push_back({"-o (its bonds XDMF file)", xdmf[1]});
-      outputs.push_back({"-o (its cracks XDMF file)", xdmf[2]});
+      // With the XDMF files dem::ResultFile writes beside the result when it holds snapshots.
+      outputs = dem::ResultFile::outputs("-o", o->output);
     }
     if (!o->summary.empty()) outputs.push_back({"--summary", o->summary});
     for (std::size_t k = 0; k < runs; ++k) {

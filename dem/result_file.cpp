@@ -78,6 +78,15 @@ std::array<std::filesystem::path, 3> ResultFile::xdmf_paths(const std::filesyste
   return {discs, bonds, cracks};
 }
 
+std::vector<NamedPath> ResultFile::outputs(const std::string& flag,
+                                           const std::filesystem::path& target) {
+  const auto xdmf = xdmf_paths(target);
+  return {{flag, target},
+          {flag + " (its XDMF file)", xdmf[0]},
+          {flag + " (its bonds XDMF file)", xdmf[1]},
+          {flag + " (its cracks XDMF file)", xdmf[2]}};
+}
+
 std::filesystem::path ResultFile::xdmf_path() const {
   return xdmf_paths(out_.target())[0];
 }

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/atomic_output.hpp"
+#include "core/output_paths.hpp"
 #include "dem/biaxial_test.hpp"
 #include "dem/lab_test.hpp"
 
@@ -46,6 +47,10 @@ class ResultFile {
   std::filesystem::path xdmf_path() const;
   // The XDMF companions of a result file `target`: discs, bonds, cracks.
   static std::array<std::filesystem::path, 3> xdmf_paths(const std::filesystem::path& target);
+  // The result file `target` and its companions, named after the option that gave it (`flag`,
+  // "-o" or "output") for the output checks: all outputs of the command that writes them.
+  static std::vector<NamedPath> outputs(const std::string& flag,
+                                        const std::filesystem::path& target);
 
  private:
   AtomicOutput out_;

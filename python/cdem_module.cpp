@@ -239,11 +239,7 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
   if (seed) input.seed = *seed;
   const bool biaxial = input.controls.type == dem::LabTestType::Biaxial;
   std::vector<NamedPath> outputs;
-  if (output) {
-    outputs.push_back({"output", *output});
-    outputs.push_back(
-        {"output (its XDMF file)", std::filesystem::path(*output).replace_extension(".xmf")});
-  }
+  if (output) outputs = dem::ResultFile::outputs("output", *output);
   if (summary_path) outputs.push_back({"summary", *summary_path});
   const std::filesystem::path dir =
       path ? std::filesystem::path(*path).parent_path() : std::filesystem::path(base_dir);
