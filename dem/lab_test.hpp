@@ -20,13 +20,14 @@
 #include "dem/lab_analysis.hpp"
 #include "dem/material_genesis.hpp"
 #include "dem/material_table.hpp"
+#include "dem/shpb_test.hpp"
 #include "dem/stop_rule.hpp"
 #include "dem/world.hpp"
 
 namespace cdem::dem {
 
-enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial };
-// "uniaxial", "brazilian", "direct_tension", "biaxial"
+enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial, Shpb };
+// "uniaxial", "brazilian", "direct_tension", "biaxial", "shpb"
 const char* lab_test_name(LabTestType type);
 
 struct LabTestControls {
@@ -61,6 +62,7 @@ struct LabTestControls {
   std::vector<double> confining_stresses;
   double confining_stress = 0;
   ConfinementOptions confinement{};
+  ShpbOptions shpb{};  // the bars and the pulse of type "shpb" ([test.shpb])
 };
 
 struct LabTestInput {
@@ -138,6 +140,7 @@ struct LabTestResult {
   // Why the run ended: a completed run always ends at a confirmed post-peak drop (an unconfirmed
   // end is a RunError that names the reason).
   StopReason stop_reason = StopReason::None;
+  ShpbResult shpb;  // type "shpb": the bars, their records and the three-wave analysis
   // Where the model or the run may not be what the user meant (printed on stderr as they arise,
   // and listed in the summary): docs/lab_tests.md "Warnings".
   std::vector<std::string> warnings;
@@ -149,6 +152,10 @@ struct LabTestHooks {
   std::function<void(const LabHistory&, double peak, long max_steps)> progress;
   std::function<void(const World&, long step, double time)> snapshot;  // loading step, s
 };
+
+// Fills res.cracks (times from the loading's start time0, s) and res.crack_count from a run's
+// crack log.
+void tally_cracks(LabTestResult& res, const CrackLog& log, double time0);
 
 // Genesis + loading. Throws RunError (with the figures reached and the stop reason) when the run
 // ends at max_strain or max_steps before the stop rule has confirmed a peak, or when the DEM run

@@ -31,8 +31,9 @@ struct StopRuleOptions {
   double max_strain = 0.05;     // axial strain at which the run ends unconfirmed
 };
 
-// Why a run ended; "post_peak_drop" is the only ending with a confirmed peak.
-enum class StopReason { None, PostPeakDrop, MaxStrain, MaxSteps };
+// Why a run ended; "post_peak_drop" is the only ending with a confirmed peak of a quasi-static
+// test. An SHPB test (dem/shpb_test.hpp) ends "pulse_passed": its record holds the whole pulse.
+enum class StopReason { None, PostPeakDrop, MaxStrain, MaxSteps, PulsePassed };
 const char* stop_reason_name(StopReason reason);  // "none", "post_peak_drop", ...
 
 // Follows the records of one run. Feed every record in order with observe(); it returns the
