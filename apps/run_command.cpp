@@ -60,6 +60,7 @@ nlohmann::ordered_json shpb_json(const dem::ShpbResult& r) {
   j["transmitted_energy_J_per_m"] = f.transmitted_energy;
   j["absorbed_energy_J_per_m"] = f.absorbed_energy;
   j["face_work_J_per_m"] = r.face_work;
+  j["coupling_number"] = r.coupling_number;
   j["bar_wall_time_s"] = r.bar_wall_time;
   return j;
 }

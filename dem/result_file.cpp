@@ -70,6 +70,7 @@ void write_shpb(H5::Group& where, const ShpbResult& r) {
            {"transmitted_energy_J_per_m", f.transmitted_energy},
            {"absorbed_energy_J_per_m", f.absorbed_energy},
            {"face_work_J_per_m", r.face_work},
+           {"coupling_number", r.coupling_number},
            {"dynamic_tensile_strength_Pa", r.dynamic_tensile_strength}})
     write_scalar_attr<double>(g, name, value);
   write_string_attr(g, "pulse", o.pulse == ShpbPulse::Rectangle ? "rectangle" : "half_sine");

@@ -80,6 +80,12 @@ class ShpbBars {
   const ElasticBar& transmitted() const { return transmitted_; }
   long incident_gauge_node() const { return incident_gauge_; }
   long transmitted_gauge_node() const { return transmitted_gauge_; }
+  int incident_face() const { return incident_face_; }
+  int transmitted_face() const { return transmitted_face_; }
+  // Coupling number r = dt K / (rho c0 A) of each face, K = touching contacts x the wall
+  // contacts' normal stiffness: the face force answers the bar a step late, which is stable for
+  // r < 1 and accurate for r << 1 (the larger of the two faces').
+  double coupling_number(const World& world) const;
   // Whole steps a wave takes from a gauge to its bar's face.
   long incident_gauge_lag() const { return incident_.cells() - incident_gauge_; }
   long transmitted_gauge_lag() const { return transmitted_gauge_; }
@@ -98,8 +104,13 @@ struct ShpbGaugeRecords {
   std::vector<double> front_face_force, back_face_force;    // N/m, DEM: discs on the faces
 
   void reserve(std::size_t n);
-  void record(const ShpbBars& bars, const Walls& walls, int incident_face, int transmitted_face);
+  void record(const ShpbBars& bars, const Walls& walls);
 };
+
+// Puts the two faces on a world (segments as wide as the bars, centred on the specimen's extent
+// `extent`, tangent to it below and above), makes the bars with the largest step <= the world's
+// automatic step that divides them into whole cells, and fixes the world's step to it.
+ShpbBars attach_shpb_bars(World& world, const Box& extent, const ShpbOptions& options);
 
 // The three waves at the faces from the gauge records: eps_i(t) = incident_right(t - a_i / c0),
 // eps_r(t) = incident_left(t + a_i / c0), eps_t(t) = transmitted_right(t + a_t / c0), shifts in
@@ -116,6 +127,7 @@ struct ShpbResult {
   ShpbGaugeRecords gauges;
   ShpbWaves waves;
   ShpbAnalysis analysis;
+  double coupling_number = 0;  // largest of the run (ShpbBars::coupling_number)
   double face_work = 0;  // J/m, work the two faces did on the specimen (DEM forces x velocities)
   double dynamic_tensile_strength = 0;  // Pa, disc specimens: 2 F / (pi D t) at the peak
   double bar_wall_time = 0;             // s, spent in the bars and their records
