@@ -55,6 +55,7 @@ nlohmann::ordered_json shpb_json(const dem::ShpbResult& r) {
   j["secant_modulus_GPa"] = f.secant_modulus * 1e-9;
   j["equilibrium_ratio_at_peak"] = f.equilibrium_at_peak;
   j["equilibrium_ratio_worst_pre_peak"] = f.equilibrium_worst;
+  j["equilibrium_ratio_mean_pre_peak"] = f.equilibrium_mean;
   j["incident_energy_J_per_m"] = f.incident_energy;
   j["reflected_energy_J_per_m"] = f.reflected_energy;
   j["transmitted_energy_J_per_m"] = f.transmitted_energy;

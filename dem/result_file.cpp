@@ -65,6 +65,7 @@ void write_shpb(H5::Group& where, const ShpbResult& r) {
            {"secant_modulus_Pa", f.secant_modulus},
            {"equilibrium_ratio_at_peak", f.equilibrium_at_peak},
            {"equilibrium_ratio_worst", f.equilibrium_worst},
+           {"equilibrium_ratio_mean", f.equilibrium_mean},
            {"incident_energy_J_per_m", f.incident_energy},
            {"reflected_energy_J_per_m", f.reflected_energy},
            {"transmitted_energy_J_per_m", f.transmitted_energy},

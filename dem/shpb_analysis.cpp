@@ -81,9 +81,11 @@ ShpbAnalysis analyse_shpb(const ShpbWaves& w, const ShpbGeometry& g) {
   f.equilibrium_at_peak = equilibrium_ratio(h.front_force[peak], h.back_force[peak]);
   std::size_t half = 0;
   while (half < peak && h.stress[half] < 0.5 * f.peak_stress) ++half;
-  for (std::size_t k = half; k <= peak; ++k)
-    f.equilibrium_worst = std::max(f.equilibrium_worst,
-                                   std::abs(equilibrium_ratio(h.front_force[k], h.back_force[k])));
+  for (std::size_t k = half; k <= peak; ++k) {
+    const double r = std::abs(equilibrium_ratio(h.front_force[k], h.back_force[k]));
+    f.equilibrium_worst = std::max(f.equilibrium_worst, r);
+    f.equilibrium_mean += r / static_cast<double>(peak - half + 1);
+  }
 
   f.incident_energy = wave_energy(w.incident, g, dt);
   f.reflected_energy = wave_energy(w.reflected, g, dt);

@@ -63,9 +63,11 @@ struct ShpbFigures {
   double tangent_modulus = 0;  // Pa
   double secant_modulus = 0;   // Pa
   // Force equilibrium: R = 2 (F_front - F_back) / (F_front + F_back); at the peak, and the
-  // largest |R| over the loading branch from 50 % of the peak to the peak.
+  // largest and the mean |R| over the loading branch from 50 % of the peak to the peak (one
+  // value per step: the largest catches single contact events, the mean the trend).
   double equilibrium_at_peak = 0;
   double equilibrium_worst = 0;
+  double equilibrium_mean = 0;
   // J per m of thickness: W = A E c0 sum eps^2 dt over the record; absorbed = W_i - W_r - W_t.
   double incident_energy = 0, reflected_energy = 0, transmitted_energy = 0, absorbed_energy = 0;
 };

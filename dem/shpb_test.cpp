@@ -51,8 +51,10 @@ ShpbOptions read_shpb_options(const InputTable& t) {
   const double transit = 2 * b.length / b.wave_speed();
   o.pulse_duration = t.quantity_or("pulse_duration", Dimension::Time, o.pulse_duration,
                                    Range::left_open(0, transit));
-  o.after_pulse = t.quantity_or("after_pulse", Dimension::Time, 0.25 * o.pulse_duration,
-                                Range::closed(0, transit));
+  // The record ends before those echoes reach the specimen's faces.
+  const double room = transit - o.pulse_duration;
+  o.after_pulse = t.quantity_or("after_pulse", Dimension::Time,
+                                std::min(0.25 * o.pulse_duration, room), Range::closed(0, room));
   return o;
 }
 

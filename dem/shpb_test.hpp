@@ -41,8 +41,9 @@ struct ShpbOptions {
   double pulse_peak = 0;         // Pa, compression, at the incident bar's far end
   double pulse_duration = 1e-3;  // s
   // s, recorded beyond the incident pulse's passage at the specimen (its arrival L / c0 plus
-  // its duration), so the transmitted pulse and the unloading are in the record.
-  double after_pulse = 0.25e-3;
+  // its duration), so the transmitted pulse and the unloading are in the record; at most
+  // 2 L / c0 - duration, when the bars' echoes from their far ends reach the faces.
+  double after_pulse = 0.1667e-3;
 
   // Pa, the pulse's stress at time t (s) since it began: sigma_0 sin(pi t / T) or sigma_0 on
   // [0, T]; 0 outside.
@@ -52,7 +53,7 @@ struct ShpbOptions {
 // Reads the [test.shpb] table (docs/lab_tests.md): throws InputError naming the file, the key
 // and its allowed range (non-positive E, density, length, width; a gauge outside its bar; a
 // pulse longer than 2 L / c0, whose reflection from the loading end would return to the
-// specimen before it has passed; a non-positive duration).
+// specimen before it has passed; a non-positive duration; after_pulse beyond the echoes).
 ShpbOptions read_shpb_options(const InputTable& shpb);
 
 // The [test] keys of type "shpb": the [test.shpb] table into controls.shpb, local damping 0

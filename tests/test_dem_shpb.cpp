@@ -186,6 +186,7 @@ TEST(ShpbAnalysis, UnequalFacesShowInTheEquilibriumRatio) {
   const ShpbAnalysis out = analyse_shpb(w, ShpbGeometry{200e9, 5000, 0.05, 0.05, 0.05});
   EXPECT_NEAR(out.figures.equilibrium_at_peak, 2 * 0.1 / 0.9, 1e-12);
   EXPECT_NEAR(out.figures.equilibrium_worst, 2 * 0.1 / 0.9, 1e-12);
+  EXPECT_NEAR(out.figures.equilibrium_mean, 2 * 0.1 / 0.9, 1e-12);
 }
 
 // The message of a bad [test.shpb] table names the key.
@@ -212,6 +213,10 @@ TEST(ShpbInput, BadValuesNameTheirKey) {
             std::string::npos);
   EXPECT_NE(error_of("bar_length_m = 3\n").find("pulse_peak"), std::string::npos);
   EXPECT_NE(error_of("pulse_peak_MPa = 100\npulse = \"triangle\"\n").find("pulse"),
+            std::string::npos);
+  // 2 L / c0 - T = 167 us of room for the record after a 1,000 us pulse.
+  EXPECT_NE(error_of("pulse_peak_MPa = 100\npulse_duration_us = 1000\nafter_pulse_us = 200\n")
+                .find("after_pulse"),
             std::string::npos);
   EXPECT_EQ(error_of("pulse_peak_MPa = 100\npulse_duration_us = 1000\n"), "");
 }
