@@ -234,6 +234,16 @@ void LabHistory::reserve(std::size_t n) {
   bonds_broken.reserve(n);
 }
 
+void LabHistory::push_energies(const World& world, double boundary_work_so_far) {
+  const ContactEnergy energy = contact_energy(world);
+  kinetic_energy.push_back(cdem::dem::kinetic_energy(world));
+  strain_energy.push_back(energy.strain());
+  friction_energy.push_back(energy.friction);
+  breakage_energy.push_back(energy.bond_breakage);
+  boundary_work.push_back(boundary_work_so_far);
+  bonds_broken.push_back(static_cast<long>(world.cracks.size()));
+}
+
 namespace {
 
 // How the specimen is loaded: two platens (walls) or two grip bands (prescribed bodies).
@@ -514,7 +524,6 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   };
   const auto record = [&](bool at_max_steps) {
     const double force = loading.force(world);
-    const ContactEnergy energy = contact_energy(world);
     const double section = confinement ? confinement->width(world) : loading.section;
     h.step.push_back(world.step_count() - step0);
     h.time.push_back(world.time() - time0);
@@ -525,12 +534,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
                                  : biaxial   ? 0.0
                                              : contact_stress(world, gauge_box)(0, 0));
     h.platen_force.push_back(force);
-    h.kinetic_energy.push_back(kinetic_energy(world));
-    h.strain_energy.push_back(energy.strain());
-    h.friction_energy.push_back(energy.friction);
-    h.breakage_energy.push_back(energy.bond_breakage);
-    h.boundary_work.push_back(boundary_work);
-    h.bonds_broken.push_back(static_cast<long>(world.cracks.size()));
+    h.push_energies(world, boundary_work);
     const StopReason reason =
         stop.observe(h.axial_strain.back(), last_loading_stress(), world.cracks, at_max_steps);
     if (hooks.progress) hooks.progress(h, stop.peak(), c.max_steps);

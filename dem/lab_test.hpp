@@ -114,6 +114,9 @@ struct LabHistory {
 
   void reserve(std::size_t n);
   std::size_t size() const { return time.size(); }
+  // Appends the energies of a record (kinetic, strain, friction, breakage from the world; the
+  // boundary work so far, J/m) and the bonds broken.
+  void push_energies(const World& world, double boundary_work_so_far);
 };
 
 struct LabTestResult {

@@ -9,7 +9,6 @@
 #include <stdexcept>
 
 #include "core/input_error.hpp"
-#include "dem/contact_energy.hpp"
 #include "dem/lab_analysis.hpp"
 #include "dem/lab_test.hpp"
 #include "dem/measure.hpp"
@@ -236,7 +235,6 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
   const auto record = [&] {
     const double force =
         0.5 * (world.walls.fy[transmitted_face] - world.walls.fy[incident_face]);  // N/m
-    const ContactEnergy energy = contact_energy(world);
     const double travel = (y0_transmitted - y0_incident) -
                           (world.walls.ay[transmitted_face] - world.walls.ay[incident_face]);
     h.step.push_back(world.step_count() - step0);
@@ -246,12 +244,7 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
     h.axial_stress.push_back(force / out.geometry.specimen_area);
     h.confining_stress.push_back(contact_stress(world, gauge_box)(0, 0));
     h.platen_force.push_back(force);
-    h.kinetic_energy.push_back(kinetic_energy(world));
-    h.strain_energy.push_back(energy.strain());
-    h.friction_energy.push_back(energy.friction);
-    h.breakage_energy.push_back(energy.bond_breakage);
-    h.boundary_work.push_back(face_work);
-    h.bonds_broken.push_back(static_cast<long>(world.cracks.size()));
+    h.push_energies(world, face_work);
     out.coupling_number = std::max(out.coupling_number, bars.coupling_number(world));
     if (hooks.progress)
       hooks.progress(h, *std::max_element(h.axial_stress.begin(), h.axial_stress.end()), needed);
