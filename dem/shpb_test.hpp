@@ -102,7 +102,9 @@ class ShpbBars {
 struct ShpbGaugeRecords {
   std::vector<double> incident_right, incident_left;        // incident gauge: the two waves
   std::vector<double> transmitted_right, transmitted_left;  // transmitted gauge
-  std::vector<double> front_face_force, back_face_force;    // N/m, DEM: discs on the faces
+  // N/m, DEM: the discs on the faces in the force pass the bars took at this step (that of the
+  // DEM step that ended here, at the positions one step earlier: the coupling's lag).
+  std::vector<double> front_face_force, back_face_force;
 
   void reserve(std::size_t n);
   void record(const ShpbBars& bars, const Walls& walls);
