@@ -2,10 +2,10 @@
 // Lab tests on a bonded specimen (SPEC 6): uniaxial compression between rigid platens, the
 // Brazilian disc between flat platens, direct tension by grip bands of discs, and one biaxial
 // test (platens plus servo side walls at a confining stress; dem/biaxial_test.hpp runs the
-// series of confinements). The test file (docs/lab_tests.md) names the specimen, the material
-// table and the test controls; a run does the material genesis (SPEC 3.6), loads the specimen
-// until the stop rule confirms its peak (dem/stop_rule.hpp), and returns the histories, the
-// cracks and the lab figures.
+// series of confinements), and the split Hopkinson pressure bar (dem/shpb_test.hpp). The test file
+// (docs/lab_tests.md) names the specimen, the material table and the test controls; a run does the
+// material genesis (SPEC 3.6), loads the specimen until the stop rule confirms its peak
+// (dem/stop_rule.hpp), and returns the histories, the cracks and the lab figures.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -141,7 +141,7 @@ struct LabTestResult {
   double wall_time = 0;         // s
   std::size_t gauge_discs = 0;  // discs in the lateral-strain region
   // Why the run ended: a completed run always ends at a confirmed post-peak drop (an unconfirmed
-  // end is a RunError that names the reason).
+  // end is a RunError that names the reason); an SHPB run when its pulse has passed.
   StopReason stop_reason = StopReason::None;
   ShpbResult shpb;  // type "shpb": the bars, their records and the three-wave analysis
   // Where the model or the run may not be what the user meant (printed on stderr as they arise,

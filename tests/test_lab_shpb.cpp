@@ -102,6 +102,22 @@ TEST(LabShpb, SameInputSameBits) {
   EXPECT_EQ(again.cracks.size(), shpb_run().cracks.size());
 }
 
+// A disc between the bars (the dynamic Brazilian test): accepted, and its splitting strength
+// 2 F / (pi D t) from the three-wave mean force at the peak.
+TEST(LabShpb, DiscSpecimenGetsADynamicTensileStrength) {
+  const cdem::Specimen disc =
+      cdem::test::packed_specimen({cdem::ContainerShape::Disc, 20e-3, 20e-3}, 8);
+  const fs::path dir = cdem::test::scratch_dir("test_lab_shpb", "disc");
+  std::string table = kShpb;
+  table.replace(table.find("bar_width_mm = 10"), 17, "bar_width_mm = 20");
+  const LabTestResult r = run_lab_test(disc, cdem::test::lab_test_input(dir, disc, table));
+  EXPECT_EQ(r.stop_reason, StopReason::PulsePassed);
+  EXPECT_NEAR(r.width, 20e-3, 0.5e-3);
+  EXPECT_GT(r.shpb.dynamic_tensile_strength, 0);
+  EXPECT_NEAR(r.shpb.dynamic_tensile_strength, 2 * r.peak_force / (3.141592653589793 * r.width),
+              1e-9 * r.shpb.dynamic_tensile_strength);
+}
+
 TEST(LabShpb, TooFewMaxStepsStopsBeforeTheRun) {
   LabTestInput few = shpb_input("short");
   few.controls.max_steps = 100;
