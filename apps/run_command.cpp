@@ -97,8 +97,9 @@ Action add_run_command(CLI::App& app) {
   auto o = std::make_shared<Options>();
   auto* r = app.add_subcommand(
       "run",
-      "Run a lab test (uniaxial, Brazilian, direct tension, biaxial series) on a specimen: "
-      "material genesis, loading to past the peak, results");
+      "Run a lab test (uniaxial, Brazilian, direct tension, biaxial series, split Hopkinson "
+      "bar) on a specimen: material genesis, loading to past the peak (SHPB: until the pulse "
+      "has passed), results");
   r->add_option("test", o->test, "Test file (TOML); see samples/c30_ucs.toml")->required();
   r->add_option("-o,--output", o->output,
                 "Result file to write (HDF5; snapshots add an XDMF file beside it)");

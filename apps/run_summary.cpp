@@ -4,6 +4,50 @@
 
 namespace cdem::apps {
 
+namespace {
+
+// The SHPB block of a summary: the set-up as run, the three-wave figures, the energies.
+nlohmann::ordered_json shpb_json(const dem::ShpbResult& r) {
+  const dem::ShpbOptions& o = r.options;
+  const dem::ShpbFigures& f = r.analysis.figures;
+  nlohmann::ordered_json j;
+  j["bar_young_modulus_GPa"] = o.bar.young_modulus * 1e-9;
+  j["bar_density_kg_m3"] = o.bar.density;
+  j["bar_length_m"] = o.bar.length;
+  j["bar_width_mm"] = o.bar.width * 1e3;
+  j["bar_wave_speed_m_s"] = o.bar.wave_speed();
+  j["bar_cells"] = r.cells;
+  j["bar_cell_size_mm"] = r.cell_size * 1e3;
+  j["pulse"] = o.pulse == dem::ShpbPulse::Rectangle ? "rectangle" : "half_sine";
+  j["pulse_peak_MPa"] = o.pulse_peak * 1e-6;
+  j["pulse_duration_us"] = o.pulse_duration * 1e6;
+  j["arrival_time_us"] = r.arrival_time * 1e6;
+  j["dynamic_strength_MPa"] = f.peak_stress * 1e-6;
+  j["dynamic_strength_one_wave_MPa"] = f.peak_stress_one_wave * 1e-6;
+  j["dynamic_strength_two_wave_MPa"] = f.peak_stress_two_wave * 1e-6;
+  if (r.dynamic_tensile_strength > 0)
+    j["dynamic_tensile_strength_MPa"] = r.dynamic_tensile_strength * 1e-6;
+  j["time_at_peak_us"] = f.time_at_peak * 1e6;
+  j["strain_at_peak"] = f.strain_at_peak;
+  j["strain_rate_at_peak_1_s"] = f.strain_rate_at_peak;
+  j["mean_strain_rate_1_s"] = f.mean_strain_rate;
+  j["tangent_modulus_GPa"] = f.tangent_modulus * 1e-9;
+  j["secant_modulus_GPa"] = f.secant_modulus * 1e-9;
+  j["equilibrium_ratio_at_peak"] = f.equilibrium_at_peak;
+  j["equilibrium_ratio_worst_pre_peak"] = f.equilibrium_worst;
+  j["equilibrium_ratio_mean_pre_peak"] = f.equilibrium_mean;
+  j["incident_energy_J_per_m"] = f.incident_energy;
+  j["reflected_energy_J_per_m"] = f.reflected_energy;
+  j["transmitted_energy_J_per_m"] = f.transmitted_energy;
+  j["absorbed_energy_J_per_m"] = f.absorbed_energy;
+  j["face_work_J_per_m"] = r.face_work;
+  j["coupling_number"] = r.coupling_number;
+  j["bar_wall_time_s"] = r.bar_wall_time;
+  return j;
+}
+
+}  // namespace
+
 nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabTestInput& in) {
   using dem::contact_class_name;
   using dem::ContactClass;
@@ -22,6 +66,8 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
     j["young_modulus_GPa"] = r.ucs.young_modulus * 1e-9;
     j["poisson_ratio"] = r.ucs.poisson_ratio;
     j["strain_at_half_peak"] = r.ucs.strain_at_half_peak;
+  } else if (r.type == dem::LabTestType::Shpb) {
+    j["shpb"] = shpb_json(r.shpb);
   } else {
     j["tensile_strength_MPa"] = r.tensile_strength * 1e-6;
     j["peak_force_kN_per_m"] = r.peak_force * 1e-3;

@@ -33,6 +33,8 @@ const char* lab_test_name(LabTestType type) {
       return "direct_tension";
     case LabTestType::Biaxial:
       return "biaxial";
+    case LabTestType::Shpb:
+      return "shpb";
   }
   return "?";
 }
@@ -67,14 +69,21 @@ LabTestControls read_controls(const InputTable& t) {
                          "max_genesis_broken_fraction",
                          "max_genesis_floating_fraction",
                          "confining_stresses",
-                         "preset"});
+                         "preset",
+                         "shpb"});
   LabTestControls c;
   apply_test_preset(t, c);  // speed knobs of the preset; the keys below override them
-  const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial"});
+  const std::string type =
+      t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial", "shpb"});
   c.type = type == "uniaxial"         ? LabTestType::Uniaxial
            : type == "brazilian"      ? LabTestType::Brazilian
            : type == "direct_tension" ? LabTestType::DirectTension
-                                      : LabTestType::Biaxial;
+           : type == "biaxial"        ? LabTestType::Biaxial
+                                      : LabTestType::Shpb;
+  if (c.type == LabTestType::Shpb)
+    read_shpb_controls(t, c);
+  else if (t.has("shpb"))
+    t.fail("shpb", "only used by type = \"shpb\"");
   c.platen_velocity =
       t.quantity_or("platen_velocity", Dimension::Velocity, c.platen_velocity, Range::positive());
   StopRuleOptions& stop = c.stop;
@@ -207,7 +216,7 @@ void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input
     throw InputError(input.file, "test.type",
                      "a Brazilian test needs a disc specimen; " + input.specimen_path.string() +
                          " is a rectangle");
-  if (type != LabTestType::Brazilian && disc)
+  if (type != LabTestType::Brazilian && type != LabTestType::Shpb && disc)
     throw InputError(input.file, "test.type",
                      std::string("a ") + lab_test_name(type) +
                          " test needs a rectangular "
@@ -224,6 +233,16 @@ void LabHistory::reserve(std::size_t n) {
         &kinetic_energy, &strain_energy, &friction_energy, &breakage_energy, &boundary_work})
     v->reserve(n);
   bonds_broken.reserve(n);
+}
+
+void LabHistory::push_energies(const World& world, double boundary_work_so_far) {
+  const ContactEnergy energy = contact_energy(world);
+  kinetic_energy.push_back(cdem::dem::kinetic_energy(world));
+  strain_energy.push_back(energy.strain());
+  friction_energy.push_back(energy.friction);
+  breakage_energy.push_back(energy.bond_breakage);
+  boundary_work.push_back(boundary_work_so_far);
+  bonds_broken.push_back(static_cast<long>(world.cracks.size()));
 }
 
 namespace {
@@ -407,6 +426,15 @@ void scale_density_from_here(World& world, double factor) {
 
 }  // namespace
 
+void tally_cracks(LabTestResult& res, const CrackLog& log, double time0) {
+  res.cracks = log.cracks;
+  for (Crack& k : res.cracks) k.time -= time0;
+  for (const Crack& k : res.cracks) {
+    const int mode = static_cast<int>(k.mode) - 1, cls = static_cast<int>(k.contact_class);
+    if (mode >= 0 && mode < 2 && cls >= 0 && cls < 3) ++res.crack_count[mode][cls];
+  }
+}
+
 LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
                            const LabTestHooks& hooks) {
   check_specimen_for_test(specimen, input);
@@ -427,6 +455,13 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   install_test_bonds(world, c.genesis, res.genesis);
   // The relaxed state is the reference: displacements, strains, time and steps count from here.
   const Extent e = disc_extent(world);
+  if (c.type == LabTestType::Shpb) {
+    run_shpb_test(world, Box{e.xmin, e.ymin, e.xmax, e.ymax},
+                  specimen.container.shape == ContainerShape::Disc, input, hooks, res);
+    res.wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return res;
+  }
   const Walls platens = make_platens(c, world.discs, e);
   Loading loading = set_up_loading(world, cleaned, input, platens, e);
   if (c.density_step_factor > 0) {
@@ -490,7 +525,6 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   };
   const auto record = [&](bool at_max_steps) {
     const double force = loading.force(world);
-    const ContactEnergy energy = contact_energy(world);
     const double section = confinement ? confinement->width(world) : loading.section;
     h.step.push_back(world.step_count() - step0);
     h.time.push_back(world.time() - time0);
@@ -501,12 +535,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
                                  : biaxial   ? 0.0
                                              : contact_stress(world, gauge_box)(0, 0));
     h.platen_force.push_back(force);
-    h.kinetic_energy.push_back(kinetic_energy(world));
-    h.strain_energy.push_back(energy.strain());
-    h.friction_energy.push_back(energy.friction);
-    h.breakage_energy.push_back(energy.bond_breakage);
-    h.boundary_work.push_back(boundary_work);
-    h.bonds_broken.push_back(static_cast<long>(world.cracks.size()));
+    h.push_energies(world, boundary_work);
     const StopReason reason =
         stop.observe(h.axial_strain.back(), last_loading_stress(), world.cracks, at_max_steps);
     if (hooks.progress) hooks.progress(h, stop.peak(), c.max_steps);
@@ -565,12 +594,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     hooks.snapshot(world, world.step_count() - step0, world.time() - time0);  // the last state
 
   res.steps = world.step_count() - step0;
-  res.cracks = world.cracks.cracks;
-  for (Crack& k : res.cracks) k.time -= time0;
-  for (const Crack& k : res.cracks) {
-    const int mode = static_cast<int>(k.mode) - 1, cls = static_cast<int>(k.contact_class);
-    if (mode >= 0 && mode < 2 && cls >= 0 && cls < 3) ++res.crack_count[mode][cls];
-  }
+  tally_cracks(res, world.cracks, time0);
   const auto peak_at = std::max_element(h.axial_stress.begin(), h.axial_stress.end());
   res.peak_stress = *peak_at;
   res.peak_force = h.platen_force[static_cast<std::size_t>(peak_at - h.axial_stress.begin())];
@@ -591,6 +615,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     case LabTestType::Biaxial:
       analyse_biaxial(res);
       break;
+    case LabTestType::Shpb:
+      break;  // returned above
   }
   res.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -2,10 +2,10 @@
 // Lab tests on a bonded specimen (SPEC 6): uniaxial compression between rigid platens, the
 // Brazilian disc between flat platens, direct tension by grip bands of discs, and one biaxial
 // test (platens plus servo side walls at a confining stress; dem/biaxial_test.hpp runs the
-// series of confinements). The test file (docs/lab_tests.md) names the specimen, the material
-// table and the test controls; a run does the material genesis (SPEC 3.6), loads the specimen
-// until the stop rule confirms its peak (dem/stop_rule.hpp), and returns the histories, the
-// cracks and the lab figures.
+// series of confinements), and the split Hopkinson pressure bar (dem/shpb_test.hpp). The test file
+// (docs/lab_tests.md) names the specimen, the material table and the test controls; a run does the
+// material genesis (SPEC 3.6), loads the specimen until the stop rule confirms its peak
+// (dem/stop_rule.hpp), and returns the histories, the cracks and the lab figures.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -20,13 +20,14 @@
 #include "dem/lab_analysis.hpp"
 #include "dem/material_genesis.hpp"
 #include "dem/material_table.hpp"
+#include "dem/shpb_test.hpp"
 #include "dem/stop_rule.hpp"
 #include "dem/world.hpp"
 
 namespace cdem::dem {
 
-enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial };
-// "uniaxial", "brazilian", "direct_tension", "biaxial"
+enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial, Shpb };
+// "uniaxial", "brazilian", "direct_tension", "biaxial", "shpb"
 const char* lab_test_name(LabTestType type);
 
 struct LabTestControls {
@@ -61,6 +62,7 @@ struct LabTestControls {
   std::vector<double> confining_stresses;
   double confining_stress = 0;
   ConfinementOptions confinement{};
+  ShpbOptions shpb{};  // the bars and the pulse of type "shpb" ([test.shpb])
 };
 
 struct LabTestInput {
@@ -112,6 +114,9 @@ struct LabHistory {
 
   void reserve(std::size_t n);
   std::size_t size() const { return time.size(); }
+  // Appends the energies of a record (kinetic, strain, friction, breakage from the world; the
+  // boundary work so far, J/m) and the bonds broken.
+  void push_energies(const World& world, double boundary_work_so_far);
 };
 
 struct LabTestResult {
@@ -136,8 +141,9 @@ struct LabTestResult {
   double wall_time = 0;         // s
   std::size_t gauge_discs = 0;  // discs in the lateral-strain region
   // Why the run ended: a completed run always ends at a confirmed post-peak drop (an unconfirmed
-  // end is a RunError that names the reason).
+  // end is a RunError that names the reason); an SHPB run when its pulse has passed.
   StopReason stop_reason = StopReason::None;
+  ShpbResult shpb;  // type "shpb": the bars, their records and the three-wave analysis
   // Where the model or the run may not be what the user meant (printed on stderr as they arise,
   // and listed in the summary): docs/lab_tests.md "Warnings".
   std::vector<std::string> warnings;
@@ -152,6 +158,10 @@ struct LabTestHooks {
   std::function<void(const World&, long step, double time)> snapshot;  // loading step, s
   std::function<bool(const World&, const LabHistory&)> should_stop;
 };
+
+// Fills res.cracks (times from the loading's start time0, s) and res.crack_count from a run's
+// crack log.
+void tally_cracks(LabTestResult& res, const CrackLog& log, double time0);
 
 // Genesis + loading. Throws RunError (with the figures reached and the stop reason) when the run
 // ends at max_strain or max_steps before the stop rule has confirmed a peak, or when the DEM run

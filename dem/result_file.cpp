@@ -34,6 +34,82 @@ std::string confinement_group(std::size_t k) {
 // Figures, genesis, histories and cracks of one run, under `where`.
 void write_run(H5::Group& where, const LabTestResult& r);
 
+// An SHPB run's set-up, figures and per-step waves and histories, group "shpb" of `where`.
+void write_shpb(H5::Group& where, const ShpbResult& r) {
+  H5::Group g = hdf5::create_group(where, "shpb");
+  const ShpbOptions& o = r.options;
+  const ShpbFigures& f = r.analysis.figures;
+  for (const auto& [name, value] : std::initializer_list<std::pair<const char*, double>>{
+           {"bar_young_modulus_Pa", o.bar.young_modulus},
+           {"bar_density_kg_m3", o.bar.density},
+           {"bar_length_m", o.bar.length},
+           {"bar_width_m", o.bar.width},
+           {"bar_wave_speed_m_s", o.bar.wave_speed()},
+           {"bar_cell_size_m", r.cell_size},
+           {"bar_time_step_s", r.bar_time_step},
+           {"incident_gauge_m", o.incident_gauge},
+           {"transmitted_gauge_m", o.transmitted_gauge},
+           {"pulse_peak_Pa", o.pulse_peak},
+           {"pulse_duration_s", o.pulse_duration},
+           {"arrival_time_s", r.arrival_time},
+           {"specimen_length_m", r.geometry.specimen_length},
+           {"specimen_area_m2", r.geometry.specimen_area},
+           {"dynamic_strength_Pa", f.peak_stress},
+           {"dynamic_strength_one_wave_Pa", f.peak_stress_one_wave},
+           {"dynamic_strength_two_wave_Pa", f.peak_stress_two_wave},
+           {"time_at_peak_s", f.time_at_peak},
+           {"strain_at_peak", f.strain_at_peak},
+           {"strain_rate_at_peak_1_s", f.strain_rate_at_peak},
+           {"mean_strain_rate_1_s", f.mean_strain_rate},
+           {"tangent_modulus_Pa", f.tangent_modulus},
+           {"secant_modulus_Pa", f.secant_modulus},
+           {"equilibrium_ratio_at_peak", f.equilibrium_at_peak},
+           {"equilibrium_ratio_worst", f.equilibrium_worst},
+           {"equilibrium_ratio_mean", f.equilibrium_mean},
+           {"incident_energy_J_per_m", f.incident_energy},
+           {"reflected_energy_J_per_m", f.reflected_energy},
+           {"transmitted_energy_J_per_m", f.transmitted_energy},
+           {"absorbed_energy_J_per_m", f.absorbed_energy},
+           {"face_work_J_per_m", r.face_work},
+           {"coupling_number", r.coupling_number},
+           {"dynamic_tensile_strength_Pa", r.dynamic_tensile_strength}})
+    write_scalar_attr<double>(g, name, value);
+  write_string_attr(g, "pulse", o.pulse == ShpbPulse::Rectangle ? "rectangle" : "half_sine");
+  write_scalar_attr<long>(g, "bar_cells", r.cells);
+
+  const ShpbWaves& w = r.waves;
+  const ShpbHistories& h = r.analysis.histories;
+  H5::Group fg = hdf5::create_group(g, "faces");
+  write_array(fg, "time", w.time, "s", "since the loading began, one entry per bar step");
+  write_array(fg, "incident_strain", w.incident, "1", "eps_i at the face, compression positive");
+  write_array(fg, "reflected_strain", w.reflected, "1", "eps_r at the face");
+  write_array(fg, "transmitted_strain", w.transmitted, "1", "eps_t at the face");
+  write_array(fg, "front_force", h.front_force, "N/m", "E A (eps_i + eps_r)");
+  write_array(fg, "back_force", h.back_force, "N/m", "E A eps_t");
+  write_array(fg, "strain_rate", h.strain_rate, "1/s", "three-wave, c0/l_s (eps_i-eps_r-eps_t)");
+  write_array(fg, "strain", h.strain, "1", "three-wave, integral of strain_rate");
+  write_array(fg, "stress", h.stress, "Pa", "three-wave, (front + back) / (2 A_s)");
+  write_array(fg, "stress_one_wave", h.stress_one_wave, "Pa", "back force / A_s");
+  write_array(fg, "stress_two_wave", h.stress_two_wave, "Pa", "front force / A_s");
+  write_array(fg, "strain_rate_reflected", h.strain_rate_reflected, "1/s",
+              "one- and two-wave, -2 c0 eps_r / l_s");
+  write_array(fg, "strain_reflected", h.strain_reflected, "1", "integral of the above");
+
+  const ShpbGaugeRecords& k = r.gauges;
+  H5::Group gg = hdf5::create_group(g, "gauges");
+  write_array(gg, "incident_right", k.incident_right, "1",
+              "incident gauge, right-going (towards the specimen) strain, one per bar step");
+  write_array(gg, "incident_left", k.incident_left, "1", "incident gauge, left-going strain");
+  write_array(gg, "transmitted_right", k.transmitted_right, "1",
+              "transmitted gauge, right-going (away from the specimen) strain");
+  write_array(gg, "transmitted_left", k.transmitted_left, "1",
+              "transmitted gauge, left-going strain");
+  write_array(gg, "front_face_force", k.front_face_force, "N/m",
+              "DEM: the discs on the incident bar's face");
+  write_array(gg, "back_face_force", k.back_face_force, "N/m",
+              "DEM: the discs on the transmitted bar's face");
+}
+
 }  // namespace
 
 ResultFile::ResultFile(std::filesystem::path target, const LabTestInput& input)
@@ -227,7 +303,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
       write_scalar_attr<double>(s, "young_modulus_Pa", r.ucs.young_modulus);
       write_scalar_attr<double>(s, "poisson_ratio", r.ucs.poisson_ratio);
       write_scalar_attr<double>(s, "strain_at_half_peak", r.ucs.strain_at_half_peak);
-    } else {
+    } else if (r.type != LabTestType::Shpb) {
       write_scalar_attr<double>(s, "tensile_strength_Pa", r.tensile_strength);
     }
     write_scalar_attr<double>(s, "width_m", r.width);
@@ -235,6 +311,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_scalar_attr<long>(s, "steps", r.steps);
     write_scalar_attr<double>(s, "time_step_s", r.time_step);
     write_scalar_attr<long>(s, "gauge_discs", static_cast<long>(r.gauge_discs));
+    if (r.type == LabTestType::Shpb) write_shpb(where, r.shpb);
     if (r.type == LabTestType::Biaxial) {
       write_scalar_attr<double>(s, "confining_stress_Pa", r.confining_stress);
       write_scalar_attr<double>(s, "confining_stress_at_peak_Pa", r.confining_stress_at_peak);

@@ -20,6 +20,8 @@ const char* stop_reason_name(StopReason reason) {
       return "max_steps";
     case StopReason::StoppedByUser:
       return "stopped_by_user";
+    case StopReason::PulsePassed:
+      return "pulse_passed";
   }
   return "?";
 }

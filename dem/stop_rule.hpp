@@ -31,10 +31,11 @@ struct StopRuleOptions {
   double max_strain = 0.05;     // axial strain at which the run ends unconfirmed
 };
 
-// Why a run ended; "post_peak_drop" is the only ending with a confirmed peak.
-// StoppedByUser: an observer of the run (LabTestHooks::should_stop) ended it before the stop
-// rule confirmed a peak.
-enum class StopReason { None, PostPeakDrop, MaxStrain, MaxSteps, StoppedByUser };
+// Why a run ended; "post_peak_drop" is the only ending with a confirmed peak of a quasi-static
+// test. StoppedByUser: an observer of the run (LabTestHooks::should_stop) ended it before the
+// stop rule confirmed a peak. An SHPB test (dem/shpb_test.hpp) ends "pulse_passed": its record
+// holds the whole pulse.
+enum class StopReason { None, PostPeakDrop, MaxStrain, MaxSteps, StoppedByUser, PulsePassed };
 const char* stop_reason_name(StopReason reason);  // "none", "post_peak_drop", ...
 
 // Follows the records of one run. Feed every record in order with observe(); it returns the

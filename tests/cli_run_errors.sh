@@ -124,6 +124,42 @@ fj_case fj_angle_90 "materials.itz.fj_friction_angle_deg.*\[0, 90)" \
 fj_case fj_on_wall "materials.wall.law.*linear" \
   '/^\[materials.wall\]/,$s/^law = "linear"/law = "flat_joint"/'
 
+# SHPB (docs/lab_tests.md "SHPB"): bad bars, gauges and pulses, keys of other tests.
+shpb_case() {
+  local name=$1 pattern=$2 keys=$3
+  expect "$name" "$pattern" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"shpb\"
+[test.shpb]
+pulse_peak_MPa = 60
+$keys"
+}
+shpb_case shpb_negative_modulus "test.shpb.bar_young_modulus_GPa.*(0, inf)" "bar_young_modulus_GPa = -206"
+shpb_case shpb_gauge_outside "test.shpb.incident_gauge_m.*\[0, 3\]" "incident_gauge_m = 3.2"
+shpb_case shpb_pulse_too_long "test.shpb.pulse_duration_us.*(0, 1167" "pulse_duration_us = 1500"
+shpb_case shpb_zero_duration "test.shpb.pulse_duration_us" "pulse_duration_us = 0"
+shpb_case shpb_after_echo "test.shpb.after_pulse_us.*\[0, 167" "after_pulse_us = 500"
+expect shpb_without_peak "test.shpb.pulse_peak" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"shpb\"
+[test.shpb]
+bar_length_m = 3"
+expect shpb_with_preset "test.preset" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"shpb\"
+preset = \"fast\"
+[test.shpb]
+pulse_peak_MPa = 60"
+expect shpb_table_on_uniaxial "test.shpb" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"uniaxial\"
+[test.shpb]
+pulse_peak_MPa = 60"
+
 # A test file that does not exist.
 "$CDEM" run "$work/none.toml" -q 2>"$work/none.err" >/dev/null
 rc=$?
