@@ -18,6 +18,8 @@ const char* stop_reason_name(StopReason reason) {
       return "max_strain";
     case StopReason::MaxSteps:
       return "max_steps";
+    case StopReason::MaxDeflection:
+      return "max_deflection";
   }
   return "?";
 }

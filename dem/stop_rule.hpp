@@ -31,8 +31,10 @@ struct StopRuleOptions {
   double max_strain = 0.05;     // axial strain at which the run ends unconfirmed
 };
 
-// Why a run ended; "post_peak_drop" is the only ending with a confirmed peak.
-enum class StopReason { None, PostPeakDrop, MaxStrain, MaxSteps };
+// Why a run ended; "post_peak_drop" is the only ending with a confirmed peak, but for a
+// three-point bending test whose load has fallen below half its peak at max_deflection
+// ("max_deflection": a softening tail cut short; dem/lab_test.cpp).
+enum class StopReason { None, PostPeakDrop, MaxStrain, MaxSteps, MaxDeflection };
 const char* stop_reason_name(StopReason reason);  // "none", "post_peak_drop", ...
 
 // Follows the records of one run. Feed every record in order with observe(); it returns the
