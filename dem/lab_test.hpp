@@ -66,10 +66,11 @@ struct LabTestControls {
   double max_deflection = 0;    // m; 0 = kDefaultMaxDeflectionFraction x the beam's depth
   double young_modulus = 0;     // Pa
   double tensile_strength = 0;  // Pa
+  double pin_friction = 0.5;    // friction coefficient of the pinned (left) support
 };
 
 // Three-point bending defaults, as fractions of the beam's depth H.
-constexpr double kDefaultBearingFraction = 0.05;  // plates 5 mm long on a 100 mm beam
+constexpr double kDefaultBearingFraction = 0.1;  // plates 10 mm long on a 100 mm beam
 constexpr double kDefaultMaxDeflectionFraction = 0.02;  // 2 mm on a 100 mm beam
 constexpr double kDefaultStopLoadFraction = 0.05;       // RILEM-style end of the tail
 

@@ -13,6 +13,7 @@ int Walls::add(double ax_, double ay_, double bx_, double by_) {
   bx.push_back(bx_);
   by.push_back(by_);
   for (auto* v : {&vx, &vy, &fx, &fy, &sxx, &sxy, &syx, &syy}) v->push_back(0.0);
+  friction.push_back(-1.0);
   return static_cast<int>(ax.size()) - 1;
 }
 
