@@ -71,8 +71,11 @@ struct LabTestControls {
 
 // Three-point bending defaults, as fractions of the beam's depth H.
 constexpr double kDefaultBearingFraction = 0.1;  // plates 10 mm long on a 100 mm beam
-constexpr double kDefaultMaxDeflectionFraction = 0.02;  // 2 mm on a 100 mm beam
+constexpr double kDefaultMaxDeflectionFraction = 0.005;  // 0.5 mm on a 100 mm beam
 constexpr double kDefaultStopLoadFraction = 0.05;       // RILEM-style end of the tail
+// The platen velocity of a bending test without platen_velocity: this fraction of the preset's
+// (or the default) velocity (docs/lab_tests.md "Three-point bending", loading rate).
+constexpr double kBendingVelocityFactor = 0.05;
 
 struct LabTestInput {
   std::string file;            // the test file, as given

@@ -141,61 +141,64 @@ TEST(BeamSpecimen, NotchRoundTripsThroughTheSpecimenFile) {
 }
 
 // The small beam loaded to failure: 40 mm deep, 160 mm long, span 120 mm, notch 12 mm, mortar
-// only (R_mean 1 mm), the C30 parallel-bond laws of the fixtures.
-class SmallBeam : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    const fs::path dir = test::scratch_dir("lab_bending", "small_beam");
-    beam_ = generate(dir, beam_generator(160, 40, 12, 2, false, 1.0));
-    const dem::LabTestInput input = test::lab_test_input(
-        dir, beam_,
-        "[test]\ntype = \"three_point_bending\"\npreset = \"fast\"\nspan_mm = 120\n"
-        "platen_velocity_m_s = 0.00025\nhistory_interval = 200\n");
-    result_ = dem::run_lab_test(beam_, input);
+// only (R_mean 1 mm), the C30 parallel-bond laws of the fixtures, the platen at 0.5 mm/s (twice
+// the default for the fast preset, to keep the test short: 135,000 steps, 12 s of CPU). One test
+// (CTest runs each test in its own process, so a shared fixture would run the beam per test).
+TEST(SmallBeam, LoadedToFailure) {
+  const fs::path dir = test::scratch_dir("lab_bending", "small_beam");
+  const Specimen beam = generate(dir, beam_generator(160, 40, 12, 2, false, 1.0));
+  const dem::LabTestInput input = test::lab_test_input(
+      dir, beam,
+      "[test]\ntype = \"three_point_bending\"\npreset = \"fast\"\nspan_mm = 120\n"
+      "platen_velocity_m_s = 0.0005\nhistory_interval = 500\n");
+  const dem::LabTestResult result = dem::run_lab_test(beam, input);
+  const dem::BendingResult& b = result.bending;
+  const dem::LabHistory& h = result.history;
+  {
+    SCOPED_TRACE("the load falls below the stop fraction after the peak");
+    EXPECT_EQ(result.stop_reason, dem::StopReason::PostPeakDrop);
+    EXPECT_GT(b.peak_load, 0);
+    EXPECT_LT(b.final_load, dem::kDefaultStopLoadFraction * b.peak_load);
+    EXPECT_GT(b.final_deflection, 1.2 * b.deflection_at_peak);
+    // The crack mouth opens: open at the peak, wider at the end.
+    EXPECT_GT(b.cmod_at_peak, 0);
+    EXPECT_GT(h.cmod.back(), 1.5 * b.cmod_at_peak);
   }
-  static Specimen beam_;
-  static dem::LabTestResult result_;
-};
-Specimen SmallBeam::beam_;
-dem::LabTestResult SmallBeam::result_;
-
-TEST_F(SmallBeam, LoadFallsBelowTheStopFractionAfterThePeak) {
-  const dem::BendingResult& b = result_.bending;
-  EXPECT_EQ(result_.stop_reason, dem::StopReason::PostPeakDrop);
-  EXPECT_GT(b.peak_load, 0);
-  EXPECT_LT(b.final_load, dem::kDefaultStopLoadFraction * b.peak_load);
-  EXPECT_GT(b.final_deflection, 1.5 * b.deflection_at_peak);
-  // The crack mouth opens: wider at the end than at the peak, and open at the peak.
-  EXPECT_GT(b.cmod_at_peak, 0);
-  EXPECT_GT(result_.history.cmod.back(), 2 * b.cmod_at_peak);
-}
-
-TEST_F(SmallBeam, SupportReactionsCarryThePlatenLoadAtThePeak) {
-  // Quasi-static loading: the two supports balance the platen (the beam's inertia and the
-  // cracks' kinetic energy small).
-  const dem::BendingResult& b = result_.bending;
-  EXPECT_NEAR(b.reaction_at_peak / b.peak_load, 1.0, 0.05);
-}
-
-TEST_F(SmallBeam, CracksClusterAboveTheNotch) {
-  // The crack grows from the notch tip up the ligament: most bond failures within a quarter of
-  // the span of mid-span, none under the supports.
-  ASSERT_GT(result_.cracks.size(), 10u);
-  const double xc = 80e-3, span = 120e-3;
-  std::size_t central = 0;
-  for (const dem::Crack& k : result_.cracks)
-    if (std::abs(k.x - xc) < 0.25 * span / 2) ++central;
-  EXPECT_GT(static_cast<double>(central), 0.8 * static_cast<double>(result_.cracks.size()));
-}
-
-TEST_F(SmallBeam, WorkUnderTheCurveIsTheWorkThePlatenDid) {
-  // W0 from the recorded P-delta points (trapezoids over history records) against the
-  // platen's work booked every step (F . v dt): two independent sums of the same work.
-  const dem::BendingResult& b = result_.bending;
-  EXPECT_NEAR(b.work_of_fracture / result_.history.boundary_work.back(), 1.0, 0.03);
-  const double ligament = 28e-3;
-  EXPECT_NEAR(b.fracture_energy_no_weight, b.work_of_fracture / ligament, 1e-9);
-  EXPECT_GT(b.fracture_energy, b.fracture_energy_no_weight);
+  {
+    // Quasi-static loading: the two supports balance the platen (the beam's inertia small), at
+    // the peak and at every record of the elastic rise past 30 % of the peak (the first records
+    // carry the start of the loading wave; a bond failure releases energy dynamically).
+    SCOPED_TRACE("the support reactions carry the platen load");
+    EXPECT_NEAR(b.reaction_at_peak / b.peak_load, 1.0, 0.02);
+    std::size_t checked = 0;
+    for (std::size_t k = 0; k < h.size() && h.bonds_broken[k] == h.bonds_broken[0]; ++k) {
+      if (h.platen_force[k] > 0.3 * b.peak_load) {
+        ++checked;
+        EXPECT_NEAR(h.support_reaction[k] / h.platen_force[k], 1.0, 0.02) << "record " << k;
+      }
+    }
+    EXPECT_GT(checked, 10u);
+  }
+  {
+    // The crack grows from the notch tip up the ligament: most bond failures within a quarter
+    // of the half-span of mid-span (15 mm), none under the supports.
+    SCOPED_TRACE("the cracks cluster above the notch");
+    ASSERT_GT(result.cracks.size(), 10u);
+    const double xc = 80e-3, span = 120e-3;
+    std::size_t central = 0;
+    for (const dem::Crack& k : result.cracks)
+      if (std::abs(k.x - xc) < 0.25 * span / 2) ++central;
+    EXPECT_GT(static_cast<double>(central), 0.8 * static_cast<double>(result.cracks.size()));
+  }
+  {
+    // W0 from the recorded P-delta points (trapezoids over history records) against the
+    // platen's work booked every step (F . v dt): two independent sums of the same work.
+    SCOPED_TRACE("the work under the curve is the work the platen did");
+    EXPECT_NEAR(b.work_of_fracture / h.boundary_work.back(), 1.0, 0.03);
+    const double ligament = 28e-3;
+    EXPECT_NEAR(b.fracture_energy_no_weight, b.work_of_fracture / ligament, 1e-9);
+    EXPECT_GT(b.fracture_energy, b.fracture_energy_no_weight);
+  }
 }
 
 }  // namespace
