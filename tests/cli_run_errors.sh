@@ -98,7 +98,7 @@ notch_depth_mm = 6
 notch_width_mm = 1
 [specimen.mortar]
 r_mean_mm = 0.5'
-expect bending_span_too_long "test.span.*(2, 79\] mm, got 100 mm" "materials = \"materials.toml\"
+expect bending_span_too_long "test.span.*(3, 78\] mm, got 100 mm" "materials = \"materials.toml\"
 $beam_spec
 [test]
 type = \"three_point_bending\"
