@@ -2,8 +2,8 @@
 
 #include <H5Cpp.h>
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>

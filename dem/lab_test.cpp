@@ -64,8 +64,7 @@ void read_bending_controls(const InputTable& t, LabTestControls& c) {
     t.fail(t.has("young_modulus") ? "tensile_strength" : "young_modulus",
            "the characteristic length E G_F / f_t^2 needs both young_modulus and "
            "tensile_strength");
-  c.young_modulus =
-      t.quantity_or("young_modulus", Dimension::Stress, 0, Range::left_open(0, 1e13));
+  c.young_modulus = t.quantity_or("young_modulus", Dimension::Stress, 0, Range::left_open(0, 1e13));
   c.tensile_strength =
       t.quantity_or("tensile_strength", Dimension::Stress, 0, Range::left_open(0, 1e10));
 }
@@ -277,10 +276,9 @@ void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input
 
 void LabHistory::reserve(std::size_t n) {
   step.reserve(n);
-  for (auto* v :
-       {&time, &axial_strain, &lateral_strain, &axial_stress, &confining_stress, &platen_force,
-        &kinetic_energy, &strain_energy, &friction_energy, &breakage_energy, &boundary_work,
-        &deflection, &cmod, &support_reaction})
+  for (auto* v : {&time, &axial_strain, &lateral_strain, &axial_stress, &confining_stress,
+                  &platen_force, &kinetic_energy, &strain_energy, &friction_energy,
+                  &breakage_energy, &boundary_work, &deflection, &cmod, &support_reaction})
     v->reserve(n);
   bonds_broken.reserve(n);
 }
@@ -495,8 +493,8 @@ BendingResult analyse_bending(const LabHistory& h, const Specimen& beam, const L
   b.self_weight_work = b.mass_between_supports * kStandardGravity * b.final_deflection;
   b.fracture_energy = rilem_fracture_energy(b.work_of_fracture, b.mass_between_supports,
                                             b.final_deflection, ligament, kThickness);
-  b.fracture_energy_no_weight = rilem_fracture_energy(b.work_of_fracture, 0, 0, ligament,
-                                                      kThickness);
+  b.fracture_energy_no_weight =
+      rilem_fracture_energy(b.work_of_fracture, 0, 0, ligament, kThickness);
   if (c.young_modulus > 0 && c.tensile_strength > 0)
     b.characteristic_length =
         characteristic_length(c.young_modulus, b.fracture_energy, c.tensile_strength);
@@ -592,8 +590,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   const double time0 = world.time();
   world.refresh_neighbors();
   res.time_step = world.time_step();
-  res.width = c.type == LabTestType::Brazilian || bending ? specimen.container.width
-                                                         : loading.section;
+  res.width =
+      c.type == LabTestType::Brazilian || bending ? specimen.container.width : loading.section;
   res.height = c.type == LabTestType::Brazilian ? specimen.container.width : loading.gauge_length;
 
   // Lateral strain and confining stress from the central region (middle gauge_fraction of H).
@@ -702,10 +700,11 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     std::ostringstream msg;
     msg << "the " << lab_test_name(c.type) << " test stopped at "
         << (reason == StopReason::MaxSteps ? "max_steps = " + std::to_string(c.max_steps)
-            : bending ? "max_deflection = " + std::to_string(stop_options.max_strain *
-                                                              cleaned.container.height * 1e3) +
-                            " mm"
-                      : "max_strain = " + std::to_string(c.stop.max_strain))
+            : bending
+                ? "max_deflection = " +
+                      std::to_string(stop_options.max_strain * cleaned.container.height * 1e3) +
+                      " mm"
+                : "max_strain = " + std::to_string(c.stop.max_strain))
         << " (stop_reason " << stop_reason_name(reason)
         << ") without a confirmed peak, so no strength is reported: "
         << stop.missing_conditions(h.axial_strain.back(), last_loading_stress()) << ". Largest "

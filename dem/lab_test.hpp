@@ -3,10 +3,10 @@
 // Brazilian disc between flat platens, direct tension by grip bands of discs, and one biaxial
 // test (platens plus servo side walls at a confining stress; dem/biaxial_test.hpp runs the
 // series of confinements), and the notched-beam three-point bending test (two supports under
-// the beam, a loading platen on top at mid-span; dem/three_point_bending.hpp). The test file (docs/lab_tests.md) names the specimen, the material
-// table and the test controls; a run does the material genesis (SPEC 3.6), loads the specimen
-// until the stop rule confirms its peak (dem/stop_rule.hpp), and returns the histories, the
-// cracks and the lab figures.
+// the beam, a loading platen on top at mid-span; dem/three_point_bending.hpp). The test file
+// (docs/lab_tests.md) names the specimen, the material table and the test controls; a run does the
+// material genesis (SPEC 3.6), loads the specimen until the stop rule confirms its peak
+// (dem/stop_rule.hpp), and returns the histories, the cracks and the lab figures.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -70,9 +70,9 @@ struct LabTestControls {
 };
 
 // Three-point bending defaults, as fractions of the beam's depth H.
-constexpr double kDefaultBearingFraction = 0.1;  // plates 10 mm long on a 100 mm beam
+constexpr double kDefaultBearingFraction = 0.1;          // plates 10 mm long on a 100 mm beam
 constexpr double kDefaultMaxDeflectionFraction = 0.005;  // 0.5 mm on a 100 mm beam
-constexpr double kDefaultStopLoadFraction = 0.05;       // RILEM-style end of the tail
+constexpr double kDefaultStopLoadFraction = 0.05;        // RILEM-style end of the tail
 // The platen velocity of a bending test without platen_velocity: this fraction of the preset's
 // (or the default) velocity (docs/lab_tests.md "Three-point bending", loading rate).
 constexpr double kBendingVelocityFactor = 0.05;
@@ -146,14 +146,14 @@ struct BendingResult {
   double peak_load = 0;                                     // N/m, P_max
   double deflection_at_peak = 0, cmod_at_peak = 0;          // m
   double reaction_at_peak = 0;                              // N/m, sum of the supports
-  double flexural_strength = 0;      // Pa, 3 P_max S / (2 t H^2)
-  double net_flexural_strength = 0;  // Pa, 3 P_max S / (2 t (H - a0)^2)
-  double work_of_fracture = 0;       // J/m, W0: area under P-delta to the stop
-  double final_deflection = 0;       // m, delta0: the deflection at the stop
-  double final_load = 0;             // N/m, P at the stop
-  double mass_between_supports = 0;  // kg/m, beam mass x S / L
-  double self_weight_work = 0;       // J/m, m g delta0
-  double fracture_energy = 0;        // N/m, RILEM G_F = (W0 + m g delta0) / (t (H - a0))
+  double flexural_strength = 0;                             // Pa, 3 P_max S / (2 t H^2)
+  double net_flexural_strength = 0;                         // Pa, 3 P_max S / (2 t (H - a0)^2)
+  double work_of_fracture = 0;           // J/m, W0: area under P-delta to the stop
+  double final_deflection = 0;           // m, delta0: the deflection at the stop
+  double final_load = 0;                 // N/m, P at the stop
+  double mass_between_supports = 0;      // kg/m, beam mass x S / L
+  double self_weight_work = 0;           // J/m, m g delta0
+  double fracture_energy = 0;            // N/m, RILEM G_F = (W0 + m g delta0) / (t (H - a0))
   double fracture_energy_no_weight = 0;  // N/m, W0 / (t (H - a0)): the DEM beam has no weight
   double characteristic_length = 0;      // m, E G_F / f_t^2 (0 when E or f_t not given)
 };

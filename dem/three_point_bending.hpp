@@ -33,8 +33,7 @@ double rilem_fracture_energy(double work, double mass_between_supports, double f
                              double ligament, double thickness);
 
 // Hillerborg's characteristic length l_ch = E G_F / f_t^2, m (E, f_t in Pa, G_F in N/m).
-double characteristic_length(double young_modulus, double fracture_energy,
-                             double tensile_strength);
+double characteristic_length(double young_modulus, double fracture_energy, double tensile_strength);
 
 // The crack-mouth opening displacement: the horizontal opening between the two faces of the
 // notch at its mouth (the bottom edge), as a clip gauge on knife edges at the mouth reads it.

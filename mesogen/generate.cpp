@@ -226,8 +226,7 @@ void run_generate(const GenerateRequest& request) {
           std::to_string(packing.steps) + " steps");
 
   const long notch_discs = cut_notch(packing, in.container);
-  if (in.container.notched())
-    summary["specimen"]["notch_discs_removed"] = notch_discs;
+  if (in.container.notched()) summary["specimen"]["notch_discs_removed"] = notch_discs;
 
   if (packing.r_ratio != in.mortar.r_ratio)
     warn("mortar.r_ratio = " + PhaseLog::fixed(in.mortar.r_ratio, 3) +

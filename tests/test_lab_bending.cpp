@@ -73,10 +73,11 @@ TEST(BendingFormulas, FlexuralStrengthAndCharacteristicLength) {
 // R_mean 0.4 mm (about 3,000 discs).
 std::string beam_generator(double length_mm, double depth_mm, double notch_mm, double width_mm,
                            bool aggregates, double r_mean_mm) {
-  std::string text = "seed = 5\n[specimen]\nshape = \"beam\"\nwidth_mm = " +
-                     std::to_string(length_mm) + "\nheight_mm = " + std::to_string(depth_mm) +
-                     "\nnotch_depth_mm = " + std::to_string(notch_mm) +
-                     "\nnotch_width_mm = " + std::to_string(width_mm) + "\n";
+  std::string text =
+      "seed = 5\n[specimen]\nshape = \"beam\"\nwidth_mm = " + std::to_string(length_mm) +
+      "\nheight_mm = " + std::to_string(depth_mm) +
+      "\nnotch_depth_mm = " + std::to_string(notch_mm) +
+      "\nnotch_width_mm = " + std::to_string(width_mm) + "\n";
   if (aggregates)
     text +=
         "[gradation]\ntype = \"fuller\"\nexponent = 0.5\np_k = 0.75\nd_min_mm = 2\nd_max_mm = "
