@@ -28,8 +28,14 @@ namespace {
 
 // Three-point bending (docs/lab_tests.md "Three-point bending"): loads and works per metre of
 // thickness (the 2D beam has t = 1 m), so kN/m and J/m; strengths and G_F hold for any t.
-nlohmann::ordered_json bending_json(const dem::BendingResult& b, const dem::LabHistory& h) {
+nlohmann::ordered_json bending_json(const dem::BendingResult& b, const dem::LabHistory& h,
+                                    const dem::LabTestControls& c) {
   nlohmann::ordered_json j;
+  j["control"] = c.cmod_control ? "cmod" : "displacement";
+  if (c.cmod_control)
+    j["cmod_rate_mm_s"] = c.cmod_rate * 1e3;
+  else
+    j["platen_velocity_mm_s"] = c.platen_velocity * 1e3;
   j["span_mm"] = b.span * 1e3;
   j["depth_mm"] = b.depth * 1e3;
   j["length_mm"] = b.length * 1e3;
@@ -68,7 +74,7 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
     j["consolidation_steps"] = r.consolidation.steps;
   }
   if (r.type == dem::LabTestType::ThreePointBending) {
-    j["bending"] = bending_json(r.bending, r.history);
+    j["bending"] = bending_json(r.bending, r.history, in.controls);
   } else if (r.type == dem::LabTestType::Uniaxial || r.type == dem::LabTestType::Biaxial) {
     j["young_modulus_GPa"] = r.ucs.young_modulus * 1e-9;
     j["poisson_ratio"] = r.ucs.poisson_ratio;

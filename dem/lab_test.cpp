@@ -60,6 +60,13 @@ void read_bending_controls(const InputTable& t, LabTestControls& c) {
       t.number_or("stop_load_fraction", kDefaultStopLoadFraction, Range::open(0, 1));
   c.max_deflection = t.quantity_or("max_deflection", Dimension::Length, 0, Range::left_open(0, 1));
   c.pin_friction = t.number_or("pin_friction", c.pin_friction, Range::left_open(0, 10));
+  c.cmod_control = t.string_or("control", "displacement", {"displacement", "cmod"}) == "cmod";
+  if (t.has("cmod_rate") && !c.cmod_control)
+    t.fail("cmod_rate", "only used with control = \"cmod\"");
+  if (c.cmod_control && t.has("platen_velocity"))
+    t.fail("platen_velocity", "control = \"cmod\" drives the platen by cmod_rate");
+  c.cmod_rate =
+      t.quantity_or("cmod_rate", Dimension::Velocity, c.platen_velocity, Range::positive());
   if (t.has("young_modulus") != t.has("tensile_strength"))
     t.fail(t.has("young_modulus") ? "tensile_strength" : "young_modulus",
            "the characteristic length E G_F / f_t^2 needs both young_modulus and "
@@ -102,7 +109,9 @@ LabTestControls read_controls(const InputTable& t) {
                          "max_deflection",
                          "young_modulus",
                          "tensile_strength",
-                         "pin_friction"});
+                         "pin_friction",
+                         "control",
+                         "cmod_rate"});
   LabTestControls c;
   apply_test_preset(t, c);  // speed knobs of the preset; the keys below override them
   const std::string type = t.string(
@@ -156,8 +165,9 @@ LabTestControls read_controls(const InputTable& t) {
   c.genesis.max_floating_fraction = t.number_or(
       "max_genesis_floating_fraction", c.genesis.max_floating_fraction, Range::closed(0, 1));
   if (c.type == LabTestType::ThreePointBending) read_bending_controls(t, c);
-  for (const char* key : {"span", "bearing_width", "stop_load_fraction", "max_deflection",
-                          "young_modulus", "tensile_strength", "pin_friction"})
+  for (const char* key :
+       {"span", "bearing_width", "stop_load_fraction", "max_deflection", "young_modulus",
+        "tensile_strength", "pin_friction", "control", "cmod_rate"})
     if (c.type != LabTestType::ThreePointBending && t.has(key))
       t.fail(key, "only used by type = \"three_point_bending\"");
   if (c.type == LabTestType::Biaxial)
@@ -617,6 +627,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
          "test loads a cohesionless packing, and its peak is friction's");
   std::optional<CmodGauge> cmod;
   StopRuleOptions stop_options = c.stop;
+  std::optional<CmodServo> servo;
+  if (bending && c.cmod_control) servo = CmodServo{c.cmod_rate, kCmodServoSpeedCap * c.cmod_rate};
   if (bending) {
     cmod.emplace(world, cleaned.container, e.ymin);
     // The stop rule follows deflection / H as its strain.
@@ -681,6 +693,9 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   while (reason == StopReason::None) {
     if (confinement) confinement->update_targets(world);
+    if (servo)
+      world.walls.vy[loading.top_wall] =
+          -servo->platen_velocity(cmod->opening(world), world.time() - time0, world.time_step());
     world.step();
     boundary_work += loading.work(world, world.time_step());
     const long s = world.step_count() - step0;

@@ -67,7 +67,14 @@ struct LabTestControls {
   double young_modulus = 0;     // Pa
   double tensile_strength = 0;  // Pa
   double pin_friction = 0.5;    // friction coefficient of the pinned (left) support
+  // Loading: the platen at platen_velocity, or driven so the CMOD grows at cmod_rate
+  // (dem/three_point_bending.hpp, CmodServo), never faster than kCmodServoSpeedCap x cmod_rate.
+  bool cmod_control = false;
+  double cmod_rate = 0;  // m/s
 };
+
+// The CMOD servo's cap on the platen speed, in units of the CMOD rate.
+constexpr double kCmodServoSpeedCap = 4;
 
 // Three-point bending defaults, as fractions of the beam's depth H.
 constexpr double kDefaultBearingFraction = 0.1;          // plates 10 mm long on a 100 mm beam

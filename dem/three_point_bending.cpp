@@ -64,6 +64,11 @@ double CmodGauge::mean_x(const World& world, const std::vector<std::int32_t>& di
   return sum / static_cast<double>(discs.size());
 }
 
+double CmodServo::platen_velocity(double cmod, double time, double dt) const {
+  const double v = relaxation * (cmod_rate * time - cmod) / dt;
+  return std::clamp(v, -max_velocity, max_velocity);
+}
+
 double CmodGauge::opening(const World& world) const {
   return mean_x(world, right_) - mean_x(world, left_) - gap0_;
 }

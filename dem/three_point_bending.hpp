@@ -61,4 +61,19 @@ class CmodGauge {
   double reach_ = 0;                        // m
 };
 
+// The crack-mouth-opening servo of a CMOD-controlled test: the loading platen's downward
+// velocity is set every step so that the CMOD follows cmod_rate x t,
+//   v = relaxation (cmod_rate t - CMOD) / dt,   capped at |v| <= max_velocity,
+// a fraction `relaxation` of the lag closed per step (CMOD grows at about 0.75 x the deflection
+// before the peak); past the peak v turns negative where the beam snaps back, which keeps the
+// softening branch stable where displacement control runs through it dynamically.
+struct CmodServo {
+  double cmod_rate = 0;      // m/s
+  double max_velocity = 0;   // m/s, cap on the platen's speed either way
+  double relaxation = 2e-4;  // fraction of the lag closed per step
+
+  // Platen velocity, m/s, downward positive; `cmod` (m) at loading time `time` (s), step dt (s).
+  double platen_velocity(double cmod, double time, double dt) const;
+};
+
 }  // namespace cdem::dem
