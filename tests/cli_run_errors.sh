@@ -125,6 +125,19 @@ materials = \"materials.toml\"
 type = \"three_point_bending\"
 span_mm = 60
 young_modulus_GPa = 30"
+expect bending_cmod_rate_displacement "test.cmod_rate.*control = \"cmod\"" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"three_point_bending\"
+span_mm = 60
+cmod_rate_mm_s = 0.5"
+expect bending_cmod_with_velocity "test.platen_velocity.*cmod" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"three_point_bending\"
+span_mm = 60
+control = \"cmod\"
+platen_velocity_mm_s = 0.5"
 expect span_on_uniaxial "test.span.*three_point_bending" "specimen = \"corrupt.h5\"
 materials = \"materials.toml\"
 [test]
