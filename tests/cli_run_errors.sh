@@ -109,33 +109,23 @@ $beam_spec
 type = \"three_point_bending\"
 span_mm = 76
 bearing_width_mm = 6"
+# The keys of a bending test on an (unread) specimen: each case adds its bad key.
+bending_head="specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"three_point_bending\"
+span_mm = 60"
 expect bending_span_missing "test.span" "specimen = \"corrupt.h5\"
 materials = \"materials.toml\"
 [test]
 type = \"three_point_bending\""
-expect bending_stop_fraction "test.stop_fraction.*stop_load_fraction" "specimen = \"corrupt.h5\"
-materials = \"materials.toml\"
-[test]
-type = \"three_point_bending\"
-span_mm = 60
+expect bending_stop_fraction "test.stop_fraction.*stop_load_fraction" "$bending_head
 stop_fraction = 0.5"
-expect bending_one_of_e_ft "test.tensile_strength" "specimen = \"corrupt.h5\"
-materials = \"materials.toml\"
-[test]
-type = \"three_point_bending\"
-span_mm = 60
+expect bending_one_of_e_ft "test.tensile_strength" "$bending_head
 young_modulus_GPa = 30"
-expect bending_cmod_rate_displacement "test.cmod_rate.*control = \"cmod\"" "specimen = \"corrupt.h5\"
-materials = \"materials.toml\"
-[test]
-type = \"three_point_bending\"
-span_mm = 60
+expect bending_cmod_rate_displacement "test.cmod_rate.*control = \"cmod\"" "$bending_head
 cmod_rate_mm_s = 0.5"
-expect bending_cmod_with_velocity "test.platen_velocity.*cmod" "specimen = \"corrupt.h5\"
-materials = \"materials.toml\"
-[test]
-type = \"three_point_bending\"
-span_mm = 60
+expect bending_cmod_with_velocity "test.platen_velocity.*cmod" "$bending_head
 control = \"cmod\"
 platen_velocity_mm_s = 0.5"
 expect span_on_uniaxial "test.span.*three_point_bending" "specimen = \"corrupt.h5\"

@@ -145,14 +145,19 @@ TEST(BeamSpecimen, NotchRoundTripsThroughTheSpecimenFile) {
 // only (R_mean 1 mm), the C30 parallel-bond laws of the fixtures, the platen at 0.5 mm/s (twice
 // the default for the fast preset, to keep the test short: 135,000 steps, 12 s of CPU). One test
 // (CTest runs each test in its own process, so a shared fixture would run the beam per test).
-TEST(SmallBeam, LoadedToFailure) {
-  const fs::path dir = test::scratch_dir("lab_bending", "small_beam");
+dem::LabTestResult run_small_beam(const std::string& name, const std::string& control_keys) {
+  const fs::path dir = test::scratch_dir("lab_bending", name);
   const Specimen beam = generate(dir, beam_generator(160, 40, 12, 2, false, 1.0));
   const dem::LabTestInput input = test::lab_test_input(
       dir, beam,
       "[test]\ntype = \"three_point_bending\"\npreset = \"fast\"\nspan_mm = 120\n"
-      "platen_velocity_m_s = 0.0005\nhistory_interval = 500\n");
-  const dem::LabTestResult result = dem::run_lab_test(beam, input);
+      "history_interval = 500\n" +
+          control_keys);
+  return dem::run_lab_test(beam, input);
+}
+
+TEST(SmallBeam, LoadedToFailure) {
+  const dem::LabTestResult result = run_small_beam("small_beam", "platen_velocity_m_s = 0.0005\n");
   const dem::BendingResult& b = result.bending;
   const dem::LabHistory& h = result.history;
   {
@@ -206,14 +211,9 @@ TEST(SmallBeam, LoadedToFailure) {
 // platen on the beam and the beam in equilibrium through the softening branch, and the CMOD
 // follows its ramp with the lag of a proportional servo (rate x dt / relaxation).
 TEST(SmallBeam, CmodControlHoldsTheSofteningBranch) {
-  const fs::path dir = test::scratch_dir("lab_bending", "small_beam_cmod");
-  const Specimen beam = generate(dir, beam_generator(160, 40, 12, 2, false, 1.0));
   const double rate = 0.5e-3;  // m/s
-  const dem::LabTestInput input = test::lab_test_input(
-      dir, beam,
-      "[test]\ntype = \"three_point_bending\"\npreset = \"fast\"\nspan_mm = 120\n"
-      "control = \"cmod\"\ncmod_rate_m_s = 0.0005\nhistory_interval = 500\n");
-  const dem::LabTestResult result = dem::run_lab_test(beam, input);
+  const dem::LabTestResult result =
+      run_small_beam("small_beam_cmod", "control = \"cmod\"\ncmod_rate_m_s = 0.0005\n");
   const dem::BendingResult& b = result.bending;
   const dem::LabHistory& h = result.history;
   EXPECT_EQ(result.stop_reason, dem::StopReason::PostPeakDrop);
