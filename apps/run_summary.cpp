@@ -46,6 +46,39 @@ nlohmann::ordered_json shpb_json(const dem::ShpbResult& r) {
   return j;
 }
 
+// Three-point bending (docs/lab_tests.md "Three-point bending"): loads and works per metre of
+// thickness (the 2D beam has t = 1 m), so kN/m and J/m; strengths and G_F hold for any t.
+nlohmann::ordered_json bending_json(const dem::BendingResult& b, const dem::LabHistory& h,
+                                    const dem::LabTestControls& c) {
+  nlohmann::ordered_json j;
+  j["control"] = c.cmod_control ? "cmod" : "displacement";
+  if (c.cmod_control)
+    j["cmod_rate_mm_s"] = c.cmod_rate * 1e3;
+  else
+    j["platen_velocity_mm_s"] = c.platen_velocity * 1e3;
+  j["span_mm"] = b.span * 1e3;
+  j["depth_mm"] = b.depth * 1e3;
+  j["length_mm"] = b.length * 1e3;
+  j["notch_depth_mm"] = b.notch_depth * 1e3;
+  j["bearing_width_mm"] = b.bearing_width * 1e3;
+  j["peak_load_kN_per_m"] = b.peak_load * 1e-3;
+  j["deflection_at_peak_mm"] = b.deflection_at_peak * 1e3;
+  j["cmod_at_peak_mm"] = b.cmod_at_peak * 1e3;
+  j["support_reaction_at_peak_kN_per_m"] = b.reaction_at_peak * 1e-3;
+  j["flexural_strength_MPa"] = b.flexural_strength * 1e-6;
+  j["net_flexural_strength_MPa"] = b.net_flexural_strength * 1e-6;
+  j["work_of_fracture_J_per_m"] = b.work_of_fracture;
+  j["final_deflection_mm"] = b.final_deflection * 1e3;
+  j["final_cmod_mm"] = h.cmod.empty() ? 0.0 : h.cmod.back() * 1e3;
+  j["final_load_fraction"] = b.peak_load > 0 ? b.final_load / b.peak_load : 0.0;
+  j["mass_between_supports_kg_per_m"] = b.mass_between_supports;
+  j["self_weight_work_J_per_m"] = b.self_weight_work;
+  j["fracture_energy_N_per_m"] = b.fracture_energy;
+  j["fracture_energy_without_self_weight_N_per_m"] = b.fracture_energy_no_weight;
+  if (b.characteristic_length > 0) j["characteristic_length_mm"] = b.characteristic_length * 1e3;
+  return j;
+}
+
 }  // namespace
 
 nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabTestInput& in) {
@@ -62,7 +95,9 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
     j["peak_deviator_MPa"] = r.peak_deviator * 1e-6;
     j["consolidation_steps"] = r.consolidation.steps;
   }
-  if (r.type == dem::LabTestType::Uniaxial || r.type == dem::LabTestType::Biaxial) {
+  if (r.type == dem::LabTestType::ThreePointBending) {
+    j["bending"] = bending_json(r.bending, r.history, in.controls);
+  } else if (r.type == dem::LabTestType::Uniaxial || r.type == dem::LabTestType::Biaxial) {
     j["young_modulus_GPa"] = r.ucs.young_modulus * 1e-9;
     j["poisson_ratio"] = r.ucs.poisson_ratio;
     j["strain_at_half_peak"] = r.ucs.strain_at_half_peak;

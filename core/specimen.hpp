@@ -13,14 +13,21 @@ namespace cdem {
 enum class ContainerShape : int { Rectangle = 0, Disc = 1 };
 
 // The mould. A rectangle spans [0, width] x [0, height]; a disc of diameter D is centred at
-// (D/2, D/2). y is the vertical (loading) axis.
+// (D/2, D/2). y is the vertical (loading) axis. A notched beam is a rectangle with a notch: a
+// void [width/2 - notch_width/2, width/2 + notch_width/2] x [0, notch_depth] cut at mid-span
+// from the bottom edge, which holds no disc and no aggregate (docs/generator.md "Beam").
 struct Container {
   ContainerShape shape = ContainerShape::Rectangle;
-  double width = 0;   // m (rectangle) or diameter (disc)
-  double height = 0;  // m (rectangle) or diameter (disc)
+  double width = 0;        // m (rectangle) or diameter (disc)
+  double height = 0;       // m (rectangle) or diameter (disc)
+  double notch_depth = 0;  // m, a0; 0 = no notch
+  double notch_width = 0;  // m, of the notch (meaningful when notch_depth > 0)
 
-  double area() const;
+  double area() const;  // m^2, of the mould without the notch taken out
   Eigen::Vector2d centre() const { return {0.5 * width, 0.5 * height}; }
+  bool notched() const { return notch_depth > 0; }
+  // Distance (m) from (x, y) to the notch void, 0 inside it; infinite without a notch.
+  double distance_to_notch(double x, double y) const;
 };
 
 // One aggregate: a rigid convex polygon whose pebbles are the discs with its clump id.

@@ -2,8 +2,10 @@
 
 #include <H5Cpp.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -17,6 +19,13 @@ namespace cdem {
 
 double Container::area() const {
   return shape == ContainerShape::Disc ? std::numbers::pi * 0.25 * width * width : width * height;
+}
+
+double Container::distance_to_notch(double x, double y) const {
+  if (!notched()) return std::numeric_limits<double>::infinity();
+  const double dx = std::max(std::abs(x - 0.5 * width) - 0.5 * notch_width, 0.0);
+  const double dy = std::max(y - notch_depth, std::max(-y, 0.0));
+  return std::hypot(dx, dy);
 }
 
 namespace {
@@ -127,6 +136,16 @@ void check_values(const Reader& rd, const Specimen& s) {
   positive("container/width_m", s.container.width);
   positive("container/height_m", s.container.height);
   const Container& c = s.container;
+  if (c.notch_depth != 0 || c.notch_width != 0) {
+    if (c.shape != ContainerShape::Rectangle)
+      rd.fail("container/notch_depth_m", "a notch needs a rectangular mould");
+    if (!std::isfinite(c.notch_depth) || !(c.notch_depth > 0) || !(c.notch_depth < c.height))
+      rd.fail("container/notch_depth_m",
+              "is " + number(c.notch_depth) + " m; must be in (0, height)");
+    if (!std::isfinite(c.notch_width) || !(c.notch_width > 0) || !(c.notch_width < c.width))
+      rd.fail("container/notch_width_m",
+              "is " + number(c.notch_width) + " m; must be in (0, width)");
+  }
   const auto inside = [&c](const Eigen::Vector2d& p, double margin) {
     if (c.shape == ContainerShape::Disc) return (p - c.centre()).norm() <= 0.5 * c.width + margin;
     return p.x() >= -margin && p.x() <= c.width + margin && p.y() >= -margin &&
@@ -145,6 +164,8 @@ void check_values(const Reader& rd, const Specimen& s) {
             "(disc at x " + number(s.x[i]) + " m, y " + number(s.y[i]) + " m, r " + number(s.r[i]) +
                 " m) lies outside the mould (" + number(c.width) + " x " + number(c.height) +
                 " m)");
+    if (c.distance_to_notch(s.x[i], s.y[i]) == 0)
+      entry("discs/x, discs/y", i, "(a disc centre) lies in the notch");
     if (s.contact_active[i] > 1)
       entry("discs/contact_active", i,
             "is " + std::to_string(s.contact_active[i]) + "; must be 0 or 1");
@@ -187,6 +208,10 @@ void write_specimen(const Specimen& s, const std::filesystem::path& path) {
     write_string_attr(c, "shape", s.container.shape == ContainerShape::Disc ? "disc" : "rectangle");
     write_scalar_attr<double>(c, "width_m", s.container.width);
     write_scalar_attr<double>(c, "height_m", s.container.height);
+    if (s.container.notched()) {  // absent = no notch (and in files older than the beam)
+      write_scalar_attr<double>(c, "notch_depth_m", s.container.notch_depth);
+      write_scalar_attr<double>(c, "notch_width_m", s.container.notch_width);
+    }
 
     H5::Group d = hdf5::create_group(f, "discs");
     write_array(d, "x", s.x, "m");
@@ -259,6 +284,10 @@ Specimen read_specimen(const std::filesystem::path& path) {
     s.container.shape = shape == "disc" ? ContainerShape::Disc : ContainerShape::Rectangle;
     s.container.width = rd.scalar_attr<double>(c, "width_m");
     s.container.height = rd.scalar_attr<double>(c, "height_m");
+    if (c.attrExists("notch_depth_m")) {
+      s.container.notch_depth = rd.scalar_attr<double>(c, "notch_depth_m");
+      s.container.notch_width = rd.scalar_attr<double>(c, "notch_width_m");
+    }
 
     H5::Group d = rd.group(f, "discs");
     s.x = rd.array<double>(d, "x", SIZE_MAX);

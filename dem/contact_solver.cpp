@@ -110,11 +110,12 @@ long disc_wall_kernel(const Discs& d, const Walls& walls, const NeighborList& li
     const double fn = linear_normal_force(kn, overlap);
     const double arm = ri - 0.5 * overlap;
     double fs = 0;
-    if (law.mu > 0) {
+    const double mu = walls.friction[wi] >= 0 ? walls.friction[wi] : law.mu;
+    if (mu > 0) {
       const double vt =
           (d.vx[i] - walls.vx[wi]) * -ny + (d.vy[i] - walls.vy[wi]) * nx - arm * d.omega[i];
       const double trial = linear_shear_increment(state.shear_force[k], ks, vt, dt);
-      fs = coulomb_limit(trial, law.mu, fn);
+      fs = coulomb_limit(trial, mu, fn);
       slip_work += 0.5 * (state.shear_force[k] + fs) * (trial - fs) / ks;
     }
     state.shear_force[k] = fs;

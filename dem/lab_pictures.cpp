@@ -13,8 +13,34 @@
 
 namespace cdem::dem {
 
+namespace {
+
+// Three-point bending: the load P (kN per m of thickness) against the load-point deflection and
+// against the CMOD, both in mm, on one chart.
+void draw_bending_png(const LabHistory& h, const std::filesystem::path& png, int width_px,
+                      int height_px) {
+  XyChart chart;
+  chart.title = "three-point bending test";
+  chart.x_label = "load-point deflection, CMOD (mm)";
+  chart.y_label = "load P (kN per m of thickness)";
+  chart.y_from_zero = true;
+  ChartSeries deflection{"P - deflection", {}, {}, {0.1, 0.3, 0.8}, true, false};
+  ChartSeries cmod{"P - CMOD", {}, {}, {0.85, 0.2, 0.1}, true, false};
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    deflection.x.push_back(1e3 * h.deflection[i]);
+    cmod.x.push_back(1e3 * h.cmod[i]);
+    deflection.y.push_back(1e-3 * h.platen_force[i]);
+    cmod.y.push_back(1e-3 * h.platen_force[i]);
+  }
+  chart.series = {std::move(deflection), std::move(cmod)};
+  draw_xy_chart_png(chart, png, width_px, height_px);
+}
+
+}  // namespace
+
 void draw_stress_strain_png(const LabHistory& h, LabTestType type, const std::filesystem::path& png,
                             int width_px, int height_px) {
+  if (type == LabTestType::ThreePointBending) return draw_bending_png(h, png, width_px, height_px);
   // Strains in units of 1e-3, stress in MPa, both strains as recorded (contraction positive):
   // axial shortening to the right, lateral extension (negative, a bulging specimen) to the left.
   XyChart chart;
@@ -56,6 +82,9 @@ void draw_crack_map_png(const Specimen& s, const std::vector<Crack>& cracks,
     cairo_arc(cr, X(0.5 * w), Y(0.5 * h), 0.5 * w * scale, 0, 2 * M_PI);
   else
     cairo_rectangle(cr, X(0), Y(h), w * scale, h * scale);
+  if (s.container.notched())  // the void at mid-span, from the bottom edge
+    cairo_rectangle(cr, X(0.5 * (w - s.container.notch_width)), Y(s.container.notch_depth),
+                    s.container.notch_width * scale, s.container.notch_depth * scale);
   cairo_stroke(cr);
   cairo_set_line_width(cr, 1);
   for (const Clump& c : s.clumps) {

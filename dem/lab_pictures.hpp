@@ -1,7 +1,8 @@
 #pragma once
 // Pictures of a lab test (cairo PNG): the stress-strain curves (axial and lateral strain
-// against the axial stress) and the crack map (every bond failure as a dot coloured by mode and
-// contact class, aggregate polygons outlined). Written atomically.
+// against the axial stress; three-point bending: the load against deflection and CMOD) and the
+// crack map (every bond failure as a dot coloured by mode and contact class, aggregate polygons
+// outlined). Written atomically.
 #include <filesystem>
 #include <vector>
 

@@ -35,11 +35,49 @@ const char* lab_test_name(LabTestType type) {
       return "biaxial";
     case LabTestType::Shpb:
       return "shpb";
+    case LabTestType::ThreePointBending:
+      return "three_point_bending";
   }
   return "?";
 }
 
 namespace {
+
+// The keys of a three-point bending test (docs/lab_tests.md "Three-point bending"); the sizes
+// that depend on the beam are checked against it by check_specimen_for_test.
+void read_bending_controls(const InputTable& t, LabTestControls& c) {
+  for (const char* key : {"stop_fraction", "max_strain", "stop_damage_span"})
+    if (t.has(key))
+      t.fail(key,
+             "not used by three-point bending (stop_load_fraction and max_deflection end it; "
+             "its cracks must span half the ligament)");
+  // The preset's (or the default) velocity is the compression tests': a notched beam peaks at
+  // about a tenth of their platen travel, so at the same velocity it would be loaded in a
+  // tenth of the steps, faster than it can carry the load to its supports (measured on the C30
+  // beam at 0.005 m/s: supports 57 % of the platen load at the peak).
+  if (!t.has("platen_velocity")) c.platen_velocity *= kBendingVelocityFactor;
+  c.span = t.quantity("span", Dimension::Length, Range::left_open(0, 10));
+  c.bearing_width =
+      t.quantity_or("bearing_width", Dimension::Length, 0, Range::left_open(0, c.span / 2));
+  c.stop.stop_fraction =
+      t.number_or("stop_load_fraction", kDefaultStopLoadFraction, Range::open(0, 1));
+  c.max_deflection = t.quantity_or("max_deflection", Dimension::Length, 0, Range::left_open(0, 1));
+  c.pin_friction = t.number_or("pin_friction", c.pin_friction, Range::left_open(0, 10));
+  c.cmod_control = t.string_or("control", "displacement", {"displacement", "cmod"}) == "cmod";
+  if (t.has("cmod_rate") && !c.cmod_control)
+    t.fail("cmod_rate", "only used with control = \"cmod\"");
+  if (c.cmod_control && t.has("platen_velocity"))
+    t.fail("platen_velocity", "control = \"cmod\" drives the platen by cmod_rate");
+  c.cmod_rate =
+      t.quantity_or("cmod_rate", Dimension::Velocity, c.platen_velocity, Range::positive());
+  if (t.has("young_modulus") != t.has("tensile_strength"))
+    t.fail(t.has("young_modulus") ? "tensile_strength" : "young_modulus",
+           "the characteristic length E G_F / f_t^2 needs both young_modulus and "
+           "tensile_strength");
+  c.young_modulus = t.quantity_or("young_modulus", Dimension::Stress, 0, Range::left_open(0, 1e13));
+  c.tensile_strength =
+      t.quantity_or("tensile_strength", Dimension::Stress, 0, Range::left_open(0, 1e10));
+}
 
 LabTestControls read_controls(const InputTable& t) {
   t.reject_unknown_keys({"type",
@@ -70,16 +108,26 @@ LabTestControls read_controls(const InputTable& t) {
                          "max_genesis_floating_fraction",
                          "confining_stresses",
                          "preset",
-                         "shpb"});
+                         "shpb",
+                         "span",
+                         "bearing_width",
+                         "stop_load_fraction",
+                         "max_deflection",
+                         "young_modulus",
+                         "tensile_strength",
+                         "pin_friction",
+                         "control",
+                         "cmod_rate"});
   LabTestControls c;
   apply_test_preset(t, c);  // speed knobs of the preset; the keys below override them
-  const std::string type =
-      t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial", "shpb"});
+  const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial",
+                                             "shpb", "three_point_bending"});
   c.type = type == "uniaxial"         ? LabTestType::Uniaxial
            : type == "brazilian"      ? LabTestType::Brazilian
            : type == "direct_tension" ? LabTestType::DirectTension
            : type == "biaxial"        ? LabTestType::Biaxial
-                                      : LabTestType::Shpb;
+           : type == "shpb"           ? LabTestType::Shpb
+                                      : LabTestType::ThreePointBending;
   if (c.type == LabTestType::Shpb)
     read_shpb_controls(t, c);
   else if (t.has("shpb"))
@@ -134,6 +182,12 @@ LabTestControls read_controls(const InputTable& t) {
                                               c.genesis.max_broken_fraction, Range::closed(0, 1));
   c.genesis.max_floating_fraction = t.number_or(
       "max_genesis_floating_fraction", c.genesis.max_floating_fraction, Range::closed(0, 1));
+  if (c.type == LabTestType::ThreePointBending) read_bending_controls(t, c);
+  for (const char* key :
+       {"span", "bearing_width", "stop_load_fraction", "max_deflection", "young_modulus",
+        "tensile_strength", "pin_friction", "control", "cmod_rate"})
+    if (c.type != LabTestType::ThreePointBending && t.has(key))
+      t.fail(key, "only used by type = \"three_point_bending\"");
   if (c.type == LabTestType::Biaxial)
     c.confining_stresses = read_confining_stresses(t);
   else if (t.has("confining_stresses"))  // any unit suffix
@@ -208,6 +262,10 @@ LabTestInput read_lab_test(const std::filesystem::path& file) {
   return read_lab_test(InputTable::parse_file(file), file.parent_path());
 }
 
+double bearing_width(const LabTestControls& c, const Container& beam) {
+  return c.bearing_width > 0 ? c.bearing_width : kDefaultBearingFraction * beam.height;
+}
+
 void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input) {
   require_classes(input.materials, specimen.clumps.size(), input.specimen_path.string());
   const bool disc = specimen.container.shape == ContainerShape::Disc;
@@ -224,13 +282,32 @@ void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input
                          input.specimen_path.string() + " is a disc (use \"brazilian\")");
   if (specimen.disc_count() == 0)
     throw InputError(input.specimen_path.string(), "", "the specimen holds no discs");
+  const Container& beam = specimen.container;
+  if (type != LabTestType::ThreePointBending) {
+    if (beam.notched())
+      throw InputError(input.file, "test.type",
+                       std::string("a ") + lab_test_name(type) + " test needs an unnotched " +
+                           "specimen; " + input.specimen_path.string() +
+                           " is a notched beam (use \"three_point_bending\")");
+    return;
+  }
+  // The supports' plates must lie under the beam, and clear of the notch.
+  const LabTestControls& c = input.controls;
+  const double plate = bearing_width(c, beam);
+  std::ostringstream range;
+  range << "the supports (plates " << plate * 1e3 << " mm long at mid-span +- S/2) must lie "
+        << "under the " << beam.width * 1e3 << " mm beam and clear of the notch: S in ("
+        << (beam.notched() ? beam.notch_width : 0) * 1e3 + plate * 1e3 << ", "
+        << (beam.width - plate) * 1e3 << "] mm, got " << c.span * 1e3 << " mm";
+  if (c.span > beam.width - plate || c.span - plate <= (beam.notched() ? beam.notch_width : 0))
+    throw InputError(input.file, "test.span", range.str());
 }
 
 void LabHistory::reserve(std::size_t n) {
   step.reserve(n);
-  for (auto* v :
-       {&time, &axial_strain, &lateral_strain, &axial_stress, &confining_stress, &platen_force,
-        &kinetic_energy, &strain_energy, &friction_energy, &breakage_energy, &boundary_work})
+  for (auto* v : {&time, &axial_strain, &lateral_strain, &axial_stress, &confining_stress,
+                  &platen_force, &kinetic_energy, &strain_energy, &friction_energy,
+                  &breakage_energy, &boundary_work, &deflection, &cmod, &support_reaction})
     v->reserve(n);
   bonds_broken.reserve(n);
 }
@@ -247,25 +324,36 @@ void LabHistory::push_energies(const World& world, double boundary_work_so_far) 
 
 namespace {
 
-// How the specimen is loaded: two platens (walls) or two grip bands (prescribed bodies).
+// How the specimen is loaded: two platens (walls), two grip bands (prescribed bodies), or (three-
+// point bending) two fixed supports under the beam (bottom_wall and right_support) and the
+// loading platen (top_wall) on it.
 struct Loading {
   bool grips = false;
-  int bottom_wall = -1, top_wall = -1;
+  bool bending = false;
+  int bottom_wall = -1, top_wall = -1, right_support = -1;
   std::vector<std::int32_t> bottom_grip, top_grip;  // bodies
   double top_y0 = 0, bottom_y0 = 0;                 // m, reference of the travel
   double gauge_length = 0;                          // m, length the axial strain refers to
-  double section = 0;                               // m, W (or D) of the nominal stress
+  // m, the force (N/m) over this length and the thickness is the nominal stress: W (or D), or
+  // 2 H^2 / (3 S) of a beam (the flexural stress 3 P S / (2 t H^2))
+  double section = 0;
 
   // Force of the specimen on the loading pair, mean of the two ends (N per m), positive in the
-  // sense of the test (compression for platens, tension for grips).
+  // sense of the test (compression for platens, tension for grips); a beam: the platen's load P.
   double force(const World& w) const {
+    if (bending) return w.walls.fy[top_wall];
     if (!grips) return 0.5 * (w.walls.fy[top_wall] - w.walls.fy[bottom_wall]);
     double top = 0, bottom = 0;
     for (const std::int32_t b : top_grip) top += w.bodies.fy[b];
     for (const std::int32_t b : bottom_grip) bottom += w.bodies.fy[b];
     return 0.5 * (bottom - top);
   }
-  // Change of the distance between the two ends (m), positive in the sense of the test.
+  // Sum of the supports' reactions on a beam (N per m), upward positive.
+  double support_reaction(const World& w) const {
+    return -(w.walls.fy[bottom_wall] + w.walls.fy[right_support]);
+  }
+  // Change of the distance between the two ends (m), positive in the sense of the test; a beam:
+  // the load point's deflection (the supports stand still).
   double travel(const World& w) const {
     if (!grips) return (top_y0 - bottom_y0) - (w.walls.ay[top_wall] - w.walls.ay[bottom_wall]);
     return (w.bodies.y[top_grip.front()] - top_y0) - (w.bodies.y[bottom_grip.front()] - bottom_y0);
@@ -274,8 +362,8 @@ struct Loading {
   double work(const World& w, double dt) const {
     double p = 0;
     if (!grips) {
-      for (const int k : {bottom_wall, top_wall})
-        p -= w.walls.fx[k] * w.walls.vx[k] + w.walls.fy[k] * w.walls.vy[k];
+      for (const int k : {bottom_wall, top_wall, right_support})
+        if (k >= 0) p -= w.walls.fx[k] * w.walls.vx[k] + w.walls.fy[k] * w.walls.vy[k];
     } else {
       for (const auto* band : {&bottom_grip, &top_grip})
         for (const std::int32_t b : *band)
@@ -335,7 +423,8 @@ Walls make_jaws(const LabTestControls& c, const Discs& d, const Extent& e) {
 // wider than the specimen so a bulging specimen stays on them; or the curved jaws.
 Walls make_platens(const LabTestControls& c, const Discs& d, const Extent& e) {
   Walls platens;
-  if (c.type == LabTestType::DirectTension) return platens;
+  if (c.type == LabTestType::DirectTension || c.type == LabTestType::ThreePointBending)
+    return platens;
   if (c.curved_jaws) return make_jaws(c, d, e);
   const double y0 = e.ymin, y1 = e.ymax, x0 = e.xmin, x1 = e.xmax;
   const double over = c.platen_overhang * (x1 - x0);
@@ -346,11 +435,62 @@ Walls make_platens(const LabTestControls& c, const Discs& d, const Extent& e) {
   return platens;
 }
 
+// Height (m) at which a horizontal plate over [xa, xb] first touches the discs coming from
+// above (`from_above`, the loading platen: the highest touching height) or from below (a
+// support: the lowest). The beam's faces are rough at the scale of a disc, so a short plate
+// set at the specimen's extent could hang a fraction of a radius clear of the discs under it.
+double plate_height(const World& world, double xa, double xb, bool from_above) {
+  const Discs& d = world.discs;
+  double best = from_above ? -std::numeric_limits<double>::infinity()
+                           : std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    if (!d.active[i]) continue;
+    const double dx = std::max({xa - d.x[i], d.x[i] - xb, 0.0});
+    if (dx >= d.r[i]) continue;
+    const double reach = std::sqrt(d.r[i] * d.r[i] - dx * dx);
+    best = from_above ? std::max(best, d.y[i] + reach) : std::min(best, d.y[i] - reach);
+  }
+  return best;
+}
+
+// Three-point bending: short flat plates (walls) of length bearing_width, two supports under
+// the beam at mid-span +- S/2 and the loading platen on it at mid-span, each touching the
+// first disc in its way, the platen moving down at the platen velocity. The left support is
+// the pin of RILEM's pin-and-roller arrangement, a plate with friction pin_friction: the only
+// horizontal restraint, without which the 2D beam on frictionless plates is a mechanism that
+// drifts sideways off the platen (measured on a 40 x 160 mm beam: 0.5 mm/s, contact lost
+// within 6,000 steps). The other support and the platen take materials.wall. A wall's contact
+// includes its end points, so a plate's ends act as rounded edges (docs/lab_tests.md
+// "Three-point bending" says why plates and not rollers).
+Loading set_up_bending(World& world, const Specimen& specimen, const LabTestControls& c) {
+  const Container& beam = specimen.container;
+  const double xc = 0.5 * beam.width, half_span = 0.5 * c.span;
+  const double half_plate = 0.5 * bearing_width(c, beam);
+  Loading l;
+  l.bending = true;
+  const auto support = [&](double x) {
+    const double y = plate_height(world, x - half_plate, x + half_plate, false);
+    return world.add_wall(x - half_plate, y, x + half_plate, y);
+  };
+  l.bottom_wall = support(xc - half_span);
+  world.walls.friction[l.bottom_wall] = c.pin_friction;
+  l.right_support = support(xc + half_span);
+  const double top = plate_height(world, xc - half_plate, xc + half_plate, true);
+  l.top_wall = world.add_wall(xc + half_plate, top, xc - half_plate, top);
+  world.walls.vy[l.top_wall] = -c.platen_velocity;
+  l.bottom_y0 = world.walls.ay[l.bottom_wall];
+  l.top_y0 = top;
+  l.gauge_length = beam.height;
+  l.section = 2 * beam.height * beam.height / (3 * c.span);
+  return l;
+}
+
 Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInput& input,
                        const Walls& platens, const Extent& e) {
   const LabTestControls& c = input.controls;
   Loading l;
   const double v = c.platen_velocity;
+  if (c.type == LabTestType::ThreePointBending) return set_up_bending(world, specimen, c);
   if (c.type != LabTestType::DirectTension) {
     l.bottom_wall = world.walls.append(platens, 0);
     l.top_wall = world.walls.append(platens, 1);
@@ -386,6 +526,46 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
   l.gauge_length = height - 2 * band;
   l.section = specimen.container.width;
   return l;
+}
+
+// Three-point bending ending at max_deflection: below this fraction of the peak load the beam
+// has failed (a softening tail), above it the peak is not confirmed and the run is an error.
+constexpr double kTailLoadFraction = 0.5;
+
+// The RILEM figures of a finished three-point bending test from its history.
+BendingResult analyse_bending(const LabHistory& h, const Specimen& beam, const LabTestControls& c,
+                              double plate, const World& world) {
+  BendingResult b;
+  const Container& mould = beam.container;
+  b.span = c.span;
+  b.depth = mould.height;
+  b.notch_depth = mould.notch_depth;
+  b.length = mould.width;
+  b.bearing_width = plate;
+  const std::size_t peak = static_cast<std::size_t>(
+      std::max_element(h.platen_force.begin(), h.platen_force.end()) - h.platen_force.begin());
+  b.peak_load = h.platen_force[peak];
+  b.deflection_at_peak = h.deflection[peak];
+  b.cmod_at_peak = h.cmod[peak];
+  b.reaction_at_peak = h.support_reaction[peak];
+  const double ligament = b.depth - b.notch_depth;
+  b.flexural_strength = flexural_strength(b.peak_load, b.span, b.depth, kThickness);
+  b.net_flexural_strength = flexural_strength(b.peak_load, b.span, ligament, kThickness);
+  b.work_of_fracture = work_under_curve(h.deflection, h.platen_force);
+  b.final_deflection = h.deflection.back();
+  b.final_load = h.platen_force.back();
+  double mass = 0;  // kg/m, physical masses (density scaling leaves them)
+  for (const double m : world.bodies.mass) mass += m;
+  b.mass_between_supports = mass * b.span / b.length;
+  b.self_weight_work = b.mass_between_supports * kStandardGravity * b.final_deflection;
+  b.fracture_energy = rilem_fracture_energy(b.work_of_fracture, b.mass_between_supports,
+                                            b.final_deflection, ligament, kThickness);
+  b.fracture_energy_no_weight =
+      rilem_fracture_energy(b.work_of_fracture, 0, 0, ligament, kThickness);
+  if (c.young_modulus > 0 && c.tensile_strength > 0)
+    b.characteristic_length =
+        characteristic_length(c.young_modulus, b.fracture_energy, c.tensile_strength);
+  return b;
 }
 
 // A run where no bond has broken by this fraction of max_steps is warned about: the C30 UCS
@@ -440,6 +620,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   check_specimen_for_test(specimen, input);
   const auto wall_start = std::chrono::steady_clock::now();
   const LabTestControls& c = input.controls;
+  const bool bending = c.type == LabTestType::ThreePointBending;
   WorldSettings settings;
   input.materials.apply(settings);
   settings.local_damping = c.local_damping;
@@ -492,7 +673,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   const double time0 = world.time();
   world.refresh_neighbors();
   res.time_step = world.time_step();
-  res.width = c.type == LabTestType::Brazilian ? specimen.container.width : loading.section;
+  res.width =
+      c.type == LabTestType::Brazilian || bending ? specimen.container.width : loading.section;
   res.height = c.type == LabTestType::Brazilian ? specimen.container.width : loading.gauge_length;
 
   // Lateral strain and confining stress from the central region (middle gauge_fraction of H).
@@ -516,7 +698,22 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     warn(res,
          "every bond broke before the loading (genesis relaxation or consolidation): the "
          "test loads a cohesionless packing, and its peak is friction's");
-  PeakStopRule stop(c.stop, e.xmin, e.ymin, e.xmax, e.ymax, intact_bonds, world.cracks.size());
+  std::optional<CmodGauge> cmod;
+  StopRuleOptions stop_options = c.stop;
+  std::optional<CmodServo> servo;
+  if (bending && c.cmod_control) servo = CmodServo{c.cmod_rate, kCmodServoSpeedCap * c.cmod_rate};
+  if (bending) {
+    cmod.emplace(world, cleaned.container, e.ymin);
+    // The stop rule follows deflection / H as its strain.
+    const double depth = cleaned.container.height;
+    stop_options.max_strain =
+        (c.max_deflection > 0 ? c.max_deflection : kDefaultMaxDeflectionFraction * depth) / depth;
+    // The crack grows from the notch tip: a failure is a crack across half the ligament (the
+    // bands of the notch itself can hold none).
+    stop_options.damage_span = 0.5 * (depth - cleaned.container.notch_depth) / depth;
+  }
+  PeakStopRule stop(stop_options, e.xmin, e.ymin, e.xmax, e.ymax, intact_bonds,
+                    world.cracks.size());
   const long quiet_steps = static_cast<long>(kQuietFraction * static_cast<double>(c.max_steps));
   bool quiet_warned = false;
   // The stress (Pa) the peak and the stop rule follow: axial, or the deviator of a biaxial test.
@@ -536,6 +733,11 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
                                              : contact_stress(world, gauge_box)(0, 0));
     h.platen_force.push_back(force);
     h.push_energies(world, boundary_work);
+    if (bending) {
+      h.deflection.push_back(loading.travel(world));
+      h.cmod.push_back(cmod->opening(world));
+      h.support_reaction.push_back(loading.support_reaction(world));
+    }
     const StopReason reason =
         stop.observe(h.axial_strain.back(), last_loading_stress(), world.cracks, at_max_steps);
     if (hooks.progress) hooks.progress(h, stop.peak(), c.max_steps);
@@ -564,6 +766,9 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   while (reason == StopReason::None) {
     if (confinement) confinement->update_targets(world);
+    if (servo)
+      world.walls.vy[loading.top_wall] =
+          -servo->platen_velocity(cmod->opening(world), world.time() - time0, world.time_step());
     world.step();
     boundary_work += loading.work(world, world.time_step());
     const long s = world.step_count() - step0;
@@ -572,11 +777,22 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     if (hooks.snapshot && c.snapshot_interval > 0 && s % c.snapshot_interval == 0)
       hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   }
-  if (reason != StopReason::PostPeakDrop && reason != StopReason::StoppedByUser) {
+  // A beam whose load has passed its peak and fallen well below it but still carries a tail at
+  // max_deflection ends there with its figures; the work of the missing tail is not counted.
+  if (bending && reason == StopReason::MaxStrain &&
+      h.platen_force.back() <
+          kTailLoadFraction * *std::max_element(h.platen_force.begin(), h.platen_force.end()))
+    reason = StopReason::MaxDeflection;
+  const bool bending_tail = reason == StopReason::MaxDeflection;
+  if (reason != StopReason::PostPeakDrop && reason != StopReason::StoppedByUser && !bending_tail) {
     std::ostringstream msg;
     msg << "the " << lab_test_name(c.type) << " test stopped at "
         << (reason == StopReason::MaxSteps ? "max_steps = " + std::to_string(c.max_steps)
-                                           : "max_strain = " + std::to_string(c.stop.max_strain))
+            : bending
+                ? "max_deflection = " +
+                      std::to_string(stop_options.max_strain * cleaned.container.height * 1e3) +
+                      " mm"
+                : "max_strain = " + std::to_string(c.stop.max_strain))
         << " (stop_reason " << stop_reason_name(reason)
         << ") without a confirmed peak, so no strength is reported: "
         << stop.missing_conditions(h.axial_strain.back(), last_loading_stress()) << ". Largest "
@@ -617,6 +833,18 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
       break;
     case LabTestType::Shpb:
       break;  // returned above
+    case LabTestType::ThreePointBending:
+      res.bending = analyse_bending(h, cleaned, c, bearing_width(c, cleaned.container), world);
+      res.tensile_strength = res.bending.flexural_strength;
+      if (bending_tail) {
+        std::ostringstream msg;
+        msg << "the beam still carried " << h.platen_force.back() / res.bending.peak_load
+            << " x its peak load at max_deflection = " << res.bending.final_deflection * 1e3
+            << " mm (stop_load_fraction " << c.stop.stop_fraction
+            << "): W0 and G_F leave out the work of the rest of the tail and are low";
+        warn(res, msg.str());
+      }
+      break;
   }
   res.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -2,7 +2,9 @@
 // Lab tests on a bonded specimen (SPEC 6): uniaxial compression between rigid platens, the
 // Brazilian disc between flat platens, direct tension by grip bands of discs, and one biaxial
 // test (platens plus servo side walls at a confining stress; dem/biaxial_test.hpp runs the
-// series of confinements), and the split Hopkinson pressure bar (dem/shpb_test.hpp). The test file
+// series of confinements), the split Hopkinson pressure bar (dem/shpb_test.hpp), and the
+// notched-beam three-point bending test (two supports under the beam, a loading platen on top at
+// mid-span; dem/three_point_bending.hpp). The test file
 // (docs/lab_tests.md) names the specimen, the material table and the test controls; a run does the
 // material genesis (SPEC 3.6), loads the specimen until the stop rule confirms its peak
 // (dem/stop_rule.hpp), and returns the histories, the cracks and the lab figures.
@@ -22,12 +24,13 @@
 #include "dem/material_table.hpp"
 #include "dem/shpb_test.hpp"
 #include "dem/stop_rule.hpp"
+#include "dem/three_point_bending.hpp"
 #include "dem/world.hpp"
 
 namespace cdem::dem {
 
-enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial, Shpb };
-// "uniaxial", "brazilian", "direct_tension", "biaxial", "shpb"
+enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial, Shpb, ThreePointBending };
+// "uniaxial", "brazilian", "direct_tension", "biaxial", "shpb", "three_point_bending"
 const char* lab_test_name(LabTestType type);
 
 struct LabTestControls {
@@ -63,7 +66,31 @@ struct LabTestControls {
   double confining_stress = 0;
   ConfinementOptions confinement{};
   ShpbOptions shpb{};  // the bars and the pulse of type "shpb" ([test.shpb])
+  // Three-point bending (docs/lab_tests.md "Three-point bending"): the span S between the two
+  // supports, the length of the support and loading plates, the deflection at which the run
+  // ends, and E and f_t of the material for the characteristic length (0 = not given).
+  double span = 0;              // m
+  double bearing_width = 0;     // m; 0 = kDefaultBearingFraction x the beam's depth
+  double max_deflection = 0;    // m; 0 = kDefaultMaxDeflectionFraction x the beam's depth
+  double young_modulus = 0;     // Pa
+  double tensile_strength = 0;  // Pa
+  double pin_friction = 0.5;    // friction coefficient of the pinned (left) support
+  // Loading: the platen at platen_velocity, or driven so the CMOD grows at cmod_rate
+  // (dem/three_point_bending.hpp, CmodServo), never faster than kCmodServoSpeedCap x cmod_rate.
+  bool cmod_control = false;
+  double cmod_rate = 0;  // m/s
 };
+
+// The CMOD servo's cap on the platen speed, in units of the CMOD rate.
+constexpr double kCmodServoSpeedCap = 4;
+
+// Three-point bending defaults, as fractions of the beam's depth H.
+constexpr double kDefaultBearingFraction = 0.1;          // plates 10 mm long on a 100 mm beam
+constexpr double kDefaultMaxDeflectionFraction = 0.005;  // 0.5 mm on a 100 mm beam
+constexpr double kDefaultStopLoadFraction = 0.05;        // RILEM-style end of the tail
+// The platen velocity of a bending test without platen_velocity: this fraction of the preset's
+// (or the default) velocity (docs/lab_tests.md "Three-point bending", loading rate).
+constexpr double kBendingVelocityFactor = 0.05;
 
 struct LabTestInput {
   std::string file;            // the test file, as given
@@ -88,8 +115,13 @@ LabTestInput read_lab_test(const std::filesystem::path& file);
 LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path& base_dir);
 
 // Throws InputError when the specimen's shape does not suit the test (Brazilian needs a disc,
-// uniaxial, direct tension and biaxial a rectangle).
+// uniaxial, direct tension and biaxial a rectangle without a notch, three-point bending a
+// rectangle whose supports and plates fit under and on it).
 void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input);
+
+// Three-point bending: the length of the support and loading plates (m), test.bearing_width or
+// its default for the beam.
+double bearing_width(const LabTestControls& controls, const Container& beam);
 
 // Histories, one entry per record (every history_interval steps, plus the last step). Stresses
 // and strains are positive in the sense the test loads the specimen: compression for uniaxial
@@ -111,12 +143,37 @@ struct LabHistory {
   std::vector<double> breakage_energy;   // J/m, released by bond failures
   std::vector<double> boundary_work;     // J/m, done by the platens (grips) on the specimen
   std::vector<long> bonds_broken;
+  // Three-point bending only (empty otherwise): the platen's load P is platen_force, the nominal
+  // flexural stress 3 P S / (2 t H^2) is axial_stress and deflection / H is axial_strain.
+  std::vector<double> deflection;        // m, load point relative to the supports
+  std::vector<double> cmod;              // m, crack-mouth opening (dem/three_point_bending.hpp)
+  std::vector<double> support_reaction;  // N (per m), sum of the two supports' reactions
 
   void reserve(std::size_t n);
   std::size_t size() const { return time.size(); }
   // Appends the energies of a record (kinetic, strain, friction, breakage from the world; the
   // boundary work so far, J/m) and the bonds broken.
   void push_energies(const World& world, double boundary_work_so_far);
+};
+
+// The figures of a three-point bending test (RILEM TC-50 FMC), per metre of thickness where a
+// load or a work: docs/lab_tests.md "Three-point bending".
+struct BendingResult {
+  double span = 0, depth = 0, notch_depth = 0, length = 0;  // m: S, H, a0, L
+  double bearing_width = 0;                                 // m, support and loading plates
+  double peak_load = 0;                                     // N/m, P_max
+  double deflection_at_peak = 0, cmod_at_peak = 0;          // m
+  double reaction_at_peak = 0;                              // N/m, sum of the supports
+  double flexural_strength = 0;                             // Pa, 3 P_max S / (2 t H^2)
+  double net_flexural_strength = 0;                         // Pa, 3 P_max S / (2 t (H - a0)^2)
+  double work_of_fracture = 0;           // J/m, W0: area under P-delta to the stop
+  double final_deflection = 0;           // m, delta0: the deflection at the stop
+  double final_load = 0;                 // N/m, P at the stop
+  double mass_between_supports = 0;      // kg/m, beam mass x S / L
+  double self_weight_work = 0;           // J/m, m g delta0
+  double fracture_energy = 0;            // N/m, RILEM G_F = (W0 + m g delta0) / (t (H - a0))
+  double fracture_energy_no_weight = 0;  // N/m, W0 / (t (H - a0)): the DEM beam has no weight
+  double characteristic_length = 0;      // m, E G_F / f_t^2 (0 when E or f_t not given)
 };
 
 struct LabTestResult {
@@ -136,6 +193,7 @@ struct LabTestResult {
   double peak_deviator = 0;             // Pa, largest sigma_1 - sigma_3 of the history
   ConsolidationReport consolidation;    // isotropic phase (none when unconfined)
   double tensile_strength = 0;          // Pa, Brazilian (2 P / pi D t) and direct tension (F / W t)
+  BendingResult bending;                // three-point bending
   long steps = 0;
   double time_step = 0;         // s, at the start of loading (after bond installation)
   double wall_time = 0;         // s

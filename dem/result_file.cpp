@@ -312,6 +312,18 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_scalar_attr<double>(s, "time_step_s", r.time_step);
     write_scalar_attr<long>(s, "gauge_discs", static_cast<long>(r.gauge_discs));
     if (r.type == LabTestType::Shpb) write_shpb(where, r.shpb);
+    if (r.type == LabTestType::ThreePointBending) {
+      const BendingResult& b = r.bending;
+      write_scalar_attr<double>(s, "span_m", b.span);
+      write_scalar_attr<double>(s, "notch_depth_m", b.notch_depth);
+      write_scalar_attr<double>(s, "peak_load_N_per_m", b.peak_load);
+      write_scalar_attr<double>(s, "net_flexural_strength_Pa", b.net_flexural_strength);
+      write_scalar_attr<double>(s, "work_of_fracture_J_per_m", b.work_of_fracture);
+      write_scalar_attr<double>(s, "final_deflection_m", b.final_deflection);
+      write_scalar_attr<double>(s, "self_weight_work_J_per_m", b.self_weight_work);
+      write_scalar_attr<double>(s, "fracture_energy_N_per_m", b.fracture_energy);
+      write_scalar_attr<double>(s, "characteristic_length_m", b.characteristic_length);
+    }
     if (r.type == LabTestType::Biaxial) {
       write_scalar_attr<double>(s, "confining_stress_Pa", r.confining_stress);
       write_scalar_attr<double>(s, "confining_stress_at_peak_Pa", r.confining_stress_at_peak);
@@ -353,6 +365,11 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_array(hg, "breakage_energy", h.breakage_energy, "J/m");
     write_array(hg, "boundary_work", h.boundary_work, "J/m");
     write_array(hg, "bonds_broken", h.bonds_broken);
+    if (r.type == LabTestType::ThreePointBending) {
+      write_array(hg, "deflection", h.deflection, "m", "load point relative to the supports");
+      write_array(hg, "cmod", h.cmod, "m", "crack-mouth opening, opening positive");
+      write_array(hg, "support_reaction", h.support_reaction, "N/m", "sum of the two supports");
+    }
 
     std::vector<double> t, x, y, xy, energy;
     std::vector<std::uint8_t> mode, cls;

@@ -22,6 +22,8 @@ const char* stop_reason_name(StopReason reason) {
       return "stopped_by_user";
     case StopReason::PulsePassed:
       return "pulse_passed";
+    case StopReason::MaxDeflection:
+      return "max_deflection";
   }
   return "?";
 }

@@ -14,6 +14,7 @@ int Walls::add(double ax_, double ay_, double bx_, double by_) {
   by.push_back(by_);
   arc.emplace_back();
   for (auto* v : {&vx, &vy, &fx, &fy, &sxx, &sxy, &syx, &syy}) v->push_back(0.0);
+  friction.push_back(-1.0);
   return static_cast<int>(ax.size()) - 1;
 }
 
@@ -31,6 +32,7 @@ int Walls::add_arc(double ox, double oy, double radius, double mid_angle, double
 int Walls::append(const Walls& from, std::size_t k) {
   const int w = add(from.ax[k], from.ay[k], from.bx[k], from.by[k]);
   arc[w] = from.arc[k];
+  friction[w] = from.friction[k];
   vx[w] = from.vx[k];
   vy[w] = from.vy[k];
   return w;

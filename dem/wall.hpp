@@ -26,6 +26,9 @@ struct Walls {
   std::vector<double> ax, ay, bx, by;  // m, segment (or arc) end points
   std::vector<WallArc> arc;            // the arc of each wall (radius 0: a segment)
   std::vector<double> vx, vy;          // m/s, prescribed translation velocity
+  // Friction coefficient of this wall's contacts; < 0 (the default) = the wall class's law
+  // (materials.wall). Set for the pinned support of a bending test.
+  std::vector<double> friction;
   // Of the last force pass: force the discs exert on the wall and the first moment of that
   // force, sum of (contact point - mould centre) (x) force, for boundary stress measurements.
   std::vector<double> fx, fy;              // N

@@ -22,18 +22,32 @@ std::string mm(double metres) {
   return s.str();
 }
 
+// A notch deeper than this fraction of the depth leaves too short a ligament for a bending
+// test (RILEM TC-50 FMC asks a0 = H/2; JCI-S-001 0.3 H); deeper cuts are typos more likely.
+constexpr double kMaxNotchDepthFraction = 0.6;
+
 Container read_container(const InputTable& t) {
-  t.reject_unknown_keys({"shape", "width", "height", "diameter"});
+  t.reject_unknown_keys({"shape", "width", "height", "diameter", "notch_depth", "notch_width"});
   Container c;
-  const std::string shape = t.string("shape", {"rectangle", "disc"});
+  const std::string shape = t.string("shape", {"rectangle", "disc", "beam"});
   const Range size = Range::left_open(0, kMaxSize);
-  if (shape == "rectangle") {
-    c.shape = ContainerShape::Rectangle;
-    c.width = t.quantity("width", Dimension::Length, size);
-    c.height = t.quantity("height", Dimension::Length, size);
-  } else {
+  if (shape != "beam")
+    for (const char* key : {"notch_depth", "notch_width"})
+      if (t.has(key))
+        t.fail(key, "a notch is cut only in shape = \"beam\" (this specimen is a " + shape + ")");
+  if (shape == "disc") {
     c.shape = ContainerShape::Disc;
     c.width = c.height = t.quantity("diameter", Dimension::Length, size);
+    return c;
+  }
+  c.shape = ContainerShape::Rectangle;
+  c.width = t.quantity("width", Dimension::Length, size);
+  c.height = t.quantity("height", Dimension::Length, size);
+  if (shape == "beam") {
+    // Beam: width = length L, height = depth H; the notch is cut at mid-span from the bottom.
+    c.notch_depth = t.quantity("notch_depth", Dimension::Length,
+                               Range::left_open(0, kMaxNotchDepthFraction * c.height));
+    c.notch_width = t.quantity("notch_width", Dimension::Length, Range::open(0, c.width));
   }
   return c;
 }

@@ -234,11 +234,17 @@ bool separated_by(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen
   });
 }
 
+std::vector<Eigen::Vector2d> notch_polygon(const Container& mould) {
+  const double x0 = 0.5 * (mould.width - mould.notch_width), x1 = x0 + mould.notch_width;
+  return {{x0, 0}, {x1, 0}, {x1, mould.notch_depth}, {x0, mould.notch_depth}};
+}
+
 bool inside_with_clearance(const std::vector<Eigen::Vector2d>& polygon, const Container& mould,
                            double clearance) {
   // A convex polygon is inside a convex region when its vertices are, so only vertices are
   // tested: against the rectangle shrunk by the clearance, or the disc of radius D/2 - c.
   if (mould.shape == ContainerShape::Rectangle) {
+    if (mould.notched() && !separated_by(polygon, notch_polygon(mould), clearance)) return false;
     return filtered([&]<class NT>() {
       const NT c(clearance), w(mould.width), h(mould.height);
       for (const auto& v : polygon) {

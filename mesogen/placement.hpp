@@ -58,8 +58,12 @@ PlacementResult place_among(const Container& mould, const std::vector<AggregateD
 std::vector<std::pair<std::size_t, std::size_t>> pairs_closer_than(
     const std::vector<PlacedAggregate>& polygons, double gap);
 
+// The notch void of a notched beam as a CCW rectangle (m).
+std::vector<Eigen::Vector2d> notch_polygon(const Container& mould);
+
 // Exact tests (CGAL exact predicates).
-// Every point of the polygon at distance >= clearance from the mould boundary, inside it.
+// Every point of the polygon at distance >= clearance from the mould boundary, inside it, and
+// (a notched beam) at distance >= clearance from the notch void.
 bool inside_with_clearance(const std::vector<Eigen::Vector2d>& polygon, const Container& mould,
                            double clearance);
 // The two convex polygons do not intersect and are at least `gap` apart.

@@ -175,6 +175,9 @@ void draw_specimen_png(const Specimen& s, const std::filesystem::path& png, int 
     cairo_arc(cr, c.x(), c.y(), 0.5 * s.container.width, 0, 2 * std::numbers::pi);
   } else {
     cairo_rectangle(cr, 0, 0, s.container.width, s.container.height);
+    const Container& c = s.container;
+    if (c.notched())  // the void at mid-span, from the bottom edge
+      cairo_rectangle(cr, 0.5 * (c.width - c.notch_width), 0, c.notch_width, c.notch_depth);
   }
   cairo_stroke(cr);
   cairo_restore(cr);

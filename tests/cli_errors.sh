@@ -47,6 +47,21 @@ expect misspelt_key 2 "unknown key" "$(variant misspelt_key 's/^porosity = 0.12/
 expect bad_unit 2 "unknown unit" "$(variant bad_unit 's/^density_kg_m3 = 2000/density = "2000 furlongs"/')"
 expect toml_syntax 2 "TOML syntax error" "$(variant toml_syntax 's/^seed = 1/seed = = 1/')"
 expect not_a_file 1 "" "$work/does_not_exist.toml"
+# The notched beam (samples/beam_specimen.toml): notch deeper than 0.6 H, of no width or wider
+# than the beam, and a notch on a disc or a plain rectangle.
+beam="$SRC/samples/beam_specimen.toml"
+beam_variant() { sed -e "$2" "$beam" > "$work/$1.toml"; echo "$work/$1.toml"; }
+expect notch_too_deep 2 "specimen.notch_depth_mm.*(0, 60\] mm, got 61" \
+  "$(beam_variant notch_too_deep 's/^notch_depth_mm = 30/notch_depth_mm = 61/')"
+expect notch_width_zero 2 "specimen.notch_width_mm.*(0, 400) mm, got 0" \
+  "$(beam_variant notch_width_zero 's/^notch_width_mm = 4/notch_width_mm = 0/')"
+expect notch_wider_than_beam 2 "specimen.notch_width_mm.*(0, 400) mm, got 400" \
+  "$(beam_variant notch_wider_than_beam 's/^notch_width_mm = 4/notch_width_mm = 400/')"
+expect notch_missing 2 "specimen.notch_depth" "$(beam_variant notch_missing '/^notch_depth_mm/d')"
+expect notch_on_disc 2 "specimen.notch_depth.*only in shape = \"beam\"" \
+  "$(beam_variant notch_on_disc 's/^shape = "beam"/shape = "disc"\ndiameter_mm = 100/; /^width_mm/d; /^height_mm/d')"
+expect notch_on_rectangle 2 "specimen.notch_depth.*only in shape = \"beam\"" \
+  "$(beam_variant notch_on_rectangle 's/^shape = "beam"/shape = "rectangle"/')"
 
 # An unreachable content ends in bounded time, says what it reached, exits 3, writes nothing.
 cat > "$work/unreachable.toml" <<'TOML'

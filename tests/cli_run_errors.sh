@@ -103,6 +103,63 @@ porosity = 0.12
 [test]
 type = \"biaxial\"
 confining_stresses_MPa = [1, 3]"
+# Three-point bending: a beam generated inline (mortar only, 80 x 20 mm, notch 6 mm), then a
+# span longer than the beam, supports off its ends, and a notched beam under another test.
+beam_spec='[specimen]
+shape = "beam"
+width_mm = 80
+height_mm = 20
+notch_depth_mm = 6
+notch_width_mm = 1
+[specimen.mortar]
+r_mean_mm = 0.5'
+expect bending_span_too_long "test.span.*(3, 78\] mm, got 100 mm" "materials = \"materials.toml\"
+$beam_spec
+[test]
+type = \"three_point_bending\"
+span_mm = 100"
+expect bending_supports_off_beam "test.span.*under the 80 mm beam" "materials = \"materials.toml\"
+$beam_spec
+[test]
+type = \"three_point_bending\"
+span_mm = 76
+bearing_width_mm = 6"
+# The keys of a bending test on an (unread) specimen: each case adds its bad key.
+bending_head="specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"three_point_bending\"
+span_mm = 60"
+expect bending_span_missing "test.span" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"three_point_bending\""
+expect bending_stop_fraction "test.stop_fraction.*stop_load_fraction" "$bending_head
+stop_fraction = 0.5"
+expect bending_one_of_e_ft "test.tensile_strength" "$bending_head
+young_modulus_GPa = 30"
+expect bending_cmod_rate_displacement "test.cmod_rate.*control = \"cmod\"" "$bending_head
+cmod_rate_mm_s = 0.5"
+expect bending_cmod_with_velocity "test.platen_velocity.*cmod" "$bending_head
+control = \"cmod\"
+platen_velocity_mm_s = 0.5"
+expect span_on_uniaxial "test.span.*three_point_bending" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"uniaxial\"
+span_mm = 60"
+expect notched_beam_uniaxial "test.type.*notched beam" "materials = \"materials.toml\"
+$beam_spec
+$good"
+expect bending_on_disc "test.type" "materials = \"materials.toml\"
+[specimen]
+shape = \"disc\"
+diameter_mm = 8
+[specimen.mortar]
+r_mean_mm = 0.5
+[test]
+type = \"three_point_bending\"
+span_mm = 6"
 # Flat-joint materials (docs/flat_joint.md): a copy of the C30 flat-joint sample edited by sed;
 # the message must name the full key and its allowed range.
 fj_case() {
