@@ -214,6 +214,23 @@ TEST(CalibrateInput, ReadsTheFlatJointSampleWithDirectTension) {
   }
 }
 
+// Every calibration file shipped in samples/ reads (its tests, generators and material start
+// values included).
+TEST(CalibrateInput, ReadsEverySampleCalibration) {
+  int files = 0;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::filesystem::path(CDEM_SOURCE_DIR) / "samples")) {
+    const std::string name = e.path().filename().string();
+    if (name.find("_calibrate") == std::string::npos ||
+        name.find("_calibrate_specimen") != std::string::npos ||
+        name.find("_ucs") != std::string::npos || name.find("_tension") != std::string::npos)
+      continue;
+    EXPECT_NO_THROW(read_calibration_input(e.path())) << name;
+    ++files;
+  }
+  EXPECT_GE(files, 6);
+}
+
 TEST(CalibrateInput, RejectsBadInput) {
   const std::string head = kC30Targets;
   expect_input_error(make_calibration("inverted", head,
