@@ -10,7 +10,7 @@ packages=(
   libbox2d-dev libhdf5-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev libpagmo-dev
   libopenmpi-dev openmpi-bin
-  python3 python3-h5py python3-numpy python3-matplotlib python3-scipy
+  python3 python3-h5py python3-numpy python3-matplotlib python3-scipy python3-meshio
   pybind11-dev python3-dev python3-pytest
 )
 sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
