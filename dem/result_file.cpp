@@ -163,10 +163,6 @@ std::vector<NamedPath> ResultFile::outputs(const std::string& flag,
           {flag + " (its cracks XDMF file)", xdmf[2]}};
 }
 
-std::filesystem::path ResultFile::xdmf_path() const {
-  return xdmf_paths(out_.target())[0];
-}
-
 void ResultFile::snapshot(const World& world, long step, double time) {
   const Discs& d = world.discs;
   H5::Group root = file_->openGroup(group_).openGroup("snapshots");

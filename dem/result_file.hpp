@@ -44,7 +44,6 @@ class ResultFile {
   // The same for a biaxial series: one group per confinement, the envelope in /summary.
   void commit(const BiaxialSeries& series);
 
-  std::filesystem::path xdmf_path() const;
   // The XDMF companions of a result file `target`: discs, bonds, cracks.
   static std::array<std::filesystem::path, 3> xdmf_paths(const std::filesystem::path& target);
   // The result file `target` and its companions, named after the option that gave it (`flag`,
