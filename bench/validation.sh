@@ -24,10 +24,13 @@
 # so the script resumes and can be called test by test. Results in DIR (default
 # out/validation/<materials name>_<preset>): results.{csv,md} (per seed, mean, SD, CV) and
 # design.{csv,md}; a failed run leaves its log (*.log) and no summary, and the tables say n.
+# Runs go at `nice -n ${CDEM_NICE:-19}`: a background default; set CDEM_NICE=0 when the script is
+# the machine's main job (at 19 it crawls beside any compile).
 set -euo pipefail
 src="$(cd "$(dirname "$0")/.." && pwd)"
 
-usage() { sed -n '2,24p' "$0" >&2; exit "${1:-2}"; }
+usage() { sed -n '2,28p' "$0" >&2; exit "${1:-2}"; }
+niceness="${CDEM_NICE:-19}"
 [ $# -ge 1 ] || usage
 case "$1" in -h|--help) usage 0 ;; esac
 materials="$1"; shift
@@ -76,7 +79,7 @@ specimen() {  # recipe seed -> path; generated once, under a lock (parallel call
   local h5="$specimens/$1_$2.h5"
   (
     flock 9
-    [ -f "$h5" ] || nice -n 19 "$cdem" generate "$specimens/$1.toml" -o "$h5" --seed "$2" -q \
+    [ -f "$h5" ] || nice -n "$niceness" "$cdem" generate "$specimens/$1.toml" -o "$h5" --seed "$2" -q \
       --summary "$specimens/$1_$2.json" > "$specimens/$1_$2.log" 2>&1
   ) 9> "$h5.lock"
   echo "$h5"
@@ -105,7 +108,7 @@ run() {  # label type recipe materials seed [pictures]
   local extra=()
   [ -z "$pics" ] ||
     extra=(--crack-map "$out/${label}_cracks.png" --plot "$out/${label}_stress_strain.png")
-  if nice -n 19 "$cdem" run "$out/$label.toml" --summary "$out/$label.json" -q "${extra[@]}" \
+  if nice -n "$niceness" "$cdem" run "$out/$label.toml" --summary "$out/$label.json" -q "${extra[@]}" \
     > "$out/$label.log" 2>&1; then
     echo "done $label"
   else
