@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "calib/shortest_number.hpp"
@@ -31,6 +32,12 @@ constexpr double kNuExponentPrior = 0.7;
 // small change of the parameters moves the failure path, and a secant across such a jump would
 // make a wild step (measured on the C30 sample: a slope of 3.4 where the physics says 1).
 constexpr double kExponentSpread = 2.0;
+// A step shorter than this (Euclidean norm of the change of the log scales) does not update the
+// sensitivities: one specimen's nu and strengths move by about 1 % between nearby parameter sets
+// for reasons other than the step (the failure path; the strain window of E and nu), which across
+// a 1.7 % step of kn/ks turned a slope of 0.9 into 0.41 on the C30 recipe (report of
+// docs/calibration_runs/c30_flat_joint_published_recipe_report.md).
+constexpr double kMinSecantStep = 0.05;
 
 bool in_group(const FastGroup& g, ParameterRole role) {
   return std::find(g.roles.begin(), g.roles.end(), role) != g.roles.end();
@@ -180,26 +187,48 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
     std::vector<double> scales, responses;
   };
   std::vector<Good> good;  // successful iterations, in order
-  const auto log_slope = [&](std::size_t g) {
-    // The last secant over a step of this group's scale large enough to measure.
-    for (std::size_t b = good.size() - 1; b-- > 0;) {
-      const double dx = std::log(good.back().scales[g] / good[b].scales[g]);
-      if (std::abs(dx) < 0.01) continue;
-      const double slope = std::log(good.back().responses[g] / good[b].responses[g]) / dx;
-      const double prior = groups[g].prior_exponent;
-      if (std::isfinite(slope) && slope > 0)
-        return std::clamp(slope, prior / kExponentSpread, prior * kExponentSpread);
-      break;
-    }
-    return groups[g].prior_exponent;
-  };
-  // Newton step of every reachable group towards its target from responses y; marks a target out
-  // of reach when its scale already sits on the bound the step points past.
-  const auto correct = [&](const std::vector<double>& y) {
+
+  // Sensitivities J(i, j) = d ln(response i) / d ln(scale j), from the priors (each target moves
+  // with its own group only) and Broyden's update along every step long enough to measure: a step
+  // that moves several groups at once is attributed to all of them, and the couplings the priors
+  // leave out (kn/ks moves E as well as nu) are learnt where a step shows them.
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
+  for (std::size_t g = 0; g < n; ++g) J(g, g) = groups[g].prior_exponent;
+  const auto learn = [&](const Good& from, const Good& to) {
+    Eigen::VectorXd dx(n), dy(n);
     for (std::size_t g = 0; g < n; ++g) {
-      if (!reachable[g]) continue;
+      dx[g] = std::log(to.scales[g] / from.scales[g]);
+      dy[g] = std::log(to.responses[g] / from.responses[g]);
+    }
+    if (!dy.allFinite() || dx.norm() < kMinSecantStep) return;
+    J += (dy - J * dx) * dx.transpose() / dx.squaredNorm();
+    for (std::size_t g = 0; g < n; ++g) {  // the safeguard of the diagonal secants, kept
+      const double prior = groups[g].prior_exponent;
+      J(g, g) = J(g, g) > 0 ? std::clamp(J(g, g), prior / kExponentSpread, prior * kExponentSpread)
+                            : prior;
+    }
+  };
+  // Newton step of the reachable groups towards their targets from responses y (J restricted to
+  // them; a singular J falls back to its diagonal); marks a target out of reach when its scale
+  // already sits on the bound the step points past.
+  const auto correct = [&](const std::vector<double>& y) {
+    std::vector<std::size_t> free;
+    for (std::size_t g = 0; g < n; ++g)
+      if (reachable[g]) free.push_back(g);
+    const auto m = static_cast<Eigen::Index>(free.size());
+    Eigen::MatrixXd A(m, m);
+    Eigen::VectorXd miss(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      miss[i] = std::log(input.target_value(groups[free[i]].target) / y[free[i]]);
+      for (Eigen::Index j = 0; j < m; ++j) A(i, j) = J(free[i], free[j]);
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+    Eigen::VectorXd step = lu.isInvertible() ? Eigen::VectorXd(lu.solve(miss))
+                                             : Eigen::VectorXd(miss.cwiseQuotient(A.diagonal()));
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const std::size_t g = free[i];
       const double t = input.target_value(groups[g].target);
-      const double wanted = scales[g] * std::exp(std::log(t / y[g]) / log_slope(g));
+      const double wanted = scales[g] * std::exp(step[i]);
       const double next = std::clamp(wanted, groups[g].scale_lower, groups[g].scale_upper);
       const bool clamped = next != wanted;
       if (clamped && std::abs(std::log(next / scales[g])) < 1e-12 &&
@@ -256,6 +285,7 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
     }
     result.iterations.push_back(row);
     good.push_back({scales, y});
+    if (good.size() > 1) learn(good[good.size() - 2], good.back());
     result.calibrated = fast_values(input, groups, scales);
     if (all_met) {
       result.converged = result.out_of_reach.empty();
@@ -280,7 +310,9 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
   if (!result.out_of_reach.empty()) result.converged = false;
   if (!result.converged) return result;
 
-  // Verification, and a correction on the verification mean when it misses.
+  // Verification, and a correction on the verification mean when it misses. Two verifications
+  // on the same specimens make a secant of their own (free of the calibration specimen's bias).
+  std::optional<Good> verified;
   for (int round = 0; round <= input.fast.max_refinements; ++round) {
     const auto values = fast_values(input, groups, scales);
     auto v = verify(simulator, input, result, values, "verify_" + std::to_string(round + 1));
@@ -300,6 +332,8 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
       if (!std::isfinite(mean[g])) usable = false;
     }
     if (!usable) break;
+    if (verified) learn(*verified, {scales, mean});
+    verified = Good{scales, mean};
     correct(mean);
     if (!result.out_of_reach.empty()) {
       result.converged = false;

@@ -6,9 +6,11 @@
 //   E -> moduli, nu -> stiffness ratios, sigma_u or sigma_t -> all bond strengths
 //   (both strengths as targets: sigma_t -> tensile strengths, sigma_u -> shear strengths).
 // From a semi-analytical start, each iteration runs one simulation and corrects every scale by
-// a Newton step in log space whose slope is the last secant (1 before there is one: the
-// proportional correction). Converged within the tolerance, the set is verified on independent
-// specimens, and corrected once more on the verification mean if that misses.
+// a Newton step in log space on the sensitivities d ln(response) / d ln(scale): the priors (1 per
+// group, no coupling: the proportional correction) updated by Broyden's rule along every step
+// long enough to measure, so couplings such as kn/ks moving E are learnt. Converged within the
+// tolerance, the set is verified on independent specimens, and corrected on the verification
+// mean if that misses (two verifications give a secant of their own).
 #include <string>
 #include <vector>
 

@@ -93,6 +93,14 @@ class AnalyticModel : public Simulator {
   // Strength of every specimen but the calibration one, relative to it (1 = no bias): the
   // calibration specimen on the weak side of the others, as seed 1 of the C30 sample is.
   double other_specimens_strength = 1.0;
+  // Poisson's ratio of every specimen but the calibration one, relative to it (as on the C30
+  // recipe with flat joints: seed 1 measured 0.196, seeds 2-6 0.215 on average).
+  double other_specimens_nu = 1.0;
+  // d ln(E) / d ln(kn/ks) and d ln(nu) / d ln(kn/ks): at a fixed E*, a softer shear spring makes
+  // the assembly softer (measured on the C30 recipe with flat joints, verification 1 -> 2 of
+  // docs/calibration_runs/c30_flat_joint_published_recipe_report.md: about -0.5 and 0.9).
+  double kratio_exponent_E = -0.15;
+  double kratio_exponent_nu = 0.6;
   std::vector<SimulationOutcome> run(const std::string&,
                                      const std::vector<SimulationPoint>& batch) override {
     std::vector<SimulationOutcome> out;
@@ -121,9 +129,10 @@ class AnalyticModel : public Simulator {
       o.responses[0] = scatter * 1.17 * std::pow(strength, 0.85) * std::pow(si / 0.5, 0.15) *
                        std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
       o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
-                       std::pow(1.45 / km, 0.15) * std::pow(sm / 10, 0.02);  // E, GPa
-      o.responses[2] = 0.207 * std::pow(km / 1.45, 0.6) * std::pow(ki / 1.45, 0.1) *
-                       std::pow(em / 16, -0.03);  // nu
+                       std::pow(km / 1.45, kratio_exponent_E) * std::pow(sm / 10, 0.02);  // E, GPa
+      o.responses[2] = 0.207 * std::pow(km / 1.45, kratio_exponent_nu) * std::pow(ki / 1.45, 0.1) *
+                       std::pow(em / 16, -0.03) *
+                       (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_nu);
       out.push_back(o);
     }
     return out;
@@ -313,6 +322,27 @@ TEST(CalibrateFast, ConvergesOnTheAnalyticModel) {
   EXPECT_NEAR(y.response(CalibrationTarget::SigmaU) / 40, 1, 0.02);
   EXPECT_NEAR(y.response(CalibrationTarget::E) / 30, 1, 0.02);
   EXPECT_NEAR(y.response(CalibrationTarget::Nu) / 0.2, 1, 0.02);
+}
+
+TEST(CalibrateFast, CorrectsCoupledTargetsOnTheVerificationMean) {
+  // The case of the C30 recipe with flat joints: the verification specimens' nu is 9 % above the
+  // calibration specimen's, and kn/ks moves E as well as nu (E ~ (kn/ks)^-0.5, nu ~ (kn/ks)^0.9).
+  // The correction on the verification mean must lower kn/ks for nu and raise the moduli for
+  // the E that this costs, so the second verification meets every target.
+  const auto in = read_calibration_input(make_calibration("fast_coupled", kC30Targets));
+  AnalyticModel model(in);
+  model.kratio_exponent_E = -0.5;
+  model.kratio_exponent_nu = 0.9;
+  model.other_specimens_nu = 1.09;
+  const auto r = calibrate_fast(in, model);
+  ASSERT_EQ(r.verifications.size(), 2u) << r.stop_reason;
+  EXPECT_FALSE(r.verifications[0].passed);
+  EXPECT_TRUE(r.success()) << r.stop_reason;
+  // A Newton step with the coupling lands within the curvature of the power laws (< 1 % over a
+  // 10 % step) plus what the couplings not yet measured cost; one that ignores kn/ks in E moves E
+  // by 0.5 x ln(1.09) / 0.9 = 5 % (measured: from -0.7 % to +4.0 %).
+  for (const auto& s : r.verifications.back().targets)
+    EXPECT_LE(std::abs(s.relative_error), 0.02) << target_name(s.target);
 }
 
 TEST(CalibrateFast, ReportsATargetOutOfReachWithTheClosestValue) {
