@@ -1,6 +1,7 @@
 // `cdem run TEST.toml [-o result.h5] [--summary out.json] [--seed N] [--plot out.png]
-//  [--crack-map out.png] [-q]`: material genesis and one lab test, or the series of a biaxial
-//  test (one run per confinement and the Mohr-Coulomb envelope); docs/lab_tests.md.
+//  [--crack-map out.png] [--fragment-map out.png] [-q]`: material genesis and one lab test, or the
+//  series of a biaxial test (one run per confinement and the Mohr-Coulomb envelope);
+//  docs/lab_tests.md.
 #include <unistd.h>
 
 #include <chrono>
@@ -18,6 +19,7 @@
 #include "core/atomic_output.hpp"
 #include "core/output_paths.hpp"
 #include "dem/biaxial_test.hpp"
+#include "dem/fragment_picture.hpp"
 #include "dem/lab_pictures.hpp"
 #include "dem/lab_test.hpp"
 #include "dem/result_file.hpp"
@@ -90,7 +92,7 @@ nlohmann::ordered_json run_summary_fields(const dem::LabTestInput& input) {
 
 Action add_run_command(CLI::App& app) {
   struct Options {
-    std::string test, output, summary, plot, crack_map;
+    std::string test, output, summary, plot, crack_map, fragment_map;
     std::uint64_t seed = 0;
     bool quiet = false;
   };
@@ -107,6 +109,8 @@ Action add_run_command(CLI::App& app) {
   r->add_option("--summary", o->summary, "Write a summary JSON here");
   r->add_option("--plot", o->plot, "Stress-strain plot (PNG); default beside -o");
   r->add_option("--crack-map", o->crack_map, "Crack map (PNG); default beside -o");
+  r->add_option("--fragment-map", o->fragment_map,
+                "Discs at the end coloured by fragment (PNG); only when asked");
   r->add_flag("-q,--quiet", o->quiet, "No progress line");
   return [o, r, seed] {
     if (!r->parsed()) return;
@@ -130,6 +134,9 @@ Action add_run_command(CLI::App& app) {
       if (!plot.empty()) outputs.push_back({"--plot", biaxial ? numbered(plot, k) : plot});
       if (!crack_map.empty())
         outputs.push_back({"--crack-map", biaxial ? numbered(crack_map, k) : crack_map});
+      if (!o->fragment_map.empty())
+        outputs.push_back(
+            {"--fragment-map", biaxial ? numbered(o->fragment_map, k) : o->fragment_map});
     }
     OutputTransaction transaction(check_output_files(run_inputs(input), outputs));
     const Specimen specimen = lab_test_specimen(input, !o->quiet);
@@ -169,6 +176,8 @@ Action add_run_command(CLI::App& app) {
         const dem::LabTestResult& r = series.runs[k];
         if (!plot.empty()) dem::draw_stress_strain_png(r.history, r.type, numbered(plot, k));
         if (!crack_map.empty()) dem::draw_crack_map_png(specimen, r.cracks, numbered(crack_map, k));
+        if (!o->fragment_map.empty())
+          dem::draw_fragment_map_png(r.fragments, numbered(o->fragment_map, k));
       }
       transaction.commit();
       if (!o->quiet) std::printf("%s\n", summary.dump(2).c_str());
@@ -182,6 +191,7 @@ Action add_run_command(CLI::App& app) {
       write_text_atomically(o->summary, summary_json(result, input).dump(2) + "\n");
     if (!plot.empty()) dem::draw_stress_strain_png(result.history, result.type, plot);
     if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result.cracks, crack_map);
+    if (!o->fragment_map.empty()) dem::draw_fragment_map_png(result.fragments, o->fragment_map);
     transaction.commit();
     if (!o->quiet) std::printf("%s\n", summary_json(result, input).dump(2).c_str());
   };

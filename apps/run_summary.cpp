@@ -79,6 +79,21 @@ nlohmann::ordered_json bending_json(const dem::BendingResult& b, const dem::LabH
   return j;
 }
 
+// The fragments at the end of the run (docs/lab_tests.md "Fragments"): sizes in mm, mass
+// fractions of the size groups [0, s_1), ..., [s_last, inf), f_m the last.
+nlohmann::ordered_json fragments_json(const dem::Fragments& f) {
+  nlohmann::ordered_json j;
+  j["count"] = f.count();
+  j["largest_fragment_fraction"] = f.largest_fragment_fraction;
+  j["largest_fragment_diameter_mm"] = f.count() > 0 ? f.diameter.front() * 1e3 : 0.0;
+  j["f_m"] = f.f_m;
+  std::vector<double> sieve_mm;
+  for (const double s : f.sieve) sieve_mm.push_back(s * 1e3);
+  j["sieve_mm"] = sieve_mm;
+  j["group_mass_fraction"] = f.group_mass_fraction;
+  return j;
+}
+
 }  // namespace
 
 nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabTestInput& in) {
@@ -119,6 +134,7 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   }
   cracks["total"] = total;
   j["cracks"] = cracks;
+  j["fragments"] = fragments_json(r.fragments);
   j["stop_reason"] = dem::stop_reason_name(r.stop_reason);
   j["warnings"] = r.warnings;
   j["steps"] = r.steps;

@@ -117,7 +117,8 @@ LabTestControls read_controls(const InputTable& t) {
                          "tensile_strength",
                          "pin_friction",
                          "control",
-                         "cmod_rate"});
+                         "cmod_rate",
+                         "fragment_sieve"});
   LabTestControls c;
   apply_test_preset(t, c);  // speed knobs of the preset; the keys below override them
   const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial",
@@ -188,6 +189,18 @@ LabTestControls read_controls(const InputTable& t) {
         "tensile_strength", "pin_friction", "control", "cmod_rate"})
     if (c.type != LabTestType::ThreePointBending && t.has(key))
       t.fail(key, "only used by type = \"three_point_bending\"");
+  if (t.has("fragment_sieve_mm")) {
+    c.fragment_sieve = t.numbers("fragment_sieve_mm", Range::positive());
+    if (c.fragment_sieve.empty() || c.fragment_sieve.size() > 16)
+      t.fail("fragment_sieve_mm",
+             "needs 1 to 16 sizes, got " + std::to_string(c.fragment_sieve.size()));
+    for (std::size_t i = 1; i < c.fragment_sieve.size(); ++i)
+      if (!(c.fragment_sieve[i] > c.fragment_sieve[i - 1]))
+        t.fail("fragment_sieve_mm", "sizes must increase (entry " + std::to_string(i) + ")");
+    for (double& size : c.fragment_sieve) size *= units::mm;
+  } else if (t.has("fragment_sieve")) {  // any other unit suffix
+    t.fail("fragment_sieve", "needs its unit in the key: fragment_sieve_mm");
+  }
   if (c.type == LabTestType::Biaxial)
     c.confining_stresses = read_confining_stresses(t);
   else if (t.has("confining_stresses"))  // any unit suffix
@@ -639,6 +652,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   if (c.type == LabTestType::Shpb) {
     run_shpb_test(world, Box{e.xmin, e.ymin, e.xmax, e.ymax},
                   specimen.container.shape == ContainerShape::Disc, input, hooks, res);
+    res.fragments = find_fragments(world, cleaned.aggregate_density, c.fragment_sieve);
+    add_clump_outlines(res.fragments, world, cleaned);
     res.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     return res;
@@ -811,6 +826,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
 
   res.steps = world.step_count() - step0;
   tally_cracks(res, world.cracks, time0);
+  res.fragments = find_fragments(world, cleaned.aggregate_density, c.fragment_sieve);
+  add_clump_outlines(res.fragments, world, cleaned);
   const auto peak_at = std::max_element(h.axial_stress.begin(), h.axial_stress.end());
   res.peak_stress = *peak_at;
   res.peak_force = h.platen_force[static_cast<std::size_t>(peak_at - h.axial_stress.begin())];

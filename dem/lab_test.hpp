@@ -19,6 +19,7 @@
 #include "core/specimen.hpp"
 #include "dem/confinement.hpp"
 #include "dem/crack_log.hpp"
+#include "dem/fragments.hpp"
 #include "dem/lab_analysis.hpp"
 #include "dem/material_genesis.hpp"
 #include "dem/material_table.hpp"
@@ -79,6 +80,8 @@ struct LabTestControls {
   // (dem/three_point_bending.hpp, CmodServo), never faster than kCmodServoSpeedCap x cmod_rate.
   bool cmod_control = false;
   double cmod_rate = 0;  // m/s
+  // The sieve of the fragment analysis after the run (m, increasing; dem/fragments.hpp).
+  std::vector<double> fragment_sieve = kDefaultFragmentSieve;
 };
 
 // The CMOD servo's cap on the platen speed, in units of the CMOD rate.
@@ -201,7 +204,8 @@ struct LabTestResult {
   // Why the run ended: a completed run always ends at a confirmed post-peak drop (an unconfirmed
   // end is a RunError that names the reason); an SHPB run when its pulse has passed.
   StopReason stop_reason = StopReason::None;
-  ShpbResult shpb;  // type "shpb": the bars, their records and the three-wave analysis
+  ShpbResult shpb;      // type "shpb": the bars, their records and the three-wave analysis
+  Fragments fragments;  // the bond network's fragments at the end of the run
   // Where the model or the run may not be what the user meant (printed on stderr as they arise,
   // and listed in the summary): docs/lab_tests.md "Warnings".
   std::vector<std::string> warnings;

@@ -405,6 +405,18 @@ void write_run(H5::Group& where, const LabTestResult& r) {
         write_scalar_attr<long>(
             cg, std::string(m == 0 ? "tension_" : "shear_") + contact_class_name(ContactClass(c)),
             r.crack_count[m][c]);
+
+    const Fragments& f = r.fragments;
+    H5::Group fg = hdf5::create_group(where, "fragments");
+    write_array(fg, "fragment_of_disc", f.fragment_of_disc, "",
+                "fragment of each world disc at the end, 0 = the heaviest");
+    write_array(fg, "mass", f.mass, "kg/m", "per fragment, decreasing");
+    write_array(fg, "diameter", f.diameter, "m", "equivalent diameter from area");
+    write_array(fg, "sieve", f.sieve, "m", "sieve sizes");
+    write_array(fg, "group_mass_fraction", f.group_mass_fraction, "1",
+                "mass fraction of the size groups [0, s_1), ..., [s_last, inf)");
+    write_scalar_attr<double>(fg, "f_m", f.f_m);
+    write_scalar_attr<double>(fg, "largest_fragment_fraction", f.largest_fragment_fraction);
   }
 }
 

@@ -79,6 +79,19 @@ TEST(LabTests, UniaxialRunsToTheStopRuleWithFiniteFigures) {
   EXPECT_EQ(h.bonds_broken.back(), cracks);
   // Genesis figures add up.
   EXPECT_EQ(r.genesis.discs, r.genesis.discs_in_specimen - r.genesis.floating_removed);
+  // Fragments of the broken specimen: every disc in one, the groups hold all the mass (all
+  // discs here are mortar of one density, so the mass is the discs' area times it).
+  const Fragments& f = r.fragments;
+  ASSERT_GE(f.count(), 1u);
+  EXPECT_EQ(f.fragment_of_disc.size(), static_cast<std::size_t>(r.genesis.discs));
+  double area = 0, fractions = 0;
+  for (std::size_t i = 0; i < f.r.size(); ++i) area += std::numbers::pi * f.r[i] * f.r[i];
+  for (const double g : f.group_mass_fraction) fractions += g;
+  EXPECT_NEAR(fractions, 1, 1e-12);
+  double diameters_area = 0;
+  for (const double d : f.diameter) diameters_area += std::numbers::pi * d * d / 4;
+  EXPECT_NEAR(diameters_area, area, 1e-9 * area);
+  EXPECT_EQ(f.group_mass_fraction.size(), kDefaultFragmentSieve.size() + 1);
 }
 
 TEST(LabTests, SameInputSameBitsWithOneOrTwoThreads) {
@@ -200,6 +213,19 @@ TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
   const LabTestInput ucs_on_disc =
       read("specimen = \"disc.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n");
   expect_input_error([&] { run_lab_test(disc_specimen(), ucs_on_disc); }, "test.type");
+  // The fragment sieve: sizes in mm, positive, increasing, 1 to 16 of them.
+  for (const char* sieve : {"fragment_sieve = [1, 2]", "fragment_sieve_mm = [2, 1]",
+                            "fragment_sieve_mm = [0, 1]", "fragment_sieve_mm = []",
+                            "fragment_sieve_mm = [1, 1]"})
+    expect_input_error(
+        [&] {
+          read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n" + sieve + "\n");
+        },
+        "test.fragment_sieve");
+  EXPECT_EQ(read("specimen = \"rect.h5\"\n" + m +
+                 "[test]\ntype = \"uniaxial\"\nfragment_sieve_mm = [0.5, 4]\n")
+                .controls.fragment_sieve,
+            (std::vector<double>{0.5e-3, 4e-3}));
   // Curved jaws: Brazilian only, two shapes, the radius ratio only with them.
   expect_input_error(
       [&] {
