@@ -167,8 +167,8 @@ Action add_run_command(CLI::App& app) {
       if (!o->summary.empty()) write_text_atomically(o->summary, summary.dump(2) + "\n");
       for (std::size_t k = 0; k < series.runs.size(); ++k) {
         const dem::LabTestResult& r = series.runs[k];
-        if (!plot.empty()) dem::draw_stress_strain_png(r.history, r.type, numbered(plot, k));
-        if (!crack_map.empty()) dem::draw_crack_map_png(specimen, r.cracks, numbered(crack_map, k));
+        if (!plot.empty()) dem::draw_stress_strain_png(r, numbered(plot, k));
+        if (!crack_map.empty()) dem::draw_crack_map_png(specimen, r, numbered(crack_map, k));
       }
       transaction.commit();
       if (!o->quiet) std::printf("%s\n", summary.dump(2).c_str());
@@ -180,8 +180,8 @@ Action add_run_command(CLI::App& app) {
     if (result_file) result_file->commit(result);
     if (!o->summary.empty())
       write_text_atomically(o->summary, summary_json(result, input).dump(2) + "\n");
-    if (!plot.empty()) dem::draw_stress_strain_png(result.history, result.type, plot);
-    if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result.cracks, crack_map);
+    if (!plot.empty()) dem::draw_stress_strain_png(result, plot);
+    if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result, crack_map);
     transaction.commit();
     if (!o->quiet) std::printf("%s\n", summary_json(result, input).dump(2).c_str());
   };

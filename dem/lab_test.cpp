@@ -673,6 +673,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   const double time0 = world.time();
   world.refresh_neighbors();
   res.time_step = world.time_step();
+  res.walls = world.walls;
   res.width =
       c.type == LabTestType::Brazilian || bending ? specimen.container.width : loading.section;
   res.height = c.type == LabTestType::Brazilian ? specimen.container.width : loading.gauge_length;

@@ -202,6 +202,9 @@ struct LabTestResult {
   // end is a RunError that names the reason); an SHPB run when its pulse has passed.
   StopReason stop_reason = StopReason::None;
   ShpbResult shpb;  // type "shpb": the bars, their records and the three-wave analysis
+  // The test's walls when the loading starts (platens, curved jaws, bending supports and plate,
+  // biaxial side walls; none for grips or SHPB), for the crack map.
+  Walls walls;
   // Where the model or the run may not be what the user meant (printed on stderr as they arise,
   // and listed in the summary): docs/lab_tests.md "Warnings".
   std::vector<std::string> warnings;
