@@ -3,7 +3,6 @@
 //  test (one run per confinement and the Mohr-Coulomb envelope); docs/lab_tests.md.
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -14,6 +13,7 @@
 #include "apps/commands.hpp"
 #include "apps/job_input_check.hpp"
 #include "apps/lab_specimen.hpp"
+#include "apps/progress_line.hpp"
 #include "apps/run_summary.hpp"
 #include "core/atomic_output.hpp"
 #include "core/output_paths.hpp"
@@ -25,33 +25,6 @@
 namespace cdem::apps {
 
 namespace {
-
-// One progress line on a terminal, refreshed at most twice a second.
-class ProgressLine {
- public:
-  void update(const dem::LabHistory& h, double peak, long max_steps) {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_ < std::chrono::milliseconds(500)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const long step = h.step.back();
-    const double bound = step > 0 ? elapsed * static_cast<double>(max_steps - step) / step : 0;
-    std::fprintf(stderr,
-                 "\rstep %ld  strain %.3e  stress %.3f MPa (peak %.3f)  bonds broken %ld  "
-                 "%.0f s, at most %.0f s left   ",
-                 step, h.axial_strain.back(), h.axial_stress.back() * 1e-6, peak * 1e-6,
-                 h.bonds_broken.back(), elapsed, bound);
-    std::fflush(stderr);
-    shown_ = true;
-  }
-  ~ProgressLine() {
-    if (shown_) std::fputc('\n', stderr);
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
-  bool shown_ = false;
-};
 
 std::filesystem::path beside(const std::filesystem::path& result, const std::string& suffix) {
   std::filesystem::path p = result;
@@ -141,7 +114,13 @@ Action add_run_command(CLI::App& app) {
     const auto make_hooks = [&] {
       dem::LabTestHooks hooks;
       if (!o->quiet && ::isatty(STDERR_FILENO)) {
-        progress.emplace();
+        const dem::LabTestControls& c = input.controls;
+        const dem::StopRuleOptions stop = dem::loading_stop_options(c, specimen.container);
+        const bool shpb = c.type == dem::LabTestType::Shpb;
+        // A CMOD servo moves the platen back and forth: its strain gives no bound.
+        progress.emplace(
+            c.type, dem::RunEnd{shpb ? 0 : stop.stop_fraction,
+                                shpb || c.cmod_control ? 0 : stop.max_strain, c.max_steps, shpb});
         hooks.progress = [&progress](const dem::LabHistory& h, double peak, long max_steps) {
           progress->update(h, peak, max_steps);
         };

@@ -123,6 +123,10 @@ void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input
 // its default for the beam.
 double bearing_width(const LabTestControls& controls, const Container& beam);
 
+// The stop rule of the loading phase: the test's options, and for three-point bending its
+// strain (deflection / H) bound from max_deflection and its damage span (half the ligament).
+StopRuleOptions loading_stop_options(const LabTestControls& controls, const Container& specimen);
+
 // Histories, one entry per record (every history_interval steps, plus the last step). Stresses
 // and strains are positive in the sense the test loads the specimen: compression for uniaxial
 // and Brazilian, tension for direct tension. Lateral strain = -du_x/dx of the central region
