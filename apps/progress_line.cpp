@@ -1,5 +1,8 @@
 #include "apps/progress_line.hpp"
 
+#include <pthread.h>
+#include <signal.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <vector>
@@ -101,6 +104,12 @@ std::string ProgressLine::line(Clock::time_point now) const {
 }
 
 void ProgressLine::tick() {
+  // The run's thread takes the signals that clean up outputs (core/atomic_output.hpp), which
+  // blocks them around its commits; this thread must not take them in its stead.
+  sigset_t cleanup;
+  sigemptyset(&cleanup);
+  for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&cleanup, s);
+  pthread_sigmask(SIG_BLOCK, &cleanup, nullptr);
   std::unique_lock lock(mutex_);
   while (!done_) {
     // Clear to the end of the line: the line may be shorter than the one it replaces.
