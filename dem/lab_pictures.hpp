@@ -1,5 +1,5 @@
 #pragma once
-// Pictures of a lab test (cairo PNG), written atomically (docs/results.md "Pictures"):
+// Pictures of a lab test (cairo PNG), written atomically (docs/lab_tests.md "Pictures"):
 // - the stress-strain curves (axial and lateral strain against the stress the test loads the
 //   specimen with), with the peak and, where the analysis measured them, the window of the E
 //   fit and the point where nu was read marked and their values stated; three-point bending: two
