@@ -101,31 +101,22 @@ XyChart stress_strain_chart(const LabTestResult& r) {
   const double peak_strain = h.axial_strain[peak];
   chart.marks.push_back(
       {1e3 * peak_strain, 1e-6 * peak_stress, text("peak %.2f MPa", 1e-6 * peak_stress), kBlack});
-  switch (r.type) {
-    case LabTestType::Uniaxial:
-      chart.notes.push_back(text("sigma_peak = %.2f MPa at axial strain %.3f x 1e-3",
-                                 1e-6 * peak_stress, 1e3 * peak_strain));
-      break;
-    case LabTestType::Biaxial:
-      chart.notes.push_back(text("sigma_3 = %.2f MPa (side walls at the peak: %.2f MPa)",
-                                 1e-6 * r.confining_stress, 1e-6 * r.confining_stress_at_peak));
-      chart.notes.push_back(
-          text("peak deviator %.2f MPa (sigma_1 = %.2f MPa) at axial strain %.3f x 1e-3",
-               1e-6 * peak_stress, 1e-6 * r.peak_stress, 1e3 * peak_strain));
-      break;
-    case LabTestType::DirectTension:
-      chart.notes.push_back(text("f_t = peak = %.2f MPa at axial strain %.3f x 1e-3",
-                                 1e-6 * peak_stress, 1e3 * peak_strain));
-      break;
-    case LabTestType::Brazilian:
-      chart.notes.push_back(text("P_max = %.1f kN/m, sigma_t = 2 P_max / (pi D t) = %.2f MPa",
-                                 1e-3 * r.peak_force, 1e-6 * peak_stress));
-      break;
-    default:
-      chart.notes.push_back(
-          text("peak %.2f MPa at axial strain %.3f x 1e-3", 1e-6 * peak_stress, 1e3 * peak_strain));
-      break;
+  if (r.type == LabTestType::Biaxial)
+    chart.notes.push_back(text("sigma_3 = %.2f MPa (side walls at the peak: %.2f MPa)",
+                               1e-6 * r.confining_stress, 1e-6 * r.confining_stress_at_peak));
+  if (r.type == LabTestType::Brazilian) {
+    chart.notes.push_back(text("P_max = %.1f kN/m, sigma_t = 2 P_max / (pi D t) = %.2f MPa",
+                               1e-3 * r.peak_force, 1e-6 * peak_stress));
+  } else {
+    const char* name = r.type == LabTestType::Uniaxial        ? "sigma_peak"
+                       : r.type == LabTestType::Biaxial       ? "peak deviator"
+                       : r.type == LabTestType::DirectTension ? "f_t = peak"
+                                                              : "peak";
+    chart.notes.push_back(text("%s = %.2f MPa at axial strain %.3f x 1e-3", name,
+                               1e-6 * peak_stress, 1e3 * peak_strain));
   }
+  if (r.type == LabTestType::Biaxial)
+    chart.notes.push_back(text("sigma_1 at the peak deviator = %.2f MPa", 1e-6 * r.peak_stress));
   if (fitted) mark_elastic_fit(r, stress, chart);
   return chart;
 }
