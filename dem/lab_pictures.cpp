@@ -213,7 +213,7 @@ void draw_crack_map_png(const Specimen& s, const LabTestResult& res,
   CrackMapLayout l;
   l.font = std::max(11.0, pixels_long_side / 75.0);
   l.margin = 2 * l.font;
-  l.legend = 15 * l.font;
+  l.legend = 16 * l.font;
   l.bar_band = 3 * l.font;
   l.scale = (pixels_long_side - 2 * l.margin) / std::max(xmax - xmin, ymax - ymin);
   const double drawn_height = l.scale * (ymax - ymin) + 2 * l.margin + l.bar_band;
@@ -313,7 +313,8 @@ void draw_crack_map_png(const Specimen& s, const LabTestResult& res,
       row(kCrackColour[m][c], std::max(2.0, 0.2 * l.font),
           text("%s %s: %ld", mode_name[m], contact_class_name(static_cast<ContactClass>(c)),
                res.crack_count[m][c]));
-  if (walls.size() > 0) row(kWallColour.data(), std::max(4.0, 0.35 * l.font), "walls (platens)");
+  if (walls.size() > 0)
+    row(kWallColour.data(), std::max(4.0, 0.35 * l.font), "platens, jaws, supports");
   ly += 0.4 * l.font;
   cairo_set_font_size(cr, 0.85 * l.font);
   draw_text(cr, lx, ly, "M mortar, ITZ interface,", 0.0);
