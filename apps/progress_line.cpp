@@ -92,7 +92,7 @@ std::string ProgressLine::line(Clock::time_point now) const {
       std::snprintf(buf, sizeof buf, "ETA ~%.0f s", seconds(outlook_.estimate));
     else
       std::snprintf(buf, sizeof buf, "ETA unknown (%s)",
-                    end_.stop_fraction > 0 ? "no post-peak drop yet" : "no estimate");
+                    end_.stop_fraction > 0 ? "no drop past the peak yet" : "no estimate");
     eta = buf;
     if (outlook_.bound >= 0 && !end_.fixed_length) {
       std::snprintf(buf, sizeof buf, ", at most %.0f s", seconds(outlook_.bound));

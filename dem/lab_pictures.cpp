@@ -215,7 +215,10 @@ void draw_crack_map_png(const Specimen& s, const LabTestResult& res,
   l.margin = 2 * l.font;
   l.legend = 16 * l.font;
   l.bar_band = 3 * l.font;
-  l.scale = (pixels_long_side - 2 * l.margin) / std::max(xmax - xmin, ymax - ymin);
+  // The long side at pixels_long_side, unless that leaves the short side under half of it (a
+  // beam 4 L/H long): then the short side sets the scale, and a crack a bond wide stays visible.
+  l.scale = std::max((pixels_long_side - 2 * l.margin) / std::max(xmax - xmin, ymax - ymin),
+                     (0.5 * pixels_long_side - 2 * l.margin) / std::min(xmax - xmin, ymax - ymin));
   const double drawn_height = l.scale * (ymax - ymin) + 2 * l.margin + l.bar_band;
   const double legend_height = 12 * 1.6 * l.font + 2 * l.margin;
   l.width = static_cast<int>(std::ceil(l.scale * (xmax - xmin) + 2 * l.margin + l.legend));

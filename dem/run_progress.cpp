@@ -25,19 +25,12 @@ RunOutlook run_outlook(const std::vector<long>& step, const std::vector<double>&
   // The records after the peak (the first record holding the peak value).
   const std::size_t p = static_cast<std::size_t>(
       std::max_element(stress.begin(), stress.begin() + static_cast<long>(n)) - stress.begin());
-  const std::size_t after = n - 1 - p;
-  if (after < static_cast<std::size_t>(kOutlookMinRecords)) return out;
-  const std::size_t m = std::min(after, static_cast<std::size_t>(kOutlookFitRecords));
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = n - m; i < n; ++i) {
-    const double x = static_cast<double>(step[i]) - now, y = stress[i];
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  const double md = static_cast<double>(m), det = md * sxx - sx * sx;
-  if (!(det > 0)) return out;
-  const double slope = (md * sxy - sx * sy) / det;  // Pa per step
-  if (!(slope < 0)) return out;
-  const double left = (stress[n - 1] - end.stop_fraction * peak) / -slope;
+  if (n - 1 - p < static_cast<std::size_t>(kOutlookMinRecords)) return out;
+  // The average rate of approach to the stop level since the peak, Pa per step: smoother than
+  // the latest records' rate, which a single sudden drop makes look nearly done.
+  const double rate = (stress[p] - stress[n - 1]) / (now - static_cast<double>(step[p]));
+  if (!(rate > 0)) return out;
+  const double left = (stress[n - 1] - end.stop_fraction * peak) / rate;
   out.estimate = std::min(out.bound, std::max(0.0, left));
   return out;
 }

@@ -15,16 +15,14 @@ struct RunEnd {
   bool fixed_length = false;  // the run always lasts max_steps (SHPB: until the pulse has passed)
 };
 
-// Records after the peak that the post-peak estimate fits (least squares of the stress against
-// the step over the latest of them), and the fewest it needs.
-constexpr int kOutlookFitRecords = 10;
+// Records after the peak the post-peak estimate needs (a single record past the peak may be
+// noise, not a drop).
 constexpr int kOutlookMinRecords = 3;
 
 struct RunOutlook {
   // Steps left, an estimate: a fixed-length run's remaining steps, or after the peak the steps
-  // until the stress, falling at the rate fitted to the latest records, reaches
-  // stop_fraction x peak (capped by the bound). < 0: unknown (before the peak, or a stress not
-  // falling).
+  // until the stress reaches stop_fraction x peak, falling on at its average rate since the
+  // peak (capped by the bound). < 0: unknown (before the peak, or too soon after it).
   double estimate = -1;
   // Steps left at most: to max_steps, or to max_strain at the strain per step observed so far
   // (the platens move at a constant speed), whichever is sooner. < 0: no record yet.

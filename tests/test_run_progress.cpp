@@ -48,16 +48,21 @@ TEST(RunOutlook, AfterThePeakFromTheRateOfDrop) {
   EXPECT_NEAR(capped.estimate, 50, 1e-6);
 }
 
-TEST(RunOutlook, UnknownWithTooFewRecordsOrAStressNotFalling) {
+TEST(RunOutlook, AverageRateSinceThePeakAndUnknownTooSoonAfterIt) {
   History h;
   for (long s = 0; s <= 1000; s += 100) h.add(s, 1e-6 * s, 30e6 * s / 1000.0);
   h.add(1100, 1.1e-3, 29e6);
   h.add(1200, 1.2e-3, 28e6);  // two records after the peak: fewer than kOutlookMinRecords
   const RunEnd end{0.8, 0.01, 1'000'000, false};
   EXPECT_LT(run_outlook(h.step, h.strain, h.stress, 30e6, end).estimate, 0);
-  // A plateau after the drop: no rate of approach.
+  // A plateau at 28 MPa to step 2500: the average approach since the peak, 2 MPa in 1500
+  // steps, leaves the 4 MPa down to 24 MPa for 3000 more steps (not "never", not "now").
   for (long s = 1300; s <= 2500; s += 100) h.add(s, 1e-6 * s, 28e6);
-  EXPECT_LT(run_outlook(h.step, h.strain, h.stress, 30e6, end).estimate, 0);
+  EXPECT_NEAR(run_outlook(h.step, h.strain, h.stress, 30e6, end).estimate, 3000, 1e-6);
+  // Flat at the peak: no approach at all.
+  History flat;
+  for (long s = 0; s <= 1000; s += 100) flat.add(s, 1e-6 * s, 5e6);
+  EXPECT_LT(run_outlook(flat.step, flat.strain, flat.stress, 5e6, end).estimate, 0);
   EXPECT_LT(run_outlook({}, {}, {}, 0, end).bound, 0);  // no record yet
 }
 
