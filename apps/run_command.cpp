@@ -4,7 +4,6 @@
 //  docs/lab_tests.md.
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -15,11 +14,11 @@
 #include "apps/commands.hpp"
 #include "apps/job_input_check.hpp"
 #include "apps/lab_specimen.hpp"
+#include "apps/progress_line.hpp"
 #include "apps/run_summary.hpp"
 #include "core/atomic_output.hpp"
 #include "core/output_paths.hpp"
 #include "dem/biaxial_test.hpp"
-#include "dem/fragment_picture.hpp"
 #include "dem/lab_pictures.hpp"
 #include "dem/lab_test.hpp"
 #include "dem/result_file.hpp"
@@ -27,33 +26,6 @@
 namespace cdem::apps {
 
 namespace {
-
-// One progress line on a terminal, refreshed at most twice a second.
-class ProgressLine {
- public:
-  void update(const dem::LabHistory& h, double peak, long max_steps) {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_ < std::chrono::milliseconds(500)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const long step = h.step.back();
-    const double bound = step > 0 ? elapsed * static_cast<double>(max_steps - step) / step : 0;
-    std::fprintf(stderr,
-                 "\rstep %ld  strain %.3e  stress %.3f MPa (peak %.3f)  bonds broken %ld  "
-                 "%.0f s, at most %.0f s left   ",
-                 step, h.axial_strain.back(), h.axial_stress.back() * 1e-6, peak * 1e-6,
-                 h.bonds_broken.back(), elapsed, bound);
-    std::fflush(stderr);
-    shown_ = true;
-  }
-  ~ProgressLine() {
-    if (shown_) std::fputc('\n', stderr);
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
-  bool shown_ = false;
-};
 
 std::filesystem::path beside(const std::filesystem::path& result, const std::string& suffix) {
   std::filesystem::path p = result;
@@ -148,7 +120,13 @@ Action add_run_command(CLI::App& app) {
     const auto make_hooks = [&] {
       dem::LabTestHooks hooks;
       if (!o->quiet && ::isatty(STDERR_FILENO)) {
-        progress.emplace();
+        const dem::LabTestControls& c = input.controls;
+        const dem::StopRuleOptions stop = dem::loading_stop_options(c, specimen.container);
+        const bool shpb = c.type == dem::LabTestType::Shpb;
+        // A CMOD servo moves the platen back and forth: its strain gives no bound.
+        progress.emplace(
+            c.type, dem::RunEnd{shpb ? 0 : stop.stop_fraction,
+                                shpb || c.cmod_control ? 0 : stop.max_strain, c.max_steps, shpb});
         hooks.progress = [&progress](const dem::LabHistory& h, double peak, long max_steps) {
           progress->update(h, peak, max_steps);
         };
@@ -174,8 +152,8 @@ Action add_run_command(CLI::App& app) {
       if (!o->summary.empty()) write_text_atomically(o->summary, summary.dump(2) + "\n");
       for (std::size_t k = 0; k < series.runs.size(); ++k) {
         const dem::LabTestResult& r = series.runs[k];
-        if (!plot.empty()) dem::draw_stress_strain_png(r.history, r.type, numbered(plot, k));
-        if (!crack_map.empty()) dem::draw_crack_map_png(specimen, r.cracks, numbered(crack_map, k));
+        if (!plot.empty()) dem::draw_stress_strain_png(r, numbered(plot, k));
+        if (!crack_map.empty()) dem::draw_crack_map_png(specimen, r, numbered(crack_map, k));
         if (!o->fragment_map.empty())
           dem::draw_fragment_map_png(r.fragments, numbered(o->fragment_map, k));
       }
@@ -189,8 +167,8 @@ Action add_run_command(CLI::App& app) {
     if (result_file) result_file->commit(result);
     if (!o->summary.empty())
       write_text_atomically(o->summary, summary_json(result, input).dump(2) + "\n");
-    if (!plot.empty()) dem::draw_stress_strain_png(result.history, result.type, plot);
-    if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result.cracks, crack_map);
+    if (!plot.empty()) dem::draw_stress_strain_png(result, plot);
+    if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result, crack_map);
     if (!o->fragment_map.empty()) dem::draw_fragment_map_png(result.fragments, o->fragment_map);
     transaction.commit();
     if (!o->quiet) std::printf("%s\n", summary_json(result, input).dump(2).c_str());

@@ -39,4 +39,25 @@ std::string tick_label(double v) {
   return buf;
 }
 
+double scale_bar_length(double extent) {
+  const double target = 0.25 * extent;
+  const double p = std::pow(10.0, std::floor(std::log10(target)));
+  // 1 + 1e-12: a quarter that is itself a round length (0.25 x 0.4 m) keeps it.
+  for (const double m : {5.0, 2.0, 1.0})
+    if (m * p <= target * (1 + 1e-12)) return m * p;
+  return p;
+}
+
+void draw_scale_bar(cairo_t* cr, double x, double y, double px_per_m, double length,
+                    double thickness) {
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_rectangle(cr, x, y, px_per_m * length, thickness);
+  cairo_fill(cr);
+  char label[32];
+  std::snprintf(label, sizeof label, "%g mm", 1e3 * length);
+  cairo_font_extents_t f;
+  cairo_font_extents(cr, &f);
+  draw_text(cr, x + px_per_m * length + 0.5 * f.height, y + 0.5 * thickness, label, 0.0);
+}
+
 }  // namespace cdem

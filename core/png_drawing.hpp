@@ -23,4 +23,13 @@ void draw_text(cairo_t* cr, double x, double y, const std::string& s, double ali
 // A tick label: %g, with values within 1e-12 of zero written as 0.
 std::string tick_label(double v);
 
+// The length (m) of the scale bar of a picture `extent` m across: the largest 1, 2 or 5 x 10^k m
+// not longer than a quarter of it.
+double scale_bar_length(double extent);
+
+// A scale bar `length` m long at `px_per_m`, `thickness` px thick, its top left corner at
+// (x, y), labelled in mm to its right in the current font.
+void draw_scale_bar(cairo_t* cr, double x, double y, double px_per_m, double length,
+                    double thickness);
+
 }  // namespace cdem

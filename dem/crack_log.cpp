@@ -1,5 +1,6 @@
 #include "dem/crack_log.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 
@@ -31,6 +32,15 @@ void CrackLog::record(const ContactForces& pair, const NeighborList& list, const
     c.first = i;
     c.second = j;
     c.energy = pair.bond_energy_released[k];
+    const double nx = dist > 0 ? dx / dist : 0.0, ny = dist > 0 ? dy / dist : 0.0;
+    c.nx = nx;
+    c.ny = ny;
+    const double r_min = std::min(discs.r[i], discs.r[j]);
+    const BondModel& model = bonds[cls];
+    c.half_width = model.kind == BondKind::Parallel ? model.parallel.radius_multiplier * r_min
+                   : model.kind == BondKind::FlatJoint
+                       ? model.flat_joint.radius_multiplier * r_min / model.flat_joint.elements
+                       : r_min;
     const std::uint32_t failed = pair.failed_elements[k];
     if (!failed) {
       cracks.push_back(c);
@@ -38,7 +48,6 @@ void CrackLog::record(const ContactForces& pair, const NeighborList& list, const
     }
     c.energy /= std::popcount(failed);
     const Crack contact = c;
-    const double nx = dist > 0 ? dx / dist : 0.0, ny = dist > 0 ? dy / dist : 0.0;
     for (int e = 0; e < kMaxFlatJointElements; ++e) {
       if (!(failed & (1u << e))) continue;
       // Element centroid: along t = (-ny, nx) from the contact point.
@@ -52,6 +61,11 @@ void CrackLog::record(const ContactForces& pair, const NeighborList& list, const
       cracks.push_back(c);
     }
   }
+}
+
+CrackSegment crack_segment(const Crack& crack) {
+  const double tx = -crack.ny * crack.half_width, ty = crack.nx * crack.half_width;
+  return {crack.x - tx, crack.y - ty, crack.x + tx, crack.y + ty};
 }
 
 }  // namespace cdem::dem

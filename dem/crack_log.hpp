@@ -28,7 +28,21 @@ struct Crack {
   // J per m of thickness: strain energy the bond held when it broke (the energy ledger's
   // bond_breakage); the elements of a flat joint that break in the same pass share it equally
   double energy = 0;
+  // Where the crack lies, for pictures: the unit normal of the contact plane (from the centre of
+  // `first` to that of `second` when the bond broke) and the half-width (m) of the broken bond
+  // across it, so the crack is the segment (x, y) +- half_width (-ny, nx) on the contact plane.
+  // Parallel bond: R = lambda min(R1, R2); flat-joint element: half its length, R / N_r; a
+  // contact bond (a point) is drawn as wide as the smaller disc, min(R1, R2).
+  double nx = 0, ny = 0;
+  double half_width = 0;
 };
+
+// The crack as a segment on its contact plane: the end points (m) (x, y) -+ half_width t with
+// t = (-ny, nx) the tangent of the plane, so a bond along x breaks as a vertical segment.
+struct CrackSegment {
+  double ax = 0, ay = 0, bx = 0, by = 0;  // m
+};
+CrackSegment crack_segment(const Crack& crack);
 
 struct CrackLog {
   std::vector<Crack> cracks;

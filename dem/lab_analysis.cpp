@@ -31,6 +31,7 @@ UcsResult analyse_ucs(const std::vector<double>& eps, const std::vector<double>&
     el = lat[cross - 1] + w * (lat[cross] - lat[cross - 1]);
   }
   out.strain_at_half_peak = ea;
+  out.lateral_strain_at_half_peak = el;
   out.poisson_ratio = ea != 0 ? std::fabs(el / ea) : 0;
 
   // The contiguous run of pre-peak points around the crossing within the stress window.
@@ -51,7 +52,11 @@ UcsResult analyse_ucs(const std::vector<double>& eps, const std::vector<double>&
     a(i, 1) = 1;
     b(i) = sig[first + i];
   }
-  out.young_modulus = a.colPivHouseholderQr().solve(b)(0);
+  const Eigen::Vector2d line = a.colPivHouseholderQr().solve(b);
+  out.young_modulus = line(0);
+  out.fit_intercept = line(1);
+  out.fit_first = first;
+  out.fit_last = last;
   return out;
 }
 

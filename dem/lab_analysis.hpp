@@ -13,6 +13,11 @@ struct UcsResult {
   double young_modulus = 0;  // Pa, tangent slope at 50 % of peak (local linear fit)
   double poisson_ratio = 0;  // |lateral strain / axial strain| at that point
   double strain_at_half_peak = 0;
+  double lateral_strain_at_half_peak = 0;  // where poisson_ratio is read
+  // The points of the E fit: history indices fit_first .. fit_last (inclusive), the pre-peak
+  // run around the 50 % crossing (for pictures of the measurement window).
+  std::size_t fit_first = 0, fit_last = 0;
+  double fit_intercept = 0;  // Pa, of the fitted line sigma = E eps + intercept
 };
 
 // `window` is the half-width of the local fit in units of the peak stress: points of the

@@ -619,6 +619,19 @@ void scale_density_from_here(World& world, double factor) {
 
 }  // namespace
 
+StopRuleOptions loading_stop_options(const LabTestControls& c, const Container& specimen) {
+  StopRuleOptions stop = c.stop;
+  if (c.type != LabTestType::ThreePointBending) return stop;
+  // The stop rule follows deflection / H as its strain.
+  const double depth = specimen.height;
+  stop.max_strain =
+      (c.max_deflection > 0 ? c.max_deflection : kDefaultMaxDeflectionFraction * depth) / depth;
+  // The crack grows from the notch tip: a failure is a crack across half the ligament (the
+  // bands of the notch itself can hold none).
+  stop.damage_span = 0.5 * (depth - specimen.notch_depth) / depth;
+  return stop;
+}
+
 void tally_cracks(LabTestResult& res, const CrackLog& log, double time0) {
   res.cracks = log.cracks;
   for (Crack& k : res.cracks) k.time -= time0;
@@ -688,6 +701,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   const double time0 = world.time();
   world.refresh_neighbors();
   res.time_step = world.time_step();
+  res.walls = world.walls;
   res.width =
       c.type == LabTestType::Brazilian || bending ? specimen.container.width : loading.section;
   res.height = c.type == LabTestType::Brazilian ? specimen.container.width : loading.gauge_length;
@@ -714,19 +728,10 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
          "every bond broke before the loading (genesis relaxation or consolidation): the "
          "test loads a cohesionless packing, and its peak is friction's");
   std::optional<CmodGauge> cmod;
-  StopRuleOptions stop_options = c.stop;
+  const StopRuleOptions stop_options = loading_stop_options(c, cleaned.container);
   std::optional<CmodServo> servo;
   if (bending && c.cmod_control) servo = CmodServo{c.cmod_rate, kCmodServoSpeedCap * c.cmod_rate};
-  if (bending) {
-    cmod.emplace(world, cleaned.container, e.ymin);
-    // The stop rule follows deflection / H as its strain.
-    const double depth = cleaned.container.height;
-    stop_options.max_strain =
-        (c.max_deflection > 0 ? c.max_deflection : kDefaultMaxDeflectionFraction * depth) / depth;
-    // The crack grows from the notch tip: a failure is a crack across half the ligament (the
-    // bands of the notch itself can hold none).
-    stop_options.damage_span = 0.5 * (depth - cleaned.container.notch_depth) / depth;
-  }
+  if (bending) cmod.emplace(world, cleaned.container, e.ymin);
   PeakStopRule stop(stop_options, e.xmin, e.ymin, e.xmax, e.ymax, intact_bonds,
                     world.cracks.size());
   const long quiet_steps = static_cast<long>(kQuietFraction * static_cast<double>(c.max_steps));

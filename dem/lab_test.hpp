@@ -126,6 +126,10 @@ void check_specimen_for_test(const Specimen& specimen, const LabTestInput& input
 // its default for the beam.
 double bearing_width(const LabTestControls& controls, const Container& beam);
 
+// The stop rule of the loading phase: the test's options, and for three-point bending its
+// strain (deflection / H) bound from max_deflection and its damage span (half the ligament).
+StopRuleOptions loading_stop_options(const LabTestControls& controls, const Container& specimen);
+
 // Histories, one entry per record (every history_interval steps, plus the last step). Stresses
 // and strains are positive in the sense the test loads the specimen: compression for uniaxial
 // and Brazilian, tension for direct tension. Lateral strain = -du_x/dx of the central region
@@ -206,6 +210,9 @@ struct LabTestResult {
   StopReason stop_reason = StopReason::None;
   ShpbResult shpb;      // type "shpb": the bars, their records and the three-wave analysis
   Fragments fragments;  // the bond network's fragments at the end of the run
+  // The test's walls when the loading starts (platens, curved jaws, bending supports and plate,
+  // biaxial side walls; none for grips or SHPB), for the crack map.
+  Walls walls;
   // Where the model or the run may not be what the user meant (printed on stderr as they arise,
   // and listed in the summary): docs/lab_tests.md "Warnings".
   std::vector<std::string> warnings;

@@ -310,7 +310,9 @@ void run_generate(const GenerateRequest& request) {
 
   log.begin("write");
   write_specimen(s, request.output);
-  if (request.picture) draw_specimen_png(s, *request.picture);
+  if (request.picture)
+    draw_specimen_png(s, *request.picture, 1600,
+                      in.gradation ? in.gradation->bin_edges : std::vector<double>{});
   log.end(request.output.string());
 
   summary["timings_s"] = log.timings();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
 #include <set>
@@ -12,6 +13,7 @@
 
 #include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
+#include "core/png_drawing.hpp"
 
 namespace cdem::mesogen {
 
@@ -58,7 +60,7 @@ Layout layout(const Container& c, int long_side) {
   Layout l;
   l.margin = std::max(4.0, 0.03 * long_side);
   l.font = std::max(9.0, long_side / 60.0);
-  l.legend = 12 * l.font;
+  l.legend = 14 * l.font;
   // The larger scale at which the whole picture still fits in long_side x long_side; one of
   // the two sides is then exactly long_side.
   l.scale = std::min((long_side - 2 * l.margin - l.legend) / c.width,
@@ -68,7 +70,9 @@ Layout layout(const Container& c, int long_side) {
   return l;
 }
 
-void draw_legend(cairo_t* cr, const Layout& l, const std::set<int>& bins, bool any_inactive) {
+// The legend rows and, under them, a scale bar.
+void draw_legend(cairo_t* cr, const Layout& l, const Container& c, const std::set<int>& bins,
+                 bool any_inactive, const std::vector<double>& bin_edges) {
   const double x0 = l.width - l.legend + 0.5 * l.font;
   double y = l.margin + l.font;
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
@@ -85,11 +89,21 @@ void draw_legend(cairo_t* cr, const Layout& l, const std::set<int>& bins, bool a
     y += 1.6 * l.font;
   };
   row(kMortarColour, "mortar");
-  for (int b : bins) row(bin_colour(b), "aggregate bin " + std::to_string(b));
+  for (int b : bins) row(bin_colour(b), bin_label(b, bin_edges));
   if (any_inactive && !bins.empty()) row(inactive_colour(*bins.begin()), "paler: no contacts");
+  draw_scale_bar(cr, x0, y, l.scale, scale_bar_length(std::min(c.width, c.height)), 0.4 * l.font);
 }
 
 }  // namespace
+
+std::string bin_label(int bin, const std::vector<double>& edges) {
+  if (bin < 0 || static_cast<std::size_t>(bin) + 1 >= edges.size())
+    return "aggregate bin " + std::to_string(bin);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "aggregate %g-%g mm", edges[static_cast<std::size_t>(bin)] * 1e3,
+                edges[static_cast<std::size_t>(bin) + 1] * 1e3);
+  return buf;
+}
 
 std::array<double, 3> bin_colour(int bin) {
   const int n = static_cast<int>(kPalette.size());
@@ -102,7 +116,8 @@ std::array<double, 3> inactive_colour(int bin) {
   return c;
 }
 
-void draw_specimen_png(const Specimen& s, const std::filesystem::path& png, int pixels_long_side) {
+void draw_specimen_png(const Specimen& s, const std::filesystem::path& png, int pixels_long_side,
+                       const std::vector<double>& bin_edges) {
   if (pixels_long_side < 200 || pixels_long_side > 16000)
     throw std::invalid_argument("specimen picture: long side must be 200..16000 pixels, got " +
                                 std::to_string(pixels_long_side));
@@ -182,7 +197,7 @@ void draw_specimen_png(const Specimen& s, const std::filesystem::path& png, int 
   cairo_stroke(cr);
   cairo_restore(cr);
 
-  draw_legend(cr, l, bins, any_inactive);
+  draw_legend(cr, l, s.container, bins, any_inactive, bin_edges);
   cairo_surface_flush(surface.get());
   if (cairo_status(cr) != CAIRO_STATUS_SUCCESS)
     throw RunError("specimen picture: drawing failed (" +

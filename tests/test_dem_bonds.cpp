@@ -168,6 +168,14 @@ TEST(ParallelBondWorld, TensileFailureAtSigmaBWithBendingAndCrackRecord) {
   const double gap = std::hypot(pass_x, pass_y) - kL;
   EXPECT_NEAR(c.x, (kR1 + 0.5 * gap) * pass_x / std::hypot(pass_x, pass_y), 1e-15);
   EXPECT_NEAR(c.y, (kR1 + 0.5 * gap) * pass_y / std::hypot(pass_x, pass_y), 1e-15);
+  // The crack lies on the contact plane: its normal is the line of centres (+x here), and it is
+  // as wide as the bond, 2 Rb, so a bond along x is drawn as a vertical segment.
+  EXPECT_NEAR(c.nx, pass_x / std::hypot(pass_x, pass_y), 1e-12);
+  EXPECT_NEAR(c.ny, pass_y / std::hypot(pass_x, pass_y), 1e-12);
+  EXPECT_NEAR(c.half_width, e.rb, 1e-15);
+  const CrackSegment seg = crack_segment(c);
+  EXPECT_NEAR(std::hypot(seg.bx - seg.ax, seg.by - seg.ay), 2 * e.rb, 1e-15);
+  EXPECT_LT(std::fabs(seg.bx - seg.ax), 1e-3 * std::fabs(seg.by - seg.ay));
   // The strain energy the bond held in the breaking pass is booked as released:
   // fn^2 / (2 kbn Ab) + m^2 / (2 kbn Ib) with fn = kbn Ab n v dt, m = kbn Ib n wr dt.
   const double opening = fail_step * v * kDt, bend = fail_step * wr * kDt;

@@ -324,6 +324,14 @@ TEST(FlatJointWorld, OneCrackPerElementAtItsCentroid) {
   const double contact_x = kR1 + 0.5e-8;  // mid-gap of the 1e-8 m installation gap
   EXPECT_NEAR(c.x, contact_x, 1e-9);
   EXPECT_NEAR(c.y, -kRbar / 2, 1e-9);
+  // Drawn as the element itself: a segment across the bond (along t = +y) of the element's
+  // length 2 R / N_r, from the interface's end (-R) to its middle (0).
+  EXPECT_NEAR(c.half_width, kRbar / 2, 1e-15);
+  const CrackSegment seg = crack_segment(c);
+  EXPECT_NEAR(seg.ax, contact_x, 1e-9);
+  EXPECT_NEAR(seg.bx, contact_x, 1e-9);
+  EXPECT_NEAR(seg.ay, -kRbar, 1e-9);
+  EXPECT_NEAR(seg.by, 0, 1e-9);
   EXPECT_EQ(intact_bond_count(w)[static_cast<int>(ContactClass::Mortar)], 1);
   // Keep turning: element 1 opens and breaks too, then the open interface is removed.
   w.set_body_velocity(1, 0, 0, -40.0);

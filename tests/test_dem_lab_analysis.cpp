@@ -33,6 +33,15 @@ TEST(UcsAnalysis, RecoversModulusAndPoissonOfAKnownCurve) {
   EXPECT_NEAR(r.young_modulus, e, 1e-9 * e);
   EXPECT_NEAR(r.poisson_ratio, nu, 1e-12);
   EXPECT_NEAR(r.strain_at_half_peak, 0.5 * peak / e, 1e-9 * peak / e);
+  EXPECT_NEAR(r.lateral_strain_at_half_peak, -nu * 0.5 * peak / e, 1e-9 * peak / e);
+  // The fit window (for the picture): the contiguous pre-peak points from 40 % to 60 % of
+  // the peak, and the fitted line through them (the linear branch: sigma = E eps, no offset).
+  ASSERT_LT(r.fit_first, r.fit_last);
+  EXPECT_GE(sig[r.fit_first], 0.4 * r.peak_stress);
+  EXPECT_LT(sig[r.fit_first - 1], 0.4 * r.peak_stress);
+  EXPECT_LE(sig[r.fit_last], 0.6 * r.peak_stress);
+  EXPECT_GT(sig[r.fit_last + 1], 0.6 * r.peak_stress);
+  EXPECT_NEAR(r.fit_intercept, 0, 1e-6 * peak);
   EXPECT_TRUE(past_peak(0.79 * peak, peak, 0.8));
   EXPECT_FALSE(past_peak(0.81 * peak, peak, 0.8));
 }

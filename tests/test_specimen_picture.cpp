@@ -152,3 +152,12 @@ TEST(SpecimenPicture, RejectsBadInput) {
   EXPECT_THROW(draw_specimen_png(s, file, 400), std::invalid_argument);
   EXPECT_FALSE(fs::exists(file));
 }
+
+TEST(SpecimenPicture, BinsLabelledBySieveSizesInMm) {
+  const std::vector<double> edges{0.005, 0.0075, 0.010, 0.015};  // m
+  EXPECT_EQ(bin_label(0, edges), "aggregate 5-7.5 mm");
+  EXPECT_EQ(bin_label(2, edges), "aggregate 10-15 mm");
+  // Beyond the edges (a specimen read from a file has none): the bin's number only.
+  EXPECT_EQ(bin_label(3, edges), "aggregate bin 3");
+  EXPECT_EQ(bin_label(0, {}), "aggregate bin 0");
+}

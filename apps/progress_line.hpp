@@ -1,0 +1,49 @@
+#pragma once
+// The progress line of `cdem run` on a terminal (stderr): from the moment it is made (the run's
+// genesis) a line refreshed twice a second by a thread of its own, with the elapsed time; once
+// the loading records, its step, strain, stress, peak and broken bonds, and the time left
+// (dem/run_progress.hpp): "ETA ~N s" where the run so far supports an estimate, "ETA unknown"
+// where it does not, and "at most N s" from the bounds. Made only on a terminal without -q.
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "dem/lab_test.hpp"
+#include "dem/run_progress.hpp"
+
+namespace cdem::apps {
+
+class ProgressLine {
+ public:
+  ProgressLine(dem::LabTestType type, const dem::RunEnd& end);
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  // At every history record of the loading (LabTestHooks::progress).
+  void update(const dem::LabHistory& h, double peak, long max_steps);
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void tick();
+  std::string line(Clock::time_point now) const;  // under mutex_
+
+  dem::LabTestType type_;
+  dem::RunEnd end_;
+  Clock::time_point start_ = Clock::now();
+  // The loading's first record (the rate of steps per second counts from it) and the latest.
+  Clock::time_point first_at_{}, last_at_{};
+  long first_step_ = 0;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  bool loading_ = false;  // a record has arrived
+  std::string state_;     // what the latest record says, without the times
+  long step_ = 0;
+  dem::RunOutlook outlook_;
+  std::thread ticker_;
+};
+
+}  // namespace cdem::apps
