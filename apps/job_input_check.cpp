@@ -6,7 +6,7 @@
 #include "apps/lab_specimen.hpp"
 #include "calib/campaign_input.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
+#include "io/input_table.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/generator_input.hpp"
 

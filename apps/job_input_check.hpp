@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/campaign.hpp"
-#include "dem/lab_test.hpp"
+#include "lab/lab_test.hpp"
 
 namespace cdem::apps {
 

@@ -9,8 +9,8 @@
 #include "calib/calibrate_paper.hpp"
 #include "calib/calibrate_plots.hpp"
 #include "calib/calibrate_report.hpp"
-#include "core/atomic_output.hpp"
-#include "core/output_paths.hpp"
+#include "io/atomic_output.hpp"
+#include "io/output_paths.hpp"
 
 namespace cdem::calib {
 

@@ -11,8 +11,8 @@
 
 #include "calib/campaign.hpp"
 #include "calib/shortest_number.hpp"
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
+#include "io/atomic_output.hpp"
 
 namespace cdem::calib {
 

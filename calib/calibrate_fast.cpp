@@ -8,8 +8,8 @@
 
 #include "calib/shortest_number.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
 #include "core/units.hpp"
+#include "io/input_table.hpp"
 
 namespace cdem::calib {
 

@@ -13,9 +13,9 @@
 #include "calib/calibrate_fast.hpp"
 #include "calib/shortest_number.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
 #include "core/units.hpp"
-#include "dem/material_table.hpp"
+#include "io/input_table.hpp"
+#include "lab/material_table.hpp"
 
 namespace cdem::calib {
 

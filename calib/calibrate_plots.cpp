@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/xy_chart.hpp"
+#include "io/xy_chart.hpp"
 
 namespace cdem::calib {
 

@@ -15,9 +15,9 @@
 #include "calib/campaign_mpi.hpp"
 #include "calib/campaign_results.hpp"
 #include "calib/shortest_number.hpp"
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
-#include "core/output_paths.hpp"
+#include "io/atomic_output.hpp"
+#include "io/output_paths.hpp"
 
 namespace cdem::calib {
 

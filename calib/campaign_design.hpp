@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 
 #include "calib/campaign_spec.hpp"
-#include "core/input_table.hpp"
+#include "io/input_table.hpp"
 
 namespace cdem::calib {
 

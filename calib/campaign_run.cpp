@@ -7,7 +7,7 @@
 #include "calib/campaign_input.hpp"
 #include "calib/campaign_process.hpp"
 #include "calib/shortest_number.hpp"
-#include "core/atomic_output.hpp"
+#include "io/atomic_output.hpp"
 
 namespace cdem::calib {
 

@@ -9,7 +9,7 @@
 #include "calib/campaign_design.hpp"
 #include "calib/campaign_input.hpp"
 #include "calib/shortest_number.hpp"
-#include "core/input_table.hpp"
+#include "io/input_table.hpp"
 
 namespace cdem::calib {
 

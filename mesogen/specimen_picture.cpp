@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
+#include "io/atomic_output.hpp"
 
 namespace cdem::mesogen {
 

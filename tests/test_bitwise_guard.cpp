@@ -22,11 +22,11 @@
 #include <gtest/gtest.h>
 
 #include "core/specimen.hpp"
-#include "core/specimen_file.hpp"
 #include "dem/bond_installation.hpp"
 #include "dem/energy.hpp"
-#include "dem/lab_test.hpp"
 #include "dem/world.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/lab_test.hpp"
 #include "lab_test_fixtures.hpp"
 #include "mesogen/generate.hpp"
 #include "scratch_dir.hpp"

@@ -13,8 +13,8 @@
 #include "calib/calibrate_plots.hpp"
 #include "calib/calibrate_report.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
-#include "dem/material_table.hpp"
+#include "io/input_table.hpp"
+#include "lab/material_table.hpp"
 #include "scratch_dir.hpp"
 
 namespace {

@@ -8,7 +8,7 @@
 #include "calib/campaign_spec.hpp"
 #include "campaign_test_util.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
+#include "io/input_table.hpp"
 #include "mesogen/generator_input.hpp"
 
 using namespace cdem::calib;

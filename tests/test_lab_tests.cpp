@@ -11,11 +11,11 @@
 #include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
-#include "core/specimen_file.hpp"
-#include "dem/lab_test.hpp"
-#include "dem/material_genesis.hpp"
-#include "dem/material_table.hpp"
-#include "dem/result_file.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/lab_test.hpp"
+#include "lab/material_genesis.hpp"
+#include "lab/material_table.hpp"
+#include "lab/result_file.hpp"
 #include "lab_test_fixtures.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-#include "dem/shpb_test.hpp"
+#include "lab/shpb_test.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,12 +9,12 @@
 #include <stdexcept>
 
 #include "core/input_error.hpp"
-#include "dem/lab_analysis.hpp"
-#include "dem/lab_test.hpp"
 #include "dem/measure.hpp"
 #include "dem/servo.hpp"
 #include "dem/strain_measure.hpp"
 #include "dem/world.hpp"
+#include "lab/lab_analysis.hpp"
+#include "lab/lab_test.hpp"
 
 namespace cdem::dem {
 

@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "core/input_table.hpp"
-#include "dem/lab_test.hpp"
+#include "io/input_table.hpp"
+#include "lab/lab_test.hpp"
 
 namespace cdem::dem {
 

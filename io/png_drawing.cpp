@@ -1,9 +1,9 @@
-#include "core/png_drawing.hpp"
+#include "io/png_drawing.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
+#include "io/atomic_output.hpp"
 
 namespace cdem {
 

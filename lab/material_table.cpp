@@ -1,4 +1,4 @@
-#include "dem/material_table.hpp"
+#include "lab/material_table.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "core/xy_chart.hpp"
+#include "io/xy_chart.hpp"
 
 #include <cairo.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/png_drawing.hpp"
+#include "io/png_drawing.hpp"
 
 namespace cdem {
 

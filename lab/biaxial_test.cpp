@@ -1,4 +1,4 @@
-#include "dem/biaxial_test.hpp"
+#include "lab/biaxial_test.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "dem/lab_analysis.hpp"
+#include "lab/lab_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>

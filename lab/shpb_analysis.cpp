@@ -1,10 +1,10 @@
-#include "dem/shpb_analysis.hpp"
+#include "lab/shpb_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "dem/lab_analysis.hpp"
+#include "lab/lab_analysis.hpp"
 
 namespace cdem::dem {
 

@@ -1,4 +1,4 @@
-#include "core/atomic_output.hpp"
+#include "io/atomic_output.hpp"
 
 #include <limits.h>
 #include <signal.h>

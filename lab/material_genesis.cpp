@@ -1,4 +1,4 @@
-#include "dem/material_genesis.hpp"
+#include "lab/material_genesis.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "core/input_table.hpp"
+#include "io/input_table.hpp"
 
 #include <cmath>
 #include <fstream>

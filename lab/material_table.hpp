@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <string>
 
-#include "core/input_table.hpp"
 #include "dem/contact_model.hpp"
 #include "dem/linear_contact.hpp"
 #include "dem/world.hpp"
+#include "io/input_table.hpp"
 
 namespace cdem::dem {
 

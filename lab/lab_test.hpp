@@ -1,13 +1,13 @@
 #pragma once
 // Lab tests on a bonded specimen (SPEC 6): uniaxial compression between rigid platens, the
 // Brazilian disc between flat platens, direct tension by grip bands of discs, and one biaxial
-// test (platens plus servo side walls at a confining stress; dem/biaxial_test.hpp runs the
-// series of confinements), the split Hopkinson pressure bar (dem/shpb_test.hpp), and the
+// test (platens plus servo side walls at a confining stress; lab/biaxial_test.hpp runs the
+// series of confinements), the split Hopkinson pressure bar (lab/shpb_test.hpp), and the
 // notched-beam three-point bending test (two supports under the beam, a loading platen on top at
-// mid-span; dem/three_point_bending.hpp). The test file
+// mid-span; lab/three_point_bending.hpp). The test file
 // (docs/lab_tests.md) names the specimen, the material table and the test controls; a run does the
 // material genesis (SPEC 3.6), loads the specimen until the stop rule confirms its peak
-// (dem/stop_rule.hpp), and returns the histories, the cracks and the lab figures.
+// (lab/stop_rule.hpp), and returns the histories, the cracks and the lab figures.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -15,17 +15,17 @@
 #include <string>
 #include <vector>
 
-#include "core/input_table.hpp"
 #include "core/specimen.hpp"
 #include "dem/confinement.hpp"
 #include "dem/crack_log.hpp"
-#include "dem/lab_analysis.hpp"
-#include "dem/material_genesis.hpp"
-#include "dem/material_table.hpp"
-#include "dem/shpb_test.hpp"
-#include "dem/stop_rule.hpp"
-#include "dem/three_point_bending.hpp"
 #include "dem/world.hpp"
+#include "io/input_table.hpp"
+#include "lab/lab_analysis.hpp"
+#include "lab/material_genesis.hpp"
+#include "lab/material_table.hpp"
+#include "lab/shpb_test.hpp"
+#include "lab/stop_rule.hpp"
+#include "lab/three_point_bending.hpp"
 
 namespace cdem::dem {
 
@@ -37,7 +37,7 @@ struct LabTestControls {
   LabTestType type = LabTestType::Uniaxial;
   double platen_velocity =
       0.02;                    // m/s, of each platen (or grip band), toward / away from the other
-  StopRuleOptions stop{};      // the peak and post-peak stop rule (dem/stop_rule.hpp)
+  StopRuleOptions stop{};      // the peak and post-peak stop rule (lab/stop_rule.hpp)
   double local_damping = 0.7;  // alpha
   double time_step_safety = 0.8;
   bool density_scaling = false;
@@ -76,7 +76,7 @@ struct LabTestControls {
   double tensile_strength = 0;  // Pa
   double pin_friction = 0.5;    // friction coefficient of the pinned (left) support
   // Loading: the platen at platen_velocity, or driven so the CMOD grows at cmod_rate
-  // (dem/three_point_bending.hpp, CmodServo), never faster than kCmodServoSpeedCap x cmod_rate.
+  // (lab/three_point_bending.hpp, CmodServo), never faster than kCmodServoSpeedCap x cmod_rate.
   bool cmod_control = false;
   double cmod_rate = 0;  // m/s
 };
@@ -146,7 +146,7 @@ struct LabHistory {
   // Three-point bending only (empty otherwise): the platen's load P is platen_force, the nominal
   // flexural stress 3 P S / (2 t H^2) is axial_stress and deflection / H is axial_strain.
   std::vector<double> deflection;        // m, load point relative to the supports
-  std::vector<double> cmod;              // m, crack-mouth opening (dem/three_point_bending.hpp)
+  std::vector<double> cmod;              // m, crack-mouth opening (lab/three_point_bending.hpp)
   std::vector<double> support_reaction;  // N (per m), sum of the two supports' reactions
 
   void reserve(std::size_t n);

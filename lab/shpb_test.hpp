@@ -5,7 +5,7 @@
 // bar's far end; each bar's specimen end is a rigid face (a wall, dem/wall.hpp) that moves with
 // the bar-end velocity, and the bar feels the contact force of the discs on that face as its end
 // stress (force per m of thickness / bar width). Gauges on both bars record the strain and its
-// two travelling parts; the analysis (dem/shpb_analysis.hpp) shifts them to the faces.
+// two travelling parts; the analysis (lab/shpb_analysis.hpp) shifts them to the faces.
 //
 // One time step for both: the bars' cell is c0 x the DEM step, with the DEM step set (fixed)
 // at the largest value <= the automatic DEM step that divides the bar length into whole cells,
@@ -16,10 +16,10 @@
 #include <cstddef>
 #include <vector>
 
-#include "core/input_table.hpp"
 #include "dem/elastic_bar.hpp"
 #include "dem/measure.hpp"
-#include "dem/shpb_analysis.hpp"
+#include "io/input_table.hpp"
+#include "lab/shpb_analysis.hpp"
 
 namespace cdem::dem {
 

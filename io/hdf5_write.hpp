@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
+#include "io/atomic_output.hpp"
 
 namespace cdem::hdf5 {
 

@@ -1,4 +1,4 @@
-#include "dem/result_file.hpp"
+#include "lab/result_file.hpp"
 
 #include <H5Cpp.h>
 
@@ -7,8 +7,8 @@
 #include <numbers>
 #include <sstream>
 
-#include "core/hdf5_write.hpp"
 #include "core/version.hpp"
+#include "io/hdf5_write.hpp"
 
 namespace cdem::dem {
 

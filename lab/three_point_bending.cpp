@@ -1,4 +1,4 @@
-#include "dem/three_point_bending.hpp"
+#include "lab/three_point_bending.hpp"
 
 #include <algorithm>
 #include <cmath>

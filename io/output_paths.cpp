@@ -1,4 +1,4 @@
-#include "core/output_paths.hpp"
+#include "io/output_paths.hpp"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "dem/lab_pictures.hpp"
+#include "lab/lab_pictures.hpp"
 
 #include <cairo.h>
 
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/png_drawing.hpp"
-#include "core/xy_chart.hpp"
+#include "io/png_drawing.hpp"
+#include "io/xy_chart.hpp"
 
 namespace cdem::dem {
 

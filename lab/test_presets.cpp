@@ -1,4 +1,4 @@
-#include "dem/test_presets.hpp"
+#include "lab/test_presets.hpp"
 
 namespace cdem::dem {
 

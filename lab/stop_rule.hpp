@@ -33,9 +33,9 @@ struct StopRuleOptions {
 
 // Why a run ended; "post_peak_drop" is the only ending with a confirmed peak of a quasi-static
 // test, but for a three-point bending test whose load has fallen below half its peak at
-// max_deflection ("max_deflection": a softening tail cut short; dem/lab_test.cpp).
+// max_deflection ("max_deflection": a softening tail cut short; lab/lab_test.cpp).
 // StoppedByUser: an observer of the run (LabTestHooks::should_stop) ended it before the stop
-// rule confirmed a peak. An SHPB test (dem/shpb_test.hpp) ends "pulse_passed": its record holds
+// rule confirmed a peak. An SHPB test (lab/shpb_test.hpp) ends "pulse_passed": its record holds
 // the whole pulse.
 enum class StopReason {
   None,

@@ -1,4 +1,4 @@
-#include "core/specimen_file.hpp"
+#include "io/specimen_file.hpp"
 
 #include <H5Cpp.h>
 
@@ -10,10 +10,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/atomic_output.hpp"
-#include "core/hdf5_write.hpp"
 #include "core/input_error.hpp"
 #include "core/version.hpp"
+#include "io/atomic_output.hpp"
+#include "io/hdf5_write.hpp"
 
 namespace cdem {
 

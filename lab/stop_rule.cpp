@@ -1,10 +1,10 @@
-#include "dem/stop_rule.hpp"
+#include "lab/stop_rule.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "dem/lab_analysis.hpp"
+#include "lab/lab_analysis.hpp"
 
 namespace cdem::dem {
 

@@ -11,10 +11,10 @@
 #include <memory>
 #include <string>
 
-#include "core/atomic_output.hpp"
-#include "core/output_paths.hpp"
-#include "dem/biaxial_test.hpp"
-#include "dem/lab_test.hpp"
+#include "io/atomic_output.hpp"
+#include "io/output_paths.hpp"
+#include "lab/biaxial_test.hpp"
+#include "lab/lab_test.hpp"
 
 namespace H5 {
 class H5File;

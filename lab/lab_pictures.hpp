@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/specimen.hpp"
-#include "dem/lab_test.hpp"
+#include "lab/lab_test.hpp"
 
 namespace cdem::dem {
 

@@ -1,4 +1,4 @@
-#include "dem/lab_test.hpp"
+#include "lab/lab_test.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -14,12 +14,12 @@
 #include <toml++/toml.h>
 
 #include "core/input_error.hpp"
-#include "dem/biaxial_test.hpp"
 #include "dem/contact_energy.hpp"
 #include "dem/measure.hpp"
 #include "dem/strain_measure.hpp"
-#include "dem/test_presets.hpp"
 #include "dem/world_from_specimen.hpp"
+#include "lab/biaxial_test.hpp"
+#include "lab/test_presets.hpp"
 
 namespace cdem::dem {
 

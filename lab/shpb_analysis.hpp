@@ -58,7 +58,7 @@ struct ShpbFigures {
   double peak_stress_one_wave = 0;  // Pa
   double peak_stress_two_wave = 0;  // Pa
   // Dynamic modulus on the three-wave stress-strain curve: tangent = least-squares slope of the
-  // loading branch between 40 % and 60 % of the peak (as the UCS modulus, dem/lab_analysis.hpp);
+  // loading branch between 40 % and 60 % of the peak (as the UCS modulus, lab/lab_analysis.hpp);
   // secant = 50 % of the peak / the strain there. 0 when the branch has too few points.
   double tangent_modulus = 0;  // Pa
   double secant_modulus = 0;   // Pa
