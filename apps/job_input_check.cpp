@@ -4,7 +4,7 @@
 #include <cctype>
 
 #include "apps/lab_specimen.hpp"
-#include "calib/campaign_input.hpp"
+#include "campaign/campaign_input.hpp"
 #include "core/input_error.hpp"
 #include "io/input_table.hpp"
 #include "mesogen/generate.hpp"

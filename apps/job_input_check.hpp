@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calib/campaign.hpp"
+#include "campaign/campaign.hpp"
 #include "lab/lab_test.hpp"
 
 namespace cdem::apps {
