@@ -114,9 +114,9 @@ long disc_wall_kernel(const Discs& d, const Walls& walls, const NeighborList& li
     if (mu > 0) {
       const double vt =
           (d.vx[i] - walls.vx[wi]) * -ny + (d.vy[i] - walls.vy[wi]) * nx - arm * d.omega[i];
-      const double trial = linear_shear_increment(state.shear_force[k], ks, vt, dt);
-      fs = coulomb_limit(trial, mu, fn);
-      slip_work += 0.5 * (state.shear_force[k] + fs) * (trial - fs) / ks;
+      const LinearShear s = linear_shear_step(state.shear_force[k], ks, vt, dt, mu, fn);
+      fs = s.force;
+      slip_work += s.slip_work;
     }
     state.shear_force[k] = fs;
     out.normal[k] = fn;
