@@ -155,6 +155,31 @@ TEST(EnergyBalance, SlidingDiscLosesAThirdOfItsKineticEnergyToFriction) {
   EXPECT_LT(e.relative_error(), 1e-3);
 }
 
+TEST(EnergyBalance, DiscGlancingOffARoughWallClosesTheBalance) {
+  // A disc grazing a floor (0.2 m/s along it, 0.01 m/s into it) bounces off with its shear
+  // spring loaded: friction mu = 100 keeps the contact stuck to the end, so the spring's energy
+  // and the work of its last increment are lost when the contact opens and must be booked as
+  // slip work, as for a disc pair. Booking the spring energy alone (the wall law before issue
+  // 15) leaves out the last increment's work Fs du / 2 (du, the step's tangential displacement),
+  // O(dt / contact time) of the spring's energy: 1.2e-2 of the balance here. What may remain is
+  // the integrator's own error at the contact's onset and end, O((omega dt)^2), below 1e-4.
+  WorldSettings s;
+  s.local_damping = 0;
+  s.time_step_safety = kSafety;
+  s.laws.fill(LinearContact{kE, 1.0, 100.0});
+  World w(s);
+  const double r = 1e-3, rho = 2000;  // m, kg/m3
+  w.add_wall(-1, 0, 1, 0);
+  const int b = w.add_disc(0, r, r, rho);  // touching the floor
+  w.set_body_velocity(b, 0.2, -0.01, 0);
+  w.cycle(20000);
+  const cdem::dem::Energies e = cdem::dem::energies(w);
+  ASSERT_GT(w.bodies.y[b], r);  // it has left the floor
+  EXPECT_EQ(w.last_force_pass().touching_walls, 0);
+  EXPECT_GT(e.friction, 0.1 * e.input());  // the stuck spring held a real share
+  EXPECT_LT(e.relative_error(), 1e-4);
+}
+
 TEST(EnergyBalance, BookkeepingDoesNotChangeTheMotion) {
   // Tracking on or off: the same positions bit for bit (the ledger only reads the motion).
   const auto run = [](bool tracking) {
