@@ -1,12 +1,12 @@
 // `cdem calibrate CAL.toml [-o DIR] [-j N] [--strategy fast|paper] [-q]`: the engine is
-// calib/calibrate.hpp; this file maps the options onto it and turns a calibration that did not
+// calibrate/calibrate.hpp; this file maps the options onto it and turns a calibration that did not
 // succeed into exit code 3.
 #include <iostream>
 #include <memory>
 
 #include "apps/commands.hpp"
 #include "apps/job_input_check.hpp"
-#include "calib/calibrate.hpp"
+#include "calibrate/calibrate.hpp"
 #include "core/input_error.hpp"
 
 namespace cdem::apps {

@@ -1,9 +1,9 @@
 // `cdem campaign DESIGN.toml [-j N] [-o DIR] [--timeout S] [--retry-failed] [-q]`, also under
-// `mpirun -np K`. The engine is calib/campaign.hpp; this file only maps options onto it.
+// `mpirun -np K`. The engine is campaign/campaign.hpp; this file only maps options onto it.
 #include <memory>
 
 #include "apps/commands.hpp"
-#include "calib/campaign.hpp"
+#include "campaign/campaign.hpp"
 
 namespace cdem::apps {
 

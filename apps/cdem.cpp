@@ -8,9 +8,9 @@
 
 #include "apps/commands.hpp"
 #include "apps/job_input_check.hpp"
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
 #include "core/version.hpp"
+#include "io/atomic_output.hpp"
 
 namespace {
 // Exit codes (README, "Exit codes"): 0 success, 1 bad command line (CLI11), 2 bad input (a file,

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "calib/campaign.hpp"
+#include "campaign/campaign.hpp"
 
 namespace cdem::apps {
 

@@ -2,8 +2,8 @@
 #include <memory>
 
 #include "apps/commands.hpp"
-#include "core/atomic_output.hpp"
-#include "core/output_paths.hpp"
+#include "io/atomic_output.hpp"
+#include "io/output_paths.hpp"
 #include "mesogen/generate.hpp"
 
 namespace cdem::apps {

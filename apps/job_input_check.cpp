@@ -4,9 +4,9 @@
 #include <cctype>
 
 #include "apps/lab_specimen.hpp"
-#include "calib/campaign_input.hpp"
+#include "campaign/campaign_input.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
+#include "io/input_table.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/generator_input.hpp"
 

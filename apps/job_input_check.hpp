@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calib/campaign.hpp"
-#include "dem/lab_test.hpp"
+#include "campaign/campaign.hpp"
+#include "lab/lab_test.hpp"
 
 namespace cdem::apps {
 

@@ -12,11 +12,11 @@
 #include <memory>
 #include <string>
 
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
-#include "core/specimen_file.hpp"
-#include "dem/lab_test.hpp"
+#include "io/atomic_output.hpp"
+#include "io/input_table.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/lab_test.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/generator_input.hpp"
 

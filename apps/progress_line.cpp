@@ -104,7 +104,7 @@ std::string ProgressLine::line(Clock::time_point now) const {
 }
 
 void ProgressLine::tick() {
-  // The run's thread takes the signals that clean up outputs (core/atomic_output.hpp), which
+  // The run's thread takes the signals that clean up outputs (io/atomic_output.hpp), which
   // blocks them around its commits; this thread must not take them in its stead.
   sigset_t cleanup;
   sigemptyset(&cleanup);

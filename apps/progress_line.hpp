@@ -10,8 +10,8 @@
 #include <string>
 #include <thread>
 
-#include "dem/lab_test.hpp"
 #include "dem/run_progress.hpp"
+#include "lab/lab_test.hpp"
 
 namespace cdem::apps {
 

@@ -16,12 +16,12 @@
 #include "apps/lab_specimen.hpp"
 #include "apps/progress_line.hpp"
 #include "apps/run_summary.hpp"
-#include "core/atomic_output.hpp"
-#include "core/output_paths.hpp"
-#include "dem/biaxial_test.hpp"
-#include "dem/lab_pictures.hpp"
-#include "dem/lab_test.hpp"
-#include "dem/result_file.hpp"
+#include "io/atomic_output.hpp"
+#include "io/output_paths.hpp"
+#include "lab/biaxial_test.hpp"
+#include "lab/lab_pictures.hpp"
+#include "lab/lab_test.hpp"
+#include "lab/result_file.hpp"
 
 namespace cdem::apps {
 

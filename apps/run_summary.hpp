@@ -4,8 +4,8 @@
 // and the same numbers.
 #include <nlohmann/json.hpp>
 
-#include "dem/biaxial_test.hpp"
-#include "dem/lab_test.hpp"
+#include "lab/biaxial_test.hpp"
+#include "lab/lab_test.hpp"
 
 namespace cdem::apps {
 

@@ -19,12 +19,12 @@
 #include <numeric>
 #include <string>
 
-#include "core/specimen_file.hpp"
 #include "cycle_throughput.hpp"
 #include "dem/bond_installation.hpp"
-#include "dem/material_genesis.hpp"
-#include "dem/material_table.hpp"
 #include "dem/world_from_specimen.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/material_genesis.hpp"
+#include "lab/material_table.hpp"
 
 namespace {
 

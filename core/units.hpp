@@ -1,6 +1,6 @@
 #pragma once
 // SI is used everywhere inside cdem (m, kg, s, N, Pa). Inputs may carry other units; they are
-// converted once, at the input boundary (core/input_table.cpp). 2D quantities are per unit
+// converted once, at the input boundary (io/input_table.cpp). 2D quantities are per unit
 // thickness t = 1 m (the PFC2D convention): a "stress" is N / (m x 1 m).
 
 namespace cdem::units {

@@ -71,6 +71,13 @@ long disc_disc_pass(Discs& d, NeighborList& list, ContactForces& out, const Cont
   return bad == static_cast<long>(count) ? -1 : bad;
 }
 
+// Tangential velocity (m/s) of disc i's contact point relative to wall wi, along t = (-ny, nx);
+// arm = R - overlap / 2 (m), as for a disc pair.
+double wall_slip_velocity(const Discs& d, const Walls& walls, std::int32_t i, std::int32_t wi,
+                          double nx, double ny, double arm) {
+  return (d.vx[i] - walls.vx[wi]) * -ny + (d.vy[i] - walls.vy[wi]) * nx - arm * d.omega[i];
+}
+
 // One disc-wall contact: the wall is the first body, the disc the second; n points from the
 // closest point of the segment or arc to the disc centre.
 long disc_wall_kernel(const Discs& d, const Walls& walls, const NeighborList& list,
@@ -85,9 +92,18 @@ long disc_wall_kernel(const Discs& d, const Walls& walls, const NeighborList& li
     closest_on_wall(walls, wi, d.x[i], d.y[i], px, py);
     const double dx = d.x[i] - px, dy = d.y[i] - py, ri = d.r[i];
     const double d2 = dx * dx + dy * dy;
+    const double mu = walls.friction[wi] >= 0 ? walls.friction[wi] : law.mu;
     if (d2 >= ri * ri) {
-      // An opening contact forgets its shear force: its spring energy counts as slip work.
-      slip_work += 0.5 * state.shear_force[k] * state.shear_force[k] / ks;
+      // Apart: the contact forgets its shear force. One that has just opened books its spring
+      // energy and the work of its last increment as slip work, as a disc pair does (the shear
+      // step with fn = 0); the spring energy alone left the ledger off by that work, O(dt).
+      const double old = state.shear_force[k];
+      if (old != 0) {
+        const double dist = std::sqrt(d2), nx = dx / dist, ny = dy / dist;
+        const double arm = ri - 0.5 * (ri - dist);
+        const double vt = wall_slip_velocity(d, walls, i, wi, nx, ny, arm);
+        slip_work += linear_shear_step(old, ks, vt, dt, mu, 0.0).slip_work;
+      }
       state.shear_force[k] = 0;
       out.normal[k] = out.overlap[k] = out.fx[k] = out.fy[k] = out.moment[k] = 0;
       out.cx[k] = px;
@@ -110,13 +126,11 @@ long disc_wall_kernel(const Discs& d, const Walls& walls, const NeighborList& li
     const double fn = linear_normal_force(kn, overlap);
     const double arm = ri - 0.5 * overlap;
     double fs = 0;
-    const double mu = walls.friction[wi] >= 0 ? walls.friction[wi] : law.mu;
     if (mu > 0) {
-      const double vt =
-          (d.vx[i] - walls.vx[wi]) * -ny + (d.vy[i] - walls.vy[wi]) * nx - arm * d.omega[i];
-      const double trial = linear_shear_increment(state.shear_force[k], ks, vt, dt);
-      fs = coulomb_limit(trial, mu, fn);
-      slip_work += 0.5 * (state.shear_force[k] + fs) * (trial - fs) / ks;
+      const double vt = wall_slip_velocity(d, walls, i, wi, nx, ny, arm);
+      const LinearShear s = linear_shear_step(state.shear_force[k], ks, vt, dt, mu, fn);
+      fs = s.force;
+      slip_work += s.slip_work;
     }
     state.shear_force[k] = fs;
     out.normal[k] = fn;

@@ -166,16 +166,6 @@ class DiscPairKernel {
     f.moment_j = -(g.rj - 0.5 * g.overlap) * shear + bond_moment;
   }
 
-  // Mean shear force times the slip displacement (trial - fs) / ks (J): the PFC rule; it also
-  // books the spring energy lost when a contact opens. It is non-zero only where the limit
-  // clipped the trial force and the mean force is non-zero (a sliding contact, or one that has
-  // just opened): one rarely taken branch instead of a division on every pair. Pairs apart
-  // (old = fs = 0) and stuck contacts (trial = fs) give exactly zero either way.
-  static double slip_work(double old_shear, double trial, double shear, double ks) {
-    const double mean_twice = old_shear + shear, excess = trial - shear;
-    return mean_twice * excess != 0 ? 0.5 * mean_twice * excess / ks : 0.0;
-  }
-
   double shear_stiffness(int contact_class, double kn) const {
     return kn * shear_per_normal_stiffness_[contact_class];
   }
@@ -192,11 +182,10 @@ class DiscPairKernel {
     PairForce f;
     double fs = 0;
     if (law.mu > 0) {
-      const double ks = shear_stiffness(cls, kn);
-      const double old = shear_[k];
-      const double trial = linear_shear_increment(old, ks, tangential_velocity(g), dt_);
-      fs = coulomb_limit(trial, law.mu, fn);
-      f.slip_work = slip_work(old, trial, fs, ks);
+      const LinearShear s = linear_shear_step(shear_[k], shear_stiffness(cls, kn),
+                                              tangential_velocity(g), dt_, law.mu, fn);
+      fs = s.force;
+      f.slip_work = s.slip_work;
     }
     shear_[k] = fs;
     resolve(g, fn, fs, 0.0, f);
@@ -231,7 +220,7 @@ class DiscPairKernel {
       fn = point_bonded ? fn_bonded : fn;
     }
     const double fs = point_bonded ? trial : coulomb_limit(trial, law.mu, fn);
-    f.slip_work = slip_work(old, trial, fs, ks);
+    f.slip_work = linear_slip_work(old, trial, fs, ks);
     ParallelBondState pb;
     if (kind == BondKind::Parallel) {
       const ParallelBondParams& p = bonds_[cls].parallel;

@@ -175,8 +175,7 @@ inline FlatJointForce flat_joint_update(const FlatJointGeometry& g, const FlatJo
     if (!(bonded & bit)) {
       const double limit = mu * -f.fn;  // f.fn <= 0 for an unbonded element
       fs = std::clamp(trial, -limit, limit);
-      const double mean_twice = shear[e] + fs, excess = trial - fs;
-      if (mean_twice * excess != 0) out.slip_work += 0.5 * mean_twice * excess / (g.ks * area);
+      out.slip_work += linear_slip_work(shear[e], trial, fs, g.ks * area);
     }
     shear[e] = fs;
     out.fn += f.fn;

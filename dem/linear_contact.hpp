@@ -57,6 +57,34 @@ inline double coulomb_limit(double fs, double mu, double fn) {
   return std::clamp(fs, -fmax, fmax);
 }
 
+// Energy dissipated by one step of a shear spring (J per m of thickness): the mean shear force
+// times the slip, (old + fs) / 2 x (trial - fs) / ks, the PFC rule (N, N, N, N/m). It is what
+// the discrete ledger (docs/dem_design.md "Energy in contacts and bonds") needs: the work of the
+// mean force over the step's tangential displacement less the change of the spring's energy.
+// A contact that opens (fs = 0) books its spring energy old^2 / (2 ks) and the work of its last
+// increment. Non-zero only where the limit clipped the trial force and the mean force is
+// non-zero: one rarely taken branch instead of a division on every contact; stuck contacts
+// (trial = fs) and contacts apart (old = fs = 0) give exactly zero either way.
+inline double linear_slip_work(double old_shear, double trial, double shear, double ks) {
+  const double mean_twice = old_shear + shear, excess = trial - shear;
+  return mean_twice * excess != 0 ? 0.5 * mean_twice * excess / ks : 0.0;
+}
+
+struct LinearShear {
+  double force = 0;      // N, along t, within the Coulomb limit
+  double slip_work = 0;  // J per m, linear_slip_work of the step
+};
+
+// One step of the linear law's shear spring, for disc pairs and disc-wall contacts alike:
+// incremental update by the slip velocity (m/s) over dt (s), Coulomb limit mu fn (fn = 0: a
+// contact apart, which forgets its shear force), slip work. ks in N/m, forces in N.
+inline LinearShear linear_shear_step(double old_shear, double ks, double slip_velocity, double dt,
+                                     double mu, double fn) {
+  const double trial = linear_shear_increment(old_shear, ks, slip_velocity, dt);
+  const double fs = coulomb_limit(trial, mu, fn);
+  return {fs, linear_slip_work(old_shear, trial, fs, ks)};
+}
+
 // Class of a disc-disc pair from the two discs materials
 // 0 = mortar, 1 = aggregate.
 inline ContactClass disc_pair_class(int material1, int material2) {

@@ -10,13 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
-#include "core/specimen_file.hpp"
 #include "core/units.hpp"
 #include "core/version.hpp"
 #include "dem/contact_census.hpp"
 #include "dem/world_from_specimen.hpp"
+#include "io/atomic_output.hpp"
+#include "io/specimen_file.hpp"
 #include "mesogen/clumping.hpp"
 #include "mesogen/generator_input.hpp"
 #include "mesogen/gradation.hpp"

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/input_table.hpp"
 #include "core/specimen.hpp"
+#include "io/input_table.hpp"
 #include "mesogen/aggregate_shape.hpp"
 #include "mesogen/compaction.hpp"
 #include "mesogen/mortar_packing.hpp"

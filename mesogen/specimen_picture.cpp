@@ -11,9 +11,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
-#include "core/png_drawing.hpp"
+#include "io/atomic_output.hpp"
+#include "io/png_drawing.hpp"
 
 namespace cdem::mesogen {
 

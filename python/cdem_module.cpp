@@ -21,14 +21,14 @@
 
 #include "apps/lab_specimen.hpp"
 #include "apps/run_summary.hpp"
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
-#include "core/output_paths.hpp"
-#include "core/specimen_file.hpp"
 #include "core/version.hpp"
-#include "dem/biaxial_test.hpp"
-#include "dem/lab_test.hpp"
-#include "dem/result_file.hpp"
+#include "io/atomic_output.hpp"
+#include "io/output_paths.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/biaxial_test.hpp"
+#include "lab/lab_test.hpp"
+#include "lab/result_file.hpp"
 #include "mesogen/generate.hpp"
 
 namespace py = pybind11;

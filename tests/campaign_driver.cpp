@@ -21,8 +21,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.hpp"
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
+#include "io/atomic_output.hpp"
 
 namespace {
 

@@ -10,8 +10,8 @@
 #include "core/input_error.hpp"
 #include "core/rng.hpp"
 #include "core/specimen.hpp"
-#include "core/specimen_file.hpp"
-#include "dem/lab_test.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/lab_test.hpp"
 #include "mesogen/mortar_packing.hpp"
 #include "scratch_dir.hpp"
 

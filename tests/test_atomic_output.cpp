@@ -1,4 +1,4 @@
-// Outputs that never clobber (core/atomic_output.hpp, core/output_paths.hpp): the outputs of one
+// Outputs that never clobber (io/atomic_output.hpp, io/output_paths.hpp): the outputs of one
 // command appear together or not at all, stale temporary files of dead processes are cleared,
 // and output paths that would replace an input or another output are refused by file identity.
 #include <gtest/gtest.h>
@@ -10,9 +10,9 @@
 #include <fstream>
 #include <string>
 
-#include "core/atomic_output.hpp"
 #include "core/input_error.hpp"
-#include "core/output_paths.hpp"
+#include "io/atomic_output.hpp"
+#include "io/output_paths.hpp"
 #include "scratch_dir.hpp"
 
 namespace fs = std::filesystem;

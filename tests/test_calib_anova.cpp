@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/anova.hpp"
-#include "calib/designs.hpp"
-#include "calib/range_analysis.hpp"
+#include "doe/anova.hpp"
+#include "doe/designs.hpp"
+#include "doe/range_analysis.hpp"
 
 using namespace cdem::calib;
 

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/designs.hpp"
+#include "doe/designs.hpp"
 
 using namespace cdem::calib;
 

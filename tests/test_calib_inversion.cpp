@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/designs.hpp"
-#include "calib/inversion.hpp"
-#include "calib/nelder_mead.hpp"
-#include "calib/response_surface.hpp"
+#include "doe/designs.hpp"
+#include "doe/inversion.hpp"
+#include "doe/nelder_mead.hpp"
+#include "doe/response_surface.hpp"
 
 using namespace cdem::calib;
 

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 #include <boost/math/distributions/students_t.hpp>
 
-#include "calib/designs.hpp"
-#include "calib/response_surface.hpp"
+#include "doe/designs.hpp"
+#include "doe/response_surface.hpp"
 
 using namespace cdem::calib;
 

@@ -1,5 +1,5 @@
 // cdem calibrate: the calibration file's checks, and the fast and paper strategies end to end on
-// an analytic stand-in for the DEM (calib/calibrate_simulator.hpp), whose answer is known.
+// an analytic stand-in for the DEM (calibrate/calibrate_simulator.hpp), whose answer is known.
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -7,14 +7,14 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/calibrate.hpp"
-#include "calib/calibrate_fast.hpp"
-#include "calib/calibrate_paper.hpp"
-#include "calib/calibrate_plots.hpp"
-#include "calib/calibrate_report.hpp"
+#include "calibrate/calibrate.hpp"
+#include "calibrate/calibrate_fast.hpp"
+#include "calibrate/calibrate_paper.hpp"
+#include "calibrate/calibrate_plots.hpp"
+#include "calibrate/calibrate_report.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
-#include "dem/material_table.hpp"
+#include "io/input_table.hpp"
+#include "lab/material_table.hpp"
 #include "scratch_dir.hpp"
 
 namespace {

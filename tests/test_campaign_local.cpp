@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/campaign.hpp"
-#include "calib/campaign_process.hpp"
+#include "campaign/campaign.hpp"
+#include "campaign/campaign_process.hpp"
 #include "campaign_test_util.hpp"
 #include "core/input_error.hpp"
 

@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "calib/campaign_process.hpp"
+#include "campaign/campaign_process.hpp"
 #include "campaign_test_util.hpp"
 
 using namespace cdem::calib;

@@ -3,12 +3,12 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
-#include "calib/campaign.hpp"
-#include "calib/campaign_input.hpp"
-#include "calib/campaign_spec.hpp"
+#include "campaign/campaign.hpp"
+#include "campaign/campaign_input.hpp"
+#include "campaign/campaign_spec.hpp"
 #include "campaign_test_util.hpp"
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
+#include "io/input_table.hpp"
 #include "mesogen/generator_input.hpp"
 
 using namespace cdem::calib;

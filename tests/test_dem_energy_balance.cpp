@@ -90,16 +90,23 @@ TEST(EnergyBalance, WallWorkEqualsKineticPlusStrainPlusDampingWithDamping) {
   EXPECT_NEAR(c.ledger_work / (c.kinetic + c.strain + c.damping), 1, 1e-3);
 }
 
+// A world with a floor, the wall y = 0 from x = -1 to 1 m, for one disc near x = 0: every contact
+// law of modulus kE, kn / ks = 1 and friction mu; local damping alpha, the fine step kSafety.
+World floor_world(double alpha, double mu) {
+  WorldSettings s;
+  s.local_damping = alpha;
+  s.time_step_safety = kSafety;
+  s.laws.fill(LinearContact{kE, 1.0, mu});
+  World w(s);
+  w.add_wall(-1, 0, 1, 0);
+  return w;
+}
+
 TEST(EnergyBalance, AppliedLoadWorkBalancesAFallingDisc) {
   // A disc resting on the bottom wall without overlap, loaded by its weight: it sinks into the
   // wall spring and oscillates until damping stops it (never leaving the contact). The work of
   // the applied load equals kinetic + strain + damping, and m g h for the height lost.
-  WorldSettings s;
-  s.local_damping = 0.3;
-  s.time_step_safety = kSafety;
-  s.laws.fill(LinearContact{kE, 1.0, 0.0});
-  World w(s);
-  w.add_wall(-0.01, 0, 0.01, 0);
+  World w = floor_world(0.3, 0.0);
   const int body = w.add_disc(0, 1e-3, 1e-3, 2500);
   const double g = 9.81, weight = w.bodies.mass[body] * g;
   w.bodies.fy_applied[body] = -weight;
@@ -136,14 +143,10 @@ TEST(EnergyBalance, SlidingDiscLosesAThirdOfItsKineticEnergyToFriction) {
   // dissipates KE0 - KE_rolling = m v0^2 / 6 for a rigid contact; the compliant contact keeps
   // (mu F)^2 / (2 ks) in its shear spring when slip stops, 2e-6 of that here (F = 1 N), so the
   // rigid answer holds to the tolerances below. Undamped, the ledger must close on it.
-  WorldSettings s;
-  s.local_damping = 0;
-  s.time_step_safety = kSafety;
-  s.laws.fill(LinearContact{kE, 1.0, 1.0});
-  World w(s);
+  World w = floor_world(0, 1.0);
   const double r = 1e-3, rho = 2000, load = 1, v0 = 0.1;  // m, kg/m3, N, m/s
-  const double kn = s.laws[static_cast<int>(cdem::dem::ContactClass::Wall)].wall_normal_stiffness();
-  w.add_wall(-1, 0, 1, 0);
+  const double kn =
+      w.settings.laws[static_cast<int>(cdem::dem::ContactClass::Wall)].wall_normal_stiffness();
   const int b = w.add_disc(0, r - load / kn, r, rho);  // at its static overlap
   w.bodies.fy_applied[b] = -load;
   w.set_body_velocity(b, v0, 0, 0);
@@ -153,6 +156,26 @@ TEST(EnergyBalance, SlidingDiscLosesAThirdOfItsKineticEnergyToFriction) {
   EXPECT_NEAR(w.bodies.vx[b], 2.0 / 3.0 * v0, 1e-3 * v0);
   EXPECT_NEAR(e.friction, m * v0 * v0 / 6, 2e-3 * m * v0 * v0 / 6);
   EXPECT_LT(e.relative_error(), 1e-3);
+}
+
+TEST(EnergyBalance, DiscGlancingOffARoughWallClosesTheBalance) {
+  // A disc grazing a floor (0.2 m/s along it, 0.01 m/s into it) bounces off with its shear
+  // spring loaded: friction mu = 100 keeps the contact stuck to the end, so the spring's energy
+  // and the work of its last increment are lost when the contact opens and must be booked as
+  // slip work, as for a disc pair. Booking the spring energy alone (the wall law before issue
+  // 15) leaves out the last increment's work Fs du / 2 (du, the step's tangential displacement),
+  // O(dt / contact time) of the spring's energy: 1.2e-2 of the balance here. What may remain is
+  // the integrator's own error at the contact's onset and end, O((omega dt)^2), below 1e-4.
+  World w = floor_world(0, 100.0);
+  const double r = 1e-3, rho = 2000;       // m, kg/m3
+  const int b = w.add_disc(0, r, r, rho);  // touching the floor
+  w.set_body_velocity(b, 0.2, -0.01, 0);
+  w.cycle(20000);
+  const cdem::dem::Energies e = cdem::dem::energies(w);
+  ASSERT_GT(w.bodies.y[b], r);  // it has left the floor
+  EXPECT_EQ(w.last_force_pass().touching_walls, 0);
+  EXPECT_GT(e.friction, 0.1 * e.input());  // the stuck spring held a real share
+  EXPECT_LT(e.relative_error(), 1e-4);
 }
 
 TEST(EnergyBalance, BookkeepingDoesNotChangeTheMotion) {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "dem/lab_analysis.hpp"
+#include "lab/lab_analysis.hpp"
 
 using namespace cdem::dem;
 

@@ -1,4 +1,4 @@
-// The split Hopkinson pressure bar (dem/shpb_test.hpp, dem/shpb_analysis.hpp): the bars coupled
+// The split Hopkinson pressure bar (lab/shpb_test.hpp, lab/shpb_analysis.hpp): the bars coupled
 // to a DEM specimen through their faces, against the closed forms of plane waves, and the
 // three-wave analysis on waves with a known answer; bad [test.shpb] input.
 #include <gtest/gtest.h>
@@ -7,10 +7,10 @@
 #include <numbers>
 
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
-#include "dem/shpb_analysis.hpp"
-#include "dem/shpb_test.hpp"
 #include "dem/world.hpp"
+#include "io/input_table.hpp"
+#include "lab/shpb_analysis.hpp"
+#include "lab/shpb_test.hpp"
 
 namespace cdem::dem {
 namespace {

@@ -1,9 +1,9 @@
-// The peak and post-peak stop rule (dem/stop_rule.hpp) on synthetic records: a dip after one
+// The peak and post-peak stop rule (lab/stop_rule.hpp) on synthetic records: a dip after one
 // crack must not end the test, a confirmed failure must, and a run that ends otherwise says
 // which condition was missing.
 #include <gtest/gtest.h>
 
-#include "dem/stop_rule.hpp"
+#include "lab/stop_rule.hpp"
 
 using namespace cdem::dem;
 

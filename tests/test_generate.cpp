@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/specimen_file.hpp"
+#include "io/specimen_file.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/gradation.hpp"
 #include "mesogen/mortar_packing.hpp"

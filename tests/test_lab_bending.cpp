@@ -8,9 +8,9 @@
 #include <fstream>
 #include <optional>
 
-#include "core/specimen_file.hpp"
-#include "dem/lab_test.hpp"
-#include "dem/three_point_bending.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/lab_test.hpp"
+#include "lab/three_point_bending.hpp"
 #include "lab_test_fixtures.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/placement.hpp"

@@ -14,8 +14,8 @@
 
 #include "apps/lab_specimen.hpp"
 #include "core/input_error.hpp"
-#include "dem/biaxial_test.hpp"
-#include "dem/result_file.hpp"
+#include "lab/biaxial_test.hpp"
+#include "lab/result_file.hpp"
 #include "lab_test_fixtures.hpp"
 #include "mesogen/generate.hpp"
 

@@ -1,4 +1,4 @@
-// The lab-test pictures (dem/lab_pictures.hpp, core/png_drawing.hpp): what the charts mark and
+// The lab-test pictures (lab/lab_pictures.hpp, io/png_drawing.hpp): what the charts mark and
 // state comes from the run's analysis, the scale bar's length, and the crack map is written.
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "core/png_drawing.hpp"
-#include "dem/lab_pictures.hpp"
+#include "io/png_drawing.hpp"
+#include "lab/lab_pictures.hpp"
 
 #include "scratch_dir.hpp"
 

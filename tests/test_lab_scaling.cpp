@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "dem/lab_test.hpp"
+#include "lab/lab_test.hpp"
 #include "lab_test_fixtures.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
-#include "dem/lab_test.hpp"
+#include "lab/lab_test.hpp"
 #include "lab_test_fixtures.hpp"
 
 namespace {

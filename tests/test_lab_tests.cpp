@@ -11,11 +11,11 @@
 #include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
-#include "core/specimen_file.hpp"
-#include "dem/lab_test.hpp"
-#include "dem/material_genesis.hpp"
-#include "dem/material_table.hpp"
-#include "dem/result_file.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/lab_test.hpp"
+#include "lab/material_genesis.hpp"
+#include "lab/material_table.hpp"
+#include "lab/result_file.hpp"
 #include "lab_test_fixtures.hpp"
 
 namespace {
@@ -214,9 +214,9 @@ TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
       read("specimen = \"disc.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n");
   expect_input_error([&] { run_lab_test(disc_specimen(), ucs_on_disc); }, "test.type");
   // The fragment sieve: sizes in mm, positive, increasing, 1 to 16 of them.
-  for (const char* sieve : {"fragment_sieve = [1, 2]", "fragment_sieve_mm = [2, 1]",
-                            "fragment_sieve_mm = [0, 1]", "fragment_sieve_mm = []",
-                            "fragment_sieve_mm = [1, 1]"})
+  for (const char* sieve :
+       {"fragment_sieve = [1, 2]", "fragment_sieve_mm = [2, 1]", "fragment_sieve_mm = [0, 1]",
+        "fragment_sieve_mm = []", "fragment_sieve_mm = [1, 1]"})
     expect_input_error(
         [&] {
           read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\n" + sieve + "\n");

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <string>
 
-#include "dem/material_table.hpp"
+#include "lab/material_table.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The HDF5 specimen file (core/specimen_file.hpp, docs/specimen_file.md): round trip, errors
+// The HDF5 specimen file (io/specimen_file.hpp, docs/specimen_file.md): round trip, errors
 // that name the file, and atomic writing.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include "core/input_error.hpp"
 #include "core/rng.hpp"
-#include "core/specimen_file.hpp"
+#include "io/specimen_file.hpp"
 
 #include "scratch_dir.hpp"
 

@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
-#include "core/input_table.hpp"
-#include "dem/lab_test.hpp"
-#include "dem/test_presets.hpp"
+#include "io/input_table.hpp"
+#include "lab/lab_test.hpp"
+#include "lab/test_presets.hpp"
 #include "scratch_dir.hpp"
 
 namespace {

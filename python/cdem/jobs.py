@@ -1,6 +1,6 @@
 """Campaigns and calibrations: the ``cdem`` binary run as a subprocess.
 
-A campaign's runs are processes of the cdem binary (calib/campaign_run.cpp starts its own
+A campaign's runs are processes of the cdem binary (campaign/campaign_run.cpp starts its own
 executable for each job), so these two functions call the command line itself rather than the
 library: the same code path, with the exit codes mapped onto cdem.InputError (2) and
 cdem.RunError (3; 1, a bad command line such as a missing file, is an InputError too). The binary is the one built with this module (``cdem/bin/cdem`` in the

@@ -17,10 +17,10 @@
 
 #include "core/input_error.hpp"
 #include "core/rng.hpp"
-#include "core/specimen_file.hpp"
 #include "dem/energy.hpp"
-#include "dem/lab_test.hpp"
-#include "dem/result_file.hpp"
+#include "io/specimen_file.hpp"
+#include "lab/lab_test.hpp"
+#include "lab/result_file.hpp"
 #include "mesogen/generate.hpp"
 #include "mesogen/mortar_packing.hpp"
 #include "tests/lab_test_fixtures.hpp"

@@ -2,9 +2,9 @@
 // file the safety factor stops at 1 (an InputError beyond); at 1 a uniaxial test still agrees
 // with the default 0.8. Past it, a fixed step on the bonded specimen under loading either stays
 // bounded or stops with the instability diagnostic, and far past it it must stop.
-#include "dem/material_genesis.hpp"
-#include "dem/material_table.hpp"
 #include "dem/world_from_specimen.hpp"
+#include "lab/material_genesis.hpp"
+#include "lab/material_table.hpp"
 #include "stability_fixture.hpp"
 
 namespace {

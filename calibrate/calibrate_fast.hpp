@@ -1,0 +1,47 @@
+#pragma once
+// The fast calibration strategy (docs/calibration.md): what is known about bonded-particle models
+// replaces designs of experiments. E scales with the moduli at fixed stiffness ratios, nu is set
+// by the stiffness ratios, strengths scale with the bond strengths. Each target therefore owns
+// one group of free keys, moved together by one scale factor (their ratios stay fixed):
+//   E -> moduli, nu -> stiffness ratios, sigma_u or sigma_t -> all bond strengths
+//   (both strengths as targets: sigma_t -> tensile strengths, sigma_u -> shear strengths).
+// From a semi-analytical start, each iteration runs one simulation and corrects every scale by
+// a Newton step in log space on the sensitivities d ln(response) / d ln(scale): the priors (1 per
+// group, no coupling: the proportional correction) updated by Broyden's rule along every step
+// long enough to measure, so couplings such as kn/ks moving E are learnt. Converged within the
+// tolerance, the set is verified on independent specimens, and corrected on the verification
+// mean if that misses (two verifications give a secant of their own).
+#include <string>
+#include <vector>
+
+#include "calibrate/calibrate_result.hpp"
+
+namespace cdem::calib {
+
+struct FastGroup {
+  CalibrationTarget target = CalibrationTarget::SigmaU;
+  std::vector<ParameterRole> roles;
+  std::vector<int> parameters;  // indices into CalibrationInput::parameters
+  double scale_lower = 0;       // the scales that keep every key of the group in its bounds
+  double scale_upper = 0;
+  double prior_exponent = 1;  // d ln(response) / d ln(scale) before a secant is available
+};
+
+// The groups of the input's targets. Throws InputError (the calibration file, key 'parameters')
+// when a target has no free key to move, or a group's bounds admit no common scale.
+std::vector<FastGroup> fast_groups(const CalibrationInput& input);
+void check_fast_parameters(const CalibrationInput& input);
+
+// Semi-analytical start: the responses of the base materials estimated from their mortar keys
+// with the ratios measured on the C30 model (docs/calibration.md), as a scale per group.
+std::vector<double> fast_start_scales(const CalibrationInput& input,
+                                      const std::vector<FastGroup>& groups);
+
+// The parameter values for group scales: a grouped key is start x scale, any other key keeps its
+// start value (clipped into its bounds).
+Eigen::VectorXd fast_values(const CalibrationInput& input, const std::vector<FastGroup>& groups,
+                            const std::vector<double>& scales);
+
+CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simulator);
+
+}  // namespace cdem::calib

@@ -1,0 +1,411 @@
+#include "calibrate/calibrate_input.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "calibrate/calibrate_fast.hpp"
+#include "campaign/shortest_number.hpp"
+#include "core/input_error.hpp"
+#include "core/units.hpp"
+#include "io/input_table.hpp"
+#include "lab/material_table.hpp"
+
+namespace cdem::calib {
+
+namespace {
+
+struct TargetInfo {
+  const char* name;
+  const char* unit;
+  const char* summary_field;  // of `cdem run --summary`
+};
+
+// Indexed by CalibrationTarget.
+constexpr TargetInfo kTargets[kCalibrationTargetCount] = {
+    {"sigma_u", "MPa", "peak_stress_MPa"},
+    {"E", "GPa", "young_modulus_GPa"},
+    {"nu", "", "poisson_ratio"},
+    {"sigma_t", "MPa", "tensile_strength_MPa"},
+};
+
+const TargetInfo& info(CalibrationTarget target) {
+  return kTargets[static_cast<std::size_t>(target)];
+}
+
+}  // namespace
+
+const char* target_name(CalibrationTarget target) {
+  return info(target).name;
+}
+const char* target_unit(CalibrationTarget target) {
+  return info(target).unit;
+}
+std::string target_with_unit(CalibrationTarget target) {
+  const std::string unit = target_unit(target);
+  return std::string(target_name(target)) + (unit.empty() ? "" : " (" + unit + ")");
+}
+const char* target_summary_field(CalibrationTarget target) {
+  return info(target).summary_field;
+}
+
+bool target_needs_tension_test(CalibrationTarget target) {
+  return target == CalibrationTarget::SigmaT;
+}
+
+const char* role_name(ParameterRole role) {
+  switch (role) {
+    case ParameterRole::Modulus:
+      return "modulus";
+    case ParameterRole::StiffnessRatio:
+      return "stiffness ratio";
+    case ParameterRole::TensileStrength:
+      return "tensile strength";
+    case ParameterRole::ShearStrength:
+      return "shear strength";
+    case ParameterRole::Other:
+      return "other";
+  }
+  return "?";
+}
+
+ParameterRole parameter_role(const std::string& dotted_key) {
+  std::string name = dotted_key.substr(dotted_key.rfind('.') + 1);
+  for (const std::string unit : {"_GPa", "_MPa", "_kPa", "_Pa"})
+    if (name.size() > unit.size() &&
+        name.compare(name.size() - unit.size(), unit.size(), unit) == 0)
+      name.resize(name.size() - unit.size());
+  if (name == "emod" || name == "pb_emod") return ParameterRole::Modulus;
+  if (name == "kratio" || name == "pb_kratio") return ParameterRole::StiffnessRatio;
+  if (name == "pb_tensile_strength" || name == "cb_tensile_strength" ||
+      name == "fj_tensile_strength")
+    return ParameterRole::TensileStrength;
+  if (name == "pb_cohesion" || name == "cb_shear_strength" || name == "fj_cohesion")
+    return ParameterRole::ShearStrength;
+  return ParameterRole::Other;
+}
+
+bool CalibrationInput::needs_uniaxial() const {
+  return std::any_of(targets.begin(), targets.end(),
+                     [](const TargetValue& t) { return !target_needs_tension_test(t.target); });
+}
+
+bool CalibrationInput::needs_tension_test() const {
+  return std::any_of(targets.begin(), targets.end(),
+                     [](const TargetValue& t) { return target_needs_tension_test(t.target); });
+}
+
+double CalibrationInput::target_value(CalibrationTarget target) const {
+  for (const auto& t : targets)
+    if (t.target == target) return t.value;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace {
+
+std::filesystem::path relative_to(const std::filesystem::path& file, const std::string& name) {
+  const std::filesystem::path p(name);
+  return p.is_absolute() ? p : file.parent_path() / p;
+}
+
+std::string read_text(const InputTable& t, const std::string& key,
+                      const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) t.fail(key, "cannot open " + path.string());
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+toml::table parse_toml(const InputTable& t, const std::string& key,
+                       const std::filesystem::path& path) {
+  const std::string text = read_text(t, key, path);
+  try {
+    return toml::parse(text, path.string());
+  } catch (const toml::parse_error& e) {
+    t.fail(key, path.string() + " is not valid TOML: " + std::string(e.description()));
+  }
+}
+
+std::string to_text(const toml::table& table) {
+  std::ostringstream s;
+  s << table << "\n";
+  return s.str();
+}
+
+// Integers of the material table become floats: a campaign rounds values written to an integer
+// key, and a modulus of 16 must be free to become 17.3.
+void floats_only(toml::table& table) {
+  std::vector<std::pair<std::string, double>> floats;
+  for (auto&& [key, node] : table) {
+    if (auto* sub = node.as_table())
+      floats_only(*sub);
+    else if (auto* integer = node.as_integer())
+      floats.emplace_back(std::string(key.str()), static_cast<double>(integer->get()));
+  }
+  for (const auto& [key, value] : floats) table.insert_or_assign(key, value);
+}
+
+// The base materials with one key set to `value`, as material-table text.
+std::string materials_with(const toml::table& materials, const std::vector<std::string>& parts,
+                           double value) {
+  toml::table copy = materials;
+  toml::table* node = &copy;
+  for (std::size_t i = 1; i + 1 < parts.size(); ++i) {
+    auto* sub = (*node)[parts[i]].as_table();
+    if (!sub) return {};
+    node = sub;
+  }
+  node->insert_or_assign(parts.back(), value);
+  return to_text(toml::table{{"materials", copy}});
+}
+
+std::vector<std::string> split(const std::string& key) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t dot = key.find('.');; dot = key.find('.', start)) {
+    parts.push_back(key.substr(start, dot - start));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return parts;
+}
+
+// The material table's own checks (known keys per law, ranges), on a candidate table; the
+// empty string when it is accepted, else the table's message.
+std::string material_table_problem(const std::string& text, const std::string& label) {
+  if (text.empty()) return "no such class table";
+  try {
+    dem::read_material_table(InputTable::parse_string(text, label));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// The test file's materials (inline tables or a material file beside it), floats only.
+toml::table test_materials(const InputTable& tests, const std::string& key,
+                           const std::filesystem::path& test_path, const toml::table& test) {
+  const auto node = test["materials"];
+  if (const auto* name = node.as_string()) {
+    const auto path = relative_to(test_path, name->get());
+    toml::table file = parse_toml(tests, key, path);
+    if (const auto* m = file["materials"].as_table()) return *m;
+    tests.fail(key, path.string() + " has no [materials] tables");
+  }
+  if (const auto* m = node.as_table()) return *m;
+  tests.fail(key, test_path.string() + " names no materials (a file or [materials.*] tables)");
+}
+
+toml::table read_test(const InputTable& tests, const std::string& key,
+                      const std::filesystem::path& calibration_file, const std::string& type) {
+  const auto path = relative_to(calibration_file, tests.string(key));
+  toml::table test = parse_toml(tests, key, path);
+  const auto* t = test["test"].as_table();
+  const auto* written = t ? (*t)["type"].as_string() : nullptr;
+  if (!written || written->get() != type)
+    tests.fail(key, path.string() + " must be a test of [test] type = \"" + type + "\"");
+  toml::table materials = test_materials(tests, key, path, test);
+  test.insert_or_assign("materials", materials);
+  return test;
+}
+
+std::string generator_text(const InputTable& t, const std::string& key,
+                           const std::filesystem::path& calibration_file) {
+  const auto path = relative_to(calibration_file, t.string(key));
+  toml::table generator = parse_toml(t, key, path);
+  // Specimens are generated by a campaign whose factor is the root `seed`; it must be set.
+  if (!generator.contains("seed")) generator.insert("seed", std::int64_t{0});
+  return to_text(generator);
+}
+
+CalibrationParameter read_parameter(const InputTable& t, const toml::table& materials,
+                                    const std::string& label) {
+  t.reject_unknown_keys({"key", "bounds"});
+  CalibrationParameter p;
+  p.key = t.string("key");
+  const auto parts = split(p.key);
+  if (parts.size() != 3 || parts[0] != "materials" ||
+      std::any_of(parts.begin(), parts.end(), [](const auto& s) { return s.empty(); }))
+    t.fail("key", "'" + p.key +
+                      "' is not a material key materials.CLASS.NAME (e.g. "
+                      "materials.mortar.emod_GPa)");
+  const auto bounds = t.numbers("bounds", Range::any());
+  if (bounds.size() != 2 || !std::isfinite(bounds[0]) || !std::isfinite(bounds[1]))
+    t.fail("bounds", "must be two finite numbers [lower, upper]");
+  p.lower = bounds[0];
+  p.upper = bounds[1];
+  if (!(p.lower < p.upper))
+    t.fail("bounds", "inverted or empty: lower " + shortest_number(p.lower) +
+                         " must be below upper " + shortest_number(p.upper));
+
+  const auto start = materials.at_path(p.key.substr(std::string("materials.").size()));
+  if (!start.is_number()) {
+    const std::string problem =
+        material_table_problem(materials_with(materials, parts, p.lower), label);
+    if (!problem.empty())
+      t.fail("key", "'" + p.key + "' is not a key of the material table: " + problem);
+    t.fail("key", "'" + p.key + "' is a material key but the base materials (" + label +
+                      ") do not set it as a number; set it there to its start value, in the "
+                      "units of the key");
+  }
+  p.start = start.value<double>().value();
+  for (const double bound : {p.lower, p.upper}) {
+    const std::string problem =
+        material_table_problem(materials_with(materials, parts, bound), label);
+    if (!problem.empty())
+      t.fail("bounds", "bound " + shortest_number(bound) + " of '" + p.key +
+                           "' is outside what the material table accepts: " + problem);
+  }
+  p.role = parameter_role(p.key);
+  return p;
+}
+
+void read_targets(const InputTable& root, CalibrationInput& in) {
+  const InputTable t = root.table("targets");
+  t.reject_unknown_keys({"sigma_u", "E", "nu", "sigma_t"});
+  const auto positive_stress = [&](const char* key, double unit) {
+    return t.quantity(key, Dimension::Stress, Range::positive()) / unit;
+  };
+  if (t.has("sigma_u"))
+    in.targets.push_back({CalibrationTarget::SigmaU, positive_stress("sigma_u", units::MPa)});
+  if (t.has("E")) in.targets.push_back({CalibrationTarget::E, positive_stress("E", units::GPa)});
+  if (t.has("nu")) in.targets.push_back({CalibrationTarget::Nu, t.number("nu", Range::open(0, 1))});
+  if (t.has("sigma_t"))
+    in.targets.push_back({CalibrationTarget::SigmaT, positive_stress("sigma_t", units::MPa)});
+  if (in.targets.empty())
+    root.fail("targets", "give at least one of sigma_u, E, nu, sigma_t (e.g. sigma_u_MPa = 40)");
+}
+
+}  // namespace
+
+CalibrationInput read_calibration_input(const std::filesystem::path& file,
+                                        std::optional<CalibrationStrategy> strategy) {
+  const InputTable root = InputTable::parse_file(file);
+  root.reject_unknown_keys({"strategy", "output_dir", "verification_seeds",
+                            "verification_tolerance", "targets", "parameters", "specimen", "tests",
+                            "budget", "fast", "paper"});
+  CalibrationInput in;
+  in.file = file;
+  in.strategy = root.string_or("strategy", "fast", {"fast", "paper"}) == "paper"
+                    ? CalibrationStrategy::Paper
+                    : CalibrationStrategy::Fast;
+  in.output_dir = root.string_or("output_dir", file.stem().string());
+  if (in.output_dir.empty()) root.fail("output_dir", "must not be empty");
+  read_targets(root, in);
+
+  // Base tests; the uniaxial test's materials are the start point of every test.
+  const InputTable tests = root.table("tests");
+  tests.reject_unknown_keys({"uniaxial", "brazilian", "direct_tension"});
+  std::optional<toml::table> uniaxial, tension;
+  if (in.needs_uniaxial()) uniaxial = read_test(tests, "uniaxial", file, "uniaxial");
+  if (in.needs_tension_test()) {
+    if (tests.has("brazilian") == tests.has("direct_tension"))
+      tests.fail("brazilian",
+                 "sigma_t is a target: name exactly one tension test, brazilian = "
+                 "\"FILE\" or direct_tension = \"FILE\"");
+    in.tension_test_type = tests.has("brazilian") ? "brazilian" : "direct_tension";
+    tension = read_test(tests, in.tension_test_type, file, in.tension_test_type);
+  }
+  const toml::table& first = uniaxial ? *uniaxial : *tension;
+  toml::table materials = *first["materials"].as_table();
+  floats_only(materials);
+  const std::string materials_label =
+      tests.string(uniaxial ? "uniaxial" : in.tension_test_type) + " (materials)";
+  in.materials = to_text(toml::table{{"materials", materials}});
+  if (const auto problem = material_table_problem(in.materials, materials_label); !problem.empty())
+    tests.fail(uniaxial ? "uniaxial" : in.tension_test_type, problem);
+  for (auto* test : {uniaxial ? &*uniaxial : nullptr, tension ? &*tension : nullptr}) {
+    if (!test) continue;
+    test->insert_or_assign("materials", materials);
+    test->insert_or_assign("specimen", "");
+    test->erase("seed");
+  }
+  if (uniaxial) in.uniaxial_test = to_text(*uniaxial);
+  if (tension) in.tension_test = to_text(*tension);
+
+  const auto parameter_tables = root.tables("parameters");
+  if (parameter_tables.empty())
+    root.fail("parameters", "missing: give at least one [[parameters]] table with key and bounds");
+  for (const auto& t : parameter_tables) {
+    in.parameters.push_back(read_parameter(t, materials, materials_label));
+    for (std::size_t i = 0; i + 1 < in.parameters.size(); ++i)
+      if (in.parameters[i].key == in.parameters.back().key)
+        t.fail("key", "'" + in.parameters.back().key + "' is already a parameter");
+  }
+
+  const InputTable specimen = root.table("specimen");
+  specimen.reject_unknown_keys({"generator", "brazilian_generator", "seed"});
+  if (in.needs_uniaxial()) in.uniaxial_generator = generator_text(specimen, "generator", file);
+  if (in.needs_tension_test())
+    in.tension_generator = generator_text(
+        specimen, in.tension_test_type == "brazilian" ? "brazilian_generator" : "generator", file);
+  constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
+  in.calibration_seed = static_cast<std::uint64_t>(specimen.integer_or("seed", 1, 0, kMaxSeed));
+
+  if (root.has("verification_seeds")) {
+    for (const auto s : root.integers("verification_seeds", 0, kMaxSeed))
+      in.verification_seeds.push_back(static_cast<std::uint64_t>(s));
+  } else {
+    for (std::uint64_t i = 1; i <= 5; ++i) in.verification_seeds.push_back(in.calibration_seed + i);
+  }
+  if (in.verification_seeds.empty())
+    root.fail("verification_seeds", "needs at least one seed: a calibration is verified");
+  if (std::set<std::uint64_t>(in.verification_seeds.begin(), in.verification_seeds.end()).size() !=
+      in.verification_seeds.size())
+    root.fail("verification_seeds", "repeats a seed; verification specimens must be independent");
+  in.verification_tolerance =
+      root.number_or("verification_tolerance", 0.05, Range::left_open(0, 1));
+  for (const char* key : {"generator", "brazilian_generator"})
+    if (specimen.has(key)) in.generator_files.push_back(relative_to(file, specimen.string(key)));
+
+  if (const auto budget = root.optional_table("budget")) {
+    budget->reject_unknown_keys({"max_simulations", "timeout"});
+    in.max_simulations = static_cast<int>(budget->integer_or("max_simulations", 200, 1, 100000));
+    in.timeout_s = budget->quantity_or("timeout", Dimension::Time, 0, Range::non_negative());
+  }
+  if (const auto fast = root.optional_table("fast")) {
+    fast->reject_unknown_keys({"tolerance", "max_iterations", "max_refinements"});
+    in.fast.tolerance = fast->number_or("tolerance", 0.02, Range::open(0, 0.5));
+    in.fast.max_iterations = static_cast<int>(fast->integer_or("max_iterations", 8, 1, 100));
+    in.fast.max_refinements = static_cast<int>(fast->integer_or("max_refinements", 1, 0, 10));
+  }
+  if (const auto paper = root.optional_table("paper")) {
+    paper->reject_unknown_keys({"screen", "surface", "significance", "max_factors", "optimizer",
+                                "optimizer_seed", "max_refinements"});
+    in.paper.max_refinements = static_cast<int>(paper->integer_or("max_refinements", 1, 0, 10));
+    in.paper.screen =
+        paper->string_or("screen", "plackett_burman", {"plackett_burman", "taguchi_l27"});
+    in.paper.surface =
+        paper->string_or("surface", "central_composite", {"central_composite", "box_behnken"});
+    in.paper.significance = paper->number_or("significance", 0.10, Range::open(0, 1));
+    in.paper.max_factors = static_cast<int>(paper->integer_or("max_factors", 5, 2, 7));
+    const std::string optimizer =
+        paper->string_or("optimizer", "genetic", {"genetic", "differential_evolution", "cmaes"});
+    in.paper.optimizer = optimizer == "genetic"                  ? Optimizer::kGenetic
+                         : optimizer == "differential_evolution" ? Optimizer::kDifferentialEvolution
+                                                                 : Optimizer::kCmaEs;
+    in.paper.optimizer_seed =
+        static_cast<unsigned>(paper->integer_or("optimizer_seed", 20240601, 0, 4294967295LL));
+  }
+  if (strategy) in.strategy = *strategy;
+  const int k = static_cast<int>(in.parameters.size());
+  if (in.strategy == CalibrationStrategy::Paper) {
+    const int screen_limit = in.paper.screen == "taguchi_l27" ? 13 : 19;
+    if (k < 2 || k > screen_limit)
+      root.fail("parameters", "the paper strategy screens 2 to " + std::to_string(screen_limit) +
+                                  " parameters with " + in.paper.screen + "; " + std::to_string(k) +
+                                  " given");
+  } else {
+    check_fast_parameters(in);
+  }
+  return in;
+}
+
+}  // namespace cdem::calib

@@ -1,0 +1,124 @@
+#pragma once
+// The calibration file of `cdem calibrate` (docs/calibration.md): target macro-properties, the
+// material keys set free with their bounds, the base lab tests, the specimen generator, the
+// strategy and the budgets. Read and checked once, at the input boundary: every problem is an
+// InputError naming the calibration file and the key.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "doe/inversion.hpp"
+
+namespace cdem::calib {
+
+// The macro-properties a calibration can aim at, in the units they are reported in.
+enum class CalibrationTarget {
+  SigmaU,  // uniaxial compressive strength, MPa
+  E,       // Young's modulus (tangent at 50 % of peak, uniaxial), GPa
+  Nu,      // Poisson's ratio at 50 % of peak (uniaxial), dimensionless
+  SigmaT,  // tensile strength, MPa: Brazilian splitting or direct tension (named in [tests])
+};
+inline constexpr int kCalibrationTargetCount = 4;
+
+const char* target_name(CalibrationTarget target);  // "sigma_u", "E", "nu", "sigma_t"
+const char* target_unit(CalibrationTarget target);  // "MPa", "GPa", "", "MPa"
+// "sigma_u (MPa)", "nu": the name with its unit, for tables and axes.
+std::string target_with_unit(CalibrationTarget target);
+// The field of `cdem run --summary` that measures the target.
+const char* target_summary_field(CalibrationTarget target);
+// True for the target measured by the tension test (sigma_t), false for the uniaxial ones.
+bool target_needs_tension_test(CalibrationTarget target);
+
+struct TargetValue {
+  CalibrationTarget target = CalibrationTarget::SigmaU;
+  double value = 0;  // in target_unit(target), > 0
+};
+
+// What a material key does to the macro-response, which is what the fast strategy moves it for.
+enum class ParameterRole {
+  Modulus,          // emod, pb_emod: E scales with them
+  StiffnessRatio,   // kratio, pb_kratio: nu is set by them
+  TensileStrength,  // pb_tensile_strength, cb_tensile_strength, fj_tensile_strength
+  ShearStrength,    // pb_cohesion, cb_shear_strength, fj_cohesion
+  Other,            // friction, bond geometry: moved only by the paper strategy
+};
+const char* role_name(ParameterRole role);
+// The role of a material key from its last part, units stripped ("emod_GPa" -> Modulus).
+ParameterRole parameter_role(const std::string& dotted_key);
+
+struct CalibrationParameter {
+  std::string key;   // dotted key of the test input, e.g. "materials.mortar.emod_GPa"
+  double lower = 0;  // bounds in the key's own units (GPa for emod_GPa)
+  double upper = 0;
+  double start = 0;  // the value the base material table sets
+  ParameterRole role = ParameterRole::Other;
+};
+
+enum class CalibrationStrategy { Fast, Paper };
+
+struct FastSettings {
+  double tolerance = 0.02;  // relative error per target at which the iteration stops
+  int max_iterations = 8;   // simulations on the calibration specimen
+  int max_refinements = 1;  // mean-based corrections after a verification that misses
+};
+
+struct PaperSettings {
+  std::string screen = "plackett_burman";     // or "taguchi_l27"
+  std::string surface = "central_composite";  // or "box_behnken"
+  double significance = 0.10;                 // a factor is kept when p < this for some target
+  int max_factors = 5;                        // factors carried into the response-surface design
+  Optimizer optimizer = Optimizer::kGenetic;
+  unsigned optimizer_seed = 20240601;
+  // Inversions of the bias-corrected surfaces after a verification that misses (each costs
+  // one verification): the surfaces were fitted on one specimen, the verification mean
+  // measures how far the others sit from it.
+  int max_refinements = 1;
+};
+
+struct CalibrationInput {
+  std::filesystem::path file;  // the calibration file, as given
+  CalibrationStrategy strategy = CalibrationStrategy::Fast;
+  std::filesystem::path output_dir;  // relative to the current directory
+  std::vector<TargetValue> targets;
+  std::vector<CalibrationParameter> parameters;
+
+  // The base lab tests as TOML text with the materials inline and the specimen key to be set
+  // per run; integers of the material table are written as floats so that campaign values are
+  // never rounded.
+  std::string uniaxial_test;  // empty when no target needs it
+  std::string tension_test;   // empty when sigma_t is not a target
+  // Which test measures sigma_t: "brazilian" or "direct_tension" (the [tests] key given).
+  std::string tension_test_type;
+  std::string materials;  // the base [materials.*] tables as TOML text (start values)
+
+  // Specimens: the generator inputs as text; each specimen is `cdem generate` with a seed.
+  std::string uniaxial_generator;
+  // The tension test's specimens: `brazilian_generator` for a Brazilian disc; for direct
+  // tension the uniaxial `generator` (the same rectangular specimen, generated once).
+  std::string tension_generator;
+  std::uint64_t calibration_seed = 1;             // specimen the strategy iterates on
+  std::vector<std::uint64_t> verification_seeds;  // independent specimens (default 5)
+
+  double verification_tolerance = 0.05;  // mean relative error accepted per target
+  // Every generator file [specimen] names, as written there (resolved against this file): what
+  // `cdem calibrate` checks before any job starts, so that errors name them.
+  std::vector<std::filesystem::path> generator_files;
+  int max_simulations = 200;  // lab-test runs, every stage together
+  double timeout_s = 0;       // per run; 0 = none
+
+  FastSettings fast;
+  PaperSettings paper;
+
+  bool needs_uniaxial() const;
+  bool needs_tension_test() const;
+  double target_value(CalibrationTarget target) const;  // NaN when not a target
+};
+
+// `strategy`, when given, replaces the file's (`cdem calibrate --strategy`); the strategy's own
+// checks apply to it.
+CalibrationInput read_calibration_input(const std::filesystem::path& file,
+                                        std::optional<CalibrationStrategy> strategy = {});
+
+}  // namespace cdem::calib

@@ -1,0 +1,89 @@
+#pragma once
+// The peak and post-peak stop rule of a lab test (SPEC 6, docs/lab_tests.md "Stop rule"). A test
+// ends when its loading stress (axial, or the deviator of a biaxial test) has passed a peak that
+// is confirmed as the specimen's failure:
+//  1. drop: the stress is below stop_fraction x the peak, and the axial strain is at least
+//     (1 + stop_strain_margin) x the strain at the peak;
+//  2. persistence: the drop has held at stop_confirm_records consecutive history records (a dip
+//     that recovers, as after one bond failure under a platen, resets the count);
+//  3. damage: at least stop_min_cracks bonds broke since the loading began (every intact bond,
+//     when the specimen had fewer), and they span stop_damage_span of the specimen's width or
+//     height: of kDamageBands equal bands across the width (or the height), that fraction holds
+//     a crack (a cluster of cracks under a platen, or one under each platen, is not a failure of
+//     the specimen; a splitting crack, a shear band or a tension crack across it is).
+// The run also stops, without a confirmed peak, at max_strain or max_steps; lab_test.cpp turns
+// that into a RunError that says which condition was missing (no strength is reported).
+#include <array>
+#include <string>
+
+#include "dem/crack_log.hpp"
+
+namespace cdem::dem {
+
+constexpr int kDamageBands = 10;  // bands across the width and across the height
+
+struct StopRuleOptions {
+  double stop_fraction = 0.8;   // the drop: stress below this fraction of the peak
+  double strain_margin = 0.05;  // ... at a strain >= (1 + this) x the strain at the peak
+  long confirm_records = 5;     // consecutive records the drop must hold
+  long min_cracks = 10;         // bonds broken during the loading
+  double damage_span = 0.5;     // fraction of the width or height the cracks must span
+  double max_strain = 0.05;     // axial strain at which the run ends unconfirmed
+};
+
+// Why a run ended; "post_peak_drop" is the only ending with a confirmed peak of a quasi-static
+// test, but for a three-point bending test whose load has fallen below half its peak at
+// max_deflection ("max_deflection": a softening tail cut short; lab/lab_test.cpp).
+// StoppedByUser: an observer of the run (LabTestHooks::should_stop) ended it before the stop
+// rule confirmed a peak. An SHPB test (lab/shpb_test.hpp) ends "pulse_passed": its record holds
+// the whole pulse.
+enum class StopReason {
+  None,
+  PostPeakDrop,
+  MaxStrain,
+  MaxSteps,
+  StoppedByUser,
+  PulsePassed,
+  MaxDeflection
+};
+const char* stop_reason_name(StopReason reason);  // "none", "post_peak_drop", ...
+
+// Follows the records of one run. Feed every record in order with observe(); it returns the
+// reason to stop (None to go on).
+class PeakStopRule {
+ public:
+  // `xmin` .. `ymax` (m): the specimen's extent at the start of the loading (the span of the
+  // damage is measured in it); `intact_bonds`: bonds of the specimen when the loading starts;
+  // `first_crack`: index in the crack log of the first crack of the loading.
+  PeakStopRule(const StopRuleOptions& options, double xmin, double ymin, double xmax, double ymax,
+               long intact_bonds, std::size_t first_crack);
+
+  // One history record: axial strain, loading stress (Pa), the crack log, and whether the step
+  // bound has been reached.
+  StopReason observe(double strain, double stress, const CrackLog& log, bool at_max_steps);
+
+  double peak() const { return peak_; }  // Pa, largest loading stress so far
+  double strain_at_peak() const { return strain_at_peak_; }
+  long cracks() const { return cracks_; }  // bonds broken since the loading began
+  // Fraction of the bands across the width, or across the height, that hold a crack (the
+  // larger of the two).
+  double damage_span() const;
+  // Which of the three conditions of a confirmed failure hold at the last record, in words, for
+  // the message of a run that ended unconfirmed (e.g. "the stress has not dropped below 0.8 x
+  // its peak", "only 1 bond broke (10 needed)").
+  std::string missing_conditions(double strain, double stress) const;
+
+ private:
+  bool dropped(double strain, double stress) const;
+  bool damaged() const;
+
+  StopRuleOptions o_;
+  double xmin_, ymin_, width_, height_;  // m
+  long needed_cracks_;
+  std::size_t next_crack_;
+  long cracks_ = 0, records_below_ = 0;
+  double peak_ = 0, strain_at_peak_ = 0;
+  std::array<bool, kDamageBands> x_band_{}, y_band_{};  // bands that hold a crack of the loading
+};
+
+}  // namespace cdem::dem
