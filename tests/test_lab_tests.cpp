@@ -2,6 +2,7 @@
 // figures, the Brazilian strength follows the platen-force history, direct tension pulls its
 // grips, bad inputs are InputErrors, and a failed run leaves no result file. The scaling checks
 // are in test_lab_scaling.cpp, the biaxial test in test_lab_biaxial.cpp.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
