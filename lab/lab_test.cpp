@@ -87,6 +87,9 @@ LabTestControls read_controls(const InputTable& t) {
                          "stop_confirm_records",
                          "stop_min_cracks",
                          "stop_damage_span",
+                         "stop_split",
+                         "stop_split_fraction",
+                         "stop_split_opening",
                          "max_strain",
                          "local_damping",
                          "time_step_safety",
@@ -142,6 +145,17 @@ LabTestControls read_controls(const InputTable& t) {
   stop.min_cracks = t.integer_or("stop_min_cracks", stop.min_cracks, 0, 1'000'000'000);
   stop.damage_span = t.number_or("stop_damage_span", stop.damage_span, Range::closed(0, 1));
   stop.max_strain = t.number_or("max_strain", stop.max_strain, Range::left_open(0, 1));
+  for (const char* key : {"stop_split", "stop_split_fraction", "stop_split_opening"})
+    if (c.type != LabTestType::Brazilian && t.has(key))
+      t.fail(key, "only used by type = \"brazilian\" (the split of the disc)");
+  stop.split.enabled = c.type == LabTestType::Brazilian && t.boolean_or("stop_split", true);
+  if (!stop.split.enabled && (t.has("stop_split_fraction") || t.has("stop_split_opening")))
+    t.fail(t.has("stop_split_fraction") ? "stop_split_fraction" : "stop_split_opening",
+           "not used with stop_split = false");
+  stop.split.fraction = t.number_or("stop_split_fraction", stop.split.fraction, Range::open(0, 1));
+  // A factor of 1 or less holds at the peak itself: no opening.
+  stop.split.opening =
+      t.number_or("stop_split_opening", stop.split.opening, Range::left_open(1, 1000));
   c.local_damping = t.number_or("local_damping", c.local_damping, Range::right_open(0, 1));
   c.time_step_safety = t.number_or("time_step_safety", c.time_step_safety, Range::left_open(0, 1));
   c.density_scaling = t.boolean_or("density_scaling", c.density_scaling);
@@ -758,8 +772,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
       h.cmod.push_back(cmod->opening(world));
       h.support_reaction.push_back(loading.support_reaction(world));
     }
-    const StopReason reason =
-        stop.observe(h.axial_strain.back(), last_loading_stress(), world.cracks, at_max_steps);
+    const StopReason reason = stop.observe(h.axial_strain.back(), last_loading_stress(),
+                                           h.lateral_strain.back(), world.cracks, at_max_steps);
     if (hooks.progress) hooks.progress(h, stop.peak(), c.max_steps);
     if (reason == StopReason::None && hooks.should_stop && hooks.should_stop(world, h)) {
       warn(res,
@@ -804,7 +818,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
           kTailLoadFraction * *std::max_element(h.platen_force.begin(), h.platen_force.end()))
     reason = StopReason::MaxDeflection;
   const bool bending_tail = reason == StopReason::MaxDeflection;
-  if (reason != StopReason::PostPeakDrop && reason != StopReason::StoppedByUser && !bending_tail) {
+  if (reason != StopReason::PostPeakDrop && reason != StopReason::Split &&
+      reason != StopReason::StoppedByUser && !bending_tail) {
     std::ostringstream msg;
     msg << "the " << lab_test_name(c.type) << " test stopped at "
         << (reason == StopReason::MaxSteps ? "max_steps = " + std::to_string(c.max_steps)
@@ -826,6 +841,22 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     throw RunError(msg.str());
   }
   res.stop_reason = reason;
+  if (stop.unconfirmed_split_peak() > 0) {
+    // The rule's stresses are P / (D t) (Pa); the strengths 2 P / (pi D t), in MPa.
+    const double d = specimen.container.width;
+    const auto strength = [&](double stress) {
+      return brazilian_strength(stress * d * kThickness, d, kThickness) * 1e-6;
+    };
+    std::ostringstream msg;
+    msg << "the disc opened across its loaded diameter after a peak of sigma_t = "
+        << strength(stop.unconfirmed_split_peak()) << " MPa (axial strain "
+        << stop.unconfirmed_split_strain() << ") and its load fell below " << c.stop.split.fraction
+        << " x that peak, but the load rose again to the larger peak "
+        << "reported (" << strength(stop.peak())
+        << " MPa): if the disc split at the first peak, that one is its splitting strength and "
+           "the reported one its halves' (docs/lab_tests.md \"Stop rule\")";
+    warn(res, msg.str());
+  }
   if (hooks.snapshot && c.snapshot_interval > 0)
     hooks.snapshot(world, world.step_count() - step0, world.time() - time0);  // the last state
 

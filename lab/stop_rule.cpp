@@ -14,6 +14,8 @@ const char* stop_reason_name(StopReason reason) {
       return "none";
     case StopReason::PostPeakDrop:
       return "post_peak_drop";
+    case StopReason::Split:
+      return "split";
     case StopReason::MaxStrain:
       return "max_strain";
     case StopReason::MaxSteps:
@@ -51,15 +53,25 @@ double fraction_held(const std::array<bool, kDamageBands>& bands) {
   return static_cast<double>(std::count(bands.begin(), bands.end(), true)) / kDamageBands;
 }
 
+// -lateral / axial strain: a disc's widening per unit of its loaded shortening (0 before any
+// shortening).
+double apparent_poisson(double strain, double lateral_strain) {
+  return strain > 0 ? -lateral_strain / strain : 0;
+}
+
 }  // namespace
 
 double PeakStopRule::damage_span() const {
   return std::max(fraction_held(x_band_), fraction_held(y_band_));
 }
 
-bool PeakStopRule::dropped(double strain, double stress) const {
-  return past_peak(stress, peak_, o_.stop_fraction) &&
-         strain >= strain_at_peak_ * (1 + o_.strain_margin);
+bool PeakStopRule::dropped(double strain, double stress, double fraction) const {
+  return past_peak(stress, peak_, fraction) && strain >= strain_at_peak_ * (1 + o_.strain_margin);
+}
+
+bool PeakStopRule::split_holds(double strain, double stress, double lateral_strain) const {
+  return o_.split.enabled && dropped(strain, stress, o_.split.fraction) && poisson_at_peak_ > 0 &&
+         apparent_poisson(strain, lateral_strain) >= o_.split.opening * poisson_at_peak_;
 }
 
 bool PeakStopRule::damaged() const {
@@ -70,8 +82,8 @@ bool PeakStopRule::damaged() const {
          (needed_cracks_ < o_.min_cracks || damage_span() >= o_.damage_span);
 }
 
-StopReason PeakStopRule::observe(double strain, double stress, const CrackLog& log,
-                                 bool at_max_steps) {
+StopReason PeakStopRule::observe(double strain, double stress, double lateral_strain,
+                                 const CrackLog& log, bool at_max_steps) {
   for (; next_crack_ < log.cracks.size(); ++next_crack_) {
     const Crack& k = log.cracks[next_crack_];
     x_band_[static_cast<std::size_t>(band_of(k.x, xmin_, width_))] = true;
@@ -79,10 +91,24 @@ StopReason PeakStopRule::observe(double strain, double stress, const CrackLog& l
     ++cracks_;
   }
   if (stress > peak_) {
+    // A split seen at the old peak that the loading has now passed was not the disc's failure,
+    // or the disc's halves carry more than the disc did: the rule cannot tell.
+    if (split_seen_peak_ > 0 && unconfirmed_split_peak_ == 0) {
+      unconfirmed_split_peak_ = split_seen_peak_;
+      unconfirmed_split_strain_ = split_seen_strain_;
+    }
+    split_seen_peak_ = 0;
     peak_ = stress;
     strain_at_peak_ = strain;
+    poisson_at_peak_ = apparent_poisson(strain, lateral_strain);
   }
-  records_below_ = dropped(strain, stress) ? records_below_ + 1 : 0;
+  records_below_ = dropped(strain, stress, o_.stop_fraction) ? records_below_ + 1 : 0;
+  records_split_ = split_holds(strain, stress, lateral_strain) ? records_split_ + 1 : 0;
+  if (records_split_ > 0 && damaged()) {
+    if (records_split_ >= o_.confirm_records) return StopReason::Split;
+    split_seen_peak_ = peak_;  // a split, not (yet) held
+    split_seen_strain_ = strain_at_peak_;
+  }
   if (records_below_ >= o_.confirm_records && damaged()) return StopReason::PostPeakDrop;
   if (strain >= o_.max_strain) return StopReason::MaxStrain;
   if (at_max_steps) return StopReason::MaxSteps;

@@ -2,6 +2,7 @@
 // figures, the Brazilian strength follows the platen-force history, direct tension pulls its
 // grips, bad inputs are InputErrors, and a failed run leaves no result file. The scaling checks
 // are in test_lab_scaling.cpp, the biaxial test in test_lab_biaxial.cpp.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -151,6 +152,34 @@ TEST(LabTests, BrazilianWithCurvedJawsStartsUnloadedAndSplits) {
   EXPECT_LT(jaws.tensile_strength, 2 * flat.tensile_strength);
 }
 
+// The split rule wired to the run (lab/stop_rule.hpp): the 20 mm disc with jaws drops to 0.72 x
+// its peak at once and widens only 1.4 x faster (it ends on the drop by default), so the rule is
+// asked for an opening of 1.1 x with the drop rule out of the way (stop_fraction 0.5). It then
+// ends at the split with the history's largest force as the strength, the last record below
+// 0.9 x the peak and widening at least 1.1 x as fast as at the peak; with the split rule off the
+// same run goes on to the drop below 0.5 x.
+TEST(LabTests, ABrazilianDiscEndsAtItsSplit) {
+  const fs::path dir = scratch("brazilian_split");
+  const std::string test =
+      "[test]\ntype = \"brazilian\"\nhistory_interval = 20\nmax_steps = 400000\n"
+      "platens = \"curved_jaws\"\nstop_fraction = 0.5\n";
+  const LabTestResult split = run_lab_test(
+      disc_specimen(), test_input(dir, disc_specimen(), test + "stop_split_opening = 1.1\n"));
+  ASSERT_EQ(split.stop_reason, StopReason::Split);
+  const LabHistory& h = split.history;
+  const auto peak = static_cast<std::size_t>(
+      std::max_element(h.platen_force.begin(), h.platen_force.end()) - h.platen_force.begin());
+  EXPECT_DOUBLE_EQ(split.tensile_strength,
+                   2 * h.platen_force[peak] / (std::numbers::pi * 20e-3 * 1.0));
+  const auto widening = [&](std::size_t i) { return -h.lateral_strain[i] / h.axial_strain[i]; };
+  EXPECT_LT(h.platen_force.back(), 0.9 * h.platen_force[peak]);
+  EXPECT_GE(widening(h.step.size() - 1), 1.1 * widening(peak));
+  const LabTestResult off = run_lab_test(
+      disc_specimen(), test_input(dir, disc_specimen(), test + "stop_split = false\n"));
+  EXPECT_EQ(off.stop_reason, StopReason::PostPeakDrop);
+  EXPECT_GT(off.history.step.back(), h.step.back());
+}
+
 TEST(LabTests, DirectTensionPullsTheGripsApart) {
   const fs::path dir = scratch("tension");
   const LabTestInput in =
@@ -250,6 +279,24 @@ TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
              "[test]\ntype = \"brazilian\"\nplatens = \"curved_jaws\"\njaw_radius_ratio = 1\n");
       },
       "test.jaw_radius_ratio");
+  // The split rule's keys: Brazilian only, an opening factor above 1, none with the rule off.
+  expect_input_error(
+      [&] {
+        read("specimen = \"rect.h5\"\n" + m + "[test]\ntype = \"uniaxial\"\nstop_split = true\n");
+      },
+      "test.stop_split");
+  expect_input_error(
+      [&] {
+        read("specimen = \"disc.h5\"\n" + m +
+             "[test]\ntype = \"brazilian\"\nstop_split_opening = 1\n");
+      },
+      "test.stop_split_opening");
+  expect_input_error(
+      [&] {
+        read("specimen = \"disc.h5\"\n" + m +
+             "[test]\ntype = \"brazilian\"\nstop_split = false\nstop_split_fraction = 0.9\n");
+      },
+      "test.stop_split_fraction");
   // A corrupt HDF5 specimen.
   write_text(dir / "corrupt.h5", "not an HDF5 file");
   EXPECT_THROW(cdem::read_specimen(dir / "corrupt.h5"), InputError);
