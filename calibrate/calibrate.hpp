@@ -18,7 +18,7 @@ struct CalibrateOptions {
   int jobs = 0;                                     // concurrent runs; 0 = one per hardware thread
   bool verbose = true;                              // campaign progress on stderr
   // Checks a specimen generator input (text, and a label naming the user's file) before any job
-  // starts; throws InputError. calib/ has no generator: apps/ supplies it.
+  // starts; throws InputError. calibrate/ has no generator: apps/ supplies it.
   std::function<void(const std::string& text, const std::string& label)> check_generator;
 };
 

@@ -25,12 +25,13 @@ namespace {
 constexpr double kEPerMortarModulus = 1.67;
 constexpr double kSigmaUPerMortarTensileStrength = 1.2;
 constexpr double kSigmaTPerMortarTensileStrength = 0.14;
-// d ln(nu) / d ln(kn/ks) before a secant is measured; the secant replaces it after one step.
+// d ln(nu) / d ln(kn/ks), the prior of nu's own sensitivity (Broyden's update moves it).
 constexpr double kNuExponentPrior = 0.7;
-// A secant slope is noise when it is not positive (every group's response rises with its scale)
-// and is clamped to [prior / 2, 2 x prior]: strengths in particular jump by a few per cent when a
-// small change of the parameters moves the failure path, and a secant across such a jump would
-// make a wild step (measured on the C30 sample: a slope of 3.4 where the physics says 1).
+// A group's own sensitivity is noise when it is not positive (every group's response rises with
+// its scale) and is clamped to [prior / 2, 2 x prior]: strengths in particular jump by a few per
+// cent when a small change of the parameters moves the failure path, and a secant across such a
+// jump would make a wild step (measured on the C30 sample: a slope of 3.4 where the physics
+// says 1). The coupled step is also held to kExponentSpread x the length of the own-group step.
 constexpr double kExponentSpread = 2.0;
 // A step shorter than this (Euclidean norm of the change of the log scales) does not update the
 // sensitivities: one specimen's nu and strengths move by about 1 % between nearby parameter sets
@@ -38,6 +39,8 @@ constexpr double kExponentSpread = 2.0;
 // a 1.7 % step of kn/ks turned a slope of 0.9 into 0.41 on the C30 recipe (report of
 // docs/calibration_runs/c30_flat_joint_published_recipe_report.md).
 constexpr double kMinSecantStep = 0.05;
+// Below this reciprocal condition number of the sensitivities the coupled step is not trusted.
+constexpr double kMinReciprocalCondition = 1e-3;
 
 bool in_group(const FastGroup& g, ParameterRole role) {
   return std::find(g.roles.begin(), g.roles.end(), role) != g.roles.end();
@@ -222,9 +225,16 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
       miss[i] = std::log(input.target_value(groups[free[i]].target) / y[free[i]]);
       for (Eigen::Index j = 0; j < m; ++j) A(i, j) = J(free[i], free[j]);
     }
+    // The coupled step, unless J is near singular or the couplings make it longer than the
+    // clamp of the diagonal could (a noisy off-diagonal entry must not throw the scales about):
+    // then each group's own step, as before couplings were learnt.
+    const Eigen::VectorXd own = miss.cwiseQuotient(A.diagonal());
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
-    Eigen::VectorXd step = lu.isInvertible() ? Eigen::VectorXd(lu.solve(miss))
-                                             : Eigen::VectorXd(miss.cwiseQuotient(A.diagonal()));
+    Eigen::VectorXd step = own;
+    if (lu.rcond() > kMinReciprocalCondition) {
+      const Eigen::VectorXd coupled = lu.solve(miss);
+      if (coupled.allFinite() && coupled.norm() <= kExponentSpread * own.norm()) step = coupled;
+    }
     for (Eigen::Index i = 0; i < m; ++i) {
       const std::size_t g = free[i];
       const double t = input.target_value(groups[g].target);
@@ -324,7 +334,7 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
     result.verifications.push_back(*v);
     if (v->passed) break;
     if (round == input.fast.max_refinements) break;
-    std::vector<double> mean(n);
+    std::vector<double> mean(n, std::nan(""));
     bool usable = true;
     for (std::size_t g = 0; g < n; ++g) {
       for (const auto& s : v->targets)

@@ -6,11 +6,12 @@
 //   E -> moduli, nu -> stiffness ratios, sigma_u or sigma_t -> all bond strengths
 //   (both strengths as targets: sigma_t -> tensile strengths, sigma_u -> shear strengths).
 // From a semi-analytical start, each iteration runs one simulation and corrects every scale by
-// a Newton step in log space on the sensitivities d ln(response) / d ln(scale): the priors (1 per
-// group, no coupling: the proportional correction) updated by Broyden's rule along every step
-// long enough to measure, so couplings such as kn/ks moving E are learnt. Converged within the
-// tolerance, the set is verified on independent specimens, and corrected on the verification
-// mean if that misses (two verifications give a secant of their own).
+// a Newton step in log space on the sensitivities d ln(response) / d ln(scale): the priors (1 for
+// moduli and strengths, 0.7 for nu, no coupling: the proportional correction) updated by
+// Broyden's rule along every step long enough to measure, so couplings such as kn/ks moving E are
+// learnt. Converged within the tolerance, the set is verified on independent specimens, and
+// corrected on the verification mean if that misses (with max_refinements >= 2, two
+// verifications give a secant of their own).
 #include <string>
 #include <vector>
 
@@ -24,7 +25,7 @@ struct FastGroup {
   std::vector<int> parameters;  // indices into CalibrationInput::parameters
   double scale_lower = 0;       // the scales that keep every key of the group in its bounds
   double scale_upper = 0;
-  double prior_exponent = 1;  // d ln(response) / d ln(scale) before a secant is available
+  double prior_exponent = 1;  // d ln(response) / d ln(scale) before any step is measured
 };
 
 // The groups of the input's targets. Throws InputError (the calibration file, key 'parameters')

@@ -16,7 +16,7 @@ namespace cdem::calib {
 
 // Checks the input one run would read (task.input_text, written to task.dir) and the fields the
 // campaign gathers from its summary, before any run starts. Throws InputError naming `label` (the
-// campaign file and the design point). calib/ knows nothing of cdem's commands: apps/ supplies
+// campaign file and the design point). campaign/ knows nothing of cdem's commands: apps/ supplies
 // the check for the runs of the cdem binary itself.
 using RunInputCheck =
     std::function<void(const CampaignSpec& spec, const RunTask& task, const std::string& label)>;

@@ -1,7 +1,7 @@
 #pragma once
-// Argument validation shared by calib/: a failed check throws std::invalid_argument whose message
-// starts with the function and names the offending parameter, so a campaign script can tell the
-// user what to fix.
+// Argument validation shared by doe/, campaign/ and calibrate/: a failed check throws
+// std::invalid_argument whose message starts with the function and names the offending parameter,
+// so a campaign script can tell the user what to fix.
 #include <sstream>
 #include <stdexcept>
 #include <string>

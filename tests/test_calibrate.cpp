@@ -345,6 +345,27 @@ TEST(CalibrateFast, CorrectsCoupledTargetsOnTheVerificationMean) {
     EXPECT_LE(std::abs(s.relative_error), 0.02) << target_name(s.target);
 }
 
+TEST(CalibrateFast, TwoVerificationsGiveASecantOfTheirOwn) {
+  // A loose iteration tolerance (10 %) ends the iteration at its start point, so no step has
+  // shown the coupling E ~ (kn/ks)^-0.9; the verification specimens' nu is 20 % above the
+  // calibration specimen's. The first refinement lowers kn/ks for nu alone and overshoots E by
+  // about 0.9 x ln(1.2) / 0.7 = 23 %; the second uses the secant between the two verification
+  // means, which carries the coupling, and meets every target.
+  const auto in = read_calibration_input(make_calibration(
+      "fast_two_refinements", kC30Targets + "[fast]\ntolerance = 0.1\nmax_refinements = 2\n"));
+  AnalyticModel model(in);
+  model.kratio_exponent_E = -0.9;
+  model.kratio_exponent_nu = 0.9;
+  model.other_specimens_nu = 1.2;
+  const auto r = calibrate_fast(in, model);
+  ASSERT_EQ(r.iterations.size(), 1u) << r.stop_reason;
+  ASSERT_EQ(r.verifications.size(), 3u) << r.stop_reason;
+  EXPECT_GT(r.verifications[1].targets[1].relative_error, 0.1);  // E overshot
+  EXPECT_TRUE(r.success()) << r.stop_reason;
+  for (const auto& t : r.verifications.back().targets)
+    EXPECT_LE(std::abs(t.relative_error), 0.02) << target_name(t.target);
+}
+
 TEST(CalibrateFast, ReportsATargetOutOfReachWithTheClosestValue) {
   // Bond strengths capped at 2 x their start: sigma_u cannot pass about 2^0.88 x 11.7 MPa.
   std::string capped = replace(kParameters, "bounds = [10, 80]", "bounds = [10, 20]");
