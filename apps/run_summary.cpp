@@ -85,7 +85,10 @@ nlohmann::ordered_json fragments_json(const dem::Fragments& f) {
   nlohmann::ordered_json j;
   j["count"] = f.count();
   j["largest_fragment_fraction"] = f.largest_fragment_fraction;
-  j["largest_fragment_diameter_mm"] = f.count() > 0 ? f.diameter.front() * 1e3 : 0.0;
+  // The heaviest fragment's size (not always the widest: aggregates are denser than mortar);
+  // null when nothing was measured.
+  j["heaviest_fragment_diameter_mm"] =
+      f.count() > 0 ? nlohmann::ordered_json(f.diameter.front() * 1e3) : nlohmann::ordered_json();
   j["f_m"] = f.f_m;
   std::vector<double> sieve_mm;
   for (const double s : f.sieve) sieve_mm.push_back(s * 1e3);

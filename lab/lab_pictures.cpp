@@ -7,6 +7,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "io/png_drawing.hpp"
 #include "io/xy_chart.hpp"
@@ -16,7 +17,7 @@ namespace cdem::dem {
 namespace {
 
 // printf into a string, for the figures a picture states.
-std::string text(const char* format, ...) {
+[[gnu::format(printf, 1, 2)]] std::string text(const char* format, ...) {
   char buf[256];
   va_list args;
   va_start(args, format);
@@ -229,7 +230,17 @@ struct ModelCanvas {
                    scale_bar_length(extent), 0.4 * font);
   }
   double legend_x() const { return width - legend + 0.5 * font; }
-  void finish(const std::filesystem::path& png) { finish_png(cr, surface, png); }
+  // Writes the PNG atomically; the canvas is spent (finish_png releases the context and surface).
+  void finish(const std::filesystem::path& png) {
+    cairo_t* c = std::exchange(cr, nullptr);
+    finish_png(c, std::exchange(surface, nullptr), png);
+  }
+  ModelCanvas(const ModelCanvas&) = delete;
+  ModelCanvas& operator=(const ModelCanvas&) = delete;
+  ~ModelCanvas() {  // a drawing abandoned by an exception
+    if (cr) cairo_destroy(cr);
+    if (surface) cairo_surface_destroy(surface);
+  }
 };
 
 }  // namespace
@@ -356,7 +367,7 @@ constexpr double kFragmentPalette[10][3] = {
 
 void draw_fragment_map_png(const Fragments& f, const std::filesystem::path& png,
                            int pixels_long_side) {
-  if (f.x.empty()) throw std::invalid_argument("fragment map: no discs");
+  if (f.x.empty()) throw std::invalid_argument("fragment map " + png.string() + ": no discs");
   double xmin = f.x[0], xmax = f.x[0], ymin = f.y[0], ymax = f.y[0];
   for (std::size_t i = 0; i < f.x.size(); ++i) {
     xmin = std::min(xmin, f.x[i] - f.r[i]);

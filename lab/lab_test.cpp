@@ -212,8 +212,11 @@ LabTestControls read_controls(const InputTable& t) {
       if (!(c.fragment_sieve[i] > c.fragment_sieve[i - 1]))
         t.fail("fragment_sieve_mm", "sizes must increase (entry " + std::to_string(i) + ")");
     for (double& size : c.fragment_sieve) size *= units::mm;
-  } else if (t.has("fragment_sieve")) {  // any other unit suffix
-    t.fail("fragment_sieve", "needs its unit in the key: fragment_sieve_mm");
+  } else if (t.has("fragment_sieve")) {  // another unit suffix, or none: name the key given
+    std::string key = "fragment_sieve";
+    for (const char* other : {"fragment_sieve_m", "fragment_sieve_cm", "fragment_sieve_um"})
+      if (t.has(other)) key = other;
+    t.fail(key, "the sieve is read in mm only: fragment_sieve_mm = [1, 2, 5, 10, 15]");
   }
   if (c.type == LabTestType::Biaxial)
     c.confining_stresses = read_confining_stresses(t);

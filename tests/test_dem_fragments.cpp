@@ -103,4 +103,32 @@ TEST(Fragments, ABrokenBondSplitsTheRow) {
   EXPECT_NEAR(f.group_mass_fraction[1], (4 * disc_mass(kR) + disc_mass(kRFree)) / total, 1e-12);
 }
 
+TEST(Fragments, ClumpOutlinesFollowTheirBody) {
+  World w = row_world();
+  // The specimen's clump: a triangle about the clump's centroid (0.04, 0.04). Its body moves to
+  // (0.05, 0.03) and turns a quarter turn: the vertex 5 mm to the right of the centroid goes to
+  // 5 mm above the new centre.
+  cdem::Specimen s;
+  cdem::Clump c;
+  c.centroid = {0.04, 0.04};
+  c.vertices = {{0.045, 0.04}, {0.04, 0.042}, {0.038, 0.038}};
+  s.clumps = {c};
+  const int body = static_cast<int>(w.bodies.size()) - 1;
+  ASSERT_TRUE(w.bodies.is_clump[body]);
+  w.bodies.x[body] = 0.05;
+  w.bodies.y[body] = 0.03;
+  w.bodies.theta[body] = std::numbers::pi / 2;
+  Fragments f = find_fragments(w, kClumpDensity, {1e-3});
+  add_clump_outlines(f, w, s);
+  ASSERT_EQ(f.clump_outline.size(), 1u);
+  ASSERT_EQ(f.clump_outline[0].size(), 3u);
+  EXPECT_NEAR(f.clump_outline[0][0].x(), 0.05, 1e-15);
+  EXPECT_NEAR(f.clump_outline[0][0].y(), 0.035, 1e-15);
+  EXPECT_NEAR(f.clump_outline[0][1].x(), 0.048, 1e-15);  // 2 mm above -> 2 mm to the left
+  EXPECT_NEAR(f.clump_outline[0][1].y(), 0.03, 1e-15);
+  EXPECT_NEAR(f.clump_outline[0][2].x(), 0.052, 1e-15);  // (-2, -2) mm -> (2, -2) mm
+  EXPECT_NEAR(f.clump_outline[0][2].y(), 0.028, 1e-15);
+  EXPECT_EQ(f.clump_fragment[0], f.fragment_of_disc[5]);
+}
+
 }  // namespace

@@ -168,3 +168,28 @@ TEST(CrackMap, WrittenWithWallsArcsAndCracks) {
                           std::filesystem::directory_iterator()),
             1);
 }
+
+TEST(FragmentMap, WrittenWithDiscsAndAClumpOutline) {
+  Fragments f;
+  f.x = {0.01, 0.02, 0.03};
+  f.y = {0.01, 0.01, 0.02};
+  f.r = {1e-3, 1e-3, 2e-3};
+  f.in_clump = {0, 0, 1};
+  f.fragment_of_disc = {1, 1, 0};
+  f.mass = {3, 2};
+  f.diameter = {4e-3, 2.8e-3};
+  f.sieve = {1e-3, 3e-3};
+  f.group_mass_fraction = {0, 0.4, 0.6};
+  f.clump_outline = {{{0.028, 0.018}, {0.032, 0.018}, {0.03, 0.022}}};
+  f.clump_fragment = {0};
+  const auto file = test::scratch_dir("lab_pictures", "fragment_map") / "fragments.png";
+  draw_fragment_map_png(f, file, 600);
+  EXPECT_GT(std::filesystem::file_size(file), 1000u);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(file.parent_path()),
+                          std::filesystem::directory_iterator()),
+            1);
+  // No discs: an error naming the picture, and no file.
+  const auto empty = file.parent_path() / "empty.png";
+  EXPECT_THROW(draw_fragment_map_png(Fragments{}, empty), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(empty));
+}
