@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <thread>
+#include <utility>
 #include <vector>
 
 namespace cdem::apps {
@@ -15,10 +17,25 @@ constexpr auto kRefresh = std::chrono::milliseconds(500);
 // The loading time the steps-per-second rate needs before it turns steps into seconds.
 constexpr double kRateSeconds = 1.0;
 
+// Starts `body` on a thread that never takes the signals that clean up outputs
+// (io/atomic_output.hpp): the run's thread takes them, and blocks them around its commits. The
+// new thread inherits the mask in force when it is created, so it is blocked from its first
+// instruction, then this thread's mask is restored.
+template <class Body>
+std::thread thread_without_cleanup_signals(Body body) {
+  sigset_t cleanup, old;
+  sigemptyset(&cleanup);
+  for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&cleanup, s);
+  pthread_sigmask(SIG_BLOCK, &cleanup, &old);
+  std::thread t(std::move(body));
+  pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  return t;
+}
+
 }  // namespace
 
 ProgressLine::ProgressLine(dem::LabTestType type, const dem::RunEnd& end)
-    : type_(type), end_(end), ticker_([this] { tick(); }) {}
+    : type_(type), end_(end), ticker_(thread_without_cleanup_signals([this] { tick(); })) {}
 
 ProgressLine::~ProgressLine() {
   {
@@ -104,12 +121,6 @@ std::string ProgressLine::line(Clock::time_point now) const {
 }
 
 void ProgressLine::tick() {
-  // The run's thread takes the signals that clean up outputs (io/atomic_output.hpp), which
-  // blocks them around its commits; this thread must not take them in its stead.
-  sigset_t cleanup;
-  sigemptyset(&cleanup);
-  for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&cleanup, s);
-  pthread_sigmask(SIG_BLOCK, &cleanup, nullptr);
   std::unique_lock lock(mutex_);
   while (!done_) {
     // Clear to the end of the line: the line may be shorter than the one it replaces.

@@ -2,7 +2,7 @@
 // The progress line of `cdem run` on a terminal (stderr): from the moment it is made (the run's
 // genesis) a line refreshed twice a second by a thread of its own, with the elapsed time; once
 // the loading records, its step, strain, stress, peak and broken bonds, and the time left
-// (dem/run_progress.hpp): "ETA ~N s" where the run so far supports an estimate, "ETA unknown"
+// (lab/run_progress.hpp): "ETA ~N s" where the run so far supports an estimate, "ETA unknown"
 // where it does not, and "at most N s" from the bounds. Made only on a terminal without -q.
 #include <chrono>
 #include <condition_variable>
@@ -10,8 +10,8 @@
 #include <string>
 #include <thread>
 
-#include "dem/run_progress.hpp"
 #include "lab/lab_test.hpp"
+#include "lab/run_progress.hpp"
 
 namespace cdem::apps {
 

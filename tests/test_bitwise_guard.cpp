@@ -156,7 +156,21 @@ World loaded_packing(const BondModels& bonds) {
 
 constexpr long kSteps = 3000;
 
+// The hashes hold for the toolchain they were recorded with (header); elsewhere the test says so
+// and skips rather than fail on a rounding difference that is not a change of the code.
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ == 12 && __GNUC_MINOR__ == 2 && \
+    defined(__x86_64__) && defined(NDEBUG) && !defined(__FMA__)
+constexpr bool kRecordedToolchain = true;
+#else
+constexpr bool kRecordedToolchain = false;
+#endif
+#define SKIP_UNLESS_RECORDED_TOOLCHAIN()                                                      \
+  if (!kRecordedToolchain)                                                                    \
+  GTEST_SKIP() << "hashes recorded with GCC 12.2, x86-64, Release without -march; re-record " \
+                  "them for this toolchain (see the file's header)"
+
 TEST(BitwiseGuard, UnbondedPacking) {
+  SKIP_UNLESS_RECORDED_TOOLCHAIN();
   World w = loaded_packing({});
   w.cycle(kSteps);
   ASSERT_GT(w.last_force_pass().touching, 300);  // a packing: about 2 contacts per disc or more
@@ -166,6 +180,7 @@ TEST(BitwiseGuard, UnbondedPacking) {
 }
 
 TEST(BitwiseGuard, BondedPacking) {
+  SKIP_UNLESS_RECORDED_TOOLCHAIN();
   BondModels bonds{};
   BondModel& m = bonds[static_cast<int>(ContactClass::Mortar)];
   m.kind = BondKind::Parallel;
@@ -196,6 +211,7 @@ TEST(BitwiseGuard, BondedPacking) {
 // after kSteps loading steps: genesis (removal of floating discs, bond installation, relaxation)
 // and platen loading through the lab layer.
 TEST(BitwiseGuard, ReducedC30Uniaxial) {
+  SKIP_UNLESS_RECORDED_TOOLCHAIN();
   const auto dir = test::scratch_dir("BitwiseGuard", "ReducedC30Uniaxial");
   test::write_text(dir / "spec.toml",
                    "seed = 1\n[specimen]\nshape = \"rectangle\"\nwidth_mm = 40\nheight_mm = 80\n"

@@ -1,7 +1,7 @@
-// The time left of a lab run (dem/run_progress.hpp) on synthetic histories with known answers.
+// The time left of a lab run (lab/run_progress.hpp) on synthetic histories with known answers.
 #include <gtest/gtest.h>
 
-#include "dem/run_progress.hpp"
+#include "lab/run_progress.hpp"
 
 using namespace cdem::dem;
 

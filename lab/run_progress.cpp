@@ -1,4 +1,4 @@
-#include "dem/run_progress.hpp"
+#include "lab/run_progress.hpp"
 
 #include <algorithm>
 #include <cstddef>
