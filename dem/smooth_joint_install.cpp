@@ -59,9 +59,9 @@ bool crosses(const JointLine& l, double px, double py, double qx, double qy) {
   return sa * sb <= 0;
 }
 
-std::vector<long> install_smooth_joints(World& world, const std::vector<JointSet>& sets,
-                                        double gap_ratio) {
-  std::vector<long> installed(sets.size(), 0);
+InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>& sets,
+                                      double gap_ratio) {
+  InstalledJoints installed{std::vector<long>(sets.size(), 0), std::vector<double>(sets.size(), 0)};
   if (sets.empty()) return installed;
   world.refresh_neighbors();
   const Discs& d = world.discs;
@@ -109,7 +109,8 @@ std::vector<long> install_smooth_joints(World& world, const std::vector<JointSet
       state.shear_force[k] = 0;
       state.bond[k] = static_cast<std::uint8_t>(BondKind::SmoothJoint);
       state.joint[k] = joints.add(set_index, jx, jy, area, fx * jx + fy * jy, -fx * jy + fy * jx);
-      ++installed[s];
+      ++installed.contacts[s];
+      installed.area[s] += area;
     }
   }
   world.invalidate_neighbors();

@@ -38,12 +38,18 @@ std::vector<JointLine> joint_lines(const JointSet& set, double xmin, double ymin
 // sides of it and the crossing point within it (ends included).
 bool crosses(const JointLine& l, double px, double py, double qx, double qy);
 
+// What install_smooth_joints put on the world, per set.
+struct InstalledJoints {
+  std::vector<long> contacts;  // joint contacts
+  std::vector<double> area;    // m^2, the sum of their areas A (per m of thickness: a length)
+};
+
 // Installs the sets on `world` (after its bonds: install_bonds); `gap_ratio` is the bond gap
 // test of BondInstallation. A joint starts with the force the pair carried (linear part plus
-// bond) resolved in its frame. Returns the number of joint contacts of each set; a set that
-// crosses no pair has 0 (the caller reports it: the lines miss the specimen).
-std::vector<long> install_smooth_joints(World& world, const std::vector<JointSet>& sets,
-                                        double gap_ratio);
+// bond) resolved in its frame. A set that crosses no pair has 0 contacts (the caller reports
+// it: the lines miss the specimen).
+InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>& sets,
+                                      double gap_ratio);
 
 // Number of smooth joints still bonded.
 long intact_smooth_joints(const World& world);

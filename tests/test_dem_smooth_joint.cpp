@@ -52,8 +52,9 @@ World joint_pair(const SmoothJointParams& p) {
   set.family = false;
   const double cx = kR1 + 0.5 * kGap;  // the contact point
   set.segment = {cx - 2e-3 * kTx, -2e-3 * kTy, cx + 2e-3 * kTx, 2e-3 * kTy};
-  const std::vector<long> installed = install_smooth_joints(w, {set}, 2 * kGap / kR1 + 1e-9);
-  EXPECT_EQ(installed, std::vector<long>{1});
+  const InstalledJoints installed = install_smooth_joints(w, {set}, 2 * kGap / kR1 + 1e-9);
+  EXPECT_EQ(installed.contacts, std::vector<long>{1});
+  EXPECT_DOUBLE_EQ(installed.area[0], kArea);
   return std::move(w);
 }
 
@@ -270,7 +271,7 @@ std::vector<double> jostle(int threads) {
   set.params.cohesion = 2e6;
   set.dip = 0.5;
   set.spacing = 3e-3;
-  EXPECT_GT(install_smooth_joints(w, {set}, 0.03)[0], 20);
+  EXPECT_GT(install_smooth_joints(w, {set}, 0.03).contacts[0], 20);
   for (std::size_t b = 0; b < w.bodies.size(); ++b)
     w.set_body_velocity(static_cast<int>(b), rng.uniform(-2, 2), rng.uniform(-2, 2),
                         rng.uniform(-500, 500));
