@@ -61,7 +61,8 @@ bool crosses(const JointLine& l, double px, double py, double qx, double qy) {
 
 InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>& sets,
                                       double gap_ratio) {
-  InstalledJoints installed{std::vector<long>(sets.size(), 0), std::vector<double>(sets.size(), 0)};
+  InstalledJoints installed{std::vector<long>(sets.size(), 0), std::vector<double>(sets.size(), 0),
+                            std::vector<long>(sets.size(), 0)};
   if (sets.empty()) return installed;
   world.refresh_neighbors();
   const Discs& d = world.discs;
@@ -83,9 +84,9 @@ InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>&
     for (std::size_t k = 0; k < list.keys.size(); ++k) {
       if (state.bond[k] == static_cast<std::uint8_t>(BondKind::SmoothJoint)) continue;
       const std::int32_t i = list.first[k], j = list.second[k];
-      if (state.bond[k] == 0 &&
-          !within_bond_gap(disc_gap(d, i, j), gap_ratio, std::min(d.r[i], d.r[j])))
-        continue;
+      const double surface_gap = disc_gap(d, i, j);  // m
+      const bool touching =
+          state.bond[k] != 0 || within_bond_gap(surface_gap, gap_ratio, std::min(d.r[i], d.r[j]));
       const auto line = std::find_if(lines.begin(), lines.end(), [&](const JointLine& l) {
         return crosses(l, d.x[i], d.y[i], d.x[j], d.y[j]);
       });
@@ -104,11 +105,20 @@ InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>&
       pair_force(world, k, normal, shear);
       const double dist = std::hypot(cx, cy), nx = cx / dist, ny = cy / dist;
       const double fx = normal * nx - shear * ny, fy = normal * ny + shear * nx;
-      const double area = smooth_joint_area(sets[s].params, d.r[i], d.r[j]);
+      const SmoothJointParams& p = sets[s].params;
+      const double area = smooth_joint_area(p, d.r[i], d.r[j]);
+      // A touching pair starts with its force; a pair apart, unbonded and open by its gap.
+      const double gap0 = touching ? -(fx * jx + fy * jy) / (p.normal_stiffness * area)
+                                   : std::max(surface_gap, 0.0);
       state.break_bond(k);
       state.shear_force[k] = 0;
       state.bond[k] = static_cast<std::uint8_t>(BondKind::SmoothJoint);
-      state.joint[k] = joints.add(set_index, jx, jy, area, fx * jx + fy * jy, -fx * jy + fy * jx);
+      state.joint[k] = joints.add(set_index, jx, jy, area, gap0,
+                                  touching ? -fx * jy + fy * jx : 0.0, touching && p.bonded);
+      if (!touching) {
+        ++installed.open[s];
+        continue;
+      }
       ++installed.contacts[s];
       installed.area[s] += area;
     }

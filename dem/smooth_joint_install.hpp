@@ -3,7 +3,10 @@
 // by the user as a family of parallel lines (dip, spacing, offset) or as one segment; every
 // disc-disc pair that is bonded or touching (within the bond gap) and whose centre-to-centre
 // segment crosses a line of a set gets a smooth joint of that set, which replaces the pair's
-// contact law and bond. A pair crossed by lines of several sets takes the first set's joint.
+// contact law and bond. The neighbour list's other candidates across a line (pairs apart by less
+// than the skin) get an unbonded joint open by their gap: if the joint closes they touch as
+// joint, not as interlocking discs. A pair crossed by lines of several sets takes the first
+// set's joint.
 #include <cstdint>
 #include <vector>
 
@@ -42,6 +45,9 @@ bool crosses(const JointLine& l, double px, double py, double qx, double qy);
 struct InstalledJoints {
   std::vector<long> contacts;  // joint contacts
   std::vector<double> area;    // m^2, the sum of their areas A (per m of thickness: a length)
+  // Candidate pairs across a line that were apart: unbonded joints, open by their gap, so that
+  // the joint plane stays a plane when it closes (not counted in `contacts`).
+  std::vector<long> open;
 };
 
 // Installs the sets on `world` (after its bonds: install_bonds); `gap_ratio` is the bond gap

@@ -31,19 +31,18 @@ struct SmoothJointStates {
   }
 
   // A new joint of set `joint_set` with unit normal (unx, uny) (from the first disc to the
-  // second), area (m^2), taking over normal force fn (N, compression positive) and shear force
-  // fs0 (N, along tj) as its starting state. Returns its index.
-  std::int32_t add(std::int32_t joint_set, double unx, double uny, double joint_area, double fn,
-                   double fs0) {
+  // second), area (m^2), gap `gap0` (m, the normal force is -kn A gap0), shear force fs0 (N,
+  // along tj), bonded or not. Returns its index.
+  std::int32_t add(std::int32_t joint_set, double unx, double uny, double joint_area, double gap0,
+                   double fs0, bool is_bonded) {
     const auto index = static_cast<std::int32_t>(set.size());
-    const SmoothJointLaw& law = sets[static_cast<std::size_t>(joint_set)];
     set.push_back(joint_set);
     nx.push_back(unx);
     ny.push_back(uny);
     area.push_back(joint_area);
-    gap.push_back(-fn / (law.p.normal_stiffness * joint_area));
+    gap.push_back(gap0);
     fs.push_back(fs0);
-    bonded.push_back(law.p.bonded ? 1 : 0);
+    bonded.push_back(is_bonded ? 1 : 0);
     return index;
   }
 };
