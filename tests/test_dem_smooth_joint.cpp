@@ -209,6 +209,27 @@ TEST(SmoothJoint, ElasticLoadUnloadReturnsItsEnergy) {
   EXPECT_EQ(w.friction_dissipated(), 0.0);
 }
 
+// The joint's state lives in NeighborList::smooth_joints, referred to by index: a rebuild of the
+// neighbour list (here forced after a disc is added) keeps it, and the joint goes on from where
+// it was.
+TEST(SmoothJoint, StateSurvivesANeighbourRebuild) {
+  const SmoothJointParams p = joint_params();
+  World w = joint_pair(p);
+  const double v = 0.004;  // m/s along -nj: closing
+  w.set_body_velocity(1, -v * kNx, -v * kNy, 0);
+  for (int n = 0; n < 20; ++n) w.step();
+  const double fn = joint_normal_force(w);
+  ASSERT_NEAR(fn, p.normal_stiffness * kArea * 20 * v * kDt, 1e-9 * fn);
+  w.add_disc(-5e-3, 0, 0.5e-3, 2000);
+  w.bodies.prescribed[2] = 1;
+  w.invalidate_neighbors();
+  const long builds = w.neighbors.build_count;
+  for (int n = 0; n < 20; ++n) w.step();
+  EXPECT_GT(w.neighbors.build_count, builds);
+  EXPECT_NEAR(joint_normal_force(w), 2 * fn, 1e-9 * fn);
+  EXPECT_EQ(w.neighbors.smooth_joints.size(), 1u);
+}
+
 TEST(SmoothJoint, TimeStepSeesTheJointStiffness) {
   const SmoothJointParams p = joint_params();
   World w = joint_pair(p);
