@@ -191,6 +191,22 @@ TEST(SmoothJoint, SlipDilatesTheJoint) {
   EXPECT_GT(w.friction_dissipated(), 0.0);
 }
 
+// Slip with dilation: the work put in is the joint's strain energy (its normal spring holds the
+// dilation's energy) plus the friction's dissipation, (|Fs| - Fn tan psi) per unit of slip.
+TEST(SmoothJoint, SlipWithDilationClosesTheEnergyLedger) {
+  SmoothJointParams p = joint_params();
+  p.bonded = false;
+  World w = joint_pair(p);
+  const double closure = 2e6 / p.normal_stiffness;  // m, to 2 MPa
+  double work = drive(w, -closure / (100 * kDt) * kNx, -closure / (100 * kDt) * kNy, 100);
+  work += drive(w, 0.01 * kTx, 0.01 * kTy, 400);  // slides most of the way
+  const double strain = contact_energy(w).bond_strain, friction = w.friction_dissipated();
+  ASSERT_GT(friction, 0.2 * work);
+  // Exact per pass up to rounding: the trapezoid work of the mean force equals the springs'
+  // change plus the mean-force slip work.
+  EXPECT_NEAR(work, strain + friction, 1e-6 * work);
+}
+
 TEST(SmoothJoint, ElasticLoadUnloadReturnsItsEnergy) {
   const SmoothJointParams p = joint_params();
   World w = joint_pair(p);
