@@ -4,13 +4,27 @@
 // the bits those tests compare.
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/rng.hpp"
 #include "dem/contact_energy.hpp"
 #include "dem/world.hpp"
 
 namespace cdem::test {
+
+// Settings of the lattice: `threads`, light damping, `law` and `bond` in every class.
+inline dem::WorldSettings lattice_settings(int threads, const dem::LinearContact& law,
+                                           const dem::BondModel& bond) {
+  dem::WorldSettings s;
+  s.threads = threads;
+  s.local_damping = 0.1;
+  s.laws.fill(law);
+  s.bonds.fill(bond);
+  return s;
+}
 
 inline void add_hex_lattice(dem::World& w) {
   const double r = 0.5e-3;  // m
@@ -38,6 +52,11 @@ inline std::vector<double> world_bits(const dem::World& w) {
   out.insert(out.end(),
              {e.bond_strain, e.linear_strain, w.bond_energy_released(), w.friction_dissipated()});
   return out;
+}
+
+inline void expect_same_bits(const std::vector<double>& one, const std::vector<double>& two) {
+  ASSERT_EQ(one.size(), two.size());
+  EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)), 0);
 }
 
 }  // namespace cdem::test

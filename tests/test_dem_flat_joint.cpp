@@ -10,7 +10,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <vector>
 
@@ -337,17 +336,12 @@ TEST(FlatJointWorld, OneCrackPerElementAtItsCentroid) {
 // A jostling flat-jointed lattice, strong enough to break elements: the same bits with 1 and
 // 2 threads.
 std::vector<double> jostled_bits(int threads) {
-  WorldSettings s;
-  s.threads = threads;
-  s.local_damping = 0.1;
-  s.laws.fill(LinearContact{kE, kKappa, 0.5});
   BondModel m;
   m.kind = BondKind::FlatJoint;
   m.flat_joint = mortar_joint(3);
   m.flat_joint.tensile_strength = 2e6;
   m.flat_joint.cohesion = 4e6;
-  s.bonds.fill(m);
-  World w(s);
+  World w(cdem::test::lattice_settings(threads, LinearContact{kE, kKappa, 0.5}, m));
   cdem::test::add_hex_lattice(w);
   install_bonds(w, BondInstallation{0.03});
   cdem::test::jostle(w);
@@ -357,9 +351,7 @@ std::vector<double> jostled_bits(int threads) {
 }
 
 TEST(FlatJointWorld, OneAndTwoThreadsGiveTheSameBits) {
-  const std::vector<double> one = jostled_bits(1), two = jostled_bits(2);
-  ASSERT_EQ(one.size(), two.size());
-  EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)), 0);
+  cdem::test::expect_same_bits(jostled_bits(1), jostled_bits(2));
 }
 
 }  // namespace

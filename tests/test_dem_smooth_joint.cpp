@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <vector>
 
@@ -283,16 +282,11 @@ TEST(SmoothJoint, FamilyLinesCrossTheBox) {
 // A jostling bonded lattice cut by a joint family, strong enough to break joints: the same
 // bits with 1 and 2 threads.
 std::vector<double> jostled_bits(int threads) {
-  WorldSettings s;
-  s.threads = threads;
-  s.local_damping = 0.1;
-  s.laws.fill(LinearContact{16e9, 1.45, 0.5});
   BondModel m;
   m.kind = BondKind::Parallel;
   m.parallel.tensile_strength = 50e6;
   m.parallel.cohesion = 50e6;
-  s.bonds.fill(m);
-  World w(s);
+  World w(cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5}, m));
   cdem::test::add_hex_lattice(w);
   install_bonds(w, BondInstallation{0.03});
   JointSet set;
@@ -313,9 +307,7 @@ std::vector<double> jostled_bits(int threads) {
 }
 
 TEST(SmoothJoint, OneAndTwoThreadsGiveTheSameBits) {
-  const std::vector<double> one = jostled_bits(1), two = jostled_bits(2);
-  ASSERT_EQ(one.size(), two.size());
-  EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)), 0);
+  cdem::test::expect_same_bits(jostled_bits(1), jostled_bits(2));
 }
 
 }  // namespace
