@@ -116,9 +116,11 @@ struct SmoothJointLaw {
     if (s.bonded) {
       const double fn = -kna * s.gap;
       const double sigma = fn / area;  // Pa, compression positive
-      if (sigma <= -p.tensile_strength)
+      const double shear_strength = (p.cohesion + sigma * tan_friction_angle) * area;  // N
+      // A joint at zero force does not break, even of zero strength (no crack without a load).
+      if (sigma < 0 && sigma <= -p.tensile_strength)
         out.failure = BondFailure::Tension;
-      else if (std::fabs(trial) >= (p.cohesion + sigma * tan_friction_angle) * area)
+      else if (shear_strength < 0 || (trial != 0 && std::fabs(trial) >= shear_strength))
         out.failure = BondFailure::Shear;
       if (out.failure == BondFailure::None) {
         s.fs = trial;

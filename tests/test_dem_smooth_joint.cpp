@@ -127,6 +127,20 @@ TEST(SmoothJoint, TensileFailureAtSigmaCTimesA) {
   EXPECT_EQ(w.neighbors.intact_bonds(0), 0);
 }
 
+// A bonded joint of zero strength does not break at zero force (installed on a pair apart within
+// the bond gap); the first shear breaks it.
+TEST(SmoothJoint, ZeroStrengthBreaksOnlyUnderLoad) {
+  SmoothJointParams p = joint_params();
+  p.tensile_strength = p.cohesion = p.friction_angle = 0;
+  World w = joint_pair(p);
+  for (int n = 0; n < 10; ++n) w.step();
+  EXPECT_EQ(w.cracks.size(), 0u);
+  w.set_body_velocity(1, 0.01 * kTx, 0.01 * kTy, 0);
+  w.step();
+  ASSERT_EQ(w.cracks.size(), 1u);
+  EXPECT_EQ(w.cracks.cracks[0].mode, BondFailure::Shear);
+}
+
 // Compresses the joint to normal stress sigma (Pa), then shears it along tj until `until`.
 void compress(World& w, const SmoothJointParams& p, double sigma) {
   const double closure = sigma / p.normal_stiffness;  // m
