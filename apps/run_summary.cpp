@@ -158,6 +158,15 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   for (int c = 0; c < 3; ++c) bonds[contact_class_name(ContactClass(c))] = r.genesis.bonds[c];
   g["bonds"] = bonds;
   j["genesis"] = g;
+  // Smooth joints installed, one entry per [[test.joints]] set (docs/smooth_joint.md).
+  if (!r.joints.contacts.empty()) {
+    nlohmann::ordered_json sets = nlohmann::ordered_json::array();
+    for (std::size_t s = 0; s < r.joints.contacts.size(); ++s)
+      sets.push_back({{"contacts", r.joints.contacts[s]},
+                      {"contact_area_m2", r.joints.area[s]},
+                      {"open_pairs", r.joints.open[s]}});
+    j["smooth_joints"] = sets;
+  }
   return j;
 }
 

@@ -1,5 +1,7 @@
 #include "dem/contact_energy.hpp"
 
+#include <algorithm>
+
 namespace cdem::dem {
 
 ContactEnergy contact_energy(const World& world) {
@@ -23,6 +25,16 @@ ContactEnergy contact_energy(const World& world) {
       e.bond_strain +=
           flat_joint_strain_energy(g, joints.bonded[joint], gap, joints.theta[joint],
                                    joints.element_shear.data() + joints.first_element[joint]);
+      continue;
+    }
+    if (state.bond[k] == static_cast<std::uint8_t>(BondKind::SmoothJoint)) {
+      // The joint carries the whole contact: booked as bond strain, bonded or not.
+      const SmoothJointStates& joints = list.smooth_joints;
+      const auto joint = static_cast<std::size_t>(state.joint[k]);
+      const double kna = joints.normal_stiffness(joint), ksa = joints.shear_stiffness(joint);
+      const double fn =
+          joints.bonded[joint] ? -kna * joints.gap[joint] : std::max(-kna * joints.gap[joint], 0.0);
+      e.bond_strain += smooth_joint_strain_energy(fn, joints.fs[joint], kna, ksa);
       continue;
     }
     const double kn = law.normal_stiffness(d.r[i], d.r[j]);

@@ -4,7 +4,10 @@
 // `linear` (no bond), `contact_bond` (linear + point bond), `parallel_bond` (linear in
 // parallel with a bond) or `flat_joint` (a bonded interface that replaces the linear contact
 // and takes its E*, kn/ks and mu as deformability and residual friction). Disc-wall contacts
-// (class W) are linear only.
+// (class W) are linear only. A smooth joint (dem/smooth_joint.hpp) is not a class's model: it is
+// installed on the pairs that cross a user's joint line (dem/smooth_joint_install.hpp) and
+// carries its own properties (NeighborList::smooth_joints).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -12,11 +15,19 @@
 #include "dem/flat_joint.hpp"
 #include "dem/linear_contact.hpp"
 #include "dem/parallel_bond.hpp"
+#include "dem/smooth_joint_states.hpp"
 
 namespace cdem::dem {
 
-// Kind of the bond a pair carries; a pair whose bond broke holds None (plain linear).
-enum class BondKind : std::uint8_t { None = 0, Contact = 1, Parallel = 2, FlatJoint = 3 };
+// Kind of the bond a pair carries; a pair whose bond broke holds None (plain linear). A smooth
+// joint keeps SmoothJoint after its bond breaks (it stays, frictional; PFC never removes it).
+enum class BondKind : std::uint8_t {
+  None = 0,
+  Contact = 1,
+  Parallel = 2,
+  FlatJoint = 3,
+  SmoothJoint = 4
+};
 
 struct BondModel {
   BondKind kind = BondKind::None;  // the bond that install_bonds puts on pairs of this class
@@ -77,6 +88,14 @@ inline ContactStiffness pair_stiffness(const LinearContact& law, const BondModel
     s.rotation = b.rotation;
   }
   return s;
+}
+
+// Smooth joint e: kn A and ks A (N/m) act along the joint's frame, which is not the contact's
+// (n along the centre line), so either may act along n or t; both directions take the larger.
+inline ContactStiffness smooth_joint_stiffness(const SmoothJointStates& joints, std::int32_t e) {
+  const auto index = static_cast<std::size_t>(e);
+  const double k = std::max(joints.normal_stiffness(index), joints.shear_stiffness(index));
+  return {k, k, 0};
 }
 
 // A disc-wall contact (linear only).

@@ -28,7 +28,9 @@ void CrackLog::record(const ContactForces& pair, const NeighborList& list, const
     c.y = discs.y[i] + s * dy;
     c.mode = static_cast<BondFailure>(pair.failure[k]);
     c.contact_class = static_cast<ContactClass>(cls);
-    c.bond = bonds[cls].kind;
+    // A smooth joint keeps its kind after the break; other bonds are the class's.
+    const bool smooth = list.state.bond[k] == static_cast<std::uint8_t>(BondKind::SmoothJoint);
+    c.bond = smooth ? BondKind::SmoothJoint : bonds[cls].kind;
     c.first = i;
     c.second = j;
     c.energy = pair.bond_energy_released[k];

@@ -78,6 +78,7 @@ class DiscPairKernel {
         joint_bonded_(list.flat_joints.bonded.data()),
         joint_first_element_(list.flat_joints.first_element.data()),
         joint_element_shear_(list.flat_joints.element_shear.data()),
+        smooth_joints_(&list.smooth_joints),
         normal_(out.normal.data()),
         overlap_(out.overlap.data()),
         fx_(out.fx.data()),
@@ -198,6 +199,7 @@ class DiscPairKernel {
   PairForce bonded(std::size_t k, const Geometry& g) const {
     const BondKind kind = static_cast<BondKind>(bond_[k]);
     if (kind == BondKind::FlatJoint) return flat_joint(k, g);
+    if (kind == BondKind::SmoothJoint) return smooth_joint(k, g);
     const int cls = contact_class_[k];
     const LinearContact& law = laws_[cls];
     const double kn = law.normal_stiffness(g.ri, g.rj, g.inverse_length);
@@ -281,6 +283,38 @@ class DiscPairKernel {
     return f;
   }
 
+  // A pair with a smooth joint (dem/smooth_joint.hpp): the joint carries the whole contact in
+  // its own frame. Its displacement is that of j's contact point relative to i's (spins
+  // included, as for the linear shear), so the moments the off-centre-line force puts on the
+  // discs are resisted and the joint's work balances its strain energy.
+  PairForce smooth_joint(std::size_t k, const Geometry& g) const {
+    SmoothJointStates& joints = *smooth_joints_;
+    const auto e = static_cast<std::size_t>(joint_[k]);
+    const SmoothJointLaw& law = joints.sets[static_cast<std::size_t>(joints.set[e])];
+    const double spin =  // m/s along t, from the spins (as in tangential_velocity)
+        -(g.rj - 0.5 * g.overlap) * w_[g.j] - (g.ri - 0.5 * g.overlap) * w_[g.i];
+    const double ux = ((vx_[g.j] - vx_[g.i]) - spin * g.ny) * dt_;  // m, relative displacement
+    const double uy = ((vy_[g.j] - vy_[g.i]) + spin * g.nx) * dt_;
+    const double jx = joints.nx[e], jy = joints.ny[e];
+    SmoothJointState s{joints.gap[e], joints.fs[e], joints.bonded[e] != 0};
+    const double area = joints.area[e];
+    const SmoothJointForce jf =
+        law.update(s, law.p.normal_stiffness * area, law.p.shear_stiffness * area, area,
+                   ux * jx + uy * jy, -ux * jy + uy * jx);
+    joints.gap[e] = s.gap;
+    joints.fs[e] = s.fs;
+    joints.bonded[e] = s.bonded;
+    PairForce f;
+    f.slip_work = jf.slip_work;
+    f.failure = jf.failure;
+    f.released = jf.released;
+    shear_[k] = 0;
+    // Force on j = fn nj + fs tj, resolved along the contact's n and t.
+    const double fx = jf.fn * jx - jf.fs * jy, fy = jf.fn * jy + jf.fs * jx;
+    resolve(g, fx * g.nx + fy * g.ny, -fx * g.ny + fy * g.nx, 0.0, f);
+    return f;
+  }
+
   const std::int32_t *first_, *second_;
   const std::uint8_t* contact_class_;
   const double *x_, *y_, *r_, *vx_, *vy_, *w_;
@@ -292,6 +326,7 @@ class DiscPairKernel {
   std::uint32_t* joint_bonded_;
   const std::int32_t* joint_first_element_;
   double* joint_element_shear_;
+  SmoothJointStates* smooth_joints_;
   double *normal_, *overlap_, *fx_, *fy_;
   std::uint8_t* failure_;
   double* released_;

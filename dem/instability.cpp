@@ -21,9 +21,11 @@ constexpr double kStiffnessContrast = 100.0;
 ContactStiffness pair_stiffness(const World& w, std::size_t k) {
   const NeighborList& list = w.neighbors;
   const std::uint8_t cls = list.contact_class[k];
-  return dem::pair_stiffness(w.settings.laws[cls], w.settings.bonds[cls],
-                             static_cast<BondKind>(list.state.bond[k]), w.discs.r[list.first[k]],
-                             w.discs.r[list.second[k]]);
+  const auto kind = static_cast<BondKind>(list.state.bond[k]);
+  if (kind == BondKind::SmoothJoint)
+    return smooth_joint_stiffness(list.smooth_joints, list.state.joint[k]);
+  return dem::pair_stiffness(w.settings.laws[cls], w.settings.bonds[cls], kind,
+                             w.discs.r[list.first[k]], w.discs.r[list.second[k]]);
 }
 
 // Current stiffness seen by body b (sum max(kn, ks) and sum ks arm^2 + bond bending over its

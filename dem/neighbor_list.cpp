@@ -224,8 +224,15 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
 }
 
 int NeighborList::intact_bonds(std::size_t k) const {
-  if (state.bond[k] != static_cast<std::uint8_t>(BondKind::FlatJoint)) return state.bond[k] != 0;
-  return std::popcount(flat_joints.bonded[static_cast<std::size_t>(state.joint[k])]);
+  const auto joint = static_cast<std::size_t>(state.joint[k]);
+  switch (static_cast<BondKind>(state.bond[k])) {
+    case BondKind::FlatJoint:
+      return std::popcount(flat_joints.bonded[joint]);
+    case BondKind::SmoothJoint:
+      return smooth_joints.bonded[joint];
+    default:
+      return state.bond[k] != 0;
+  }
 }
 
 }  // namespace cdem::dem

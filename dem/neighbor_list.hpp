@@ -10,6 +10,7 @@
 #include "dem/bodies.hpp"
 #include "dem/discs.hpp"
 #include "dem/flat_joint_states.hpp"
+#include "dem/smooth_joint_states.hpp"
 #include "dem/wall.hpp"
 
 namespace cdem::dem {
@@ -25,7 +26,8 @@ struct ContactStates {
   // Contact bond: gap at installation (m, >= 0); the bonded linear part is at zero normal
   // force at this gap, Fn = kn (overlap + bond_gap).
   std::vector<double> bond_gap;
-  // Flat joint: index of the interface's entry in NeighborList::flat_joints.
+  // Flat joint: index of the interface's entry in NeighborList::flat_joints; smooth joint: of
+  // its entry in NeighborList::smooth_joints.
   std::vector<std::int32_t> joint;
 
   void resize(std::size_t n) {
@@ -73,8 +75,11 @@ class NeighborList {
   ContactStates wall_state;
   // The flat joints' interfaces, referred to by state.joint (entries outlive their pairs).
   FlatJointStates flat_joints;
+  // The smooth joints, referred to by state.joint (entries outlive their pairs).
+  SmoothJointStates smooth_joints;
 
-  // Intact bonds of disc-disc pair k: 0 or 1, or a flat joint's bonded elements.
+  // Intact bonds of disc-disc pair k: 0 or 1 (a smooth joint: 1 while bonded), or a flat
+  // joint's bonded elements.
   int intact_bonds(std::size_t k) const;
 
   double skin = 0;  // m, extra gap under which a pair is kept as a candidate

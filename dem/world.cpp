@@ -154,9 +154,11 @@ void World::update_time_step() {
   for (std::size_t k = 0; k < neighbors.keys.size(); ++k) {
     const std::int32_t i = neighbors.first[k], j = neighbors.second[k];
     const std::uint8_t cls = neighbors.contact_class[k];
+    const auto kind = static_cast<BondKind>(neighbors.state.bond[k]);
     const ContactStiffness c =
-        pair_stiffness(settings.laws[cls], settings.bonds[cls],
-                       static_cast<BondKind>(neighbors.state.bond[k]), discs.r[i], discs.r[j]);
+        kind == BondKind::SmoothJoint
+            ? smooth_joint_stiffness(neighbors.smooth_joints, neighbors.state.joint[k])
+            : pair_stiffness(settings.laws[cls], settings.bonds[cls], kind, discs.r[i], discs.r[j]);
     const double kt = std::max(c.normal, c.shear);
     const double ai = arm(i), aj = arm(j);
     stiffness_[discs.body[i]] += kt;

@@ -121,8 +121,10 @@ LabTestControls read_controls(const InputTable& t) {
                          "pin_friction",
                          "control",
                          "cmod_rate",
-                         "fragment_sieve"});
+                         "fragment_sieve",
+                         "joints"});
   LabTestControls c;
+  c.joints = read_joint_sets(t);
   apply_test_preset(t, c);  // speed knobs of the preset; the keys below override them
   const std::string type = t.string("type", {"uniaxial", "brazilian", "direct_tension", "biaxial",
                                              "shpb", "three_point_bending"});
@@ -677,6 +679,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   const Specimen cleaned = remove_floating_discs(specimen, settings, c.genesis, res.genesis);
   World world = world_from_specimen(cleaned, settings);
   install_test_bonds(world, c.genesis, res.genesis);
+  res.joints = install_test_joints(world, c.joints, c.genesis.bond_gap_ratio, input.file);
   // The relaxed state is the reference: displacements, strains, time and steps count from here.
   const Extent e = disc_extent(world);
   if (c.type == LabTestType::Shpb) {

@@ -21,6 +21,7 @@
 #include "dem/fragments.hpp"
 #include "dem/world.hpp"
 #include "io/input_table.hpp"
+#include "lab/joint_set_input.hpp"
 #include "lab/lab_analysis.hpp"
 #include "lab/material_genesis.hpp"
 #include "lab/material_table.hpp"
@@ -36,6 +37,7 @@ const char* lab_test_name(LabTestType type);
 
 struct LabTestControls {
   LabTestType type = LabTestType::Uniaxial;
+  std::vector<JointSet> joints;  // [[test.joints]]: smooth-joint sets (docs/smooth_joint.md)
   double platen_velocity =
       0.02;                    // m/s, of each platen (or grip band), toward / away from the other
   StopRuleOptions stop{};      // the peak and post-peak stop rule (lab/stop_rule.hpp)
@@ -186,6 +188,7 @@ struct BendingResult {
 struct LabTestResult {
   LabTestType type = LabTestType::Uniaxial;
   GenesisReport genesis;
+  InstalledJoints joints;  // smooth joints installed, per [[test.joints]] set
   LabHistory history;
   std::vector<Crack> cracks;
   // crack_count[mode - 1][class]: mode Tension / Shear, class M / ITZ / A.

@@ -234,7 +234,8 @@ void ResultFile::snapshot_bonds(H5::Group& root, H5::Group& g, const World& worl
     cracks_seen_ = cracks.size();  // earlier cracks broke bonds that are not in the network
     write_array(root, "bond_pairs", pairs, "", "the two discs of each bond (XDMF lines)", 2);
     write_array(root, "bond_class", cls, "", "0 = M (mortar), 1 = ITZ, 2 = A (aggregate)");
-    write_array(root, "bond_law", law, "", "1 = contact bond, 2 = parallel bond, 3 = flat joint");
+    write_array(root, "bond_law", law, "",
+                "1 = contact bond, 2 = parallel bond, 3 = flat joint, 4 = smooth joint");
   }
   // World time of the loading start: crack times are world times until the run ends.
   const double time0 = world.time() - time;

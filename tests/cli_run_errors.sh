@@ -226,5 +226,33 @@ else
   echo "FAIL missing_test_file: exit $rc"; cat "$work/none.err"; failures=$((failures + 1))
 fi
 
+# Smooth joints (docs/smooth_joint.md): a set whose line misses the specimen (found when the
+# joints are installed, before the loading) and a negative stiffness (found when read).
+joint_block='[specimen]
+shape = "rectangle"
+width_mm = 8
+height_mm = 16
+[specimen.mortar]
+r_mean_mm = 0.5'
+joint_keys='sj_normal_stiffness_GPa_m = 100
+sj_shear_stiffness_GPa_m = 70
+sj_cohesion_MPa = 2'
+expect joints_miss_specimen "test.joints\[0\].*miss the specimen" "materials = \"materials.toml\"
+$joint_block
+[test]
+type = \"uniaxial\"
+[[test.joints]]
+points_mm = [[30, 0], [40, 20]]
+$joint_keys"
+expect joints_negative_stiffness "test.joints\[0\].sj_normal_stiffness_GPa_m" "specimen = \"corrupt.h5\"
+materials = \"materials.toml\"
+[test]
+type = \"uniaxial\"
+[[test.joints]]
+dip_deg = 30
+spacing_mm = 5
+sj_normal_stiffness_GPa_m = -100
+sj_shear_stiffness_GPa_m = 70"
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

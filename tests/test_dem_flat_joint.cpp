@@ -10,16 +10,15 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <vector>
 
 #include "bonded_pair.hpp"
-#include "core/rng.hpp"
 #include "dem/bond_installation.hpp"
 #include "dem/contact_energy.hpp"
 #include "dem/flat_joint.hpp"
 #include "dem/world.hpp"
+#include "jostled_lattice.hpp"
 
 namespace {
 
@@ -344,43 +343,23 @@ TEST(FlatJointWorld, OneCrackPerElementAtItsCentroid) {
 
 // A jostling flat-jointed lattice, strong enough to break elements: the same bits with 1 and
 // 2 threads.
-std::vector<double> jostle(int threads) {
-  WorldSettings s;
-  s.threads = threads;
-  s.local_damping = 0.1;
-  s.laws.fill(LinearContact{kE, kKappa, 0.5});
+std::vector<double> jostled_bits(int threads) {
   BondModel m;
   m.kind = BondKind::FlatJoint;
   m.flat_joint = mortar_joint(3);
   m.flat_joint.tensile_strength = 2e6;
   m.flat_joint.cohesion = 4e6;
-  s.bonds.fill(m);
-  World w(s);
-  cdem::Rng rng(11);
-  const double r = 0.5e-3;
-  for (int iy = 0; iy < 12; ++iy)
-    for (int ix = 0; ix < 12; ++ix)
-      w.add_disc(ix * 2 * r + (iy % 2) * r, iy * std::sqrt(3.0) * r, r * (0.98 + 0.02 * (ix % 2)),
-                 2000);
+  World w(cdem::test::lattice_settings(threads, LinearContact{kE, kKappa, 0.5}, m));
+  cdem::test::add_hex_lattice(w);
   install_bonds(w, BondInstallation{0.03});
-  for (std::size_t b = 0; b < w.bodies.size(); ++b)
-    w.set_body_velocity(static_cast<int>(b), rng.uniform(-2, 2), rng.uniform(-2, 2),
-                        rng.uniform(-500, 500));
+  cdem::test::jostle(w);
   w.cycle(1500);
   EXPECT_GT(w.cracks.size(), 10u);
-  std::vector<double> out;
-  for (std::size_t b = 0; b < w.bodies.size(); ++b)
-    out.insert(out.end(), {w.bodies.x[b], w.bodies.y[b], w.bodies.omega[b]});
-  for (const Crack& c : w.cracks.cracks) out.insert(out.end(), {c.time, c.x, c.y});
-  const ContactEnergy e = contact_energy(w);
-  out.insert(out.end(), {e.bond_strain, e.linear_strain, w.bond_energy_released()});
-  return out;
+  return cdem::test::world_bits(w);
 }
 
 TEST(FlatJointWorld, OneAndTwoThreadsGiveTheSameBits) {
-  const std::vector<double> one = jostle(1), two = jostle(2);
-  ASSERT_EQ(one.size(), two.size());
-  EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)), 0);
+  cdem::test::expect_same_bits(jostled_bits(1), jostled_bits(2));
 }
 
 }  // namespace
