@@ -184,6 +184,10 @@ py::dict crack_arrays(const std::vector<dem::Crack>& cracks) {
   d["first"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.first; });
   d["second"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.second; });
   d["element"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.element; });
+  d["energy"] = crack_column<double>(cracks, [](const Crack& k) { return k.energy; });
+  d["nx"] = crack_column<double>(cracks, [](const Crack& k) { return k.nx; });
+  d["ny"] = crack_column<double>(cracks, [](const Crack& k) { return k.ny; });
+  d["half_width"] = crack_column<double>(cracks, [](const Crack& k) { return k.half_width; });
   return d;
 }
 

@@ -144,7 +144,10 @@ class RunResult(dict):
     cracks : dict of ndarray
         Every bond failure of the loading: ``time`` (s), ``x``, ``y`` (m), ``mode`` (1 tension,
         2 shear), ``class`` (0 mortar, 1 ITZ, 2 aggregate), ``first``, ``second`` (discs),
-        ``element`` (the flat-joint element, else -1): the result file's /cracks.
+        ``element`` (the flat-joint element, else -1), ``energy`` (J/m, the strain energy the
+        bond held), ``nx``, ``ny`` (unit normal of the contact plane, from ``first`` towards
+        ``second``), ``half_width`` (m; the crack is the segment (x, y) +- half_width (-ny, nx)):
+        the result file's /cracks.
     histories, crack_lists : list
         Per confinement of a biaxial series (one entry otherwise).
     """
