@@ -54,7 +54,8 @@ def generate(spec, seed=None, output=None, verbose=False):
         Discs as numpy arrays (``x``, ``y``, ``r`` in m; ``clump``: -1 for mortar, else the
         aggregate's index; ``tag``: 0 mortar, 1 aggregate), the mould (``shape``, ``width``,
         ``height`` in m), the aggregates (``clumps``) and the generator's summary (``summary``,
-        a dict as the CLI's ``--summary`` JSON).
+        a dict as the CLI's ``--summary`` JSON; generated in memory, so ``timings_s`` has no
+        ``write`` phase).
 
     Raises
     ------
