@@ -57,8 +57,8 @@ struct GenerateReport {
 // The specimen of `in` with the random seed `seed` (in.seed is not used), in memory. Its
 // attributes carry the provenance a specimen file stores (generator input text and file label,
 // seed, summary). Same input and seed: the same bits as `run_generate` writes. Throws
-// InputError for input the reader could not reject alone and RunError when the targets cannot
-// be reached.
+// InputError (naming in.file) for a gradation.p_k above 1 and RunError when the
+// targets cannot be reached.
 Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& report);
 Specimen generate(const GeneratorInput& in, std::uint64_t seed);
 
