@@ -2,6 +2,8 @@
 
 #include <numbers>
 
+#include "lab/summary_fields.hpp"
+
 namespace cdem::apps {
 
 namespace {
@@ -106,7 +108,7 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   j["test"] = dem::lab_test_name(r.type);
   j["specimen"] = in.specimen_path.string();
   j["seed"] = in.seed;
-  j["peak_stress_MPa"] = r.peak_stress * 1e-6;
+  j[dem::summary_field::kPeakStress] = r.peak_stress * 1e-6;
   if (r.type == dem::LabTestType::Biaxial) {
     j["sigma3_MPa"] = r.confining_stress * 1e-6;
     j["sigma3_at_peak_MPa"] = r.confining_stress_at_peak * 1e-6;
@@ -116,13 +118,13 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   if (r.type == dem::LabTestType::ThreePointBending) {
     j["bending"] = bending_json(r.bending, r.history, in.controls);
   } else if (r.type == dem::LabTestType::Uniaxial || r.type == dem::LabTestType::Biaxial) {
-    j["young_modulus_GPa"] = r.ucs.young_modulus * 1e-9;
-    j["poisson_ratio"] = r.ucs.poisson_ratio;
+    j[dem::summary_field::kYoungModulus] = r.ucs.young_modulus * 1e-9;
+    j[dem::summary_field::kPoissonRatio] = r.ucs.poisson_ratio;
     j["strain_at_half_peak"] = r.ucs.strain_at_half_peak;
   } else if (r.type == dem::LabTestType::Shpb) {
     j["shpb"] = shpb_json(r.shpb);
   } else {
-    j["tensile_strength_MPa"] = r.tensile_strength * 1e-6;
+    j[dem::summary_field::kTensileStrength] = r.tensile_strength * 1e-6;
     j["peak_force_kN_per_m"] = r.peak_force * 1e-3;
   }
   nlohmann::ordered_json cracks;

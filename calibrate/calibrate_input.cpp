@@ -16,6 +16,7 @@
 #include "core/units.hpp"
 #include "io/input_table.hpp"
 #include "lab/material_table.hpp"
+#include "lab/summary_fields.hpp"
 
 namespace cdem::calib {
 
@@ -24,15 +25,15 @@ namespace {
 struct TargetInfo {
   const char* name;
   const char* unit;
-  const char* summary_field;  // of `cdem run --summary`
+  const char* summary_field;  // of `cdem run --summary` (lab/summary_fields.hpp)
 };
 
 // Indexed by CalibrationTarget.
 constexpr TargetInfo kTargets[kCalibrationTargetCount] = {
-    {"sigma_u", "MPa", "peak_stress_MPa"},
-    {"E", "GPa", "young_modulus_GPa"},
-    {"nu", "", "poisson_ratio"},
-    {"sigma_t", "MPa", "tensile_strength_MPa"},
+    {"sigma_u", "MPa", dem::summary_field::kPeakStress},
+    {"E", "GPa", dem::summary_field::kYoungModulus},
+    {"nu", "", dem::summary_field::kPoissonRatio},
+    {"sigma_t", "MPa", dem::summary_field::kTensileStrength},
 };
 
 const TargetInfo& info(CalibrationTarget target) {

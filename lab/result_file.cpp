@@ -368,7 +368,7 @@ void write_run(H5::Group& where, const LabTestResult& r) {
       write_array(hg, "support_reaction", h.support_reaction, "N/m", "sum of the two supports");
     }
 
-    std::vector<double> t, x, y, xy, energy;
+    std::vector<double> t, x, y, xy, energy, nx, ny, half_width;
     std::vector<std::uint8_t> mode, cls;
     std::vector<std::int32_t> element, vertices;
     std::vector<std::int32_t> first, second;
@@ -380,6 +380,9 @@ void write_run(H5::Group& where, const LabTestResult& r) {
       xy.push_back(c.x);
       xy.push_back(c.y);
       energy.push_back(c.energy);
+      nx.push_back(c.nx);
+      ny.push_back(c.ny);
+      half_width.push_back(c.half_width);
       mode.push_back(static_cast<std::uint8_t>(c.mode));
       cls.push_back(static_cast<std::uint8_t>(c.contact_class));
       first.push_back(c.first);
@@ -399,6 +402,13 @@ void write_run(H5::Group& where, const LabTestResult& r) {
     write_array(cg, "energy", energy, "J/m",
                 "strain energy the bond held when it broke (a flat joint's elements breaking in "
                 "one pass share it)");
+    write_array(cg, "nx", nx, "1",
+                "unit normal of the contact plane, from the centre of `first` towards `second` "
+                "when the bond broke");
+    write_array(cg, "ny", ny, "1", "see nx");
+    write_array(cg, "half_width", half_width, "m",
+                "half the width of the broken bond across the normal: the crack is the segment "
+                "(x, y) +- half_width (-ny, nx)");
     write_array(cg, "xy", xy, "m", "x, y per crack (the XDMF geometry)", 2);
     write_array(cg, "vertices", vertices, "", "crack index (XDMF Polyvertex topology)");
     for (int m = 0; m < 2; ++m)
@@ -511,7 +521,7 @@ void ResultFile::finish() {
      << data_item(h5, "/cracks/vertices", c + " 1", "Int", 4) << "    </Topology>\n"
      << "    <Geometry GeometryType=\"XY\">\n"
      << data_item(h5, "/cracks/xy", c + " 2", "Float", 8) << "    </Geometry>\n";
-  for (const char* a : {"time", "energy"})
+  for (const char* a : {"time", "energy", "nx", "ny", "half_width"})
     cx << attribute(a, "Node", data_item(h5, std::string("/cracks/") + a, c, "Float", 8));
   for (const char* a : {"mode", "class"})
     cx << attribute(a, "Node", data_item(h5, std::string("/cracks/") + a, c, "UInt", 1));

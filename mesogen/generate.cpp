@@ -43,6 +43,12 @@ class PhaseLog {
       std::cerr << "[generate] " << name_ << ": " << detail << " (" << fixed(s, 2) << " s)\n";
   }
   const nlohmann::ordered_json& timings() const { return timings_; }
+  // s, all phases so far, summed in their order
+  double total() const {
+    double s = 0;
+    for (const auto& [name, t] : timings_.items()) s += t.get<double>();
+    return s;
+  }
   static std::string fixed(double v, int digits) {
     std::ostringstream o;
     o.setf(std::ios::fixed);
@@ -126,21 +132,24 @@ long cut_notch(MortarPacking& p, const Container& mould) {
 
 }  // namespace
 
-void run_generate(const GenerateRequest& request) {
-  PhaseLog log(request.verbose);
-  const InputTable root = InputTable::parse_file(request.input);
-  GeneratorInput in = read_generator_input(root);
-  if (request.seed) in.seed = *request.seed;
+Specimen generate(const GeneratorInput& in, std::uint64_t seed) {
+  GenerateReport quiet;
+  return generate(in, seed, quiet);
+}
+
+Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& report) {
+  PhaseLog log(report.verbose);
   const double area = in.container.area();
 
-  Rng master(in.seed);
+  Rng master(seed);
   Rng shape_rng = master.split(), place_rng = master.split(), compact_rng = master.split(),
       mortar_rng = master.split();
 
-  nlohmann::ordered_json summary;
+  nlohmann::ordered_json& summary = report.summary;
+  summary = nlohmann::ordered_json::object();
   summary["cdem_version"] = kVersion;
-  summary["input"] = request.input.string();
-  summary["seed"] = in.seed;
+  summary["input"] = in.file;
+  summary["seed"] = seed;
   summary["specimen"] = {{"shape", in.container.shape == ContainerShape::Disc ? "disc"
                                    : in.container.notched()                   ? "beam"
                                                                               : "rectangle"},
@@ -304,10 +313,20 @@ void run_generate(const GenerateRequest& request) {
 
   // Provenance travels with the specimen.
   s.attributes["generator_input"] = in.source_text;
-  s.attributes["generator_input_file"] = request.input.string();
-  s.attributes["seed"] = std::to_string(in.seed);
+  s.attributes["generator_input_file"] = in.file;
+  s.attributes["seed"] = std::to_string(seed);
   s.attributes["summary"] = summary.dump();
+  summary["timings_s"] = log.timings();
+  summary["timings_s"]["total"] = log.total();
+  return s;
+}
 
+void run_generate(const GenerateRequest& request) {
+  const GeneratorInput in = read_generator_input(InputTable::parse_file(request.input));
+  GenerateReport report{request.verbose, {}};
+  const Specimen s = generate(in, request.seed.value_or(in.seed), report);
+
+  PhaseLog log(request.verbose);
   log.begin("write");
   write_specimen(s, request.output);
   if (request.picture)
@@ -315,11 +334,13 @@ void run_generate(const GenerateRequest& request) {
                       in.gradation ? in.gradation->bin_edges : std::vector<double>{});
   log.end(request.output.string());
 
-  summary["timings_s"] = log.timings();
-  double total = 0;
-  for (const auto& [k, v] : log.timings().items()) total += v.get<double>();
-  summary["timings_s"]["total"] = total;
-  if (request.summary) write_text_atomically(*request.summary, summary.dump(2) + "\n");
+  // The write is a phase of `cdem generate`: listed before the total, which includes it.
+  nlohmann::ordered_json& timings = report.summary["timings_s"];
+  const double total = timings["total"].get<double>() + log.total();
+  timings.erase("total");
+  timings["write"] = log.timings()["write"];
+  timings["total"] = total;
+  if (request.summary) write_text_atomically(*request.summary, report.summary.dump(2) + "\n");
   if (request.verbose) std::cerr << "[generate] done in " << PhaseLog::fixed(total, 2) << " s\n";
 }
 

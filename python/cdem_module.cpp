@@ -71,36 +71,28 @@ std::string read_text(const std::filesystem::path& file) {
   return text.str();
 }
 
-// Generator input: a file, or TOML text labelled for messages.
+// Generator input: a file, or TOML text labelled for messages. Generated in memory; written
+// (atomically) only when `output` is given.
 PySpecimen generate(const std::optional<std::string>& text, const std::optional<std::string>& path,
                     const std::string& label, std::optional<std::uint64_t> seed,
                     const std::optional<std::string>& output, bool verbose) {
-  const apps::ScratchDirectory scratch;
-  mesogen::GenerateRequest request;
-  if (path) {
-    request.input = *path;
-    if (!std::filesystem::is_regular_file(request.input))
-      throw InputError(*path, "", "generator file not found");
-  } else {
-    // Validated first so that errors name the label rather than the scratch copy.
-    mesogen::read_generator_input(InputTable::parse_string(*text, label));
-    request.input = scratch.path() / "specimen.toml";
-    std::ofstream file(request.input);
-    file << *text;
-    if (!file.flush()) throw RunError("cannot write " + request.input.string());
+  if (path && !std::filesystem::is_regular_file(*path))
+    throw InputError(*path, "", "generator file not found");
+  const mesogen::GeneratorInput in = mesogen::read_generator_input(
+      path ? InputTable::parse_file(*path) : InputTable::parse_string(*text, label));
+  std::optional<OutputTransaction> transaction;
+  if (output) {
+    std::vector<NamedPath> inputs;
+    if (path) inputs.push_back({"spec", *path});
+    transaction.emplace(check_output_files(inputs, {{"output", *output}}));
   }
-  request.output = output ? std::filesystem::path(*output) : scratch.path() / "specimen.h5";
-  request.summary = scratch.path() / "summary.json";
-  request.seed = seed;
-  request.verbose = verbose;
-  std::vector<NamedPath> inputs;
-  if (path) inputs.push_back({"spec", request.input});
-  OutputTransaction transaction(
-      check_output_files(inputs, {{"output", request.output}, {"summary", *request.summary}}));
-  mesogen::run_generate(request);
-  transaction.commit();
-  PySpecimen out{read_specimen(request.output), read_text(*request.summary),
+  mesogen::GenerateReport report{verbose, {}};
+  PySpecimen out{mesogen::generate(in, seed.value_or(in.seed), report), report.summary.dump(),
                  output ? *output : "cdem.generate(" + (path ? *path : label) + ")"};
+  if (output) {
+    write_specimen(out.specimen, *output);
+    transaction->commit();
+  }
   return out;
 }
 
@@ -192,6 +184,10 @@ py::dict crack_arrays(const std::vector<dem::Crack>& cracks) {
   d["first"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.first; });
   d["second"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.second; });
   d["element"] = crack_column<std::int32_t>(cracks, [](const Crack& k) { return k.element; });
+  d["energy"] = crack_column<double>(cracks, [](const Crack& k) { return k.energy; });
+  d["nx"] = crack_column<double>(cracks, [](const Crack& k) { return k.nx; });
+  d["ny"] = crack_column<double>(cracks, [](const Crack& k) { return k.ny; });
+  d["half_width"] = crack_column<double>(cracks, [](const Crack& k) { return k.half_width; });
   return d;
 }
 

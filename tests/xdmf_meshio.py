@@ -63,7 +63,7 @@ cracks = h5["cracks"]
 c = cracks["time"].shape[0]
 assert mesh.points.shape == (c, 2)
 assert np.array_equal(mesh.points[:, 0], cracks["x"][:]) and np.array_equal(mesh.points[:, 1], cracks["y"][:])
-for a in ("time", "energy", "mode", "class", "element", "first", "second"):
+for a in ("time", "energy", "nx", "ny", "half_width", "mode", "class", "element", "first", "second"):
     assert np.array_equal(mesh.point_data[a], cracks[a][:]), a
 assert np.all(cracks["energy"][:] > 0), "every broken bond released strain energy"
 # The broken bonds of the last snapshot are the network's pairs with a crack in the log.
@@ -71,6 +71,25 @@ logged = set(zip(cracks["first"][:].tolist(), cracks["second"][:].tolist()))
 last = snaps[steps[-1]]
 for b in np.nonzero(last["bond_intact"][:] == 0)[0]:
     assert (int(pairs[b, 0]), int(pairs[b, 1])) in logged, b
+# Orientation: the normal is a unit vector from `first` towards `second`. The pair's line of
+# centres at the first snapshot after the break stands in for the one at the break (the discs
+# move little in between; measured cos >= 0.9997 on this run), so a swapped or reversed normal
+# fails. The half-width of a parallel bond is lambda min(R1, R2) (SPEC 4), lambda = 1 by default
+# and c30_materials.toml gives none; its bonded classes M and ITZ are parallel bonds.
+nx, ny, half_width = cracks["nx"][:], cracks["ny"][:], cracks["half_width"][:]
+i, j = cracks["first"][:], cracks["second"][:]
+assert np.all(np.abs(np.hypot(nx, ny) - 1) <= 1e-12), "normals of unit length"
+times = np.array([snaps[s].attrs["time_s"] for s in steps])
+for k in range(c):
+    g = snaps[steps[min(int(np.searchsorted(times, cracks["time"][k])), len(steps) - 1)]]
+    d = np.array([g["x"][j[k]] - g["x"][i[k]], g["y"][j[k]] - g["y"][i[k]]])
+    cos = (d[0] * nx[k] + d[1] * ny[k]) / np.linalg.norm(d)
+    assert cos > 0.99, (k, cos)
+assert "pb_radius_multiplier" not in h5.attrs["materials_text"]
+assert set(np.unique(cracks["class"][:])) <= {0, 1} and np.all(cracks["element"][:] == -1)
+r = snaps[steps[0]]["r"][:]
+assert np.array_equal(half_width, np.minimum(r[i], r[j])), "parallel bond: min(R1, R2)"
+print(f"cracks: {c} normals along the pairs' lines of centres, half-widths min(R1, R2)")
 # The ledger: the cracks' energies add up to the breakage energy of the history.
 total = float(np.sum(cracks["energy"][:]))
 ledger = float(h5["history"]["breakage_energy"][-1])

@@ -54,7 +54,8 @@ def generate(spec, seed=None, output=None, verbose=False):
         Discs as numpy arrays (``x``, ``y``, ``r`` in m; ``clump``: -1 for mortar, else the
         aggregate's index; ``tag``: 0 mortar, 1 aggregate), the mould (``shape``, ``width``,
         ``height`` in m), the aggregates (``clumps``) and the generator's summary (``summary``,
-        a dict as the CLI's ``--summary`` JSON).
+        a dict as the CLI's ``--summary`` JSON; generated in memory, so ``timings_s`` has no
+        ``write`` phase).
 
     Raises
     ------
@@ -144,7 +145,10 @@ class RunResult(dict):
     cracks : dict of ndarray
         Every bond failure of the loading: ``time`` (s), ``x``, ``y`` (m), ``mode`` (1 tension,
         2 shear), ``class`` (0 mortar, 1 ITZ, 2 aggregate), ``first``, ``second`` (discs),
-        ``element`` (the flat-joint element, else -1): the result file's /cracks.
+        ``element`` (the flat-joint element, else -1), ``energy`` (J/m, the strain energy the
+        bond held), ``nx``, ``ny`` (unit normal of the contact plane, from ``first`` towards
+        ``second``), ``half_width`` (m; the crack is the segment (x, y) +- half_width (-ny, nx)):
+        the result file's /cracks.
     histories, crack_lists : list
         Per confinement of a biaxial series (one entry otherwise).
     """

@@ -82,7 +82,8 @@ def test_output_files_match_the_result(tiny, tmp_path):
     assert np.array_equal(f["history"]["axial_stress"], r.history["axial_stress"])
     assert f["summary"]["attributes"]["peak_stress_Pa"] * 1e-6 == r["peak_stress_MPa"]
     assert len(r.cracks["x"]) == r["cracks"]["total"]
-    for name in ("time", "x", "y", "mode", "class", "first", "second"):
+    for name in ("time", "x", "y", "mode", "class", "first", "second", "element", "energy", "nx",
+                 "ny", "half_width"):
         assert np.array_equal(f["cracks"][name], r.cracks[name]), name
     import json
     with open(tmp_path / "r.json") as j:

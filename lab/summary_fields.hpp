@@ -1,0 +1,12 @@
+#pragma once
+// The names of the fields of the run summary (`cdem run --summary`, docs/lab_tests.md "Summary")
+// that other programs read by name: apps/run_summary.cpp writes them, calibrate/ gathers them
+// through campaigns. One spelling, so a renamed field changes both sides or neither.
+namespace cdem::dem::summary_field {
+
+inline constexpr const char* kPeakStress = "peak_stress_MPa";            // MPa, compression +
+inline constexpr const char* kYoungModulus = "young_modulus_GPa";        // GPa, uniaxial
+inline constexpr const char* kPoissonRatio = "poisson_ratio";            // 1, uniaxial
+inline constexpr const char* kTensileStrength = "tensile_strength_MPa";  // MPa, tension tests
+
+}  // namespace cdem::dem::summary_field

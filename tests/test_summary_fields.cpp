@@ -1,0 +1,72 @@
+// The run-summary fields calibration reads (lab/summary_fields.hpp, calibrate's targets) exist in
+// the summaries real runs write, hold numbers, and hold the figure their target names: a uniaxial
+// test for sigma_u, E and nu; a Brazilian and a direct tension test for sigma_t (a calibration
+// names one of the two). Each value is read as a campaign gathers it (json_at_path on the JSON
+// text `cdem run --summary` writes), so a renamed field fails here, not silently in calibration.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/run_summary.hpp"
+#include "calibrate/calibrate_input.hpp"
+#include "campaign/campaign_run.hpp"
+#include "lab/lab_test.hpp"
+#include "lab_test_fixtures.hpp"
+#include "scratch_dir.hpp"
+
+namespace {
+
+using cdem::calib::CalibrationTarget;
+using cdem::dem::LabTestResult;
+
+// The figure a target measures, in the unit calibration states it in (target_unit), from the
+// result's own fields (SI).
+double expected(CalibrationTarget t, const LabTestResult& r) {
+  switch (t) {
+    case CalibrationTarget::SigmaU:
+      return r.peak_stress * 1e-6;  // Pa -> MPa
+    case CalibrationTarget::E:
+      return r.ucs.young_modulus * 1e-9;  // Pa -> GPa
+    case CalibrationTarget::Nu:
+      return r.ucs.poisson_ratio;
+    case CalibrationTarget::SigmaT:
+      return r.tensile_strength * 1e-6;  // Pa -> MPa
+  }
+  return 0;
+}
+
+// Runs `type` on `specimen` and checks every target that test measures for calibration.
+void expect_targets_in_summary(const std::string& type, const cdem::Specimen& specimen) {
+  SCOPED_TRACE(type);
+  const auto dir = cdem::test::scratch_dir("test_summary_fields", type);
+  const cdem::dem::LabTestInput in = cdem::test::lab_test_input(
+      dir, specimen,
+      "[test]\ntype = \"" + type + "\"\nhistory_interval = 20\nmax_steps = 400000\n");
+  const LabTestResult r = cdem::dem::run_lab_test(specimen, in);
+  const nlohmann::json summary = nlohmann::json::parse(cdem::apps::summary_json(r, in).dump(2));
+  const bool tension = type != "uniaxial";
+  int checked = 0;
+  for (int k = 0; k < cdem::calib::kCalibrationTargetCount; ++k) {
+    const auto t = static_cast<CalibrationTarget>(k);
+    if (cdem::calib::target_needs_tension_test(t) != tension) continue;
+    const std::string field = cdem::calib::target_summary_field(t);
+    const nlohmann::json value = cdem::calib::json_at_path(summary, field);
+    ASSERT_TRUE(value.is_number()) << field << " is not a number in the " << type << " summary";
+    EXPECT_GT(value.get<double>(), 0) << field;
+    EXPECT_EQ(value.get<double>(), expected(t, r)) << field;
+    ++checked;
+  }
+  EXPECT_EQ(checked, tension ? 1 : 3);
+}
+
+}  // namespace
+
+TEST(SummaryFields, EveryFieldCalibrationReadsIsInARealSummary) {
+  expect_targets_in_summary("uniaxial", cdem::test::small_rectangle_specimen());
+  expect_targets_in_summary("direct_tension", cdem::test::small_rectangle_specimen());
+  expect_targets_in_summary(
+      "brazilian", cdem::test::packed_specimen({cdem::ContainerShape::Disc, 20e-3, 20e-3}, 8));
+}
