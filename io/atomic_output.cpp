@@ -1,6 +1,7 @@
 #include "io/atomic_output.hpp"
 
 #include <limits.h>
+#include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -48,7 +49,18 @@ void unregister_temp(int slot) {
 
 constexpr std::array<int, 3> kCleanupSignals = {SIGINT, SIGTERM, SIGHUP};
 
+// Commits in progress anywhere in the process, and a cleanup signal that arrived during one.
+// The committing thread blocks the signals, but the kernel may deliver one to another thread
+// (an OpenMP worker, which never blocks them): its handler must not remove the temporaries that
+// are being renamed, so it leaves the signal for the end of the commit.
+std::atomic<int> commits_running{0};
+std::atomic<int> deferred_signal{0};
+
 extern "C" void remove_temps_and_die(int signal) {
+  if (commits_running.load() > 0) {
+    deferred_signal.store(signal);
+    return;
+  }
   for (auto& slot : temp_slots)
     if (slot.state.load() == 2) ::unlink(slot.path);
   for (auto& slot : temp_slots)  // directories, once their files are gone
@@ -57,16 +69,24 @@ extern "C" void remove_temps_and_die(int signal) {
   ::raise(signal);
 }
 
-// Blocks the cleanup signals for its lifetime: a rename sequence is not cut in the middle.
+// A rename sequence that no cleanup signal cuts in the middle: the signals are blocked on this
+// thread and deferred on any other (remove_temps_and_die) for its lifetime, then a deferred one
+// is raised again: the outputs renamed by then are complete, the rest are removed.
 class SignalsBlocked {
  public:
   SignalsBlocked() {
     sigset_t set;
     sigemptyset(&set);
     for (int s : kCleanupSignals) sigaddset(&set, s);
-    ::sigprocmask(SIG_BLOCK, &set, &previous_);
+    ::pthread_sigmask(SIG_BLOCK, &set, &previous_);
+    commits_running.fetch_add(1);
   }
-  ~SignalsBlocked() { ::sigprocmask(SIG_SETMASK, &previous_, nullptr); }
+  ~SignalsBlocked() {
+    const bool last = commits_running.fetch_sub(1) == 1;
+    ::pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
+    if (last)
+      if (const int signal = deferred_signal.exchange(0)) ::raise(signal);
+  }
   SignalsBlocked(const SignalsBlocked&) = delete;
   SignalsBlocked& operator=(const SignalsBlocked&) = delete;
 
