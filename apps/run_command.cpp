@@ -4,6 +4,7 @@
 //  docs/lab_tests.md.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -123,9 +124,13 @@ Action add_run_command(CLI::App& app) {
         const dem::LabTestControls& c = input.controls;
         const dem::StopRuleOptions stop = dem::loading_stop_options(c, specimen.container);
         const bool shpb = c.type == dem::LabTestType::Shpb;
-        // A CMOD servo moves the platen back and forth: its strain gives no bound.
+        // A CMOD servo moves the platen back and forth: its strain gives no bound. A Brazilian
+        // disc usually ends at its split, when the load falls below split.fraction x the peak.
+        const double end_fraction = stop.split.enabled
+                                        ? std::max(stop.stop_fraction, stop.split.fraction)
+                                        : stop.stop_fraction;
         progress.emplace(
-            c.type, dem::RunEnd{shpb ? 0 : stop.stop_fraction,
+            c.type, dem::RunEnd{shpb ? 0 : end_fraction,
                                 shpb || c.cmod_control ? 0 : stop.max_strain, c.max_steps, shpb});
         hooks.progress = [&progress](const dem::LabHistory& h, double peak, long max_steps) {
           progress->update(h, peak, max_steps);
