@@ -155,6 +155,11 @@ class DiscPairKernel {
            arm_i * w_[g.i];
   }
 
+  // Velocity of j's centre relative to i's along n (m/s; positive = separating).
+  double normal_velocity(const Geometry& g) const {
+    return (vx_[g.j] - vx_[g.i]) * g.nx + (vy_[g.j] - vy_[g.i]) * g.ny;
+  }
+
   // Totals on j from the normal (compression positive) and shear force along t and the bond
   // moment on j.
   static void resolve(const Geometry& g, double normal, double shear, double bond_moment,
@@ -227,7 +232,7 @@ class DiscPairKernel {
     if (kind == BondKind::Parallel) {
       const ParallelBondParams& p = bonds_[cls].parallel;
       const ParallelBondGeometry bg = parallel_bond_geometry(p, g.ri, g.rj, g.inverse_length);
-      const double vn = (vx_[g.j] - vx_[g.i]) * g.nx + (vy_[g.j] - vy_[g.i]) * g.ny;
+      const double vn = normal_velocity(g);
       pb = {bond_normal_[k], bond_shear_[k], bond_moment_[k]};
       parallel_bond_increment(pb, bg, vn * dt_, vt * dt_, (w_[g.j] - w_[g.i]) * dt_);
       f.failure = parallel_bond_failure(pb, bg, p, tan_friction_angle_[cls]);
@@ -291,10 +296,11 @@ class DiscPairKernel {
     SmoothJointStates& joints = *smooth_joints_;
     const auto e = static_cast<std::size_t>(joint_[k]);
     const SmoothJointLaw& law = joints.sets[static_cast<std::size_t>(joints.set[e])];
-    const double spin =  // m/s along t, from the spins (as in tangential_velocity)
-        -(g.rj - 0.5 * g.overlap) * w_[g.j] - (g.ri - 0.5 * g.overlap) * w_[g.i];
-    const double ux = ((vx_[g.j] - vx_[g.i]) - spin * g.ny) * dt_;  // m, relative displacement
-    const double uy = ((vy_[g.j] - vy_[g.i]) + spin * g.nx) * dt_;
+    // m, relative displacement of the contact points: normal part from the centres, tangential
+    // part with the spins (tangential_velocity), t = (-ny, nx).
+    const double un = normal_velocity(g) * dt_;
+    const double ut = tangential_velocity(g) * dt_;
+    const double ux = un * g.nx - ut * g.ny, uy = un * g.ny + ut * g.nx;
     const double jx = joints.nx[e], jy = joints.ny[e];
     SmoothJointState s{joints.gap[e], joints.fs[e], joints.bonded[e] != 0};
     const double area = joints.area[e];
