@@ -25,7 +25,7 @@ void pair_force(const World& world, std::size_t k, double& normal, double& shear
   const double kn = law.normal_stiffness(d.r[i], d.r[j]);
   const double overlap = -disc_gap(d, i, j);
   const bool contact_bond = state.bond[k] == static_cast<std::uint8_t>(BondKind::Contact);
-  normal = contact_bond ? kn * (overlap + state.bond_gap[k]) : kn * std::max(overlap, 0.0);
+  normal = contact_bond ? kn * (overlap + state.bond_gap[k]) : linear_normal_force(kn, overlap);
   normal -= state.bond_normal[k];
   shear = state.shear_force[k] + state.bond_shear[k];
 }
