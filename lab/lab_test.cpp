@@ -651,6 +651,18 @@ StopRuleOptions loading_stop_options(const LabTestControls& c, const Container& 
   return stop;
 }
 
+namespace {
+
+// The fragments of the world at the end of a run, with the aggregates' outlines for the picture
+// (`specimen`: the one the world was built from).
+Fragments fragments_at_end(const World& world, const Specimen& specimen, const LabTestControls& c) {
+  Fragments f = find_fragments(world, specimen.aggregate_density, c.fragment_sieve);
+  add_clump_outlines(f, world, specimen);
+  return f;
+}
+
+}  // namespace
+
 void tally_cracks(LabTestResult& res, const CrackLog& log, double time0) {
   res.cracks = log.cracks;
   for (Crack& k : res.cracks) k.time -= time0;
@@ -685,8 +697,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   if (c.type == LabTestType::Shpb) {
     run_shpb_test(world, Box{e.xmin, e.ymin, e.xmax, e.ymax},
                   specimen.container.shape == ContainerShape::Disc, input, hooks, res);
-    res.fragments = find_fragments(world, cleaned.aggregate_density, c.fragment_sieve);
-    add_clump_outlines(res.fragments, world, cleaned);
+    res.fragments = fragments_at_end(world, cleaned, c);
     res.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     return res;
@@ -868,8 +879,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
 
   res.steps = world.step_count() - step0;
   tally_cracks(res, world.cracks, time0);
-  res.fragments = find_fragments(world, cleaned.aggregate_density, c.fragment_sieve);
-  add_clump_outlines(res.fragments, world, cleaned);
+  res.fragments = fragments_at_end(world, cleaned, c);
   const auto peak_at = std::max_element(h.axial_stress.begin(), h.axial_stress.end());
   res.peak_stress = *peak_at;
   res.peak_force = h.platen_force[static_cast<std::size_t>(peak_at - h.axial_stress.begin())];
