@@ -14,6 +14,8 @@ namespace cdem::apps {
 namespace {
 
 constexpr auto kRefresh = std::chrono::milliseconds(500);
+// Records closer together than this are not looked at: the line shows one every kRefresh.
+constexpr auto kUpdateInterval = std::chrono::milliseconds(100);
 // The loading time the steps-per-second rate needs before it turns steps into seconds.
 constexpr double kRateSeconds = 1.0;
 
@@ -51,6 +53,10 @@ void ProgressLine::update(const dem::LabHistory& h, double peak, long max_steps)
   const Clock::time_point now = Clock::now();
   const std::size_t n = h.size();
   if (n == 0) return;
+  {
+    std::lock_guard lock(mutex_);
+    if (loading_ && now - last_at_ < kUpdateInterval) return;
+  }
   // The stress the stop rule follows: the deviator of a biaxial test.
   std::vector<double> followed;
   const std::vector<double>* stress = &h.axial_stress;
@@ -86,6 +92,13 @@ void ProgressLine::update(const dem::LabHistory& h, double peak, long max_steps)
   step_ = h.step.back();
   state_ = buf;
   outlook_ = outlook;
+}
+
+void ProgressLine::warning(const std::string& message) {
+  std::lock_guard lock(mutex_);
+  std::fprintf(stderr, "\r\033[Kcdem: warning: %s\n%s", message.c_str(),
+               line(Clock::now()).c_str());
+  std::fflush(stderr);
 }
 
 std::string ProgressLine::line(Clock::time_point now) const {

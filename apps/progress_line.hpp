@@ -23,7 +23,11 @@ class ProgressLine {
   ProgressLine& operator=(const ProgressLine&) = delete;
 
   // At every history record of the loading (LabTestHooks::progress).
+  // Throttled: a record within kUpdateInterval of the last one taken is skipped, so the work
+  // (linear in the records so far) stays a small share of a long run.
   void update(const dem::LabHistory& h, double peak, long max_steps);
+  // A warning printed on a line of its own above the progress line (LabTestHooks::warning).
+  void warning(const std::string& message);
 
  private:
   using Clock = std::chrono::steady_clock;

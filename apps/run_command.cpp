@@ -135,6 +135,7 @@ Action add_run_command(CLI::App& app) {
         hooks.progress = [&progress](const dem::LabHistory& h, double peak, long max_steps) {
           progress->update(h, peak, max_steps);
         };
+        hooks.warning = [&progress](const std::string& message) { progress->warning(message); };
       }
       if (result_file)
         hooks.snapshot = [&result_file](const dem::World& w, long step, double time) {

@@ -608,21 +608,16 @@ constexpr double kQuietFraction = 0.1;
 // The largest density-scaling step factor measured (docs/speed_vs_error.md, C30 UCS, 3 seeds).
 constexpr double kMeasuredStepFactor = 8;
 
-void warn(LabTestResult& res, const std::string& message) {
-  std::fprintf(stderr, "cdem: warning: %s\n", message.c_str());
-  res.warnings.push_back(message);
-}
-
 // Density scaling with a step beyond the measured factors changes the figures by an amount
 // nobody has measured. `factor`: the scaled step over the true-mass step.
-void warn_density_scaling(LabTestResult& res, double factor) {
+void warn_density_scaling(LabTestResult& res, const LabTestHooks& hooks, double factor) {
   if (!(factor > kMeasuredStepFactor)) return;
   std::ostringstream msg;
   msg << "density scaling with the step at " << factor
       << " x the true-mass step, beyond the measured range (docs/speed_vs_error.md, C30 UCS: "
          "4x gave sigma_u -0.7 +- 2.2 %, 8x +3.2 +- 1.1 %, 16x with 0.02 m/s platens "
          "+8.9 +- 3.1 %, E within 1.1 %); the error of this run is not known";
-  warn(res, msg.str());
+  warn(res, hooks, msg.str());
 }
 
 // Relative density scaling (test.density_scaling_step_factor): the automatic step of the true
@@ -662,6 +657,14 @@ Fragments fragments_at_end(const World& world, const Specimen& specimen, const L
 }
 
 }  // namespace
+
+void warn(LabTestResult& res, const LabTestHooks& hooks, const std::string& message) {
+  res.warnings.push_back(message);
+  if (hooks.warning)
+    hooks.warning(message);
+  else
+    std::fprintf(stderr, "cdem: warning: %s\n", message.c_str());
+}
 
 void tally_cracks(LabTestResult& res, const CrackLog& log, double time0) {
   res.cracks = log.cracks;
@@ -706,13 +709,13 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   Loading loading = set_up_loading(world, cleaned, input, platens, e);
   if (c.density_step_factor > 0) {
     scale_density_from_here(world, c.density_step_factor);
-    warn_density_scaling(res, c.density_step_factor);
+    warn_density_scaling(res, hooks, c.density_step_factor);
   } else if (c.density_scaling) {
     World true_masses = world;  // the absolute step against the step the true masses allow
     true_masses.settings.density_scaling = false;
     true_masses.invalidate_neighbors();
     true_masses.refresh_neighbors();
-    warn_density_scaling(res, c.scaled_time_step / true_masses.time_step());
+    warn_density_scaling(res, hooks, c.scaled_time_step / true_masses.time_step());
   }
   // Biaxial: side walls, isotropic consolidation at sigma_3, then the platens load from the
   // consolidated state, which becomes the reference of strains, time and steps.
@@ -755,7 +758,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   const long intact_bonds =
       installed - res.genesis.relaxation_cracks - static_cast<long>(world.cracks.size());
   if (installed > 0 && intact_bonds <= 0)
-    warn(res,
+    warn(res, hooks,
          "every bond broke before the loading (genesis relaxation or consolidation): the "
          "test loads a cohesionless packing, and its peak is friction's");
   std::optional<CmodGauge> cmod;
@@ -793,7 +796,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
                                            h.lateral_strain.back(), world.cracks, at_max_steps);
     if (hooks.progress) hooks.progress(h, stop.peak(), c.max_steps);
     if (reason == StopReason::None && hooks.should_stop && hooks.should_stop(world, h)) {
-      warn(res,
+      warn(res, hooks,
            "stopped by the caller before the stop rule confirmed a peak: the peak stress "
            "is the largest so far, not a strength");
       return StopReason::StoppedByUser;
@@ -807,7 +810,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
           << last_loading_stress() * 1e-6
           << " MPa): bonds far stronger than the contact forces this loading reaches, or a "
              "platen that does not load the specimen";
-      warn(res, msg.str());
+      warn(res, hooks, msg.str());
     }
     return reason;
   };
@@ -872,7 +875,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
         << "reported (" << strength(stop.peak())
         << " MPa): if the disc split at the first peak, that one is its splitting strength and "
            "the reported one its halves' (docs/lab_tests.md \"Stop rule\")";
-    warn(res, msg.str());
+    warn(res, hooks, msg.str());
   }
   if (hooks.snapshot && c.snapshot_interval > 0)
     hooks.snapshot(world, world.step_count() - step0, world.time() - time0);  // the last state
@@ -911,7 +914,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
             << " x its peak load at max_deflection = " << res.bending.final_deflection * 1e3
             << " mm (stop_load_fraction " << c.stop.stop_fraction
             << "): W0 and G_F leave out the work of the rest of the tail and are low";
-        warn(res, msg.str());
+        warn(res, hooks, msg.str());
       }
       break;
   }

@@ -229,7 +229,12 @@ struct LabTestHooks {
   std::function<void(const LabHistory&, double peak, long max_steps)> progress;
   std::function<void(const World&, long step, double time)> snapshot;  // loading step, s
   std::function<bool(const World&, const LabHistory&)> should_stop;
+  // A warning as it arises (the progress line prints it above itself); unset: to stderr.
+  std::function<void(const std::string&)> warning;
 };
+
+// Keeps `message` in res.warnings (the summary's) and reports it at once through hooks.warning.
+void warn(LabTestResult& res, const LabTestHooks& hooks, const std::string& message);
 
 // Fills res.cracks (times from the loading's start time0, s) and res.crack_count from a run's
 // crack log.

@@ -170,11 +170,6 @@ constexpr double kWidthTolerance = 0.01;
 // coupling tests hold 1 % at 0.13).
 constexpr double kCouplingLimit = 0.3;
 
-void warn(LabTestResult& res, const std::string& message) {
-  std::fprintf(stderr, "cdem: warning: %s\n", message.c_str());
-  res.warnings.push_back(message);
-}
-
 }  // namespace
 
 void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTestInput& input,
@@ -198,7 +193,7 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
     std::ostringstream msg;
     msg << "the specimen (" << specimen_width * 1e3 << " mm) is wider than the bars ("
         << o.bar.width * 1e3 << " mm): the faces load only its middle";
-    warn(res, msg.str());
+    warn(res, hooks, msg.str());
   }
   out.geometry = ShpbGeometry{o.bar.young_modulus, o.bar.wave_speed(), o.bar.area(), res.height,
                               specimen_width * kThickness};
@@ -274,14 +269,14 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
     msg << "the bar-face coupling number dt K / (rho c0 A) reached " << out.coupling_number
         << " (stable below 1, accurate well below " << kCouplingLimit
         << "): the faces' contacts are stiff for the bars at this step";
-    warn(res, msg.str());
+    warn(res, hooks, msg.str());
   }
   out.face_work = face_work;
   if (world.critical_time_step() > 0 && world.time_step() > world.critical_time_step()) {
     std::ostringstream msg;
     msg << "the fixed step " << world.time_step() << " s exceeded the critical step "
         << world.critical_time_step() << " s of the contacts at the end of the run";
-    warn(res, msg.str());
+    warn(res, hooks, msg.str());
   }
 
   out.waves = face_waves(out.gauges, bars);

@@ -129,8 +129,21 @@ TEST(LabScaling, NoBondBrokenInTheFirstTenthOfMaxStepsWarns) {
   ASSERT_GT(bound, a.steps + 1000) << "the run would reach the bound before its stop";
   std::string test = kUcs;
   test.replace(test.find("max_steps = 400000"), 18, "max_steps = " + std::to_string(bound));
-  const LabTestResult q =
-      run_lab_test(ucs_specimen(), lab_test_input(dir, ucs_specimen(), test, c30_materials()));
+  // The warning reaches LabTestHooks::warning when it arises (the progress line prints it), not
+  // at the end: records of the loading follow it.
+  LabTestHooks hooks;
+  long records = 0, records_at_warning = -1;
+  std::vector<std::string> heard;
+  hooks.progress = [&](const LabHistory&, double, long) { ++records; };
+  hooks.warning = [&](const std::string& message) {
+    heard.push_back(message);
+    records_at_warning = records;
+  };
+  const LabTestResult q = run_lab_test(
+      ucs_specimen(), lab_test_input(dir, ucs_specimen(), test, c30_materials()), hooks);
+  EXPECT_EQ(heard, q.warnings);
+  EXPECT_GE(records_at_warning, 0);
+  EXPECT_LT(records_at_warning, records);
   ASSERT_EQ(q.warnings.size(), 1u);
   EXPECT_NE(q.warnings[0].find("no bond broke in the first 10 % of max_steps"), std::string::npos)
       << q.warnings[0];
