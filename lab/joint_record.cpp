@@ -51,6 +51,27 @@ JointStates joint_states(const World& world, const std::vector<Crack>& cracks, d
   return s;
 }
 
+std::vector<std::int32_t> JointStates::pairs() const {
+  std::vector<std::int32_t> p;
+  p.reserve(2 * size());
+  for (std::size_t e = 0; e < size(); ++e) {
+    p.push_back(first[e]);
+    p.push_back(second[e]);
+  }
+  return p;
+}
+
+void joint_line_table(const InstalledJoints& installed, std::vector<double>& ends,
+                      std::vector<std::int32_t>& set) {
+  ends.clear();
+  set.clear();
+  for (std::size_t k = 0; k < installed.lines.size(); ++k)
+    for (const JointLine& l : installed.lines[k]) {
+      ends.insert(ends.end(), {l.ax, l.ay, l.bx, l.by});
+      set.push_back(static_cast<std::int32_t>(k));
+    }
+}
+
 namespace {
 
 // Cuts segment l to the box (Liang-Barsky); false when it misses the box.

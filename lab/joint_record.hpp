@@ -26,11 +26,18 @@ struct JointStates {
   std::vector<double> shear_force;          // N per m, on `second` along tj = (-ny, nx)
 
   std::size_t size() const { return set.size(); }
+  // first, second of every joint, interleaved (n x 2, row-major).
+  std::vector<std::int32_t> pairs() const;
 };
 
 // The joints of `world` now. `cracks` is the crack log whose times are loading times plus
 // `time0` (s): the world's own log with the loading's start, or a result's with 0.
 JointStates joint_states(const World& world, const std::vector<Crack>& cracks, double time0);
+
+// The lines of every set of `installed`, set by set: x1, y1, x2, y2 per line (m) in `ends`, the
+// line's set in `set`.
+void joint_line_table(const InstalledJoints& installed, std::vector<double>& ends,
+                      std::vector<std::int32_t>& set);
 
 // The joint lines of `installed` cut to the box [xmin, xmax] x [ymin, ymax] (m); a line that
 // misses the box is dropped.

@@ -91,24 +91,16 @@ void write_joints(H5::Group& where, const std::vector<JointSet>& sets,
 
   std::vector<double> xy;
   std::vector<std::int32_t> line_set, vertices;
-  for (std::size_t k = 0; k < installed.lines.size(); ++k)
-    for (const JointLine& l : installed.lines[k]) {
-      vertices.push_back(static_cast<std::int32_t>(xy.size() / 2));
-      vertices.push_back(static_cast<std::int32_t>(xy.size() / 2 + 1));
-      xy.insert(xy.end(), {l.ax, l.ay, l.bx, l.by});
-      line_set.push_back(static_cast<std::int32_t>(k));
-    }
+  joint_line_table(installed, xy, line_set);
+  for (std::size_t l = 0; l < line_set.size(); ++l)
+    vertices.insert(vertices.end(),
+                    {static_cast<std::int32_t>(2 * l), static_cast<std::int32_t>(2 * l + 1)});
   write_array(g, "line_xy", xy, "m",
               "end points of the joint lines, cut to the specimen's extent (2 rows per line)", 2);
   write_array(g, "line_vertices", vertices, "", "the two rows of line_xy of each line", 2);
   write_array(g, "line_set", line_set, "", "the set of each line");
 
-  std::vector<std::int32_t> pairs;
-  for (std::size_t e = 0; e < s.size(); ++e) {
-    pairs.push_back(s.first[e]);
-    pairs.push_back(s.second[e]);
-  }
-  write_array(g, "pairs", pairs, "", "the two world discs of each joint", 2);
+  write_array(g, "pairs", s.pairs(), "", "the two world discs of each joint", 2);
   write_array(g, "set", s.set, "", "the joint's set");
   write_array(g, "touching", installed.touching, "",
               "1 = a joint contact (bonded or touching at installation), 0 = installed open");
@@ -371,13 +363,8 @@ void ResultFile::snapshot_joints(H5::Group& root, H5::Group& g, const World& wor
                                  bool first) {
   const JointStates s = joint_states(world, world.cracks.cracks, world.time() - time);
   if (first) {
-    std::vector<std::int32_t> pairs;
-    for (std::size_t e = 0; e < s.size(); ++e) {
-      pairs.push_back(s.first[e]);
-      pairs.push_back(s.second[e]);
-    }
-    write_array(root, "joint_pairs", pairs, "", "the two discs of each smooth joint (XDMF lines)",
-                2);
+    write_array(root, "joint_pairs", s.pairs(), "",
+                "the two discs of each smooth joint (XDMF lines)", 2);
     write_array(root, "joint_set", s.set, "", "the smooth joint's [[test.joints]] set");
   }
   write_array(g, "joint_bonded", s.bonded, "", "smooth joint: 1 = bond intact, 0 = broken");

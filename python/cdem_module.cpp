@@ -216,11 +216,7 @@ py::dict joint_arrays(const dem::LabTestResult& r) {
   d["shear_force"] = copy(s.shear_force);
   std::vector<double> lines;
   std::vector<std::int32_t> line_set;
-  for (std::size_t k = 0; k < r.joints.lines.size(); ++k)
-    for (const dem::JointLine& l : r.joints.lines[k]) {
-      lines.insert(lines.end(), {l.ax, l.ay, l.bx, l.by});
-      line_set.push_back(static_cast<std::int32_t>(k));
-    }
+  dem::joint_line_table(r.joints, lines, line_set);
   py::array_t<double> xy = copy(lines);
   d["lines"] = xy.attr("reshape")(-1, 4);
   d["line_set"] = copy(line_set);
