@@ -61,8 +61,11 @@ bool crosses(const JointLine& l, double px, double py, double qx, double qy) {
 
 InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>& sets,
                                       double gap_ratio) {
-  InstalledJoints installed{std::vector<long>(sets.size(), 0), std::vector<double>(sets.size(), 0),
-                            std::vector<long>(sets.size(), 0)};
+  InstalledJoints installed{std::vector<long>(sets.size(), 0),
+                            std::vector<double>(sets.size(), 0),
+                            std::vector<long>(sets.size(), 0),
+                            std::vector<std::vector<JointLine>>(sets.size()),
+                            {}};
   if (sets.empty()) return installed;
   world.refresh_neighbors();
   const Discs& d = world.discs;
@@ -80,7 +83,8 @@ InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>&
   for (std::size_t s = 0; s < sets.size(); ++s) {
     const auto set_index = static_cast<std::int32_t>(joints.sets.size());
     joints.sets.emplace_back(sets[s].params);
-    const std::vector<JointLine> lines = joint_lines(sets[s], xmin, ymin, xmax, ymax);
+    const std::vector<JointLine>& lines = installed.lines[s] =
+        joint_lines(sets[s], xmin, ymin, xmax, ymax);
     for (std::size_t k = 0; k < list.keys.size(); ++k) {
       if (state.bond[k] == static_cast<std::uint8_t>(BondKind::SmoothJoint)) continue;
       const std::int32_t i = list.first[k], j = list.second[k];
@@ -115,6 +119,8 @@ InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>&
       state.bond[k] = static_cast<std::uint8_t>(BondKind::SmoothJoint);
       state.joint[k] = joints.add(set_index, jx, jy, area, gap0,
                                   touching ? -fx * jy + fy * jx : 0.0, touching && p.bonded);
+      installed.touching.resize(joints.size(), 0);
+      installed.touching[static_cast<std::size_t>(state.joint[k])] = touching ? 1 : 0;
       if (!touching) {
         ++installed.open[s];
         continue;

@@ -48,6 +48,11 @@ struct InstalledJoints {
   // Candidate pairs across a line that were apart: unbonded joints, open by their gap, so that
   // the joint plane stays a plane when it closes (not counted in `contacts`).
   std::vector<long> open;
+  // Per set, its lines as installed (m; each long enough to cross the specimen's box).
+  std::vector<std::vector<JointLine>> lines;
+  // Per joint (index of its entry in NeighborList::smooth_joints): 1 a joint contact (counted in
+  // `contacts`), 0 an open one (counted in `open`).
+  std::vector<std::uint8_t> touching;
 };
 
 // Installs the sets on `world` (after its bonds: install_bonds); `gap_ratio` is the bond gap

@@ -697,10 +697,12 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   res.joints = install_test_joints(world, c.joints, c.genesis.bond_gap_ratio, input.file);
   // The relaxed state is the reference: displacements, strains, time and steps count from here.
   const Extent e = disc_extent(world);
+  clip_joint_lines(res.joints, e.xmin, e.ymin, e.xmax, e.ymax);
   if (c.type == LabTestType::Shpb) {
     run_shpb_test(world, Box{e.xmin, e.ymin, e.xmax, e.ymax},
                   specimen.container.shape == ContainerShape::Disc, input, hooks, res);
     res.fragments = fragments_at_end(world, cleaned, c);
+    res.joint_states = joint_states(world, res.cracks, 0);
     res.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     return res;
@@ -883,6 +885,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   res.steps = world.step_count() - step0;
   tally_cracks(res, world.cracks, time0);
   res.fragments = fragments_at_end(world, cleaned, c);
+  res.joint_states = joint_states(world, res.cracks, 0);
   const auto peak_at = std::max_element(h.axial_stress.begin(), h.axial_stress.end());
   res.peak_stress = *peak_at;
   res.peak_force = h.platen_force[static_cast<std::size_t>(peak_at - h.axial_stress.begin())];

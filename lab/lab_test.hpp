@@ -21,6 +21,7 @@
 #include "dem/fragments.hpp"
 #include "dem/world.hpp"
 #include "io/input_table.hpp"
+#include "lab/joint_record.hpp"
 #include "lab/joint_set_input.hpp"
 #include "lab/lab_analysis.hpp"
 #include "lab/material_genesis.hpp"
@@ -188,7 +189,9 @@ struct BendingResult {
 struct LabTestResult {
   LabTestType type = LabTestType::Uniaxial;
   GenesisReport genesis;
-  InstalledJoints joints;  // smooth joints installed, per [[test.joints]] set
+  InstalledJoints joints;    // smooth joints installed, per [[test.joints]] set (lines cut to the
+                             // specimen's extent at the start of loading)
+  JointStates joint_states;  // every smooth joint at the end of the run
   LabHistory history;
   std::vector<Crack> cracks;
   // crack_count[mode - 1][class]: mode Tension / Shear, class M / ITZ / A.

@@ -31,8 +31,102 @@ std::string confinement_group(std::size_t k) {
   return "/confinement_" + std::to_string(k);
 }
 
-// Figures, genesis, histories and cracks of one run, under `where`.
-void write_run(H5::Group& where, const LabTestResult& r);
+// Figures, genesis, histories, cracks, fragments and smooth joints (`sets` as given) of one
+// run, under `where`.
+void write_run(H5::Group& where, const LabTestResult& r, const std::vector<JointSet>& sets);
+
+constexpr double kDegree = std::numbers::pi / 180;  // rad
+
+// The smooth joints of a run, group "joints" of `where`: the sets as given, their lines as
+// installed (cut to the specimen), every joint's pair and its state at the end.
+void write_joints(H5::Group& where, const std::vector<JointSet>& sets,
+                  const InstalledJoints& installed, const JointStates& s) {
+  H5::Group g = hdf5::create_group(where, "joints");
+  const std::size_t n = sets.size();
+  std::vector<std::int32_t> family(n), bonded_sets(n);
+  std::vector<double> dip(n), spacing(n), offset(n), segment, area(n);
+  std::vector<std::int64_t> contacts(n), open(n);
+  std::vector<double> kn(n), ks(n), tensile(n), cohesion(n), phi(n), mu(n), psi(n), lambda(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const JointSet& j = sets[k];
+    family[k] = j.family ? 1 : 0;
+    dip[k] = j.family ? j.dip / kDegree : 0;
+    spacing[k] = j.family ? j.spacing : 0;
+    offset[k] = j.family ? j.offset : 0;
+    for (double v : {j.segment.ax, j.segment.ay, j.segment.bx, j.segment.by})
+      segment.push_back(j.family ? 0.0 : v);
+    const SmoothJointParams& p = j.params;
+    kn[k] = p.normal_stiffness;
+    ks[k] = p.shear_stiffness;
+    tensile[k] = p.tensile_strength;
+    cohesion[k] = p.cohesion;
+    phi[k] = p.friction_angle / kDegree;
+    mu[k] = p.friction;
+    psi[k] = p.dilation_angle / kDegree;
+    lambda[k] = p.radius_multiplier;
+    bonded_sets[k] = p.bonded ? 1 : 0;
+    contacts[k] = installed.contacts[k];
+    open[k] = installed.open[k];
+    area[k] = installed.area[k];
+  }
+  write_array(g, "family", family, "",
+              "1 = a family of parallel lines (dip, spacing, offset), 0 = one segment");
+  write_array(g, "dip_deg", dip, "deg", "family: dip below the +x axis (0 for a segment)");
+  write_array(g, "spacing", spacing, "m", "family: distance between lines (0 for a segment)");
+  write_array(g, "offset", offset, "m",
+              "family: the lines pass through the specimen's centre + (offset + m spacing) nj");
+  write_array(g, "segment", segment, "m", "segment: x1, y1, x2, y2 as given (0 for a family)", 4);
+  write_array(g, "normal_stiffness", kn, "Pa/m", "kn, per unit area");
+  write_array(g, "shear_stiffness", ks, "Pa/m", "ks, per unit area");
+  write_array(g, "tensile_strength", tensile, "Pa", "sigma_c");
+  write_array(g, "cohesion", cohesion, "Pa", "c");
+  write_array(g, "friction_angle_deg", phi, "deg", "phi of the bonded shear strength");
+  write_array(g, "friction", mu, "1", "mu, unbonded Coulomb coefficient");
+  write_array(g, "dilation_angle_deg", psi, "deg", "psi");
+  write_array(g, "radius_multiplier", lambda, "1", "lambda");
+  write_array(g, "installed_bonded", bonded_sets, "", "1 = installed bonded (sj_bonded)");
+  write_array(g, "contacts", contacts, "", "joint contacts installed (bonded or touching pairs)");
+  write_array(g, "open_pairs", open, "", "unbonded joints installed open on pairs apart");
+  write_array(g, "contact_area", area, "m^2", "sum of the joint contacts' areas A");
+
+  std::vector<double> xy;
+  std::vector<std::int32_t> line_set, vertices;
+  joint_line_table(installed, xy, line_set);
+  for (std::size_t l = 0; l < line_set.size(); ++l)
+    vertices.insert(vertices.end(),
+                    {static_cast<std::int32_t>(2 * l), static_cast<std::int32_t>(2 * l + 1)});
+  write_array(g, "line_xy", xy, "m",
+              "end points of the joint lines, cut to the specimen's extent (2 rows per line)", 2);
+  write_array(g, "line_vertices", vertices, "", "the two rows of line_xy of each line", 2);
+  write_array(g, "line_set", line_set, "", "the set of each line");
+
+  write_array(g, "pairs", s.pairs(), "", "the two world discs of each joint", 2);
+  write_array(g, "set", s.set, "", "the joint's set");
+  write_array(g, "touching", installed.touching, "",
+              "1 = a joint contact (bonded or touching at installation), 0 = installed open");
+  write_array(g, "nx", s.nx, "1", "joint unit normal, from the first disc's side to the second's");
+  write_array(g, "ny", s.ny, "1", "see nx");
+  write_array(g, "area", s.area, "m^2", "A = 2 lambda min(R1, R2) t");
+  write_array(g, "bonded", s.bonded, "", "at the end: 1 = bond intact, 0 = broken or unbonded");
+  write_array(g, "mode", s.mode, "", "failure: 0 = none, 1 = tension, 2 = shear");
+  write_array(g, "failure_time", s.time, "s", "loading time of the failure, -1 = none");
+  write_array(g, "gap", s.gap, "m", "at the end: opening along nj since installation");
+  write_array(g, "normal_force", s.normal_force, "N/m",
+              "at the end: on the second disc along nj, compression positive");
+  write_array(g, "shear_force", s.shear_force, "N/m",
+              "at the end: on the second disc along tj = (-ny, nx)");
+  long intact = 0, tension = 0, shear = 0;
+  for (std::size_t e = 0; e < s.size(); ++e) {
+    intact += s.bonded[e];
+    tension += s.mode[e] == 1;
+    shear += s.mode[e] == 2;
+  }
+  write_scalar_attr<long>(g, "sets", static_cast<long>(n));
+  write_scalar_attr<long>(g, "joints", static_cast<long>(s.size()));
+  write_scalar_attr<long>(g, "bonded_at_end", intact);
+  write_scalar_attr<long>(g, "broken_in_tension", tension);
+  write_scalar_attr<long>(g, "broken_in_shear", shear);
+}
 
 // An SHPB run's set-up, figures and per-step waves and histories, group "shpb" of `where`.
 void write_shpb(H5::Group& where, const ShpbResult& r) {
@@ -113,7 +207,7 @@ void write_shpb(H5::Group& where, const ShpbResult& r) {
 }  // namespace
 
 ResultFile::ResultFile(std::filesystem::path target, const LabTestInput& input)
-    : out_(std::move(target)) {
+    : out_(std::move(target)), joint_sets_(input.controls.joints) {
   file_ = std::make_unique<H5::H5File>(hdf5::create_file_in_memory(out_.temp_path().string()));
   write_string_attr(*file_, "format", kFormat);
   write_scalar_attr<std::int32_t>(*file_, "format_version", kFormatVersion);
@@ -145,13 +239,14 @@ ResultFile::~ResultFile() {
   }
 }
 
-std::array<std::filesystem::path, 3> ResultFile::xdmf_paths(const std::filesystem::path& target) {
-  std::filesystem::path discs = target, bonds = target, cracks = target;
+std::array<std::filesystem::path, 4> ResultFile::xdmf_paths(const std::filesystem::path& target) {
+  std::filesystem::path discs = target, bonds = target, cracks = target, joints = target;
   const std::string stem = target.stem().string();
   discs.replace_extension(".xmf");
   bonds.replace_filename(stem + "_bonds.xmf");
   cracks.replace_filename(stem + "_cracks.xmf");
-  return {discs, bonds, cracks};
+  joints.replace_filename(stem + "_joints.xmf");
+  return {discs, bonds, cracks, joints};
 }
 
 std::vector<NamedPath> ResultFile::outputs(const std::string& flag,
@@ -160,7 +255,8 @@ std::vector<NamedPath> ResultFile::outputs(const std::string& flag,
   return {{flag, target},
           {flag + " (its XDMF file)", xdmf[0]},
           {flag + " (its bonds XDMF file)", xdmf[1]},
-          {flag + " (its cracks XDMF file)", xdmf[2]}};
+          {flag + " (its cracks XDMF file)", xdmf[2]},
+          {flag + " (its joints XDMF file)", xdmf[3]}};
 }
 
 void ResultFile::snapshot(const World& world, long step, double time) {
@@ -208,7 +304,9 @@ void ResultFile::snapshot(const World& world, long step, double time) {
       ++bond_count_[list.second[k]];
     }
   write_array(g, "bonds", bond_count_, "", "intact bonds of the disc");
-  snapshots_.push_back({group_, index, step, time, d.size(), bond_keys_.size()});
+  const std::size_t joints = world.neighbors.smooth_joints.size();
+  if (joints > 0) snapshot_joints(root, g, world, time, index == 0);
+  snapshots_.push_back({group_, index, step, time, d.size(), bond_keys_.size(), joints});
 }
 
 // The bond network at a snapshot. At the run's first snapshot the pairs then bonded become the
@@ -261,10 +359,25 @@ void ResultFile::snapshot_bonds(H5::Group& root, H5::Group& g, const World& worl
   write_array(g, "bond_time", bond_time_, "s", "loading time of the latest failure, -1 = none");
 }
 
+void ResultFile::snapshot_joints(H5::Group& root, H5::Group& g, const World& world, double time,
+                                 bool first) {
+  const JointStates s = joint_states(world, world.cracks.cracks, world.time() - time);
+  if (first) {
+    write_array(root, "joint_pairs", s.pairs(), "",
+                "the two discs of each smooth joint (XDMF lines)", 2);
+    write_array(root, "joint_set", s.set, "", "the smooth joint's [[test.joints]] set");
+  }
+  write_array(g, "joint_bonded", s.bonded, "", "smooth joint: 1 = bond intact, 0 = broken");
+  write_array(g, "joint_mode", s.mode, "",
+              "smooth joint failure: 0 = none, 1 = tension, 2 = shear");
+  write_array(g, "joint_normal_force", s.normal_force, "N/m",
+              "smooth joint normal force, compression positive");
+}
+
 void ResultFile::commit(const LabTestResult& r) {
   crack_count_ = r.cracks.size();
   H5::Group root = file_->openGroup("/");
-  write_run(root, r);
+  write_run(root, r, joint_sets_);
   finish();
 }
 
@@ -283,7 +396,7 @@ void ResultFile::commit(const BiaxialSeries& series) {
       if (!g.attrExists("confining_stress_Pa"))
         write_scalar_attr<double>(g, "confining_stress_Pa", series.runs[k].confining_stress);
       if (!g.nameExists("snapshots")) hdf5::create_group(g, "snapshots");
-      write_run(g, series.runs[k]);
+      write_run(g, series.runs[k], joint_sets_);
     }
   }
   finish();
@@ -291,7 +404,8 @@ void ResultFile::commit(const BiaxialSeries& series) {
 
 namespace {
 
-void write_run(H5::Group& where, const LabTestResult& r) {
+void write_run(H5::Group& where, const LabTestResult& r, const std::vector<JointSet>& sets) {
+  if (!sets.empty()) write_joints(where, sets, r.joints, r.joint_states);
   {
     H5::Group s = hdf5::create_group(where, "summary");
     write_scalar_attr<double>(s, "peak_stress_Pa", r.peak_stress);
@@ -529,6 +643,35 @@ void ResultFile::finish() {
     cx << attribute(a, "Node", data_item(h5, std::string("/cracks/") + a, c, "Int", 4));
   cx << "  </Grid>\n" << tail;
   write_text_atomically(paths[2], cx.str());
+  if (snapshots_.front().joints > 0) write_text_atomically(paths[3], xdmf_joints(h5));
+}
+
+// The smooth joints: a temporal collection of Polyline grids, one line of two nodes per joint
+// (`joint_pairs`) on the discs' positions of each snapshot.
+std::string ResultFile::xdmf_joints(const std::string& h5) const {
+  std::ostringstream j;
+  j << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"joints\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  j.precision(17);
+  for (const SnapshotIndex& s : snapshots_) {
+    const std::string path = "/snapshots/" + snapshot_name(s.index) + "/";
+    const std::string n = std::to_string(s.discs), m = std::to_string(s.joints);
+    j << "   <Grid Name=\"step " << s.step << "\" GridType=\"Uniform\">\n    <Time Value=\""
+      << s.time << "\"/>\n"
+      << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << m
+      << "\" NodesPerElement=\"2\">\n"
+      << data_item(h5, "/snapshots/joint_pairs", m + " 2", "Int", 4) << "    </Topology>\n"
+      << "    <Geometry GeometryType=\"XY\">\n"
+      << data_item(h5, path + "xy", n + " 2", "Float", 8) << "    </Geometry>\n"
+      << attribute("joint_set", "Cell", data_item(h5, "/snapshots/joint_set", m, "Int", 4));
+    j << attribute("joint_bonded", "Cell", data_item(h5, path + "joint_bonded", m, "UInt", 1))
+      << attribute("joint_mode", "Cell", data_item(h5, path + "joint_mode", m, "Int", 4))
+      << attribute("joint_normal_force", "Cell",
+                   data_item(h5, path + "joint_normal_force", m, "Float", 8))
+      << "   </Grid>\n";
+  }
+  j << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  return j.str();
 }
 
 }  // namespace cdem::dem

@@ -44,8 +44,8 @@ class ResultFile {
   // The same for a biaxial series: one group per confinement, the envelope in /summary.
   void commit(const BiaxialSeries& series);
 
-  // The XDMF companions of a result file `target`: discs, bonds, cracks.
-  static std::array<std::filesystem::path, 3> xdmf_paths(const std::filesystem::path& target);
+  // The XDMF companions of a result file `target`: discs, bonds, cracks, smooth joints.
+  static std::array<std::filesystem::path, 4> xdmf_paths(const std::filesystem::path& target);
   // The result file `target` and its companions, named after the option that gave it (`flag`,
   // "-o" or "output") for the output checks: all outputs of the command that writes them.
   static std::vector<NamedPath> outputs(const std::string& flag,
@@ -54,6 +54,7 @@ class ResultFile {
  private:
   AtomicOutput out_;
   std::unique_ptr<H5::H5File> file_;
+  std::vector<JointSet> joint_sets_;  // [[test.joints]] as given
   void finish();
 
   std::string group_ = "/";  // where the snapshots of the run in hand go
@@ -63,7 +64,8 @@ class ResultFile {
     long step;
     double time;
     std::size_t discs;
-    std::size_t bonds;  // of the bond network
+    std::size_t bonds;   // of the bond network
+    std::size_t joints;  // smooth joints
   };
   std::vector<SnapshotIndex> snapshots_;
   std::vector<double> scratch_;
@@ -78,6 +80,10 @@ class ResultFile {
   std::size_t cracks_seen_ = 0;
   std::size_t crack_count_ = 0;  // cracks of a single test, for its XDMF
   void snapshot_bonds(H5::Group& root, H5::Group& g, const World& world, double time);
+  // The smooth joints at a snapshot: their pairs and sets at the run's first snapshot (in
+  // `root`), their state at each.
+  void snapshot_joints(H5::Group& root, H5::Group& g, const World& world, double time, bool first);
+  std::string xdmf_joints(const std::string& h5) const;
 };
 
 }  // namespace cdem::dem

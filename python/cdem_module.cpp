@@ -98,10 +98,13 @@ PySpecimen generate(const std::optional<std::string>& text, const std::optional<
 
 // The test input. With a specimen object the test must not name one: an empty inline table
 // stands in for it while the file is read (read_lab_test needs one), then the object replaces it.
+// `joints` (TOML text of [[test.joints]] tables, from run_test's `joints` argument) is read after
+// the test's own text, so its sets follow the test's and it is recorded with the input.
 dem::LabTestInput read_test(const std::optional<std::string>& text,
                             const std::optional<std::string>& path, const std::string& label,
-                            const std::string& base_dir, const PySpecimen* specimen) {
-  if (!specimen) {
+                            const std::string& base_dir, const PySpecimen* specimen,
+                            const std::optional<std::string>& joints) {
+  if (!specimen && !joints) {
     if (path) return dem::read_lab_test(std::filesystem::path(*path));
     return dem::read_lab_test(InputTable::parse_string(*text, label), base_dir);
   }
@@ -115,6 +118,8 @@ dem::LabTestInput read_test(const std::optional<std::string>& text,
     dir = std::filesystem::path(*path).parent_path();
     name = *path;
   }
+  if (joints) source += "\n" + *joints;
+  if (!specimen) return dem::read_lab_test(InputTable::parse_string(source, name), dir);
   InputTable::parse_string(source, name);  // syntax errors with the CLI's message
   toml::table root = toml::parse(source);
   if (root.contains("specimen"))
@@ -191,6 +196,33 @@ py::dict crack_arrays(const std::vector<dem::Crack>& cracks) {
   return d;
 }
 
+// The smooth joints of a run with the result file's names and codes (docs/result_file.md,
+// /joints): per joint its pair, set and state at the end; the lines of the sets.
+py::dict joint_arrays(const dem::LabTestResult& r) {
+  const dem::JointStates& s = r.joint_states;
+  py::dict d;
+  d["first"] = copy(s.first);
+  d["second"] = copy(s.second);
+  d["set"] = copy(s.set);
+  d["touching"] = copy(r.joints.touching);
+  d["nx"] = copy(s.nx);
+  d["ny"] = copy(s.ny);
+  d["area"] = copy(s.area);
+  d["bonded"] = copy(s.bonded);
+  d["mode"] = copy(s.mode);
+  d["failure_time"] = copy(s.time);
+  d["gap"] = copy(s.gap);
+  d["normal_force"] = copy(s.normal_force);
+  d["shear_force"] = copy(s.shear_force);
+  std::vector<double> lines;
+  std::vector<std::int32_t> line_set;
+  dem::joint_line_table(r.joints, lines, line_set);
+  py::array_t<double> xy = copy(lines);
+  d["lines"] = xy.attr("reshape")(-1, 4);
+  d["line_set"] = copy(line_set);
+  return d;
+}
+
 // The state a callback sees: copies (the engine's arrays die with the run), read-only.
 py::dict world_state(const dem::World& world, const dem::LabHistory& h, std::size_t confinement) {
   const dem::Discs& d = world.discs;
@@ -230,8 +262,9 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
                   const PySpecimen* specimen_object, std::optional<std::uint64_t> seed,
                   const std::optional<py::function>& callback, long every,
                   const std::optional<std::string>& output,
-                  const std::optional<std::string>& summary_path, bool verbose) {
-  dem::LabTestInput input = read_test(text, path, label, base_dir, specimen_object);
+                  const std::optional<std::string>& summary_path, bool verbose,
+                  const std::optional<std::string>& joints) {
+  dem::LabTestInput input = read_test(text, path, label, base_dir, specimen_object, joints);
   if (seed) input.seed = *seed;
   const bool biaxial = input.controls.type == dem::LabTestType::Biaxial;
   std::vector<NamedPath> outputs;
@@ -268,7 +301,7 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
   };
 
   py::dict out;
-  py::list histories, cracks;
+  py::list histories, cracks, joint_lists;
   std::string summary;
   if (biaxial) {
     const dem::BiaxialSeries series = dem::run_biaxial_series(specimen, input, [&](std::size_t k) {
@@ -280,6 +313,7 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
     for (const dem::LabTestResult& r : series.runs) {
       histories.append(history_arrays(r.history));
       cracks.append(crack_arrays(r.cracks));
+      joint_lists.append(joint_arrays(r));
     }
   } else {
     const dem::LabTestResult result = dem::run_lab_test(specimen, input, make_hooks(0));
@@ -287,12 +321,14 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
     summary = apps::summary_json(result, input).dump(2);
     histories.append(history_arrays(result.history));
     cracks.append(crack_arrays(result.cracks));
+    joint_lists.append(joint_arrays(result));
   }
   if (summary_path) write_text_atomically(*summary_path, summary + "\n");
   transaction.commit();
   out["summary"] = summary;
   out["histories"] = histories;
   out["cracks"] = cracks;
+  out["joints"] = joint_lists;
   return out;
 }
 
@@ -418,5 +454,5 @@ PYBIND11_MODULE(_cdem, m) {
   m.def("run_test", &cdem::python::run_test, py::arg("text"), py::arg("path"), py::arg("label"),
         py::arg("base_dir"), py::arg("specimen"), py::arg("seed"), py::arg("callback"),
         py::arg("every"), py::arg("output"), py::arg("summary"), py::arg("verbose"),
-        "Internal: cdem.run_test with TOML text or a path (use cdem.run_test).");
+        py::arg("joints"), "Internal: cdem.run_test with TOML text or a path (use cdem.run_test).");
 }

@@ -78,3 +78,17 @@ def dumps(d, label="dict"):
     lines = []
     _table(d, "", label, lines)
     return "\n".join(lines) + "\n"
+
+
+def dumps_table_array(name, items, label):
+    """TOML text of the list of dicts `items` as the array of tables ``[[name]]`` (to follow a
+    document that may already hold some); `label` names it in error messages."""
+    if isinstance(items, dict):
+        items = [items]
+    if not _is_table_array(items):
+        raise InputError(f"{label}: expected a list of dicts (one per [[{name}]] table)")
+    lines = []
+    for item in items:
+        lines.append(f"\n[[{name}]]")
+        _table(item, name, label, lines)
+    return "\n".join(lines) + "\n"

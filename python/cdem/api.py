@@ -4,7 +4,7 @@ import json
 import os
 
 from . import _cdem
-from ._toml import dumps
+from ._toml import dumps, dumps_table_array
 
 
 def _source(value, what):
@@ -149,20 +149,31 @@ class RunResult(dict):
         bond held), ``nx``, ``ny`` (unit normal of the contact plane, from ``first`` towards
         ``second``), ``half_width`` (m; the crack is the segment (x, y) +- half_width (-ny, nx)):
         the result file's /cracks.
-    histories, crack_lists : list
+    joints : dict of ndarray
+        The smooth joints (``[[test.joints]]``, docs/smooth_joint.md; empty arrays without),
+        one entry per joint: ``first``, ``second`` (discs), ``set`` (its set, 0 ..),
+        ``touching`` (1 a joint contact, 0 installed open), ``nx``, ``ny`` (joint normal),
+        ``area`` (m^2), and at the end of the run ``bonded`` (1 intact), ``mode`` (0 unbroken,
+        1 tension, 2 shear), ``failure_time`` (s, -1 none), ``gap`` (m), ``normal_force``
+        (N/m, compression positive), ``shear_force`` (N/m); and ``lines`` ((L, 4), m: x1, y1,
+        x2, y2 of each joint line cut to the specimen) with ``line_set``: the result file's
+        /joints. The summary's ``smooth_joints`` counts them per set.
+    histories, crack_lists, joint_lists : list
         Per confinement of a biaxial series (one entry otherwise).
     """
 
-    def __init__(self, summary, histories, cracks):
+    def __init__(self, summary, histories, cracks, joints):
         super().__init__(summary)
         self.histories = histories
         self.crack_lists = cracks
+        self.joint_lists = joints
         self.history = histories[0]
         self.cracks = cracks[0]
+        self.joints = joints[0]
 
 
 def run_test(test, specimen=None, callback=None, every=1000, output=None, summary=None,
-             seed=None, verbose=False):
+             seed=None, verbose=False, joints=None):
     """Run a lab test, as ``cdem run`` does: material genesis, loading to past the peak.
 
     Parameters
@@ -192,6 +203,12 @@ def run_test(test, specimen=None, callback=None, every=1000, output=None, summar
         Overrides the test's ``seed`` (the CLI's ``--seed``).
     verbose : bool
         Print the inline generator's phase lines on stderr. Warnings are always printed.
+    joints : list of dict, optional
+        Smooth-joint sets (docs/smooth_joint.md), one dict per ``[[test.joints]]`` table with
+        the file's keys (``dip_deg`` and ``spacing_mm``, or ``points_mm``, and the ``sj_*``
+        properties), added after the test's own sets (a dict test can also carry them as
+        ``test["test"]["joints"]``). They are read and recorded as part of the test's text, so
+        errors name ``test.joints[N]`` counting the test's own sets first.
 
     Returns
     -------
@@ -213,10 +230,12 @@ def run_test(test, specimen=None, callback=None, every=1000, output=None, summar
     if specimen is not None and not isinstance(specimen, _cdem.Specimen):
         raise _cdem.InputError("specimen: must be a cdem.Specimen (cdem.generate or "
                                "cdem.load_specimen); a file goes in the test's `specimen` key")
+    joints_text = None if joints is None else dumps_table_array("test.joints", joints, "joints")
     wrapped = None if callback is None else (lambda fields: bool(callback(RunState(fields))))
     out = _cdem.run_test(text, path, label, os.getcwd(), specimen, _seed(seed), wrapped, every,
-                         _optional_path(output), _optional_path(summary), verbose)
-    return RunResult(json.loads(out["summary"]), list(out["histories"]), list(out["cracks"]))
+                         _optional_path(output), _optional_path(summary), verbose, joints_text)
+    return RunResult(json.loads(out["summary"]), list(out["histories"]), list(out["cracks"]),
+                     list(out["joints"]))
 
 
 def _specimen_summary(self):
