@@ -38,6 +38,13 @@ nlohmann::ordered_json shpb_json(const dem::ShpbResult& r) {
   j["equilibrium_ratio_at_peak"] = f.equilibrium_at_peak;
   j["equilibrium_ratio_worst_pre_peak"] = f.equilibrium_worst;
   j["equilibrium_ratio_mean_pre_peak"] = f.equilibrium_mean;
+  j["gauge_length_mm"] = o.gauge_length * 1e3;
+  j["equilibrium_ratio_worst_pre_peak_gauge"] = f.equilibrium_worst_gauge;
+  j["first_failure_stress_MPa"] = f.first_failure_stress * 1e-6;
+  j["time_at_first_failure_us"] = f.time_at_first_failure * 1e6;
+  j["equilibrium_ratio_worst_to_first_failure"] = f.equilibrium_worst_first_failure;
+  j["equilibrium_ratio_mean_to_first_failure"] = f.equilibrium_mean_first_failure;
+  j["equilibrium_ratio_worst_to_first_failure_gauge"] = f.equilibrium_worst_gauge_first_failure;
   j["incident_energy_J_per_m"] = f.incident_energy;
   j["reflected_energy_J_per_m"] = f.reflected_energy;
   j["transmitted_energy_J_per_m"] = f.transmitted_energy;

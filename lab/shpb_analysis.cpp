@@ -23,6 +23,41 @@ double equilibrium_ratio(double front, double back) {
   return mean != 0 ? 2 * (front - back) / mean : 0.0;
 }
 
+// `v` averaged over a centred window of `width` records (fewer at the ends of the record).
+std::vector<double> centred_mean(const std::vector<double>& v, std::size_t width) {
+  const std::size_t n = v.size(), half = width / 2;
+  if (half == 0) return v;
+  std::vector<double> prefix(n + 1, 0.0);
+  for (std::size_t k = 0; k < n; ++k) prefix[k + 1] = prefix[k] + v[k];
+  std::vector<double> out(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t lo = k > half ? k - half : 0, hi = std::min(n, k + half + 1);
+    out[k] = (prefix[hi] - prefix[lo]) / static_cast<double>(hi - lo);
+  }
+  return out;
+}
+
+struct EquilibriumSpan {
+  double worst = 0, mean = 0, worst_gauge = 0;
+};
+
+// |R| from the first record at half of stress[top] to record `top`, per step and of the forces
+// as the gauges read them.
+EquilibriumSpan equilibrium_to(const ShpbHistories& h, const std::vector<double>& front_gauge,
+                               const std::vector<double>& back_gauge, std::size_t top) {
+  EquilibriumSpan e;
+  std::size_t half = 0;
+  while (half < top && h.stress[half] < 0.5 * h.stress[top]) ++half;
+  for (std::size_t k = half; k <= top; ++k) {
+    const double r = std::abs(equilibrium_ratio(h.front_force[k], h.back_force[k]));
+    e.worst = std::max(e.worst, r);
+    e.mean += r / static_cast<double>(top - half + 1);
+    e.worst_gauge =
+        std::max(e.worst_gauge, std::abs(equilibrium_ratio(front_gauge[k], back_gauge[k])));
+  }
+  return e;
+}
+
 }  // namespace
 
 ShpbAnalysis analyse_shpb(const ShpbWaves& w, const ShpbGeometry& g) {
@@ -79,13 +114,32 @@ ShpbAnalysis analyse_shpb(const ShpbWaves& w, const ShpbGeometry& g) {
   }
 
   f.equilibrium_at_peak = equilibrium_ratio(h.front_force[peak], h.back_force[peak]);
-  std::size_t half = 0;
-  while (half < peak && h.stress[half] < 0.5 * f.peak_stress) ++half;
-  for (std::size_t k = half; k <= peak; ++k) {
-    const double r = std::abs(equilibrium_ratio(h.front_force[k], h.back_force[k]));
-    f.equilibrium_worst = std::max(f.equilibrium_worst, r);
-    f.equilibrium_mean += r / static_cast<double>(peak - half + 1);
+  const auto gauge_records = static_cast<std::size_t>(std::lround(g.gauge_window / dt));
+  const std::vector<double> front_gauge = centred_mean(h.front_force, gauge_records);
+  const std::vector<double> back_gauge = centred_mean(h.back_force, gauge_records);
+  const EquilibriumSpan to_peak = equilibrium_to(h, front_gauge, back_gauge, peak);
+  f.equilibrium_worst = to_peak.worst;
+  f.equilibrium_mean = to_peak.mean;
+  f.equilibrium_worst_gauge = to_peak.worst_gauge;
+
+  std::size_t first = peak;
+  double running = 0;
+  for (std::size_t k = 0; k < peak; ++k) {
+    running = std::max(running, h.stress[k]);
+    if (running > kFirstFailureFloor * f.peak_stress &&
+        h.stress[k] < (1 - kFirstFailureDrop) * running) {
+      first = static_cast<std::size_t>(
+          std::max_element(h.stress.begin(), h.stress.begin() + static_cast<long>(k)) -
+          h.stress.begin());
+      break;
+    }
   }
+  f.first_failure_stress = h.stress[first];
+  f.time_at_first_failure = w.time[first];
+  const EquilibriumSpan to_first = equilibrium_to(h, front_gauge, back_gauge, first);
+  f.equilibrium_worst_first_failure = to_first.worst;
+  f.equilibrium_mean_first_failure = to_first.mean;
+  f.equilibrium_worst_gauge_first_failure = to_first.worst_gauge;
 
   f.incident_energy = wave_energy(w.incident, g, dt);
   f.reflected_energy = wave_energy(w.reflected, g, dt);

@@ -29,7 +29,16 @@ struct ShpbGeometry {
   double bar_area = 0;           // m2, A = bar width x 1 m
   double specimen_length = 0;    // m, l_s: distance between the faces at the start
   double specimen_area = 0;      // m2, A_s = specimen width (disc: diameter) x 1 m
+  // s, the time over which a gauge averages a passing wave: its length / c0 (a foil gauge reads
+  // the strain averaged over its length). 0: point gauges, the waves as recorded.
+  double gauge_window = 0;
 };
+
+// The stress fall, as a fraction of the running maximum, that marks the first failure.
+constexpr double kFirstFailureDrop = 0.10;
+// Records below this fraction of the dynamic strength do not count for the first failure (the
+// noise of the wave's foot).
+constexpr double kFirstFailureFloor = 0.05;
 
 // The histories, one value per entry of ShpbWaves.
 struct ShpbHistories {
@@ -68,6 +77,19 @@ struct ShpbFigures {
   double equilibrium_at_peak = 0;
   double equilibrium_worst = 0;
   double equilibrium_mean = 0;
+  // The largest |R| of the face forces as gauges of ShpbGeometry::gauge_window read them (each
+  // force averaged over that window, centred), over the same branch.
+  double equilibrium_worst_gauge = 0;
+  // The first failure: the largest stress before the stress first falls kFirstFailureDrop below
+  // its running maximum (records above kFirstFailureFloor x the peak); the peak when it never
+  // does. At high pulses the peak is a later hump of the crushed specimen (docs/lab_tests.md).
+  double first_failure_stress = 0;   // Pa
+  double time_at_first_failure = 0;  // s
+  // |R| per step (largest, mean) and as the gauges read it (largest) from 50 % of the first
+  // failure stress to it: the loading branch of the intact specimen.
+  double equilibrium_worst_first_failure = 0;
+  double equilibrium_mean_first_failure = 0;
+  double equilibrium_worst_gauge_first_failure = 0;
   // J per m of thickness: W = A E c0 sum eps^2 dt over the record; absorbed = W_i - W_r - W_t.
   double incident_energy = 0, reflected_energy = 0, transmitted_energy = 0, absorbed_energy = 0;
 };

@@ -26,8 +26,8 @@ double ShpbOptions::pulse_stress(double t) const {
 
 ShpbOptions read_shpb_options(const InputTable& t) {
   t.reject_unknown_keys({"bar_young_modulus", "bar_density", "bar_length", "bar_width",
-                         "incident_gauge", "transmitted_gauge", "pulse", "pulse_peak",
-                         "pulse_duration", "after_pulse"});
+                         "incident_gauge", "transmitted_gauge", "gauge_length", "pulse",
+                         "pulse_peak", "pulse_duration", "after_pulse"});
   ShpbOptions o;
   BarProperties& b = o.bar;
   b.young_modulus =
@@ -40,6 +40,8 @@ ShpbOptions read_shpb_options(const InputTable& t) {
                                    Range::closed(0, b.length));
   o.transmitted_gauge = t.quantity_or("transmitted_gauge", Dimension::Length, 0.5 * b.length,
                                       Range::closed(0, b.length));
+  o.gauge_length = t.quantity_or("gauge_length", Dimension::Length, o.gauge_length,
+                                 Range::closed(0, 0.1 * b.length));
   o.pulse = t.string_or("pulse", "half_sine", {"half_sine", "rectangle"}) == "rectangle"
                 ? ShpbPulse::Rectangle
                 : ShpbPulse::HalfSine;
@@ -195,8 +197,9 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
         << o.bar.width * 1e3 << " mm): the faces load only its middle";
     warn(res, hooks, msg.str());
   }
-  out.geometry = ShpbGeometry{o.bar.young_modulus, o.bar.wave_speed(), o.bar.area(), res.height,
-                              specimen_width * kThickness};
+  out.geometry = ShpbGeometry{
+      o.bar.young_modulus, o.bar.wave_speed(),          o.bar.area(),
+      res.height,          specimen_width * kThickness, o.gauge_length / o.bar.wave_speed()};
 
   // The record runs until the incident pulse has passed the specimen, plus after_pulse, plus
   // the time the waves take from the faces to the farther gauge.

@@ -37,6 +37,10 @@ struct ShpbOptions {
   BarProperties bar{206e9, 7800, 3.0, 0.05};
   double incident_gauge = 1.5;     // m, gauge distance from the specimen face on the incident bar
   double transmitted_gauge = 1.5;  // m, the same on the transmitted bar
+  // m, the gauges' length: a foil gauge reads the strain averaged over it (5 mm: a common
+  // length on SHPB bars). Used for the force equilibrium as gauges read it; the other figures
+  // use the waves at a point.
+  double gauge_length = 5e-3;
   ShpbPulse pulse = ShpbPulse::HalfSine;
   double pulse_peak = 0;         // Pa, compression, at the incident bar's far end
   double pulse_duration = 1e-3;  // s

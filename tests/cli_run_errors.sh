@@ -194,6 +194,7 @@ $keys"
 }
 shpb_case shpb_negative_modulus "test.shpb.bar_young_modulus_GPa.*(0, inf)" "bar_young_modulus_GPa = -206"
 shpb_case shpb_gauge_outside "test.shpb.incident_gauge_m.*\[0, 3\]" "incident_gauge_m = 3.2"
+shpb_case shpb_gauge_too_long "test.shpb.gauge_length_mm.*\[0, 300\] mm" "gauge_length_mm = 500"
 shpb_case shpb_pulse_too_long "test.shpb.pulse_duration_us.*(0, 1167" "pulse_duration_us = 1500"
 shpb_case shpb_zero_duration "test.shpb.pulse_duration_us" "pulse_duration_us = 0"
 shpb_case shpb_after_echo "test.shpb.after_pulse_us.*\[0, 167" "after_pulse_us = 500"

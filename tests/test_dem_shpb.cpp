@@ -189,6 +189,46 @@ TEST(ShpbAnalysis, UnequalFacesShowInTheEquilibriumRatio) {
   EXPECT_NEAR(out.figures.equilibrium_mean, 2 * 0.1 / 0.9, 1e-12);
 }
 
+// A specimen that fails (the stress falls 12.5 % from 1e-3 E A / A_s after record 100), then
+// carries a higher hump of its debris (record 200), with the front force 20 % high for the one
+// record 90: the first failure is record 100, per step |R| there is 2 x 0.2 / 2.2, and gauges
+// averaging over 11 records see the excess 0.2 x 0.9e-3 / 11 on a base force that is largest
+// relative to it in the earliest window holding record 90, centred on record 85 (the ramp is
+// linear there, so that window's base force is its value at 85: 0.85e-3 E A).
+TEST(ShpbAnalysis, FirstFailureAndGaugeAveragedEquilibrium) {
+  const auto base = [](int k) {
+    if (k <= 100) return 1e-5 * k;
+    if (k <= 120) return 1e-3 - 2.5e-5 * (k - 100);
+    if (k <= 200) return 0.5e-3 + 1.25e-5 * (k - 120);
+    return std::max(0.0, 1.5e-3 - 1.5e-5 * (k - 200));
+  };
+  ShpbWaves w;
+  w.time_step = 1e-7;
+  for (int k = 0; k <= 300; ++k) {
+    w.time.push_back(k * 1e-7);
+    w.incident.push_back(base(k));
+    w.reflected.push_back(k == 90 ? 0.2 * base(k) : 0.0);
+    w.transmitted.push_back(base(k));
+  }
+  ShpbGeometry g{200e9, 5000, 0.05, 0.05, 0.05};
+  g.gauge_window = 11 * w.time_step;
+  const ShpbFigures f = analyse_shpb(w, g).figures;
+  const double ea = 200e9 * 0.05;
+  EXPECT_NEAR(f.peak_stress, ea * 1.5e-3 / 0.05, 1e-6);
+  EXPECT_NEAR(f.first_failure_stress, ea * 1e-3 / 0.05, 1e-6);
+  EXPECT_NEAR(f.time_at_first_failure, 100e-7, 1e-15);
+  const double spike = 2 * 0.2 / 2.2;
+  const double excess = 0.2 * 0.9e-3 / 11, spread = 2 * excess / (2 * 0.85e-3 + excess);
+  EXPECT_NEAR(f.equilibrium_worst_first_failure, spike, 1e-12);
+  EXPECT_NEAR(f.equilibrium_worst_gauge_first_failure, spread, 1e-9);
+  EXPECT_NEAR(f.equilibrium_mean_first_failure, spike / 51, 1e-12);  // records 50-100
+  EXPECT_NEAR(f.equilibrium_worst, spike, 1e-12);
+  EXPECT_NEAR(f.equilibrium_worst_gauge, spread, 1e-9);
+  // Point gauges (window 0) read the per-step ratio.
+  g.gauge_window = 0;
+  EXPECT_NEAR(analyse_shpb(w, g).figures.equilibrium_worst_gauge_first_failure, spike, 1e-12);
+}
+
 // The message of a bad [test.shpb] table names the key.
 std::string error_of(const std::string& body) {
   const InputTable t = InputTable::parse_string("[test.shpb]\n" + body, "bad.toml");
@@ -217,6 +257,11 @@ TEST(ShpbInput, BadValuesNameTheirKey) {
   // 2 L / c0 - T = 167 us of room for the record after a 1,000 us pulse.
   EXPECT_NE(error_of("pulse_peak_MPa = 100\npulse_duration_us = 1000\nafter_pulse_us = 200\n")
                 .find("after_pulse"),
+            std::string::npos);
+  // A gauge longer than a tenth of its 3 m bar, or of negative length.
+  EXPECT_NE(error_of("pulse_peak_MPa = 100\ngauge_length_mm = 400\n").find("gauge_length"),
+            std::string::npos);
+  EXPECT_NE(error_of("pulse_peak_MPa = 100\ngauge_length_mm = -1\n").find("gauge_length"),
             std::string::npos);
   EXPECT_EQ(error_of("pulse_peak_MPa = 100\npulse_duration_us = 1000\n"), "");
 }
