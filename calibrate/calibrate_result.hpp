@@ -95,7 +95,8 @@ struct CalibrationResult {
   }
 };
 
-// Lab-test runs one point costs (a uniaxial and a Brazilian test are two).
+// Lab-test runs one point costs: one per test of input.tests (a uniaxial and a Brazilian test
+// are two).
 int simulations_per_point(const CalibrationInput& input);
 
 // Runs the batch if the budget allows it, records every simulation and returns the outcomes;

@@ -179,11 +179,13 @@ TEST(CalibrateInput, ReadsTheSample) {
   EXPECT_EQ(in.parameters[7].role, ParameterRole::ShearStrength);
   EXPECT_DOUBLE_EQ(in.parameters[7].start, 15);
   EXPECT_EQ(in.verification_seeds, (std::vector<std::uint64_t>{2, 3, 4, 5, 6}));
-  EXPECT_TRUE(in.needs_uniaxial());
-  EXPECT_FALSE(in.needs_tension_test());
+  ASSERT_TRUE(in.needs(TestKind::Uniaxial));
+  EXPECT_FALSE(in.needs(TestKind::Tension));
+  EXPECT_FALSE(in.needs(TestKind::Bending));
   // The materials are inline in the base test, integers written as floats (a campaign would
   // round values written to an integer key).
-  EXPECT_NE(in.uniaxial_test.find("emod_GPa = 16.0"), std::string::npos) << in.uniaxial_test;
+  const std::string& ucs = in.test(TestKind::Uniaxial)->text;
+  EXPECT_NE(ucs.find("emod_GPa = 16.0"), std::string::npos) << ucs;
 }
 
 // Four targets with sigma_t by direct tension on flat joints (issue #12): the tension test runs
@@ -193,11 +195,12 @@ TEST(CalibrateInput, ReadsTheFlatJointSampleWithDirectTension) {
                                          "samples/c30_flat_joint_calibrate.toml");
   ASSERT_EQ(in.targets.size(), 4u);
   EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::SigmaT), 2.9);
-  EXPECT_TRUE(in.needs_uniaxial());
-  EXPECT_TRUE(in.needs_tension_test());
-  EXPECT_EQ(in.tension_test_type, "direct_tension");
-  EXPECT_EQ(in.tension_generator, in.uniaxial_generator);
-  EXPECT_NE(in.tension_test.find("direct_tension"), std::string::npos);
+  ASSERT_TRUE(in.needs(TestKind::Uniaxial));
+  ASSERT_TRUE(in.needs(TestKind::Tension));
+  const auto& tension = *in.test(TestKind::Tension);
+  EXPECT_EQ(tension.name, "direct_tension");
+  EXPECT_EQ(tension.generator, in.test(TestKind::Uniaxial)->generator);
+  EXPECT_NE(tension.text.find("direct_tension"), std::string::npos);
   EXPECT_EQ(in.parameters[4].role, ParameterRole::TensileStrength);  // fj_tensile_strength
   EXPECT_EQ(in.parameters[7].role, ParameterRole::ShearStrength);    // fj_cohesion
   for (const auto& g : fast_groups(in)) {
