@@ -28,15 +28,16 @@ struct TargetInfo {
   const char* unit;
   const char* summary_field;  // of `cdem run --summary` (lab/summary_fields.hpp)
   TestKind test;
+  bool fitted_in_log;  // the paper strategy's surface is on ln(response)
 };
 
 // Indexed by CalibrationTarget.
 constexpr TargetInfo kTargets[kCalibrationTargetCount] = {
-    {"sigma_u", "MPa", dem::summary_field::kPeakStress, TestKind::Uniaxial},
-    {"E", "GPa", dem::summary_field::kYoungModulus, TestKind::Uniaxial},
-    {"nu", "", dem::summary_field::kPoissonRatio, TestKind::Uniaxial},
-    {"sigma_t", "MPa", dem::summary_field::kTensileStrength, TestKind::Tension},
-    {"G_F", "N/m", dem::summary_field::kFractureEnergy, TestKind::Bending},
+    {"sigma_u", "MPa", dem::summary_field::kPeakStress, TestKind::Uniaxial, false},
+    {"E", "GPa", dem::summary_field::kYoungModulus, TestKind::Uniaxial, false},
+    {"nu", "", dem::summary_field::kPoissonRatio, TestKind::Uniaxial, false},
+    {"sigma_t", "MPa", dem::summary_field::kTensileStrength, TestKind::Tension, false},
+    {"G_F", "N/m", dem::summary_field::kFractureEnergy, TestKind::Bending, true},
 };
 
 const TargetInfo& info(CalibrationTarget target) {
@@ -77,6 +78,9 @@ const char* target_summary_field(CalibrationTarget target) {
 
 TestKind target_test_kind(CalibrationTarget target) {
   return info(target).test;
+}
+bool target_fitted_in_log(CalibrationTarget target) {
+  return info(target).fitted_in_log;
 }
 
 const char* role_name(ParameterRole role) {

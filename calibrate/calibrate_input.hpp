@@ -39,6 +39,10 @@ std::string target_with_unit(CalibrationTarget target);
 const char* target_summary_field(CalibrationTarget target);
 // The kind of lab test that measures the target.
 TestKind target_test_kind(CalibrationTarget target);
+// True when the paper strategy fits the target's response surface on its logarithm: G_F, which
+// scales as sigma_b^2 / E* with brittle bonds and so spans decades within the strength bounds
+// (a factor 8 of sigma_b is 64 of G_F), where a quadratic in the value misses the low end.
+bool target_fitted_in_log(CalibrationTarget target);
 
 struct TargetValue {
   CalibrationTarget target = CalibrationTarget::SigmaU;

@@ -160,7 +160,9 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
     md << "\n## Response surfaces (" << input.paper.surface << ", quadratic)\n\n";
     for (const auto& s : r.surfaces) {
       const auto& f = s.surface;
-      md << "### " << target_with_unit(s.target) << "\n\nR2 = " << fixed(f.r_squared(), 5)
+      md << "### " << target_with_unit(s.target) << "\n\n"
+         << (s.log_response ? "Fitted on ln(" + std::string(target_name(s.target)) + "). " : "")
+         << "R2 = " << fixed(f.r_squared(), 5)
          << ", adjusted R2 = " << fixed(f.adjusted_r_squared(), 5) << ", " << f.runs()
          << " runs, residual df " << f.residual_df() << ".\n\n"
          << "| term (coded) | coefficient | p |\n|---|---|---|\n";
@@ -251,6 +253,7 @@ nlohmann::json calibration_report_json(const CalibrationInput& input, const Cali
           input.parameters[static_cast<std::size_t>(r.leaders[i])].key;
   for (const auto& s : r.surfaces) {
     json e{{"target", target_name(s.target)},
+           {"log_response", s.log_response},
            {"r2", s.surface.r_squared()},
            {"adjusted_r2", std::isfinite(s.surface.adjusted_r_squared())
                                ? json(s.surface.adjusted_r_squared())
