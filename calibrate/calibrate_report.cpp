@@ -207,6 +207,14 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
     for (const auto& t : input.targets) md << " " << fixed(s.outcome.response(t.target)) << " |";
     md << "\n";
   }
+  bool warned = false;
+  for (std::size_t i = 0; i < r.simulations.size(); ++i)
+    for (const auto& w : r.simulations[i].outcome.warnings) {
+      if (!warned) md << "\n## Warnings of the runs (from their summaries)\n\n";
+      warned = true;
+      md << "- #" << i + 1 << " (" << r.simulations[i].stage << ", " << r.simulations[i].label
+         << "): " << w << "\n";
+    }
   return md.str();
 }
 
@@ -300,6 +308,7 @@ nlohmann::json calibration_report_json(const CalibrationInput& input, const Cali
       e["responses"][target_name(t.target)] = std::isfinite(y) ? json(y) : json();
     }
     if (!s.outcome.ok) e["message"] = s.outcome.message;
+    if (!s.outcome.warnings.empty()) e["warnings"] = s.outcome.warnings;
     j["runs"].push_back(e);
   }
   return j;

@@ -26,6 +26,9 @@ struct SimulationOutcome {
   // Measured value per CalibrationTarget (index = enum value), target units; NaN when not measured.
   std::array<double, kCalibrationTargetCount> responses = not_measured();
   int simulations = 0;  // lab-test runs it took (a uniaxial and a Brazilian test count two)
+  // What the runs' summaries warned about a figure they measured, e.g. a G_F cut short at
+  // max_deflection (low): the report lists them beside the numbers.
+  std::vector<std::string> warnings;
 
   double response(CalibrationTarget target) const {
     return responses[static_cast<std::size_t>(target)];

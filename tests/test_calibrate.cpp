@@ -603,6 +603,7 @@ class FractureModel : public Simulator {
   explicit FractureModel(const CalibrationInput& input) : input_(input) {}
   int points = 0;
   double other_specimens_fracture_energy = 1.0;  // relative to the calibration specimen
+  std::string warning;  // when set, every run's summary warns this (a G_F cut short)
   std::vector<SimulationOutcome> run(const std::string&,
                                      const std::vector<SimulationPoint>& batch) override {
     std::vector<SimulationOutcome> out;
@@ -638,6 +639,7 @@ class FractureModel : public Simulator {
                                   std::pow(si, 0.3) * std::pow(em, -0.9) * std::pow(ei, -0.1) *
                                   std::pow(cm, 0.05) *
                                   (calibration_specimen ? 1.0 : other_specimens_fracture_energy);
+      if (!warning.empty()) o.warnings.push_back(warning);
       out.push_back(o);
     }
     return out;
@@ -725,8 +727,10 @@ TEST(CalibrateInput, RejectsABadFractureEnergyTarget) {
 }
 
 TEST(CalibrateFast, ReachesAFractureEnergyTarget) {
-  const auto in = read_calibration_input(make_bending_calibration("gf_fast", kFractureTargets));
+  const auto file = make_bending_calibration("gf_fast", kFractureTargets);
+  const auto in = read_calibration_input(file);
   FractureModel model(in);
+  model.warning = "bending_seed1: the beam still carried 0.1 x its peak load at max_deflection";
   const auto r = calibrate_fast(in, model);
   ASSERT_TRUE(r.success()) << r.stop_reason;
   // Every point is a uniaxial and a bending run.
@@ -747,6 +751,14 @@ TEST(CalibrateFast, ReachesAFractureEnergyTarget) {
   // start of the mortar tensile strength is).
   EXPECT_GT(x[4] / 10, 1.3);
   EXPECT_LT(x[4] / 10, 1.8);
+  // A figure the runs warned about is reported with its warning, in both reports.
+  const auto out = write_calibration(in, r, file.parent_path() / "out");
+  std::ifstream report(out.report);
+  const std::string text((std::istreambuf_iterator<char>(report)), {});
+  EXPECT_NE(text.find("## Warnings of the runs"), std::string::npos);
+  EXPECT_NE(text.find("(fast_01, iteration 1): " + model.warning), std::string::npos) << text;
+  const auto json = calibration_report_json(in, out.result);
+  EXPECT_EQ(json["runs"][0]["warnings"][0].get<std::string>(), model.warning);
 }
 
 TEST(CalibrateFast, ReachesAFractureEnergyBesideTheCompressiveStrength) {
