@@ -145,8 +145,7 @@ void CampaignSimulator::generate(std::size_t test, const std::vector<std::uint64
   }
 }
 
-std::filesystem::path CampaignSimulator::specimen_file(std::size_t test,
-                                                      std::uint64_t seed) const {
+std::filesystem::path CampaignSimulator::specimen_file(std::size_t test, std::uint64_t seed) const {
   const auto it = specimens_.find({test, seed});
   if (it == specimens_.end())
     throw std::logic_error("calibrate: no specimen generated for seed " + std::to_string(seed));

@@ -357,8 +357,8 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
                                                      : "three-point bending";
       tests.fail(allowed.front()->key,
                  measured + (test.targets.size() == 1 ? " is a target" : " are targets") +
-                     ": name " + (allowed.size() > 1 ? "exactly one " : "the ") + what +
-                     " test, " + choices);
+                     ": name " + (allowed.size() > 1 ? "exactly one " : "the ") + what + " test, " +
+                     choices);
     }
     test.name = named.front()->key;
     test_tables.push_back(read_test(tests, test.name, file, named.front()->type));

@@ -79,13 +79,39 @@ std::filesystem::path make_calibration(const std::string& test, const std::strin
 
 const std::string kC30Targets = "[targets]\nsigma_u_MPa = 40\nE_GPa = 30\nnu = 0.20\n";
 
+// The point's parameter values by their keys.
+std::map<std::string, double> values_by_key(const CalibrationInput& input,
+                                            const SimulationPoint& p) {
+  std::map<std::string, double> v;
+  for (std::size_t i = 0; i < input.parameters.size(); ++i)
+    v[input.parameters[i].key] = p.values[static_cast<Eigen::Index>(i)];
+  return v;
+}
+
+// A stand-in for the DEM that answers point by point, counting the points it was asked.
+class PointModel : public Simulator {
+ public:
+  int points = 0;
+  std::vector<SimulationOutcome> run(const std::string&,
+                                     const std::vector<SimulationPoint>& batch) override {
+    std::vector<SimulationOutcome> out;
+    for (const auto& p : batch) {
+      ++points;
+      out.push_back(respond(p));
+    }
+    return out;
+  }
+
+ protected:
+  virtual SimulationOutcome respond(const SimulationPoint& p) = 0;
+};
+
 // The analytic model: power laws with weak couplings between the groups and a per-specimen
 // scatter, shaped like the measured C30 behaviour (E about 1.65 x mortar E*, sigma_u about
 // 1.17 x mortar sigma_b, nu 0.207 at kn/ks = 1.45).
-class AnalyticModel : public Simulator {
+class AnalyticModel : public PointModel {
  public:
   explicit AnalyticModel(const CalibrationInput& input) : input_(input) {}
-  int points = 0;
   // When set, the strength is that of the weakest bond family, as in the DEM (the mortar
   // tensile strength, its cohesion / 3 or twice the ITZ tensile strength, whichever is least):
   // one strength raised alone cannot raise sigma_u past the others.
@@ -101,41 +127,34 @@ class AnalyticModel : public Simulator {
   // docs/calibration_runs/c30_flat_joint_published_recipe_report.md: about -0.5 and 0.9).
   double kratio_exponent_E = -0.15;
   double kratio_exponent_nu = 0.6;
-  std::vector<SimulationOutcome> run(const std::string&,
-                                     const std::vector<SimulationPoint>& batch) override {
-    std::vector<SimulationOutcome> out;
-    for (const auto& p : batch) {
-      ++points;
-      std::map<std::string, double> v;
-      for (std::size_t i = 0; i < input_.parameters.size(); ++i)
-        v[input_.parameters[i].key] = p.values[static_cast<Eigen::Index>(i)];
-      const auto get = [&](const std::string& key, double fallback) {
-        return v.count(key) ? v[key] : fallback;
-      };
-      const double em = get("materials.mortar.emod_GPa", 16), ei = get("materials.itz.emod_GPa", 8);
-      const double km = get("materials.mortar.kratio", 1.45),
-                   ki = get("materials.itz.kratio", 1.45);
-      const double sm = get("materials.mortar.pb_tensile_strength_MPa", 10);
-      const double si = get("materials.itz.pb_tensile_strength_MPa", 5);
-      const double cm = get("materials.mortar.pb_cohesion_MPa", 30);
-      // Specimens differ by a few per cent, as generated specimens do.
-      const double scatter = 1 + 0.015 * std::sin(3.0 * static_cast<double>(p.specimen_seed));
-      SimulationOutcome o;
-      o.ok = true;
-      o.simulations = 1;
-      const double strength =
-          (weakest_link ? std::min({sm, cm / 3, 2 * si}) : sm) *
-          (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_strength);
-      o.responses[0] = scatter * 1.17 * std::pow(strength, 0.85) * std::pow(si / 0.5, 0.15) *
-                       std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
-      o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
-                       std::pow(km / 1.45, kratio_exponent_E) * std::pow(sm / 10, 0.02);  // E, GPa
-      o.responses[2] = 0.207 * std::pow(km / 1.45, kratio_exponent_nu) * std::pow(ki / 1.45, 0.1) *
-                       std::pow(em / 16, -0.03) *
-                       (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_nu);
-      out.push_back(o);
-    }
-    return out;
+
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    std::map<std::string, double> v = values_by_key(input_, p);
+    const auto get = [&](const std::string& key, double fallback) {
+      return v.count(key) ? v[key] : fallback;
+    };
+    const double em = get("materials.mortar.emod_GPa", 16), ei = get("materials.itz.emod_GPa", 8);
+    const double km = get("materials.mortar.kratio", 1.45), ki = get("materials.itz.kratio", 1.45);
+    const double sm = get("materials.mortar.pb_tensile_strength_MPa", 10);
+    const double si = get("materials.itz.pb_tensile_strength_MPa", 5);
+    const double cm = get("materials.mortar.pb_cohesion_MPa", 30);
+    // Specimens differ by a few per cent, as generated specimens do.
+    const double scatter = 1 + 0.015 * std::sin(3.0 * static_cast<double>(p.specimen_seed));
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 1;
+    const double strength =
+        (weakest_link ? std::min({sm, cm / 3, 2 * si}) : sm) *
+        (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_strength);
+    o.responses[0] = scatter * 1.17 * std::pow(strength, 0.85) * std::pow(si / 0.5, 0.15) *
+                     std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
+    o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
+                     std::pow(km / 1.45, kratio_exponent_E) * std::pow(sm / 10, 0.02);  // E, GPa
+    o.responses[2] = 0.207 * std::pow(km / 1.45, kratio_exponent_nu) * std::pow(ki / 1.45, 0.1) *
+                     std::pow(em / 16, -0.03) *
+                     (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_nu);
+    return o;
   }
 
  private:
@@ -569,15 +588,15 @@ TEST(CalibratePaper, ReachesAWeakestLinkStrengthThroughTheFollowers) {
 
 // The calibration of make_calibration with a G_F target, the bending test `beam.toml` in [tests]
 // and its generator `beam_generator.toml` in [specimen] (each left out when its flag is false).
-std::filesystem::path make_bending_calibration(const std::string& test, const std::string& head,
-                                               bool bending_test = true,
-                                               bool bending_generator = true,
-                                               const std::string& bending_type =
-                                                   "three_point_bending") {
+std::filesystem::path make_bending_calibration(
+    const std::string& test, const std::string& head, bool bending_test = true,
+    bool bending_generator = true, const std::string& bending_type = "three_point_bending") {
   const auto file = make_calibration(test, head);
   const auto dir = file.parent_path();
-  write(dir / "beam.toml", "specimen = \"none.h5\"\nmaterials = \"materials.toml\"\n"
-                           "[test]\ntype = \"" + bending_type + "\"\nspan_mm = 60\n");
+  write(dir / "beam.toml",
+        "specimen = \"none.h5\"\nmaterials = \"materials.toml\"\n"
+        "[test]\ntype = \"" +
+            bending_type + "\"\nspan_mm = 60\n");
   write(dir / "beam_generator.toml",
         "[specimen]\nshape = \"beam\"\nwidth_mm = 80\nheight_mm = 20\nnotch_depth_mm = 6\n"
         "notch_width_mm = 2\n");
@@ -586,7 +605,8 @@ std::filesystem::path make_bending_calibration(const std::string& test, const st
   in.close();
   if (bending_test) text = replace(text, "[tests]\n", "[tests]\nbending = \"beam.toml\"\n");
   if (bending_generator)
-    text = replace(text, "[specimen]\n", "[specimen]\nbending_generator = \"beam_generator.toml\"\n");
+    text =
+        replace(text, "[specimen]\n", "[specimen]\nbending_generator = \"beam_generator.toml\"\n");
   write(file, text);
   return file;
 }
@@ -598,51 +618,43 @@ std::filesystem::path make_bending_calibration(const std::string& test, const st
 // of the cohesion; sigma_u led by the cohesion (as flat joints, so that sigma_u and G_F can be
 // set apart by the shear and tensile strengths), E by the moduli, nu by kn/ks. Per-specimen
 // scatter of 1.5 % (3 % for G_F: a beam has one crack path).
-class FractureModel : public Simulator {
+class FractureModel : public PointModel {
  public:
   explicit FractureModel(const CalibrationInput& input) : input_(input) {}
-  int points = 0;
   double other_specimens_fracture_energy = 1.0;  // relative to the calibration specimen
   std::string warning;  // when set, every run's summary warns this (a G_F cut short)
-  std::vector<SimulationOutcome> run(const std::string&,
-                                     const std::vector<SimulationPoint>& batch) override {
-    std::vector<SimulationOutcome> out;
-    for (const auto& p : batch) {
-      ++points;
-      std::map<std::string, double> v;
-      for (std::size_t i = 0; i < input_.parameters.size(); ++i)
-        v[input_.parameters[i].key] = p.values[static_cast<Eigen::Index>(i)];
-      const auto rel = [&](const std::string& key, double start) {
-        return (v.count(key) ? v[key] : start) / start;
-      };
-      const double em = rel("materials.mortar.emod_GPa", 16), ei = rel("materials.itz.emod_GPa", 8);
-      const double km = rel("materials.mortar.kratio", 1.45), ki = rel("materials.itz.kratio", 1.45);
-      const double sm = rel("materials.mortar.pb_tensile_strength_MPa", 10);
-      const double si = rel("materials.itz.pb_tensile_strength_MPa", 5);
-      const double cm = rel("materials.mortar.pb_cohesion_MPa", 30);
-      const double ci = rel("materials.itz.pb_cohesion_MPa", 15);
-      const auto seed = static_cast<double>(p.specimen_seed);
-      const bool calibration_specimen = p.specimen_seed == input_.calibration_seed;
-      SimulationOutcome o;
-      o.ok = true;
-      o.simulations = 2;
-      const auto at = [&](CalibrationTarget t) -> double& {
-        return o.responses[static_cast<std::size_t>(t)];
-      };
-      at(CalibrationTarget::SigmaU) = (1 + 0.015 * std::sin(3 * seed)) * 12 * std::pow(cm, 0.6) *
-                                      std::pow(ci, 0.1) * std::pow(sm, 0.3);
-      at(CalibrationTarget::E) = (1 + 0.015 * std::sin(3 * seed)) * 27 * std::pow(em, 0.9) *
-                                 std::pow(ei, 0.1) * std::pow(km, -0.15);
-      at(CalibrationTarget::Nu) = 0.207 * std::pow(km, 0.6) * std::pow(ki, 0.1);
-      at(CalibrationTarget::SigmaT) = 1.4 * std::pow(sm, 0.8) * std::pow(si, 0.2);
-      at(CalibrationTarget::GF) = (1 + 0.03 * std::sin(5 * seed)) * 20 * std::pow(sm, 1.7) *
-                                  std::pow(si, 0.3) * std::pow(em, -0.9) * std::pow(ei, -0.1) *
-                                  std::pow(cm, 0.05) *
-                                  (calibration_specimen ? 1.0 : other_specimens_fracture_energy);
-      if (!warning.empty()) o.warnings.push_back(warning);
-      out.push_back(o);
-    }
-    return out;
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    std::map<std::string, double> v = values_by_key(input_, p);
+    const auto rel = [&](const std::string& key, double start) {
+      return (v.count(key) ? v[key] : start) / start;
+    };
+    const double em = rel("materials.mortar.emod_GPa", 16), ei = rel("materials.itz.emod_GPa", 8);
+    const double km = rel("materials.mortar.kratio", 1.45), ki = rel("materials.itz.kratio", 1.45);
+    const double sm = rel("materials.mortar.pb_tensile_strength_MPa", 10);
+    const double si = rel("materials.itz.pb_tensile_strength_MPa", 5);
+    const double cm = rel("materials.mortar.pb_cohesion_MPa", 30);
+    const double ci = rel("materials.itz.pb_cohesion_MPa", 15);
+    const auto seed = static_cast<double>(p.specimen_seed);
+    const bool calibration_specimen = p.specimen_seed == input_.calibration_seed;
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 2;
+    const auto at = [&](CalibrationTarget t) -> double& {
+      return o.responses[static_cast<std::size_t>(t)];
+    };
+    at(CalibrationTarget::SigmaU) = (1 + 0.015 * std::sin(3 * seed)) * 12 * std::pow(cm, 0.6) *
+                                    std::pow(ci, 0.1) * std::pow(sm, 0.3);
+    at(CalibrationTarget::E) = (1 + 0.015 * std::sin(3 * seed)) * 27 * std::pow(em, 0.9) *
+                               std::pow(ei, 0.1) * std::pow(km, -0.15);
+    at(CalibrationTarget::Nu) = 0.207 * std::pow(km, 0.6) * std::pow(ki, 0.1);
+    at(CalibrationTarget::SigmaT) = 1.4 * std::pow(sm, 0.8) * std::pow(si, 0.2);
+    at(CalibrationTarget::GF) = (1 + 0.03 * std::sin(5 * seed)) * 20 * std::pow(sm, 1.7) *
+                                std::pow(si, 0.3) * std::pow(em, -0.9) * std::pow(ei, -0.1) *
+                                std::pow(cm, 0.05) *
+                                (calibration_specimen ? 1.0 : other_specimens_fracture_energy);
+    if (!warning.empty()) o.warnings.push_back(warning);
+    return o;
   }
 
  private:
@@ -680,8 +692,8 @@ TEST(CalibrateInput, ReadsAFractureEnergyTargetWithItsBendingTest) {
     EXPECT_EQ(g.prior_exponent, 2.0);
   }
   // G_F alone needs only the beam, whose materials are then the start values.
-  const auto alone = read_calibration_input(
-      make_bending_calibration("gf_alone", "[targets]\nG_F_N_per_m = 40\n"));
+  const auto alone =
+      read_calibration_input(make_bending_calibration("gf_alone", "[targets]\nG_F_N_per_m = 40\n"));
   ASSERT_EQ(alone.tests.size(), 1u);
   EXPECT_EQ(alone.tests[0].kind, TestKind::Bending);
 }
@@ -695,9 +707,9 @@ TEST(CalibrateInput, RejectsABadFractureEnergyTarget) {
   expect_input_error(
       make_bending_calibration("gf_wrong_type", kFractureTargets, true, true, "uniaxial"),
       "tests.bending", "type = \"three_point_bending\"");
-  expect_input_error(make_bending_calibration(
-                         "gf_negative", replace(kFractureTargets, "= 40", "= -40")),
-                     "targets.G_F_N_per_m", "");
+  expect_input_error(
+      make_bending_calibration("gf_negative", replace(kFractureTargets, "= 40", "= -40")),
+      "targets.G_F_N_per_m", "");
   // The fast strategy cannot set sigma_t and G_F apart (one group of keys, the tensile
   // strengths, moves both); the paper strategy accepts them.
   const auto both = make_bending_calibration(
@@ -711,14 +723,16 @@ TEST(CalibrateInput, RejectsABadFractureEnergyTarget) {
           "specimen = \"none.h5\"\nmaterials = \"materials.toml\"\n[test]\ntype = \"uniaxial\"\n");
   }
   expect_input_error(both, "tests.direct_tension", "type = \"direct_tension\"");
-  write(both.parent_path() / "tension.toml", "specimen = \"none.h5\"\nmaterials = "
-                                             "\"materials.toml\"\n[test]\ntype = "
-                                             "\"direct_tension\"\n");
+  write(both.parent_path() / "tension.toml",
+        "specimen = \"none.h5\"\nmaterials = "
+        "\"materials.toml\"\n[test]\ntype = "
+        "\"direct_tension\"\n");
   {
     std::ifstream in(both);
     std::string text((std::istreambuf_iterator<char>(in)), {});
     in.close();
-    write(both, replace(text, "direct_tension = \"ucs.toml\"", "direct_tension = \"tension.toml\""));
+    write(both,
+          replace(text, "direct_tension = \"ucs.toml\"", "direct_tension = \"tension.toml\""));
   }
   expect_input_error(both, "targets", "sigma_t and G_F together");
   const auto paper = read_calibration_input(both, CalibrationStrategy::Paper);

@@ -51,7 +51,8 @@ void expect_targets_of(cdem::calib::TestKind kind, const LabTestResult& r,
     if (cdem::calib::target_test_kind(t) != kind) continue;
     const std::string field = cdem::calib::target_summary_field(t);
     const nlohmann::json value = cdem::calib::json_at_path(summary, field);
-    ASSERT_TRUE(value.is_number()) << field << " is not a number in the " << summary["test"] << " summary";
+    ASSERT_TRUE(value.is_number())
+        << field << " is not a number in the " << summary["test"] << " summary";
     EXPECT_GT(value.get<double>(), 0) << field;
     EXPECT_EQ(value.get<double>(), expected(t, r)) << field;
     ++checked;
