@@ -184,10 +184,10 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
       c.command = "run";
       c.args = {"{input}", "--summary", "{summary}", "--seed", "{seed}", "-q"};
       for (const auto target : b.measured) c.gather.push_back(target_summary_field(target));
-      // A beam's G_F is cut short when the run ends at max_deflection still carrying load, and
-      // its summary then says so: the warnings go with the figure. Other tests gather what they
-      // always did (a calibration started before resumes on the same campaign files).
-      if (t.kind == TestKind::Bending) c.gather.push_back("warnings");
+      // What the summary warns about its figures goes with them (a beam's G_F cut short at
+      // max_deflection, say). Gathered last; a campaign re-gathers finished runs from their
+      // summaries, so a calibration started before this field resumes without re-running.
+      c.gather.push_back("warnings");
       c.timeout_s = input_.timeout_s;
       for (std::size_t i = 0; i < points.size(); ++i) {
         if (points[i].specimen_seed != seed) continue;
@@ -248,8 +248,9 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
         }
         o.responses[static_cast<std::size_t>(b.measured[g])] = value.get<double>();
       }
-      if (record.gathered.size() > b.measured.size())
-        for (const auto& w : record.gathered.back())
+      const auto& warnings = record.gathered.at(b.measured.size());  // gathered last
+      if (warnings.is_array())
+        for (const auto& w : warnings)
           if (w.is_string()) o.warnings.push_back(b.name + ": " + w.get<std::string>());
     }
   }
