@@ -22,7 +22,8 @@ Action add_calibrate_command(CLI::App& app) {
   auto* c = app.add_subcommand(
       "calibrate",
       "Find the material parameters that give target macro-properties (sigma_u, E, nu, "
-      "sigma_t): fast or paper strategy, runs as campaigns, verified on independent specimens");
+      "sigma_t, G_F): fast or paper strategy, runs as campaigns, verified on independent "
+      "specimens");
   c->add_option("file", o->calibrate.file, "Calibration file (TOML); see docs/calibration.md")
       ->required()
       ->check(CLI::ExistingFile);

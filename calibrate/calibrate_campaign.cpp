@@ -108,19 +108,23 @@ CampaignSimulator::CampaignSimulator(const CalibrationInput& input,
     : input_(input), output_dir_(std::move(output_dir)), jobs_(jobs), verbose_(verbose) {}
 
 void CampaignSimulator::make_specimens(const std::vector<std::uint64_t>& seeds) {
-  if (input_.needs_uniaxial()) generate(false, seeds);
-  if (!input_.needs_tension_test()) return;
-  // Direct tension on the uniaxial generator's specimens: the same files, generated once.
-  if (input_.needs_uniaxial() && input_.tension_generator == input_.uniaxial_generator) {
-    for (const auto s : seeds) specimens_[{true, s}] = specimens_.at({false, s});
-    return;
+  const auto& tests = input_.tests;
+  for (std::size_t i = 0; i < tests.size(); ++i) {
+    // A test on an earlier test's generator (direct tension on the uniaxial one's) runs on the
+    // same files, generated once.
+    std::size_t same = 0;
+    while (same < i && tests[same].generator != tests[i].generator) ++same;
+    if (same == i) {
+      generate(i, seeds);
+      continue;
+    }
+    for (const auto s : seeds) specimens_[{i, s}] = specimens_.at({same, s});
   }
-  generate(true, seeds);
 }
 
-void CampaignSimulator::generate(bool tension, const std::vector<std::uint64_t>& seeds) {
+void CampaignSimulator::generate(std::size_t test, const std::vector<std::uint64_t>& seeds) {
   CampaignFile c;
-  c.base_text = tension ? input_.tension_generator : input_.uniaxial_generator;
+  c.base_text = input_.tests[test].generator;
   c.factor_keys = {"seed"};
   for (const auto s : seeds) c.runs.push_back({static_cast<double>(s)});
   c.command = "generate";
@@ -128,7 +132,7 @@ void CampaignSimulator::generate(bool tension, const std::vector<std::uint64_t>&
   c.gather = {"discs"};
   c.outputs = {"specimen.h5"};
   c.timeout_s = input_.timeout_s;
-  const std::string name = tension ? input_.tension_test_type : "uniaxial";
+  const std::string& name = input_.tests[test].name;
   const auto dir = output_dir_ / "specimens";
   const auto records = run_campaign_file(dir, name, c, jobs_, verbose_);
   for (std::size_t i = 0; i < seeds.size(); ++i) {
@@ -136,13 +140,13 @@ void CampaignSimulator::generate(bool tension, const std::vector<std::uint64_t>&
     if (r.status != RunStatus::Ok || r.outputs.empty() || r.outputs[0].empty())
       throw RunError("calibrate: the " + name + " specimen of seed " + std::to_string(seeds[i]) +
                      " could not be generated (" + (dir / name).string() + "): " + r.message);
-    specimens_[{tension, seeds[i]}] = std::filesystem::absolute(dir / name / r.outputs[0]);
+    specimens_[{test, seeds[i]}] = std::filesystem::absolute(dir / name / r.outputs[0]);
     ++generated_;
   }
 }
 
-std::filesystem::path CampaignSimulator::specimen_file(bool tension, std::uint64_t seed) const {
-  const auto it = specimens_.find({tension, seed});
+std::filesystem::path CampaignSimulator::specimen_file(std::size_t test, std::uint64_t seed) const {
+  const auto it = specimens_.find({test, seed});
   if (it == specimens_.end())
     throw std::logic_error("calibrate: no specimen generated for seed " + std::to_string(seed));
   return it->second;
@@ -167,21 +171,23 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
     std::vector<RunRecord> records;
   };
   std::vector<Batch> batches;
-  for (const bool tension : {false, true}) {
-    if (tension ? !input_.needs_tension_test() : !input_.needs_uniaxial()) continue;
+  for (std::size_t test = 0; test < input_.tests.size(); ++test) {
+    const CalibrationTest& t = input_.tests[test];
     for (const auto seed : seeds) {
       Batch b;
-      b.name = (tension ? input_.tension_test_type : "uniaxial") + "_seed" + std::to_string(seed);
-      for (const auto& t : input_.targets)
-        if (target_needs_tension_test(t.target) == tension) b.measured.push_back(t.target);
+      b.name = t.name + "_seed" + std::to_string(seed);
+      b.measured = t.targets;
       CampaignFile& c = b.file;
-      c.base_text = test_with_specimen(tension ? input_.tension_test : input_.uniaxial_test,
-                                       specimen_file(tension, seed));
+      c.base_text = test_with_specimen(t.text, specimen_file(test, seed));
       c.factor_keys = keys;
       c.seed = seed;
       c.command = "run";
       c.args = {"{input}", "--summary", "{summary}", "--seed", "{seed}", "-q"};
-      for (const auto t : b.measured) c.gather.push_back(target_summary_field(t));
+      for (const auto target : b.measured) c.gather.push_back(target_summary_field(target));
+      // What the summary warns about its figures goes with them (a beam's G_F cut short at
+      // max_deflection, say). Gathered last; a campaign re-gathers finished runs from their
+      // summaries, so a calibration started before this field resumes without re-running.
+      c.gather.push_back("warnings");
       c.timeout_s = input_.timeout_s;
       for (std::size_t i = 0; i < points.size(); ++i) {
         if (points[i].specimen_seed != seed) continue;
@@ -242,6 +248,10 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
         }
         o.responses[static_cast<std::size_t>(b.measured[g])] = value.get<double>();
       }
+      const auto& warnings = record.gathered.at(b.measured.size());  // gathered last
+      if (warnings.is_array())
+        for (const auto& w : warnings)
+          if (w.is_string()) o.warnings.push_back(b.name + ": " + w.get<std::string>());
     }
   }
   return out;

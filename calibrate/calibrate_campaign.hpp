@@ -27,16 +27,16 @@ class CampaignSimulator : public Simulator {
                                      const std::vector<SimulationPoint>& points) override;
 
  private:
-  // `tension`: the sigma_t test's specimen (Brazilian disc or direct-tension rectangle).
-  std::filesystem::path specimen_file(bool tension, std::uint64_t seed) const;
-  void generate(bool tension, const std::vector<std::uint64_t>& seeds);
+  // The specimen of input.tests[test] made with `seed`.
+  std::filesystem::path specimen_file(std::size_t test, std::uint64_t seed) const;
+  void generate(std::size_t test, const std::vector<std::uint64_t>& seeds);
 
   const CalibrationInput& input_;
   std::filesystem::path output_dir_;
   int jobs_;
   bool verbose_;
   int generated_ = 0;
-  std::map<std::pair<bool, std::uint64_t>, std::filesystem::path> specimens_;
+  std::map<std::pair<std::size_t, std::uint64_t>, std::filesystem::path> specimens_;
 };
 
 }  // namespace cdem::calib

@@ -39,6 +39,13 @@ constexpr double kExponentSpread = 2.0;
 // a 1.7 % step of kn/ks turned a slope of 0.9 into 0.41 on the C30 recipe (report of
 // docs/calibration_runs/c30_flat_joint_published_recipe_report.md).
 constexpr double kMinSecantStep = 0.05;
+// Brittle bonds (no softening, docs/flat_joint.md): scaling every bond strength by s at fixed
+// stiffnesses puts a specimen through the same states at s times the forces and s times the
+// displacements, so the work of fracture, hence G_F, scales as s^2; scaling every modulus by m at
+// fixed strengths divides the displacements, hence G_F, by m. These are the priors of G_F's own
+// sensitivity and of its coupling to the moduli' group (the only coupling known before a step).
+constexpr double kFractureEnergyStrengthExponent = 2.0;
+constexpr double kFractureEnergyModulusExponent = -1.0;
 // Below this reciprocal condition number of the sensitivities the coupled step is not trusted.
 constexpr double kMinReciprocalCondition = 1e-3;
 
@@ -60,8 +67,18 @@ std::string describe(const CalibrationInput& input, const FastGroup& g) {
 }  // namespace
 
 std::vector<FastGroup> fast_groups(const CalibrationInput& input) {
-  const bool both_strengths = !std::isnan(input.target_value(CalibrationTarget::SigmaU)) &&
-                              !std::isnan(input.target_value(CalibrationTarget::SigmaT));
+  // The strength-like targets share the bond strengths: one of them alone takes them all; with
+  // several, sigma_u takes the shear strengths and sigma_t or G_F (a tensile crack's strength
+  // and its energy) the tensile ones (check_fast_parameters refuses sigma_t and G_F together).
+  const auto is_target = [&](CalibrationTarget t) { return !std::isnan(input.target_value(t)); };
+  const int strength_targets = is_target(CalibrationTarget::SigmaU) +
+                               is_target(CalibrationTarget::SigmaT) +
+                               is_target(CalibrationTarget::GF);
+  const auto strengths = [&](ParameterRole shared) {
+    return strength_targets > 1
+               ? std::vector{shared}
+               : std::vector{ParameterRole::TensileStrength, ParameterRole::ShearStrength};
+  };
   std::vector<FastGroup> groups;
   for (const auto& t : input.targets) {
     FastGroup g;
@@ -75,14 +92,14 @@ std::vector<FastGroup> fast_groups(const CalibrationInput& input) {
         g.prior_exponent = kNuExponentPrior;
         break;
       case CalibrationTarget::SigmaU:
-        g.roles = both_strengths
-                      ? std::vector{ParameterRole::ShearStrength}
-                      : std::vector{ParameterRole::TensileStrength, ParameterRole::ShearStrength};
+        g.roles = strengths(ParameterRole::ShearStrength);
         break;
       case CalibrationTarget::SigmaT:
-        g.roles = both_strengths
-                      ? std::vector{ParameterRole::TensileStrength}
-                      : std::vector{ParameterRole::TensileStrength, ParameterRole::ShearStrength};
+        g.roles = strengths(ParameterRole::TensileStrength);
+        break;
+      case CalibrationTarget::GF:
+        g.roles = strengths(ParameterRole::TensileStrength);
+        g.prior_exponent = kFractureEnergyStrengthExponent;
         break;
     }
     g.scale_lower = 0;
@@ -101,6 +118,14 @@ std::vector<FastGroup> fast_groups(const CalibrationInput& input) {
 
 void check_fast_parameters(const CalibrationInput& input) {
   const std::string file = input.file.string();
+  if (!std::isnan(input.target_value(CalibrationTarget::SigmaT)) &&
+      !std::isnan(input.target_value(CalibrationTarget::GF)))
+    throw InputError(
+        file, "targets",
+        "the fast strategy cannot aim at sigma_t and G_F together: both are moved by the tensile "
+        "bond strengths, and with brittle bonds G_F scales as sigma_t^2 / E on a given specimen "
+        "(docs/calibration.md \"G_F\"), so no group of keys is left to set G_F apart; drop one "
+        "of them or use strategy = \"paper\" with keys that move G_F at a given strength");
   for (const auto& g : fast_groups(input)) {
     if (g.parameters.empty()) {
       std::string roles;
@@ -197,6 +222,10 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
   // leave out (kn/ks moves E as well as nu) are learnt where a step shows them.
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t g = 0; g < n; ++g) J(g, g) = groups[g].prior_exponent;
+  for (std::size_t g = 0; g < n; ++g)
+    for (std::size_t h = 0; h < n; ++h)
+      if (groups[g].target == CalibrationTarget::GF && groups[h].target == CalibrationTarget::E)
+        J(g, h) = kFractureEnergyModulusExponent;
   const auto learn = [&](const Good& from, const Good& to) {
     Eigen::VectorXd dx(n), dy(n);
     for (std::size_t g = 0; g < n; ++g) {

@@ -3,8 +3,9 @@
 // replaces designs of experiments. E scales with the moduli at fixed stiffness ratios, nu is set
 // by the stiffness ratios, strengths scale with the bond strengths. Each target therefore owns
 // one group of free keys, moved together by one scale factor (their ratios stay fixed):
-//   E -> moduli, nu -> stiffness ratios, sigma_u or sigma_t -> all bond strengths
-//   (both strengths as targets: sigma_t -> tensile strengths, sigma_u -> shear strengths).
+//   E -> moduli, nu -> stiffness ratios, sigma_u, sigma_t or G_F alone -> all bond strengths
+//   (several: sigma_u -> shear strengths, sigma_t or G_F -> tensile strengths; not sigma_t and
+//   G_F together). G_F's sensitivity priors: 2 to its strengths, -1 to the moduli (brittle bonds).
 // From a semi-analytical start, each iteration runs one simulation and corrects every scale by
 // a Newton step in log space on the sensitivities d ln(response) / d ln(scale): the priors (1 for
 // moduli and strengths, 0.7 for nu, no coupling: the proportional correction) updated by
@@ -29,7 +30,8 @@ struct FastGroup {
 };
 
 // The groups of the input's targets. Throws InputError (the calibration file, key 'parameters')
-// when a target has no free key to move, or a group's bounds admit no common scale.
+// when a target has no free key to move, or a group's bounds admit no common scale; key
+// 'targets' for sigma_t and G_F together (one group of keys moves both).
 std::vector<FastGroup> fast_groups(const CalibrationInput& input);
 void check_fast_parameters(const CalibrationInput& input);
 

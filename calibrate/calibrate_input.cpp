@@ -22,23 +22,43 @@ namespace cdem::calib {
 
 namespace {
 
+// Target -> the test kind that measures it -> the summary field it is read from -> its unit.
 struct TargetInfo {
   const char* name;
   const char* unit;
   const char* summary_field;  // of `cdem run --summary` (lab/summary_fields.hpp)
+  TestKind test;
+  bool fitted_in_log;  // the paper strategy's surface is on ln(response)
 };
 
 // Indexed by CalibrationTarget.
 constexpr TargetInfo kTargets[kCalibrationTargetCount] = {
-    {"sigma_u", "MPa", dem::summary_field::kPeakStress},
-    {"E", "GPa", dem::summary_field::kYoungModulus},
-    {"nu", "", dem::summary_field::kPoissonRatio},
-    {"sigma_t", "MPa", dem::summary_field::kTensileStrength},
+    {"sigma_u", "MPa", dem::summary_field::kPeakStress, TestKind::Uniaxial, false},
+    {"E", "GPa", dem::summary_field::kYoungModulus, TestKind::Uniaxial, false},
+    {"nu", "", dem::summary_field::kPoissonRatio, TestKind::Uniaxial, false},
+    {"sigma_t", "MPa", dem::summary_field::kTensileStrength, TestKind::Tension, false},
+    {"G_F", "N/m", dem::summary_field::kFractureEnergy, TestKind::Bending, true},
 };
 
 const TargetInfo& info(CalibrationTarget target) {
   return kTargets[static_cast<std::size_t>(target)];
 }
+
+// The test files [tests] can name: the key, the `[test] type` the file must have, the [specimen]
+// key of its generator. A kind with two entries (tension) takes exactly one of them.
+struct TestFileInfo {
+  TestKind kind;
+  const char* key;
+  const char* type;
+  const char* generator_key;
+};
+
+constexpr TestFileInfo kTestFiles[] = {
+    {TestKind::Uniaxial, "uniaxial", "uniaxial", "generator"},
+    {TestKind::Tension, "brazilian", "brazilian", "brazilian_generator"},
+    {TestKind::Tension, "direct_tension", "direct_tension", "generator"},
+    {TestKind::Bending, "bending", "three_point_bending", "bending_generator"},
+};
 
 }  // namespace
 
@@ -56,8 +76,11 @@ const char* target_summary_field(CalibrationTarget target) {
   return info(target).summary_field;
 }
 
-bool target_needs_tension_test(CalibrationTarget target) {
-  return target == CalibrationTarget::SigmaT;
+TestKind target_test_kind(CalibrationTarget target) {
+  return info(target).test;
+}
+bool target_fitted_in_log(CalibrationTarget target) {
+  return info(target).fitted_in_log;
 }
 
 const char* role_name(ParameterRole role) {
@@ -92,14 +115,10 @@ ParameterRole parameter_role(const std::string& dotted_key) {
   return ParameterRole::Other;
 }
 
-bool CalibrationInput::needs_uniaxial() const {
-  return std::any_of(targets.begin(), targets.end(),
-                     [](const TargetValue& t) { return !target_needs_tension_test(t.target); });
-}
-
-bool CalibrationInput::needs_tension_test() const {
-  return std::any_of(targets.begin(), targets.end(),
-                     [](const TargetValue& t) { return target_needs_tension_test(t.target); });
+const CalibrationTest* CalibrationInput::test(TestKind kind) const {
+  for (const auto& t : tests)
+    if (t.kind == kind) return &t;
+  return nullptr;
 }
 
 double CalibrationInput::target_value(CalibrationTarget target) const {
@@ -270,7 +289,7 @@ CalibrationParameter read_parameter(const InputTable& t, const toml::table& mate
 
 void read_targets(const InputTable& root, CalibrationInput& in) {
   const InputTable t = root.table("targets");
-  t.reject_unknown_keys({"sigma_u", "E", "nu", "sigma_t"});
+  t.reject_unknown_keys({"sigma_u", "E", "nu", "sigma_t", "G_F_N_per_m"});
   const auto positive_stress = [&](const char* key, double unit) {
     return t.quantity(key, Dimension::Stress, Range::positive()) / unit;
   };
@@ -280,8 +299,12 @@ void read_targets(const InputTable& root, CalibrationInput& in) {
   if (t.has("nu")) in.targets.push_back({CalibrationTarget::Nu, t.number("nu", Range::open(0, 1))});
   if (t.has("sigma_t"))
     in.targets.push_back({CalibrationTarget::SigmaT, positive_stress("sigma_t", units::MPa)});
+  // N/m (= J/m^2) has no unit suffix of its own in the input tables: the unit is in the key.
+  if (t.has("G_F_N_per_m"))
+    in.targets.push_back({CalibrationTarget::GF, t.number("G_F_N_per_m", Range::positive())});
   if (in.targets.empty())
-    root.fail("targets", "give at least one of sigma_u, E, nu, sigma_t (e.g. sigma_u_MPa = 40)");
+    root.fail("targets",
+              "give at least one of sigma_u, E, nu, sigma_t, G_F_N_per_m (e.g. sigma_u_MPa = 40)");
 }
 
 }  // namespace
@@ -301,35 +324,61 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
   if (in.output_dir.empty()) root.fail("output_dir", "must not be empty");
   read_targets(root, in);
 
-  // Base tests; the uniaxial test's materials are the start point of every test.
+  // Base tests, one per kind of test the targets need (the table kTestFiles); the first one's
+  // materials (the uniaxial test's when it runs) are the start point of every test.
   const InputTable tests = root.table("tests");
-  tests.reject_unknown_keys({"uniaxial", "brazilian", "direct_tension"});
-  std::optional<toml::table> uniaxial, tension;
-  if (in.needs_uniaxial()) uniaxial = read_test(tests, "uniaxial", file, "uniaxial");
-  if (in.needs_tension_test()) {
-    if (tests.has("brazilian") == tests.has("direct_tension"))
-      tests.fail("brazilian",
-                 "sigma_t is a target: name exactly one tension test, brazilian = "
-                 "\"FILE\" or direct_tension = \"FILE\"");
-    in.tension_test_type = tests.has("brazilian") ? "brazilian" : "direct_tension";
-    tension = read_test(tests, in.tension_test_type, file, in.tension_test_type);
+  std::vector<std::string> test_keys;
+  for (const auto& f : kTestFiles) test_keys.push_back(f.key);
+  tests.reject_unknown_keys(test_keys);
+  std::vector<const TestFileInfo*> test_files;  // per in.tests entry
+  std::vector<toml::table> test_tables;
+  for (const TestKind kind : {TestKind::Uniaxial, TestKind::Tension, TestKind::Bending}) {
+    CalibrationTest test;
+    test.kind = kind;
+    std::string measured;  // "sigma_u, E"
+    for (const auto& t : in.targets)
+      if (target_test_kind(t.target) == kind) {
+        test.targets.push_back(t.target);
+        measured += (measured.empty() ? "" : ", ") + std::string(target_name(t.target));
+      }
+    if (test.targets.empty()) continue;
+    std::vector<const TestFileInfo*> allowed, named;
+    for (const auto& f : kTestFiles) {
+      if (f.kind != kind) continue;
+      allowed.push_back(&f);
+      if (tests.has(f.key)) named.push_back(&f);
+    }
+    if (named.size() != 1) {
+      std::string choices;
+      for (const auto* f : allowed)
+        choices += (choices.empty() ? "" : " or ") + std::string(f->key) + " = \"FILE\"";
+      const char* what = kind == TestKind::Uniaxial  ? "uniaxial"
+                         : kind == TestKind::Tension ? "tension"
+                                                     : "three-point bending";
+      tests.fail(allowed.front()->key,
+                 measured + (test.targets.size() == 1 ? " is a target" : " are targets") +
+                     ": name " + (allowed.size() > 1 ? "exactly one " : "the ") + what + " test, " +
+                     choices);
+    }
+    test.name = named.front()->key;
+    test_tables.push_back(read_test(tests, test.name, file, named.front()->type));
+    test_files.push_back(named.front());
+    in.tests.push_back(std::move(test));
   }
-  const toml::table& first = uniaxial ? *uniaxial : *tension;
-  toml::table materials = *first["materials"].as_table();
+  toml::table materials = *test_tables.front()["materials"].as_table();
   floats_only(materials);
-  const std::string materials_label =
-      tests.string(uniaxial ? "uniaxial" : in.tension_test_type) + " (materials)";
+  const std::string& first_test = in.tests.front().name;
+  const std::string materials_label = tests.string(first_test) + " (materials)";
   in.materials = to_text(toml::table{{"materials", materials}});
   if (const auto problem = material_table_problem(in.materials, materials_label); !problem.empty())
-    tests.fail(uniaxial ? "uniaxial" : in.tension_test_type, problem);
-  for (auto* test : {uniaxial ? &*uniaxial : nullptr, tension ? &*tension : nullptr}) {
-    if (!test) continue;
-    test->insert_or_assign("materials", materials);
-    test->insert_or_assign("specimen", "");
-    test->erase("seed");
+    tests.fail(first_test, problem);
+  for (std::size_t i = 0; i < in.tests.size(); ++i) {
+    toml::table& test = test_tables[i];
+    test.insert_or_assign("materials", materials);
+    test.insert_or_assign("specimen", "");
+    test.erase("seed");
+    in.tests[i].text = to_text(test);
   }
-  if (uniaxial) in.uniaxial_test = to_text(*uniaxial);
-  if (tension) in.tension_test = to_text(*tension);
 
   const auto parameter_tables = root.tables("parameters");
   if (parameter_tables.empty())
@@ -342,11 +391,14 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
   }
 
   const InputTable specimen = root.table("specimen");
-  specimen.reject_unknown_keys({"generator", "brazilian_generator", "seed"});
-  if (in.needs_uniaxial()) in.uniaxial_generator = generator_text(specimen, "generator", file);
-  if (in.needs_tension_test())
-    in.tension_generator = generator_text(
-        specimen, in.tension_test_type == "brazilian" ? "brazilian_generator" : "generator", file);
+  specimen.reject_unknown_keys({"generator", "brazilian_generator", "bending_generator", "seed"});
+  for (std::size_t i = 0; i < in.tests.size(); ++i) {
+    const char* key = test_files[i]->generator_key;
+    if (!specimen.has(key))
+      specimen.fail(key, "missing: the generator input of the " + in.tests[i].name +
+                             " test's specimens (tests." + in.tests[i].name + ")");
+    in.tests[i].generator = generator_text(specimen, key, file);
+  }
   constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
   in.calibration_seed = static_cast<std::uint64_t>(specimen.integer_or("seed", 1, 0, kMaxSeed));
 
@@ -363,7 +415,7 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
     root.fail("verification_seeds", "repeats a seed; verification specimens must be independent");
   in.verification_tolerance =
       root.number_or("verification_tolerance", 0.05, Range::left_open(0, 1));
-  for (const char* key : {"generator", "brazilian_generator"})
+  for (const char* key : {"generator", "brazilian_generator", "bending_generator"})
     if (specimen.has(key)) in.generator_files.push_back(relative_to(file, specimen.string(key)));
 
   if (const auto budget = root.optional_table("budget")) {

@@ -19,17 +19,30 @@ enum class CalibrationTarget {
   E,       // Young's modulus (tangent at 50 % of peak, uniaxial), GPa
   Nu,      // Poisson's ratio at 50 % of peak (uniaxial), dimensionless
   SigmaT,  // tensile strength, MPa: Brazilian splitting or direct tension (named in [tests])
+  GF,      // fracture energy (RILEM TC-50 FMC, notched-beam three-point bending), N/m
 };
-inline constexpr int kCalibrationTargetCount = 4;
+inline constexpr int kCalibrationTargetCount = 5;
 
-const char* target_name(CalibrationTarget target);  // "sigma_u", "E", "nu", "sigma_t"
-const char* target_unit(CalibrationTarget target);  // "MPa", "GPa", "", "MPa"
+// The kinds of lab test a calibration runs; each measures its own targets (one table in
+// calibrate_input.cpp maps every target to its test kind, summary field and unit).
+enum class TestKind {
+  Uniaxial,  // sigma_u, E, nu
+  Tension,   // sigma_t: Brazilian splitting or direct tension, whichever [tests] names
+  Bending,   // G_F: three-point bending of a notched beam
+};
+
+const char* target_name(CalibrationTarget target);  // "sigma_u", "E", "nu", "sigma_t", "G_F"
+const char* target_unit(CalibrationTarget target);  // "MPa", "GPa", "", "MPa", "N/m"
 // "sigma_u (MPa)", "nu": the name with its unit, for tables and axes.
 std::string target_with_unit(CalibrationTarget target);
 // The field of `cdem run --summary` that measures the target.
 const char* target_summary_field(CalibrationTarget target);
-// True for the target measured by the tension test (sigma_t), false for the uniaxial ones.
-bool target_needs_tension_test(CalibrationTarget target);
+// The kind of lab test that measures the target.
+TestKind target_test_kind(CalibrationTarget target);
+// True when the paper strategy fits the target's response surface on its logarithm: G_F, which
+// scales as sigma_b^2 / E* with brittle bonds and so spans decades within the strength bounds
+// (a factor 8 of sigma_b is 64 of G_F), where a quadratic in the value misses the low end.
+bool target_fitted_in_log(CalibrationTarget target);
 
 struct TargetValue {
   CalibrationTarget target = CalibrationTarget::SigmaU;
@@ -77,6 +90,23 @@ struct PaperSettings {
   int max_refinements = 1;
 };
 
+// One lab test of a calibration: the base test file named in [tests] and the specimens it runs on.
+struct CalibrationTest {
+  TestKind kind = TestKind::Uniaxial;
+  // The [tests] key that named it ("uniaxial", "brazilian", "direct_tension", "bending"): also
+  // the name of its specimen and stage campaigns.
+  std::string name;
+  // The base test as TOML text with the materials inline and the specimen key to be set per run;
+  // integers of the material table are written as floats so that campaign values are never
+  // rounded.
+  std::string text;
+  // Its specimens' generator input as text; each specimen is `cdem generate` with a seed. Direct
+  // tension runs on the uniaxial `generator`'s specimens (generated once), a Brazilian disc on
+  // `brazilian_generator`'s, a notched beam on `bending_generator`'s.
+  std::string generator;
+  std::vector<CalibrationTarget> targets;  // what it measures, in the order of input.targets
+};
+
 struct CalibrationInput {
   std::filesystem::path file;  // the calibration file, as given
   CalibrationStrategy strategy = CalibrationStrategy::Fast;
@@ -84,20 +114,11 @@ struct CalibrationInput {
   std::vector<TargetValue> targets;
   std::vector<CalibrationParameter> parameters;
 
-  // The base lab tests as TOML text with the materials inline and the specimen key to be set
-  // per run; integers of the material table are written as floats so that campaign values are
-  // never rounded.
-  std::string uniaxial_test;  // empty when no target needs it
-  std::string tension_test;   // empty when sigma_t is not a target
-  // Which test measures sigma_t: "brazilian" or "direct_tension" (the [tests] key given).
-  std::string tension_test_type;
+  // The lab tests the targets need, in TestKind order (uniaxial, tension, bending); each point
+  // of a strategy runs every one of them.
+  std::vector<CalibrationTest> tests;
   std::string materials;  // the base [materials.*] tables as TOML text (start values)
 
-  // Specimens: the generator inputs as text; each specimen is `cdem generate` with a seed.
-  std::string uniaxial_generator;
-  // The tension test's specimens: `brazilian_generator` for a Brazilian disc; for direct
-  // tension the uniaxial `generator` (the same rectangular specimen, generated once).
-  std::string tension_generator;
   std::uint64_t calibration_seed = 1;             // specimen the strategy iterates on
   std::vector<std::uint64_t> verification_seeds;  // independent specimens (default 5)
 
@@ -111,8 +132,8 @@ struct CalibrationInput {
   FastSettings fast;
   PaperSettings paper;
 
-  bool needs_uniaxial() const;
-  bool needs_tension_test() const;
+  const CalibrationTest* test(TestKind kind) const;  // nullptr when no target needs it
+  bool needs(TestKind kind) const { return test(kind) != nullptr; }
   double target_value(CalibrationTarget target) const;  // NaN when not a target
 };
 

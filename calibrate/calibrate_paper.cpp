@@ -224,10 +224,18 @@ CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simu
   std::vector<InversionTarget> inversion_targets;
   try {
     for (const auto& t : input.targets) {
-      result.surfaces.push_back(
-          {t.target, ResponseSurface::fit(rows_of(kept_natural, surface_ok),
-                                          responses(*surface, surface_ok, t.target),
-                                          SurfaceModel::kQuadratic, fit_options)});
+      const bool log_response = target_fitted_in_log(t.target);
+      Eigen::VectorXd y = responses(*surface, surface_ok, t.target);
+      if (log_response) {
+        if (!(y.minCoeff() > 0))
+          throw std::invalid_argument(std::string(target_name(t.target)) +
+                                      " is fitted on its logarithm and a run measured it <= 0");
+        y = y.array().log();
+      }
+      result.surfaces.push_back({t.target,
+                                 ResponseSurface::fit(rows_of(kept_natural, surface_ok), y,
+                                                      SurfaceModel::kQuadratic, fit_options),
+                                 log_response});
     }
   } catch (const std::invalid_argument& e) {
     result.stop_reason = std::string(
@@ -244,8 +252,12 @@ CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simu
     std::vector<InversionTarget> out;
     for (std::size_t t = 0; t < result.surfaces.size(); ++t) {
       const auto& s = result.surfaces[t];
-      out.push_back(
-          surface_target(target_name(s.target), s.surface, input.target_value(s.target) / bias[t]));
+      const double aim = input.target_value(s.target) / bias[t];
+      out.push_back(s.log_response
+                        ? InversionTarget{target_name(s.target),
+                                          [s](const Eigen::VectorXd& x) { return s.predict(x); },
+                                          aim}
+                        : surface_target(target_name(s.target), s.surface, aim));
     }
     return out;
   };
@@ -289,7 +301,7 @@ CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simu
     if (v->passed || round == input.paper.max_refinements) break;
     bool usable = true;
     for (std::size_t t = 0; t < result.surfaces.size(); ++t) {
-      const double predicted = result.surfaces[t].surface.predict(result.inversion->x);
+      const double predicted = result.surfaces[t].predict(result.inversion->x);
       double mean = std::nan("");
       for (const auto& stat : v->targets)
         if (stat.target == result.surfaces[t].target) mean = stat.mean;

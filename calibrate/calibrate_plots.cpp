@@ -55,7 +55,7 @@ std::filesystem::path surface_plot(const CalibrationInput& input, const Calibrat
       Eigen::VectorXd x = at;
       x[static_cast<Eigen::Index>(j)] = p.lower + 0.5 * (coded + 1) * (p.upper - p.lower);
       s.x.push_back(coded);
-      s.y.push_back(fit.surface.predict(x));
+      s.y.push_back(fit.predict(x));
     }
     chart.series.push_back(std::move(s));
   }

@@ -160,7 +160,9 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
     md << "\n## Response surfaces (" << input.paper.surface << ", quadratic)\n\n";
     for (const auto& s : r.surfaces) {
       const auto& f = s.surface;
-      md << "### " << target_with_unit(s.target) << "\n\nR2 = " << fixed(f.r_squared(), 5)
+      md << "### " << target_with_unit(s.target) << "\n\n"
+         << (s.log_response ? "Fitted on ln(" + std::string(target_name(s.target)) + "). " : "")
+         << "R2 = " << fixed(f.r_squared(), 5)
          << ", adjusted R2 = " << fixed(f.adjusted_r_squared(), 5) << ", " << f.runs()
          << " runs, residual df " << f.residual_df() << ".\n\n"
          << "| term (coded) | coefficient | p |\n|---|---|---|\n";
@@ -205,6 +207,14 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
     for (const auto& t : input.targets) md << " " << fixed(s.outcome.response(t.target)) << " |";
     md << "\n";
   }
+  bool warned = false;
+  for (std::size_t i = 0; i < r.simulations.size(); ++i)
+    for (const auto& w : r.simulations[i].outcome.warnings) {
+      if (!warned) md << "\n## Warnings of the runs (from their summaries)\n\n";
+      warned = true;
+      md << "- #" << i + 1 << " (" << r.simulations[i].stage << ", " << r.simulations[i].label
+         << "): " << w << "\n";
+    }
   return md.str();
 }
 
@@ -251,6 +261,7 @@ nlohmann::json calibration_report_json(const CalibrationInput& input, const Cali
           input.parameters[static_cast<std::size_t>(r.leaders[i])].key;
   for (const auto& s : r.surfaces) {
     json e{{"target", target_name(s.target)},
+           {"log_response", s.log_response},
            {"r2", s.surface.r_squared()},
            {"adjusted_r2", std::isfinite(s.surface.adjusted_r_squared())
                                ? json(s.surface.adjusted_r_squared())
@@ -297,6 +308,7 @@ nlohmann::json calibration_report_json(const CalibrationInput& input, const Cali
       e["responses"][target_name(t.target)] = std::isfinite(y) ? json(y) : json();
     }
     if (!s.outcome.ok) e["message"] = s.outcome.message;
+    if (!s.outcome.warnings.empty()) e["warnings"] = s.outcome.warnings;
     j["runs"].push_back(e);
   }
   return j;

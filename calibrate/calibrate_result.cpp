@@ -5,7 +5,7 @@
 namespace cdem::calib {
 
 int simulations_per_point(const CalibrationInput& input) {
-  return (input.needs_uniaxial() ? 1 : 0) + (input.needs_tension_test() ? 1 : 0);
+  return static_cast<int>(input.tests.size());
 }
 
 std::optional<std::vector<SimulationOutcome>> run_batch(

@@ -3,6 +3,7 @@
 // verification statistics, targets out of reach, and (paper) the screening analyses, fitted
 // surfaces and inversion. Also the two steps every strategy shares: running a batch within the
 // simulation budget, and verifying a parameter set on independent specimens.
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,7 +58,12 @@ struct ScreeningAnalysis {  // paper strategy, per target
 
 struct SurfaceFit {  // paper strategy, per target
   CalibrationTarget target = CalibrationTarget::SigmaU;
-  ResponseSurface surface;
+  ResponseSurface surface;    // of the response, or of its logarithm (log_response)
+  bool log_response = false;  // target_fitted_in_log(target)
+  // The response the surface predicts at x (natural units of the kept keys), in target units.
+  double predict(const Eigen::VectorXd& x) const {
+    return log_response ? std::exp(surface.predict(x)) : surface.predict(x);
+  }
 };
 
 // One row of the fast strategy's convergence table.
@@ -95,7 +101,8 @@ struct CalibrationResult {
   }
 };
 
-// Lab-test runs one point costs (a uniaxial and a Brazilian test are two).
+// Lab-test runs one point costs: one per test of input.tests (a uniaxial and a Brazilian test
+// are two).
 int simulations_per_point(const CalibrationInput& input);
 
 // Runs the batch if the budget allows it, records every simulation and returns the outcomes;

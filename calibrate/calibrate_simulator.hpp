@@ -24,13 +24,21 @@ struct SimulationOutcome {
   bool ok = false;
   std::string message;  // why it failed; empty when ok
   // Measured value per CalibrationTarget (index = enum value), target units; NaN when not measured.
-  std::array<double, kCalibrationTargetCount> responses{
-      std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(),
-      std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  std::array<double, kCalibrationTargetCount> responses = not_measured();
   int simulations = 0;  // lab-test runs it took (a uniaxial and a Brazilian test count two)
+  // What the runs' summaries warned about a figure they measured, e.g. a G_F cut short at
+  // max_deflection (low): the report lists them beside the numbers.
+  std::vector<std::string> warnings;
 
   double response(CalibrationTarget target) const {
     return responses[static_cast<std::size_t>(target)];
+  }
+
+ private:
+  static std::array<double, kCalibrationTargetCount> not_measured() {
+    std::array<double, kCalibrationTargetCount> nan;
+    nan.fill(std::numeric_limits<double>::quiet_NaN());
+    return nan;
   }
 };
 

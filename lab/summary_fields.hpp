@@ -8,5 +8,7 @@ inline constexpr const char* kPeakStress = "peak_stress_MPa";            // MPa,
 inline constexpr const char* kYoungModulus = "young_modulus_GPa";        // GPa, uniaxial
 inline constexpr const char* kPoissonRatio = "poisson_ratio";            // 1, uniaxial
 inline constexpr const char* kTensileStrength = "tensile_strength_MPa";  // MPa, tension tests
+// N/m, three-point bending: G_F (RILEM TC-50 FMC) in the summary's `bending` table.
+inline constexpr const char* kFractureEnergy = "bending.fracture_energy_N_per_m";
 
 }  // namespace cdem::dem::summary_field

@@ -280,6 +280,36 @@ expect calibrate_bad_generator 2 "bad_generator.toml" "specimen.width_mm" "cal_o
 expect calibrate_output_is_input 2 "c30_calibrate.toml" "-o" "" -- \
   "$CDEM" calibrate c30_calibrate.toml -o c30_calibrate.toml -q
 
+# --- cdem calibrate with a G_F target (three-point bending): the bending test and its notched
+# beams must be named, of the right type, and a sound beam; fast cannot set sigma_t and G_F apart.
+mkdir -p materials
+cp "$SRC/samples/c30_calibrate_gf.toml" "$SRC/samples/small_beam_bending.toml" \
+  "$SRC/samples/small_beam_specimen.toml" "$SRC/samples/c30_flat_joint_calibrate_tension.toml" .
+cp "$SRC/samples/materials/c30_flat_joint.toml" "$SRC/samples/materials/c30_flat_joint_start.toml" \
+  materials/
+grep -v '^bending = ' c30_calibrate_gf.toml > cal_gf_no_test.toml
+expect calibrate_gf_without_bending_test 2 "cal_gf_no_test.toml" "tests.bending" "cal_out" -- \
+  "$CDEM" calibrate cal_gf_no_test.toml -o cal_out -q
+grep -v '^bending_generator = ' c30_calibrate_gf.toml > cal_gf_no_generator.toml
+expect calibrate_gf_without_beam_generator 2 "cal_gf_no_generator.toml" \
+  "specimen.bending_generator" "cal_out" -- "$CDEM" calibrate cal_gf_no_generator.toml -o cal_out -q
+sed -e 's/^bending = .*/bending = "c30_calibrate_ucs.toml"/' c30_calibrate_gf.toml > cal_gf_wrong_test.toml
+expect calibrate_gf_test_not_bending 2 "c30_calibrate_ucs.toml" "tests.bending" "cal_out" -- \
+  "$CDEM" calibrate cal_gf_wrong_test.toml -o cal_out -q
+sed -e 's/^G_F_N_per_m = .*/G_F_N_per_m = -20/' c30_calibrate_gf.toml > cal_gf_negative.toml
+expect calibrate_gf_negative 2 "cal_gf_negative.toml" "targets.G_F_N_per_m" "cal_out" -- \
+  "$CDEM" calibrate cal_gf_negative.toml -o cal_out -q
+sed -e 's/^notch_depth_mm = .*/notch_depth_mm = 15/' small_beam_specimen.toml > deep_notch.toml
+sed -e 's/small_beam_specimen.toml/deep_notch.toml/' c30_calibrate_gf.toml > cal_gf_deep_notch.toml
+expect calibrate_gf_notch_too_deep 2 "deep_notch.toml" "specimen.notch_depth" "cal_out" -- \
+  "$CDEM" calibrate cal_gf_deep_notch.toml -o cal_out -q
+sed -e 's/^G_F_N_per_m = .*/&\nsigma_t_MPa = 2.9/' \
+  -e 's/^bending = .*/&\ndirect_tension = "c30_flat_joint_calibrate_tension.toml"/' \
+  -e 's/^bending_generator = .*/&\ngenerator = "small_beam_specimen.toml"/' \
+  c30_calibrate_gf.toml > cal_gf_sigma_t.toml
+expect calibrate_gf_with_sigma_t_fast 2 "cal_gf_sigma_t.toml" "targets" "cal_out" -- \
+  "$CDEM" calibrate cal_gf_sigma_t.toml -o cal_out -q
+
 echo "$passed passed, $failures failed"
 [ "$passed" -ge 40 ] || { echo "FAIL: fewer than 40 cases ran"; exit 1; }
 [ "$failures" -eq 0 ]

@@ -79,13 +79,39 @@ std::filesystem::path make_calibration(const std::string& test, const std::strin
 
 const std::string kC30Targets = "[targets]\nsigma_u_MPa = 40\nE_GPa = 30\nnu = 0.20\n";
 
+// The point's parameter values by their keys.
+std::map<std::string, double> values_by_key(const CalibrationInput& input,
+                                            const SimulationPoint& p) {
+  std::map<std::string, double> v;
+  for (std::size_t i = 0; i < input.parameters.size(); ++i)
+    v[input.parameters[i].key] = p.values[static_cast<Eigen::Index>(i)];
+  return v;
+}
+
+// A stand-in for the DEM that answers point by point, counting the points it was asked.
+class PointModel : public Simulator {
+ public:
+  int points = 0;
+  std::vector<SimulationOutcome> run(const std::string&,
+                                     const std::vector<SimulationPoint>& batch) override {
+    std::vector<SimulationOutcome> out;
+    for (const auto& p : batch) {
+      ++points;
+      out.push_back(respond(p));
+    }
+    return out;
+  }
+
+ protected:
+  virtual SimulationOutcome respond(const SimulationPoint& p) = 0;
+};
+
 // The analytic model: power laws with weak couplings between the groups and a per-specimen
 // scatter, shaped like the measured C30 behaviour (E about 1.65 x mortar E*, sigma_u about
 // 1.17 x mortar sigma_b, nu 0.207 at kn/ks = 1.45).
-class AnalyticModel : public Simulator {
+class AnalyticModel : public PointModel {
  public:
   explicit AnalyticModel(const CalibrationInput& input) : input_(input) {}
-  int points = 0;
   // When set, the strength is that of the weakest bond family, as in the DEM (the mortar
   // tensile strength, its cohesion / 3 or twice the ITZ tensile strength, whichever is least):
   // one strength raised alone cannot raise sigma_u past the others.
@@ -101,41 +127,34 @@ class AnalyticModel : public Simulator {
   // docs/calibration_runs/c30_flat_joint_published_recipe_report.md: about -0.5 and 0.9).
   double kratio_exponent_E = -0.15;
   double kratio_exponent_nu = 0.6;
-  std::vector<SimulationOutcome> run(const std::string&,
-                                     const std::vector<SimulationPoint>& batch) override {
-    std::vector<SimulationOutcome> out;
-    for (const auto& p : batch) {
-      ++points;
-      std::map<std::string, double> v;
-      for (std::size_t i = 0; i < input_.parameters.size(); ++i)
-        v[input_.parameters[i].key] = p.values[static_cast<Eigen::Index>(i)];
-      const auto get = [&](const std::string& key, double fallback) {
-        return v.count(key) ? v[key] : fallback;
-      };
-      const double em = get("materials.mortar.emod_GPa", 16), ei = get("materials.itz.emod_GPa", 8);
-      const double km = get("materials.mortar.kratio", 1.45),
-                   ki = get("materials.itz.kratio", 1.45);
-      const double sm = get("materials.mortar.pb_tensile_strength_MPa", 10);
-      const double si = get("materials.itz.pb_tensile_strength_MPa", 5);
-      const double cm = get("materials.mortar.pb_cohesion_MPa", 30);
-      // Specimens differ by a few per cent, as generated specimens do.
-      const double scatter = 1 + 0.015 * std::sin(3.0 * static_cast<double>(p.specimen_seed));
-      SimulationOutcome o;
-      o.ok = true;
-      o.simulations = 1;
-      const double strength =
-          (weakest_link ? std::min({sm, cm / 3, 2 * si}) : sm) *
-          (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_strength);
-      o.responses[0] = scatter * 1.17 * std::pow(strength, 0.85) * std::pow(si / 0.5, 0.15) *
-                       std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
-      o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
-                       std::pow(km / 1.45, kratio_exponent_E) * std::pow(sm / 10, 0.02);  // E, GPa
-      o.responses[2] = 0.207 * std::pow(km / 1.45, kratio_exponent_nu) * std::pow(ki / 1.45, 0.1) *
-                       std::pow(em / 16, -0.03) *
-                       (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_nu);
-      out.push_back(o);
-    }
-    return out;
+
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    std::map<std::string, double> v = values_by_key(input_, p);
+    const auto get = [&](const std::string& key, double fallback) {
+      return v.count(key) ? v[key] : fallback;
+    };
+    const double em = get("materials.mortar.emod_GPa", 16), ei = get("materials.itz.emod_GPa", 8);
+    const double km = get("materials.mortar.kratio", 1.45), ki = get("materials.itz.kratio", 1.45);
+    const double sm = get("materials.mortar.pb_tensile_strength_MPa", 10);
+    const double si = get("materials.itz.pb_tensile_strength_MPa", 5);
+    const double cm = get("materials.mortar.pb_cohesion_MPa", 30);
+    // Specimens differ by a few per cent, as generated specimens do.
+    const double scatter = 1 + 0.015 * std::sin(3.0 * static_cast<double>(p.specimen_seed));
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 1;
+    const double strength =
+        (weakest_link ? std::min({sm, cm / 3, 2 * si}) : sm) *
+        (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_strength);
+    o.responses[0] = scatter * 1.17 * std::pow(strength, 0.85) * std::pow(si / 0.5, 0.15) *
+                     std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
+    o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
+                     std::pow(km / 1.45, kratio_exponent_E) * std::pow(sm / 10, 0.02);  // E, GPa
+    o.responses[2] = 0.207 * std::pow(km / 1.45, kratio_exponent_nu) * std::pow(ki / 1.45, 0.1) *
+                     std::pow(em / 16, -0.03) *
+                     (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_nu);
+    return o;
   }
 
  private:
@@ -179,11 +198,13 @@ TEST(CalibrateInput, ReadsTheSample) {
   EXPECT_EQ(in.parameters[7].role, ParameterRole::ShearStrength);
   EXPECT_DOUBLE_EQ(in.parameters[7].start, 15);
   EXPECT_EQ(in.verification_seeds, (std::vector<std::uint64_t>{2, 3, 4, 5, 6}));
-  EXPECT_TRUE(in.needs_uniaxial());
-  EXPECT_FALSE(in.needs_tension_test());
+  ASSERT_TRUE(in.needs(TestKind::Uniaxial));
+  EXPECT_FALSE(in.needs(TestKind::Tension));
+  EXPECT_FALSE(in.needs(TestKind::Bending));
   // The materials are inline in the base test, integers written as floats (a campaign would
   // round values written to an integer key).
-  EXPECT_NE(in.uniaxial_test.find("emod_GPa = 16.0"), std::string::npos) << in.uniaxial_test;
+  const std::string& ucs = in.test(TestKind::Uniaxial)->text;
+  EXPECT_NE(ucs.find("emod_GPa = 16.0"), std::string::npos) << ucs;
 }
 
 // Four targets with sigma_t by direct tension on flat joints (issue #12): the tension test runs
@@ -193,11 +214,12 @@ TEST(CalibrateInput, ReadsTheFlatJointSampleWithDirectTension) {
                                          "samples/c30_flat_joint_calibrate.toml");
   ASSERT_EQ(in.targets.size(), 4u);
   EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::SigmaT), 2.9);
-  EXPECT_TRUE(in.needs_uniaxial());
-  EXPECT_TRUE(in.needs_tension_test());
-  EXPECT_EQ(in.tension_test_type, "direct_tension");
-  EXPECT_EQ(in.tension_generator, in.uniaxial_generator);
-  EXPECT_NE(in.tension_test.find("direct_tension"), std::string::npos);
+  ASSERT_TRUE(in.needs(TestKind::Uniaxial));
+  ASSERT_TRUE(in.needs(TestKind::Tension));
+  const auto& tension = *in.test(TestKind::Tension);
+  EXPECT_EQ(tension.name, "direct_tension");
+  EXPECT_EQ(tension.generator, in.test(TestKind::Uniaxial)->generator);
+  EXPECT_NE(tension.text.find("direct_tension"), std::string::npos);
   EXPECT_EQ(in.parameters[4].role, ParameterRole::TensileStrength);  // fj_tensile_strength
   EXPECT_EQ(in.parameters[7].role, ParameterRole::ShearStrength);    // fj_cohesion
   for (const auto& g : fast_groups(in)) {
@@ -560,6 +582,246 @@ TEST(CalibratePaper, ReachesAWeakestLinkStrengthThroughTheFollowers) {
         in.parameters[i].start / in.parameters[j].start, 1e-12)
         << in.parameters[i].key;
   }
+}
+
+// ---- G_F, the fracture energy of the notched beam (issue 14) -------------------------------
+
+// The calibration of make_calibration with a G_F target, the bending test `beam.toml` in [tests]
+// and its generator `beam_generator.toml` in [specimen] (each left out when its flag is false).
+std::filesystem::path make_bending_calibration(
+    const std::string& test, const std::string& head, bool bending_test = true,
+    bool bending_generator = true, const std::string& bending_type = "three_point_bending") {
+  const auto file = make_calibration(test, head);
+  const auto dir = file.parent_path();
+  write(dir / "beam.toml",
+        "specimen = \"none.h5\"\nmaterials = \"materials.toml\"\n"
+        "[test]\ntype = \"" +
+            bending_type + "\"\nspan_mm = 60\n");
+  write(dir / "beam_generator.toml",
+        "[specimen]\nshape = \"beam\"\nwidth_mm = 80\nheight_mm = 20\nnotch_depth_mm = 6\n"
+        "notch_width_mm = 2\n");
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  in.close();
+  if (bending_test) text = replace(text, "[tests]\n", "[tests]\nbending = \"beam.toml\"\n");
+  if (bending_generator)
+    text =
+        replace(text, "[specimen]\n", "[specimen]\nbending_generator = \"beam_generator.toml\"\n");
+  write(file, text);
+  return file;
+}
+
+// A synthetic model with a fracture energy: power laws in the free keys of kParameters, each
+// normalised to its value at the start (the C30 materials), shaped by what brittle bonds do
+// (docs/calibration.md "G_F"): G_F ~ sigma_b^2 / E* in the tensile strengths and the moduli (here
+// 1.7 and 0.3 on the mortar and ITZ tensile strengths, -0.9 and -0.1 on their moduli), a little
+// of the cohesion; sigma_u led by the cohesion (as flat joints, so that sigma_u and G_F can be
+// set apart by the shear and tensile strengths), E by the moduli, nu by kn/ks. Per-specimen
+// scatter of 1.5 % (3 % for G_F: a beam has one crack path).
+class FractureModel : public PointModel {
+ public:
+  explicit FractureModel(const CalibrationInput& input) : input_(input) {}
+  double other_specimens_fracture_energy = 1.0;  // relative to the calibration specimen
+  std::string warning;  // when set, every run's summary warns this (a G_F cut short)
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    std::map<std::string, double> v = values_by_key(input_, p);
+    const auto rel = [&](const std::string& key, double start) {
+      return (v.count(key) ? v[key] : start) / start;
+    };
+    const double em = rel("materials.mortar.emod_GPa", 16), ei = rel("materials.itz.emod_GPa", 8);
+    const double km = rel("materials.mortar.kratio", 1.45), ki = rel("materials.itz.kratio", 1.45);
+    const double sm = rel("materials.mortar.pb_tensile_strength_MPa", 10);
+    const double si = rel("materials.itz.pb_tensile_strength_MPa", 5);
+    const double cm = rel("materials.mortar.pb_cohesion_MPa", 30);
+    const double ci = rel("materials.itz.pb_cohesion_MPa", 15);
+    const auto seed = static_cast<double>(p.specimen_seed);
+    const bool calibration_specimen = p.specimen_seed == input_.calibration_seed;
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 2;
+    const auto at = [&](CalibrationTarget t) -> double& {
+      return o.responses[static_cast<std::size_t>(t)];
+    };
+    at(CalibrationTarget::SigmaU) = (1 + 0.015 * std::sin(3 * seed)) * 12 * std::pow(cm, 0.6) *
+                                    std::pow(ci, 0.1) * std::pow(sm, 0.3);
+    at(CalibrationTarget::E) = (1 + 0.015 * std::sin(3 * seed)) * 27 * std::pow(em, 0.9) *
+                               std::pow(ei, 0.1) * std::pow(km, -0.15);
+    at(CalibrationTarget::Nu) = 0.207 * std::pow(km, 0.6) * std::pow(ki, 0.1);
+    at(CalibrationTarget::SigmaT) = 1.4 * std::pow(sm, 0.8) * std::pow(si, 0.2);
+    at(CalibrationTarget::GF) = (1 + 0.03 * std::sin(5 * seed)) * 20 * std::pow(sm, 1.7) *
+                                std::pow(si, 0.3) * std::pow(em, -0.9) * std::pow(ei, -0.1) *
+                                std::pow(cm, 0.05) *
+                                (calibration_specimen ? 1.0 : other_specimens_fracture_energy);
+    if (!warning.empty()) o.warnings.push_back(warning);
+    return o;
+  }
+
+ private:
+  const CalibrationInput& input_;
+};
+
+const std::string kFractureTargets = "[targets]\nE_GPa = 30\nnu = 0.20\nG_F_N_per_m = 40\n";
+
+TEST(CalibrateInput, ReadsAFractureEnergyTargetWithItsBendingTest) {
+  const auto in = read_calibration_input(make_bending_calibration("gf_input", kFractureTargets));
+  EXPECT_DOUBLE_EQ(in.target_value(CalibrationTarget::GF), 40);
+  EXPECT_STREQ(target_unit(CalibrationTarget::GF), "N/m");
+  EXPECT_EQ(target_with_unit(CalibrationTarget::GF), "G_F (N/m)");
+  // Two tests, each point costs two runs: the uniaxial test (E, nu) and the beam (G_F).
+  ASSERT_EQ(in.tests.size(), 2u);
+  EXPECT_EQ(simulations_per_point(in), 2);
+  const auto* beam = in.test(TestKind::Bending);
+  ASSERT_NE(beam, nullptr);
+  EXPECT_EQ(beam->name, "bending");
+  EXPECT_EQ(beam->targets, std::vector<CalibrationTarget>{CalibrationTarget::GF});
+  EXPECT_EQ(in.test(TestKind::Uniaxial)->targets,
+            (std::vector<CalibrationTarget>{CalibrationTarget::E, CalibrationTarget::Nu}));
+  // The beam's test keeps its own keys and takes the base materials, integers as floats.
+  EXPECT_NE(beam->text.find("three_point_bending"), std::string::npos) << beam->text;
+  EXPECT_NE(beam->text.find("span_mm = 60"), std::string::npos) << beam->text;
+  EXPECT_NE(beam->text.find("pb_tensile_strength_MPa = 10.0"), std::string::npos) << beam->text;
+  EXPECT_NE(beam->generator.find("notch_depth_mm = 6"), std::string::npos) << beam->generator;
+  EXPECT_NE(beam->generator.find("seed = 0"), std::string::npos) << beam->generator;
+  EXPECT_EQ(in.generator_files.size(), 2u);
+  // Alone among the strength-like targets, G_F takes every bond strength; the prior of its own
+  // sensitivity is 2 (brittle bonds).
+  for (const auto& g : fast_groups(in)) {
+    if (g.target != CalibrationTarget::GF) continue;
+    EXPECT_EQ(g.parameters, (std::vector<int>{4, 5, 6, 7}));
+    EXPECT_EQ(g.prior_exponent, 2.0);
+  }
+  // G_F alone needs only the beam, whose materials are then the start values.
+  const auto alone =
+      read_calibration_input(make_bending_calibration("gf_alone", "[targets]\nG_F_N_per_m = 40\n"));
+  ASSERT_EQ(alone.tests.size(), 1u);
+  EXPECT_EQ(alone.tests[0].kind, TestKind::Bending);
+}
+
+TEST(CalibrateInput, RejectsABadFractureEnergyTarget) {
+  // G_F without a bending test, or without the beam's generator: the file and the key named.
+  expect_input_error(make_bending_calibration("gf_no_test", kFractureTargets, false),
+                     "tests.bending", "G_F is a target: name the three-point bending test");
+  expect_input_error(make_bending_calibration("gf_no_generator", kFractureTargets, true, false),
+                     "specimen.bending_generator", "bending test's specimens");
+  expect_input_error(
+      make_bending_calibration("gf_wrong_type", kFractureTargets, true, true, "uniaxial"),
+      "tests.bending", "type = \"three_point_bending\"");
+  expect_input_error(
+      make_bending_calibration("gf_negative", replace(kFractureTargets, "= 40", "= -40")),
+      "targets.G_F_N_per_m", "");
+  // The fast strategy cannot set sigma_t and G_F apart (one group of keys, the tensile
+  // strengths, moves both); the paper strategy accepts them.
+  const auto both = make_bending_calibration(
+      "gf_and_sigma_t", kFractureTargets + "sigma_t_MPa = 3\n[paper]\nmax_factors = 4\n");
+  {
+    std::ifstream in(both);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    in.close();
+    write(both, replace(text, "[tests]\n", "[tests]\ndirect_tension = \"ucs.toml\"\n"));
+    write(both.parent_path() / "ucs.toml",
+          "specimen = \"none.h5\"\nmaterials = \"materials.toml\"\n[test]\ntype = \"uniaxial\"\n");
+  }
+  expect_input_error(both, "tests.direct_tension", "type = \"direct_tension\"");
+  write(both.parent_path() / "tension.toml",
+        "specimen = \"none.h5\"\nmaterials = "
+        "\"materials.toml\"\n[test]\ntype = "
+        "\"direct_tension\"\n");
+  {
+    std::ifstream in(both);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    in.close();
+    write(both,
+          replace(text, "direct_tension = \"ucs.toml\"", "direct_tension = \"tension.toml\""));
+  }
+  expect_input_error(both, "targets", "sigma_t and G_F together");
+  const auto paper = read_calibration_input(both, CalibrationStrategy::Paper);
+  EXPECT_EQ(paper.tests.size(), 3u);
+  EXPECT_EQ(simulations_per_point(paper), 3);
+}
+
+TEST(CalibrateFast, ReachesAFractureEnergyTarget) {
+  const auto file = make_bending_calibration("gf_fast", kFractureTargets);
+  const auto in = read_calibration_input(file);
+  FractureModel model(in);
+  model.warning = "bending_seed1: the beam still carried 0.1 x its peak load at max_deflection";
+  const auto r = calibrate_fast(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  // Every point is a uniaxial and a bending run.
+  EXPECT_EQ(r.simulation_count, 2 * model.points);
+  EXPECT_LE(r.iterations.size(), 4u);
+  // The strengths keep their ratios (ITZ / mortar, c_b / sigma_b) while they move G_F.
+  const auto& x = r.calibrated;
+  EXPECT_NEAR(x[6] / x[4], 0.5, 1e-12);
+  EXPECT_NEAR(x[5] / x[4], 3.0, 1e-12);
+  // G_F met on the calibration specimen within the fast tolerance, and on the verification mean.
+  FractureModel check(in);
+  const auto y = check.run("check", {{x, in.calibration_seed}}).front();
+  EXPECT_NEAR(y.response(CalibrationTarget::GF) / 40, 1, in.fast.tolerance);
+  for (const auto& s : r.verifications.back().targets)
+    EXPECT_LE(std::abs(s.relative_error), in.verification_tolerance) << target_name(s.target);
+  // By the model, G_F = 40 N/m at E 30 GPa needs the strengths near (40 / 20 x (E / 27)^0.9
+  // x ...)^(1/2): about 1.5 x their start (the exact figure is not checked; the ratio to the
+  // start of the mortar tensile strength is).
+  EXPECT_GT(x[4] / 10, 1.3);
+  EXPECT_LT(x[4] / 10, 1.8);
+  // A figure the runs warned about is reported with its warning, in both reports.
+  const auto out = write_calibration(in, r, file.parent_path() / "out");
+  std::ifstream report(out.report);
+  const std::string text((std::istreambuf_iterator<char>(report)), {});
+  EXPECT_NE(text.find("## Warnings of the runs"), std::string::npos);
+  EXPECT_NE(text.find("(fast_01, iteration 1): " + model.warning), std::string::npos) << text;
+  const auto json = calibration_report_json(in, out.result);
+  EXPECT_EQ(json["runs"][0]["warnings"][0].get<std::string>(), model.warning);
+}
+
+TEST(CalibrateFast, ReachesAFractureEnergyBesideTheCompressiveStrength) {
+  // sigma_u and G_F together: sigma_u takes the shear strengths, G_F the tensile ones; the
+  // couplings (sigma_u ~ sigma_b^0.3, G_F ~ E*^-0.9) are learnt by Broyden's update. The other
+  // specimens' G_F is 6 % above the calibration specimen's: a refinement on the mean is needed.
+  const auto in = read_calibration_input(make_bending_calibration(
+      "gf_fast_four", kFractureTargets + "sigma_u_MPa = 40\n[fast]\nmax_iterations = 12\n"));
+  for (const auto& g : fast_groups(in)) {
+    if (g.target == CalibrationTarget::GF) {
+      EXPECT_EQ(g.parameters, (std::vector<int>{4, 6}));
+    }
+    if (g.target == CalibrationTarget::SigmaU) {
+      EXPECT_EQ(g.parameters, (std::vector<int>{5, 7}));
+    }
+  }
+  FractureModel model(in);
+  model.other_specimens_fracture_energy = 1.06;
+  const auto r = calibrate_fast(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.verifications.size(), 2u);
+  EXPECT_FALSE(r.verifications[0].passed);
+  for (const auto& s : r.verifications.back().targets)
+    EXPECT_LE(std::abs(s.relative_error), in.verification_tolerance) << target_name(s.target);
+}
+
+// G_F's surface is fitted on ln(G_F) (target_fitted_in_log): on this model a quadratic in G_F
+// itself (R2 0.995 over the CCD) put the inverted point 52 % above the target at the first
+// verification and 21 % after one refinement; on the logarithm -7.4 % and +4.3 %.
+TEST(CalibratePaper, ReachesAFractureEnergyTarget) {
+  const auto in = read_calibration_input(make_bending_calibration(
+      "gf_paper", "strategy = \"paper\"\n" + kFractureTargets + "[paper]\nmax_factors = 4\n"));
+  FractureModel model(in);
+  const auto r = calibrate_paper(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  // The screen finds the mortar tensile strength for G_F (its largest range).
+  EXPECT_NE(std::find(r.kept.begin(), r.kept.end(), 4), r.kept.end());
+  ASSERT_EQ(r.surfaces.size(), 3u);
+  EXPECT_EQ(r.surfaces[2].target, CalibrationTarget::GF);
+  EXPECT_TRUE(r.surfaces[2].log_response);
+  EXPECT_FALSE(r.surfaces[0].log_response);
+  // The surface predicts G_F itself (the exponential of the fit), within the fit's error of what
+  // the model gives at the calibrated point.
+  FractureModel check(in);
+  const auto y = check.run("check", {{r.calibrated, in.calibration_seed}}).front();
+  EXPECT_NEAR(r.surfaces[2].predict(r.inversion->x) / y.response(CalibrationTarget::GF), 1, 0.1);
+  for (const auto& s : r.verifications.back().targets)
+    EXPECT_LE(std::abs(s.relative_error), in.verification_tolerance) << target_name(s.target);
+  EXPECT_EQ(r.simulation_count, 2 * model.points);
 }
 
 TEST(CalibrateReport, WritesAMaterialFileTheMaterialTableReads) {

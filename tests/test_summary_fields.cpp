@@ -1,8 +1,9 @@
 // The run-summary fields calibration reads (lab/summary_fields.hpp, calibrate's targets) exist in
 // the summaries real runs write, hold numbers, and hold the figure their target names: a uniaxial
 // test for sigma_u, E and nu; a Brazilian and a direct tension test for sigma_t (a calibration
-// names one of the two). Each value is read as a campaign gathers it (json_at_path on the JSON
-// text `cdem run --summary` writes), so a renamed field fails here, not silently in calibration.
+// names one of the two); three-point bending for G_F. Each value is read as a campaign gathers it
+// (json_at_path on the JSON text `cdem run --summary` writes), so a renamed field fails here, not
+// silently in calibration.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -34,8 +35,29 @@ double expected(CalibrationTarget t, const LabTestResult& r) {
       return r.ucs.poisson_ratio;
     case CalibrationTarget::SigmaT:
       return r.tensile_strength * 1e-6;  // Pa -> MPa
+    case CalibrationTarget::GF:
+      return r.bending.fracture_energy;  // N/m (J/m^2) both
   }
   return 0;
+}
+
+// Checks every target a test of `kind` measures for calibration in the summary of `r`.
+void expect_targets_of(cdem::calib::TestKind kind, const LabTestResult& r,
+                       const cdem::dem::LabTestInput& in, int targets) {
+  const nlohmann::json summary = nlohmann::json::parse(cdem::apps::summary_json(r, in).dump(2));
+  int checked = 0;
+  for (int k = 0; k < cdem::calib::kCalibrationTargetCount; ++k) {
+    const auto t = static_cast<CalibrationTarget>(k);
+    if (cdem::calib::target_test_kind(t) != kind) continue;
+    const std::string field = cdem::calib::target_summary_field(t);
+    const nlohmann::json value = cdem::calib::json_at_path(summary, field);
+    ASSERT_TRUE(value.is_number())
+        << field << " is not a number in the " << summary["test"] << " summary";
+    EXPECT_GT(value.get<double>(), 0) << field;
+    EXPECT_EQ(value.get<double>(), expected(t, r)) << field;
+    ++checked;
+  }
+  EXPECT_EQ(checked, targets);
 }
 
 // Runs `type` on `specimen` and checks every target that test measures for calibration.
@@ -46,20 +68,9 @@ void expect_targets_in_summary(const std::string& type, const cdem::Specimen& sp
       dir, specimen,
       "[test]\ntype = \"" + type + "\"\nhistory_interval = 20\nmax_steps = 400000\n");
   const LabTestResult r = cdem::dem::run_lab_test(specimen, in);
-  const nlohmann::json summary = nlohmann::json::parse(cdem::apps::summary_json(r, in).dump(2));
   const bool tension = type != "uniaxial";
-  int checked = 0;
-  for (int k = 0; k < cdem::calib::kCalibrationTargetCount; ++k) {
-    const auto t = static_cast<CalibrationTarget>(k);
-    if (cdem::calib::target_needs_tension_test(t) != tension) continue;
-    const std::string field = cdem::calib::target_summary_field(t);
-    const nlohmann::json value = cdem::calib::json_at_path(summary, field);
-    ASSERT_TRUE(value.is_number()) << field << " is not a number in the " << type << " summary";
-    EXPECT_GT(value.get<double>(), 0) << field;
-    EXPECT_EQ(value.get<double>(), expected(t, r)) << field;
-    ++checked;
-  }
-  EXPECT_EQ(checked, tension ? 1 : 3);
+  expect_targets_of(tension ? cdem::calib::TestKind::Tension : cdem::calib::TestKind::Uniaxial, r,
+                    in, tension ? 1 : 3);
 }
 
 }  // namespace
@@ -69,4 +80,14 @@ TEST(SummaryFields, EveryFieldCalibrationReadsIsInARealSummary) {
   expect_targets_in_summary("direct_tension", cdem::test::small_rectangle_specimen());
   expect_targets_in_summary(
       "brazilian", cdem::test::packed_specimen({cdem::ContainerShape::Disc, 20e-3, 20e-3}, 8));
+}
+
+// G_F: a bending result with a known fracture energy through the summary writer (a beam loaded to
+// failure takes minutes; tests/test_lab_bending.cpp runs one and checks the figure itself).
+TEST(SummaryFields, TheFractureEnergyCalibrationReadsIsTheBendingSummarys) {
+  LabTestResult r;
+  r.type = cdem::dem::LabTestType::ThreePointBending;
+  r.bending.fracture_energy = 37.25;  // N/m
+  r.bending.fracture_energy_no_weight = 35.5;
+  expect_targets_of(cdem::calib::TestKind::Bending, r, cdem::dem::LabTestInput{}, 1);
 }
