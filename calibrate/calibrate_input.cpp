@@ -100,19 +100,10 @@ const char* role_name(ParameterRole role) {
 }
 
 ParameterRole parameter_role(const std::string& dotted_key) {
-  std::string name = dotted_key.substr(dotted_key.rfind('.') + 1);
-  for (const std::string unit : {"_GPa", "_MPa", "_kPa", "_Pa"})
-    if (name.size() > unit.size() &&
-        name.compare(name.size() - unit.size(), unit.size(), unit) == 0)
-      name.resize(name.size() - unit.size());
-  if (name == "emod" || name == "pb_emod") return ParameterRole::Modulus;
-  if (name == "kratio" || name == "pb_kratio") return ParameterRole::StiffnessRatio;
-  if (name == "pb_tensile_strength" || name == "cb_tensile_strength" ||
-      name == "fj_tensile_strength")
-    return ParameterRole::TensileStrength;
-  if (name == "pb_cohesion" || name == "cb_shear_strength" || name == "fj_cohesion")
-    return ParameterRole::ShearStrength;
-  return ParameterRole::Other;
+  const std::string_view name =
+      key_without_unit(std::string_view(dotted_key).substr(dotted_key.rfind('.') + 1));
+  const dem::MaterialKey* key = dem::find_material_key(name);
+  return key ? key->role : ParameterRole::Other;
 }
 
 const CalibrationTest* CalibrationInput::test(TestKind kind) const {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "doe/inversion.hpp"
+#include "lab/material_keys.hpp"
 
 namespace cdem::calib {
 
@@ -49,16 +50,12 @@ struct TargetValue {
   double value = 0;  // in target_unit(target), > 0
 };
 
-// What a material key does to the macro-response, which is what the fast strategy moves it for.
-enum class ParameterRole {
-  Modulus,          // emod, pb_emod: E scales with them
-  StiffnessRatio,   // kratio, pb_kratio: nu is set by them
-  TensileStrength,  // pb_tensile_strength, cb_tensile_strength, fj_tensile_strength
-  ShearStrength,    // pb_cohesion, cb_shear_strength, fj_cohesion
-  Other,            // friction, bond geometry: moved only by the paper strategy
-};
+// What a material key does to the macro-response, which is what the fast strategy moves it for:
+// the role the material key table gives it (lab/material_keys.hpp).
+using ParameterRole = dem::MaterialRole;
 const char* role_name(ParameterRole role);
-// The role of a material key from its last part, units stripped ("emod_GPa" -> Modulus).
+// The role of a material key from its last part, units stripped ("emod_GPa" -> Modulus);
+// Other for a key the material table does not know.
 ParameterRole parameter_role(const std::string& dotted_key);
 
 struct CalibrationParameter {

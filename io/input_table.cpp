@@ -126,6 +126,18 @@ std::optional<InputTable::Found> InputTable::find_quantity(std::string_view key,
   return found;
 }
 
+std::string_view key_without_unit(std::string_view key) {
+  std::size_t cut = key.size();
+  for (Dimension d : {Dimension::Length, Dimension::Stress, Dimension::Density, Dimension::Velocity,
+                      Dimension::Time})
+    for (const auto& u : units_of(d)) {
+      const std::string tail = std::string("_") + u.suffix;
+      if (key.size() > tail.size() && key.ends_with(tail))
+        cut = std::min(cut, key.size() - tail.size());
+    }
+  return key.substr(0, cut);
+}
+
 bool InputTable::has(std::string_view key) const {
   if (node_->contains(key)) return true;
   for (Dimension d : {Dimension::Length, Dimension::Stress, Dimension::Density, Dimension::Velocity,

@@ -86,4 +86,8 @@ class InputTable {
   std::shared_ptr<const std::string> text_;
 };
 
+// `key` without its unit suffix ("emod_GPa" -> "emod", "v_mm_s" -> "v"; the longest known
+// suffix wins); `key` itself when it has none.
+std::string_view key_without_unit(std::string_view key);
+
 }  // namespace cdem

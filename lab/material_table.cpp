@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/input_error.hpp"
+#include "lab/material_keys.hpp"
 
 namespace cdem::dem {
 
@@ -14,28 +15,12 @@ namespace {
 
 const std::vector<std::string> kLaws{"linear", "contact_bond", "parallel_bond", "flat_joint"};
 
-// Keys common to every class, then those of each bond law.
-const std::vector<std::string> kLinearKeys{"law", "emod", "kratio", "friction"};
-const std::vector<std::string> kContactBondKeys{"cb_tensile_strength", "cb_shear_strength"};
-const std::vector<std::string> kParallelBondKeys{"pb_emod",
-                                                 "pb_kratio",
-                                                 "pb_tensile_strength",
-                                                 "pb_cohesion",
-                                                 "pb_friction_angle_deg",
-                                                 "pb_radius_multiplier",
-                                                 "pb_moment_factor"};
-const std::vector<std::string> kFlatJointKeys{"fj_tensile_strength",   "fj_cohesion",
-                                              "fj_friction_angle_deg", "fj_radius_multiplier",
-                                              "fj_elements",           "fj_slit_fraction"};
-
+// The keys a class of law `law` (one of kLaws) reads (lab/material_keys.hpp).
 std::vector<std::string> known_keys(const std::string& law) {
-  std::vector<std::string> keys = kLinearKeys;
-  const auto& extra = law == "contact_bond"    ? kContactBondKeys
-                      : law == "parallel_bond" ? kParallelBondKeys
-                      : law == "flat_joint"    ? kFlatJointKeys
-                                               : std::vector<std::string>{};
-  keys.insert(keys.end(), extra.begin(), extra.end());
-  return keys;
+  return material_keys_of(law == "contact_bond"    ? MaterialLaw::ContactBond
+                          : law == "parallel_bond" ? MaterialLaw::ParallelBond
+                          : law == "flat_joint"    ? MaterialLaw::FlatJoint
+                                                   : MaterialLaw::Linear);
 }
 
 // One class table. `fallback` (the mortar's linear part) supplies defaults for the wall.

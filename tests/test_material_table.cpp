@@ -2,10 +2,14 @@
 // bad input is an InputError naming its key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 
+#include "calibrate/calibrate_input.hpp"
+#include "io/input_table.hpp"
+#include "lab/material_keys.hpp"
 #include "lab/material_table.hpp"
 
 namespace {
@@ -210,4 +214,36 @@ friction = 1
   EXPECT_EQ(bond(sample, ContactClass::Mortar).kind, BondKind::FlatJoint);
   EXPECT_EQ(bond(sample, ContactClass::Itz).kind, BondKind::FlatJoint);
 }
+}  // namespace
+
+namespace {
+
+// The material key table (lab/material_keys.hpp) is the one list: the reader's known keys per
+// law come from it, calibration's roles come from it, and a key is listed once.
+TEST(MaterialKeys, OneListForTheReaderAndTheCalibration) {
+  for (std::size_t i = 0; i < std::size(kMaterialKeys); ++i)
+    for (std::size_t j = i + 1; j < std::size(kMaterialKeys); ++j)
+      EXPECT_NE(kMaterialKeys[i].name, kMaterialKeys[j].name);
+  // Every class reads the linear keys; a flat-jointed one also fj_*, never pb_*.
+  const std::vector<std::string> fj = material_keys_of(MaterialLaw::FlatJoint);
+  for (const char* key : {"emod", "kratio", "friction", "fj_tensile_strength", "fj_cohesion"})
+    EXPECT_NE(std::find(fj.begin(), fj.end(), key), fj.end()) << key;
+  EXPECT_EQ(std::find(fj.begin(), fj.end(), "pb_cohesion"), fj.end());
+  // The roles SPEC 8 gives the keys, read from a calibration's dotted, unit-suffixed keys.
+  using cdem::calib::parameter_role;
+  EXPECT_EQ(parameter_role("materials.mortar.emod_GPa"), MaterialRole::Modulus);
+  EXPECT_EQ(parameter_role("materials.itz.pb_kratio"), MaterialRole::StiffnessRatio);
+  EXPECT_EQ(parameter_role("materials.mortar.pb_tensile_strength_MPa"),
+            MaterialRole::TensileStrength);
+  EXPECT_EQ(parameter_role("materials.itz.cb_shear_strength_kPa"), MaterialRole::ShearStrength);
+  EXPECT_EQ(parameter_role("materials.mortar.fj_cohesion_Pa"), MaterialRole::ShearStrength);
+  EXPECT_EQ(parameter_role("materials.mortar.fj_elements"), MaterialRole::Other);
+  EXPECT_EQ(parameter_role("materials.mortar.not_a_key_MPa"), MaterialRole::Other);
+  // Unit suffixes: the longest known one is cut ("_mm_s" is a velocity, not "_s" of a time).
+  EXPECT_EQ(cdem::key_without_unit("emod_GPa"), "emod");
+  EXPECT_EQ(cdem::key_without_unit("platen_velocity_mm_s"), "platen_velocity");
+  EXPECT_EQ(cdem::key_without_unit("fj_elements"), "fj_elements");
+  EXPECT_EQ(cdem::key_without_unit("kratio"), "kratio");
+}
+
 }  // namespace
