@@ -206,6 +206,11 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   settings.local_damping = c.local_damping;
   settings.density_scaling = true;
   settings.threads = std::max(1, c.threads);
+  // Nothing here reads the energy ledger, and its bookkeeping is a few % of a cycle. Its
+  // runaway check was idle anyway while the radii change (every scale_radii restarts the
+  // reference); the overlap and non-finite guards still stop a bad expansion with their
+  // diagnostic.
+  settings.energy_tracking = false;
   // A wide skin while the discs travel far (expansion), a tight one for the servo phase.
   settings.skin = 0.5 * c.r_mean;
   const dem::LinearContact law{c.emod, 1.0, 0.0};

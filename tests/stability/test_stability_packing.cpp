@@ -57,24 +57,49 @@ TEST(RadiusRatio, TenWithTheDefaultExpansionPacksOrStopsWithTheDiagnostic) {
   }
 }
 
+// Jammed packings of this recipe have coordination 3.5-3.7 and 6-8 % floating discs (fewer
+// than 3 contacts); an unjammed one drops below 3.2 with 19-32 % (LargeMould below). Prints the
+// figures for docs/stability.md.
+void expect_jammed(const cdem::mesogen::MortarPacking& p, const std::string& what) {
+  const double floating = static_cast<double>(p.floating_discs) / static_cast<double>(p.r.size());
+  std::printf(
+      "[stability] %s: %zu discs, %ld cycles, coordination %.3f, floating %.2f %%, porosity "
+      "%.4f, wall stress %.4g MPa\n",
+      what.c_str(), p.r.size(), p.steps, p.coordination_number, 100 * floating, p.porosity,
+      p.residual_stress * 1e-6);
+  EXPECT_GT(p.coordination_number, 3.5) << what;
+  EXPECT_LT(floating, 0.10) << what;
+}
+
 // The full C30 mould (100 x 200 mm) at the finest mortar of issue 6, R_mean 0.35 mm: 286 mean
 // diameters tall, 45,732 discs. The relaxation crosses it in proportionally more cycles, and
 // with the decompression rate of a 100-diameter mould the packing unjammed (measured through
 // cdem generate: coordination 2.7-3.2, 19-32 % floating discs, and a lab test that "completed"
-// at 0.36 MPa). Jammed packings of this recipe have coordination 3.5-3.7 and 6-8 % floaters.
+// at 0.36 MPa).
 TEST(LargeMould, FinestMortarOfTheFullC30MouldPacksJammed) {
   cdem::mesogen::MortarPackingControls controls;
   controls.r_mean = 0.35e-3;
   cdem::Rng rng(2);
-  const auto p =
-      cdem::mesogen::pack_mortar({cdem::ContainerShape::Rectangle, 0.1, 0.2}, controls, rng);
-  const double floating = static_cast<double>(p.floating_discs) / static_cast<double>(p.r.size());
-  std::printf(
-      "[stability] full C30 mould at R_mean 0.35 mm: %zu discs, %ld cycles, coordination "
-      "%.3f, floating %.1f %%\n",
-      p.r.size(), p.steps, p.coordination_number, 100 * floating);
-  EXPECT_GT(p.coordination_number, 3.5);
-  EXPECT_LT(floating, 0.10);
+  expect_jammed(
+      cdem::mesogen::pack_mortar({cdem::ContainerShape::Rectangle, 0.1, 0.2}, controls, rng),
+      "full C30 mould at R_mean 0.35 mm");
+}
+
+// The reference C30 mould (100 x 200 mm) at its own mortar, R_mean 0.5 mm, over three seeds: the
+// statistics a faster packing must keep (issue 18): jammed (expect_jammed); the residual stress
+// the packing's own target, sigma0 within its tolerance; the porosity that of a jammed frictionless
+// packing, well above the nominal 0.12 and below the 0.22 of a loose one (test_mortar_packing.cpp).
+TEST(ReferenceMould, C30MortarPacksJammedAtSigma0ForThreeSeeds) {
+  cdem::mesogen::MortarPackingControls controls;
+  for (std::uint64_t seed : {1, 2, 3}) {
+    cdem::Rng rng(seed);
+    const auto p =
+        cdem::mesogen::pack_mortar({cdem::ContainerShape::Rectangle, 0.1, 0.2}, controls, rng);
+    expect_jammed(p, "C30 mould, seed " + std::to_string(seed));
+    EXPECT_NEAR(p.residual_stress, controls.sigma0, controls.stress_tolerance * controls.sigma0);
+    EXPECT_GT(p.porosity, 0.13);
+    EXPECT_LT(p.porosity, 0.22);
+  }
 }
 
 }  // namespace
