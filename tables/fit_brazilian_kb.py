@@ -32,7 +32,8 @@ CONFIRMED = ("post_peak_drop", "split")
 DIAMETER_MM = 30.0  # of tables/brazilian_kb_base.toml, for the discs-per-diameter column
 
 COLUMNS = ["r_ratio", "r_min_mm", "K_B", "R2", "runs", "runs_left_out", "seeds",
-           "K_B_seed_sd", "K_B_seed_cv", "sigma_cn_min_MPa", "sigma_cn_max_MPa", "discs_mean",
+           "K_B_seed_sd", "K_B_seed_cv", "sigma_cn_min_MPa", "sigma_cn_max_MPa",
+           "ratio_at_min", "ratio_at_max", "discs_mean",
            "mean_discs_per_diameter", "wall_s_total"]
 
 
@@ -83,9 +84,14 @@ def fit_cell(ratio, r_min, runs, n_left_out, wall_s):
                             * (1 + ratio))
     sd = float(np.std(per_seed, ddof=1)) if len(per_seed) >= 2 else float("nan")
     kb = k * (1 + ratio)
+
+    def mean_ratio(x):  # sigma_t / sigma_cn over the seeds at one strength: how proportional
+        return round(float(np.mean([r["y"] / r["x"] for r in runs if r["x"] == x])), 5)
+
     row.update(K_B=round(kb, 5), R2=round(r2, 5), seeds=len(per_seed),
                K_B_seed_sd=round(sd, 5), K_B_seed_cv=round(sd / kb, 4),
                sigma_cn_min_MPa=min(xs), sigma_cn_max_MPa=max(xs),
+               ratio_at_min=mean_ratio(min(xs)), ratio_at_max=mean_ratio(max(xs)),
                discs_mean=round(float(np.nanmean([r["discs"] for r in runs])), 0),
                mean_discs_per_diameter=round(DIAMETER_MM / (2 * runs[0]["r_mean"]), 1))
     return row, True
@@ -152,12 +158,14 @@ def main():
     write_atomic(a.output, write_csv)
     if a.markdown:
         def write_md(f):
-            f.write("| R_max/R_min | R_min (mm) | discs per D | K_B | R2 | seed SD (CV) | runs "
-                    "(left out) |\n|---|---|---|---|---|---|---|\n")
+            f.write("| R_max/R_min | R_min (mm) | discs per D | K_B | R2 | seed SD (CV) | "
+                    "sigma_t/sigma_cn at min, max sigma_cn | runs (left out) |\n"
+                    "|---|---|---|---|---|---|---|---|\n")
             for r in table:
                 f.write(f"| {r['r_ratio']:g} | {r['r_min_mm']:g} | "
                         f"{r.get('mean_discs_per_diameter', '')} | {r['K_B']} | {r['R2']} | "
-                        f"{r['K_B_seed_sd']} ({r['K_B_seed_cv']}) | {r['runs']} "
+                        f"{r['K_B_seed_sd']} ({r['K_B_seed_cv']}) | "
+                        f"{r.get('ratio_at_min', '')}, {r.get('ratio_at_max', '')} | {r['runs']} "
                         f"({r['runs_left_out']}) |\n")
         write_atomic(a.markdown, write_md)
     if a.plot:
