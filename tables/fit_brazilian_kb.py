@@ -9,7 +9,8 @@ Seed scatter: K_B fitted per seed on its own, then the standard deviation of tho
 and its coefficient of variation. A run counts when its status is `ok` and its stop reason is a
 confirmed failure (`post_peak_drop` or `split`); the others are left out and counted.
 
-  python3 tables/fit_brazilian_kb.py DIR/results.csv -o tables/brazilian_kb_table.csv \
+  python3 tables/fit_brazilian_kb.py DIR/results.csv [DIR2/results.csv ...] \
+      -o tables/brazilian_kb_table.csv \
       --plot docs/lookup_tables_kb.png [--markdown table.md]
 
 R_min is recovered from the written inputs as 2 r_mean / (1 + r_ratio). R_max / R_min is the
@@ -46,18 +47,27 @@ def through_origin(x, y):
     return k, (1.0 - ss_res / ss_tot) if ss_tot > 0 else float("nan")
 
 
-def read_cells(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    for col in (RATIO, R_MEAN, SIGMA_CN, SIGMA_T, "status", "seed", "stop_reason"):
-        if rows and col not in rows[0]:
-            sys.exit(f"fit_brazilian_kb: {path}: no column '{col}' (a tables/brazilian_kb "
-                     "campaign's results.csv is expected)")
+def read_cells(paths):
+    rows = []
+    for path in paths:
+        with open(path, newline="") as f:
+            part = list(csv.DictReader(f))
+        for col in (RATIO, R_MEAN, SIGMA_CN, SIGMA_T, "status", "seed", "stop_reason"):
+            if part and col not in part[0]:
+                sys.exit(f"fit_brazilian_kb: {path}: no column '{col}' (a tables/brazilian_kb "
+                         "campaign's results.csv is expected)")
+        rows += part
     cells, left_out, wall = defaultdict(list), defaultdict(int), defaultdict(float)
+    seen = set()
     for r in rows:
         ratio = float(r[RATIO])
         r_min = round(2 * float(r[R_MEAN]) / (1 + ratio), 9)
         key = (ratio, r_min)
+        run = (ratio, r_min, float(r[SIGMA_CN]), int(r["seed"]))
+        if run in seen:  # the same run twice would count as two specimens
+            sys.exit(f"fit_brazilian_kb: R_max/R_min {ratio:g}, R_min {r_min:g} mm, sigma_cn "
+                     f"{run[2]:g} MPa, seed {run[3]} appears twice in {', '.join(paths)}")
+        seen.add(run)
         wall[key] += float(r["wall_s"] or 0)
         if r["status"] != "ok" or r["stop_reason"] not in CONFIRMED or not r[SIGMA_T]:
             left_out[key] += 1
@@ -133,7 +143,7 @@ def plot(table, path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("results", help="the campaign's results.csv")
+    ap.add_argument("results", nargs="+", help="the campaigns' results.csv (seeds all different)")
     ap.add_argument("-o", "--output", required=True, help="table to write (CSV)")
     ap.add_argument("--plot", help="PNG of K_B against R_max / R_min")
     ap.add_argument("--markdown", help="also write the table as markdown here")

@@ -7,7 +7,11 @@ tau_cs is held at 2 sigma_cn. So the cells are written as an `explicit` design, 
 (r_ratio, R_min, sigma_cn), from the levels below.
 
     python3 tables/make_brazilian_kb.py                   # tables/brazilian_kb.toml (full)
-    python3 tables/make_brazilian_kb.py --reduced OUT     # the CI subset (tests/tables/)
+    python3 tables/make_brazilian_kb.py --seeds 3 4       # tables/brazilian_kb_seeds3-4.toml
+    python3 tables/make_brazilian_kb.py --reduced OUT     # the CI subset (tests/)
+
+More seeds go into a campaign of their own (its own output directory): adding them to the first
+campaign's `seeds` would renumber its runs, and a campaign re-executes a renumbered run.
 """
 import argparse
 import itertools
@@ -68,6 +72,7 @@ def campaign(base, output_dir, ratios, r_min, sigma, seeds, header):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--reduced", metavar="OUT", help="write the CI subset to OUT instead")
+    ap.add_argument("--seeds", type=int, nargs="+", help="seeds of an extra campaign")
     ap.add_argument("--base", default="brazilian_kb_base.toml",
                     help="base input, relative to the campaign file")
     a = ap.parse_args()
@@ -85,9 +90,18 @@ def main():
                         f"{len(RADIUS_RATIOS)} R_max/R_min x {len(R_MIN_MM)} R_min x "
                         f"{len(SIGMA_CN_MPA)} sigma_cn = {n} points x {len(SEEDS)} seeds.\n"
                         "# Written by tables/make_brazilian_kb.py; do not edit by hand.\n"
-                        "#   nice -n 10 cdem campaign tables/brazilian_kb.toml -j 1\n"
-                        "#   python3 tables/fit_brazilian_kb.py brazilian_kb/results.csv")
+                        "#   nice -n 10 cdem campaign tables/THIS_FILE.toml -j 1\n"
+                        "#   python3 tables/fit_brazilian_kb.py brazilian_kb/results.csv "
+                        "brazilian_kb_seeds3-4/results.csv -o tables/brazilian_kb_table.csv\n"
+                        "# (docs/lookup_tables.md)")
         path = "brazilian_kb.toml"
+        if a.seeds:
+            name = "brazilian_kb_seeds" + "-".join(str(x) for x in a.seeds)
+            text = text.replace('output_dir = "brazilian_kb"', f'output_dir = "{name}"')
+            text = text.replace(f"seeds = {SEEDS}", f"seeds = {a.seeds}")
+            text = text.replace(f" x {len(SEEDS)} seeds.", f" x {len(a.seeds)} more seeds.")
+            path = name + ".toml"
+        text = text.replace("THIS_FILE", os.path.splitext(os.path.basename(path))[0])
     with open(path + ".tmp", "w") as f:
         f.write(text)
     os.replace(path + ".tmp", path)
