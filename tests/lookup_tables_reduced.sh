@@ -52,3 +52,34 @@ for c in csv.DictReader(l for l in open("table.csv") if not l.startswith("#")):
         print("  FAIL: no K_B > 0"); ok = False
 sys.exit(0 if ok else 1)
 PY
+# The lookup (tables/lookup_kb.py) on a small table written here, so its figures follow from
+# the formula: K_B bilinear between cells, sigma_cn = sigma_t (1 + R_max/R_min) / K_B.
+cat > kb.csv <<'CSV'
+# test table
+r_ratio,r_min_mm,K_B,sigma_cn_min_MPa,sigma_cn_max_MPa
+1,0.1,0.2,5,20
+3,0.1,0.6,5,20
+1,0.3,0.4,5,20
+3,0.3,0.8,5,20
+CSV
+lookup() { /usr/bin/python3 "$SRC/tables/lookup_kb.py" --table kb.csv "$@"; }
+# Centre of the four cells: K_B = mean 0.5; sigma_t 1 MPa at ratio 2 -> sigma_cn = 3 / 0.5 = 6 MPa.
+out=$(lookup --ratio 2 --r-min 0.2 --sigma-t 1 --emod-GPa 60)
+grep -q "K_B = 0.5000 (interpolated), sigma_cn = 6 MPa" <<<"$out" || { echo "FAIL: $out"; exit 1; }
+# A corner: its own K_B (0.2 at ratio 1, R_min 0.1): sigma_cn = 1 x 2 / 0.2 = 10 MPa.
+out=$(lookup --ratio 1 --r-min 0.1 --sigma-t 1 --emod-GPa 60)
+grep -q "K_B = 0.2000 (interpolated), sigma_cn = 10 MPa" <<<"$out" || { echo "FAIL: $out"; exit 1; }
+refused() {  # exit 2, the message on stderr, nothing on stdout
+  local expect=$1; shift
+  set +e; out=$(lookup "$@" 2>err.txt); code=$?; set -e
+  [ "$code" = 2 ] && [ -z "$out" ] && grep -q "$expect" err.txt ||
+    { echo "FAIL: lookup $* gave exit $code, stdout '$out', stderr '$(cat err.txt)'"; exit 1; }
+}
+refused "R_max / R_min = 4 is outside" --ratio 4 --r-min 0.2 --sigma-t 1 --emod-GPa 60
+refused "R_min = 0.05 mm is outside" --ratio 2 --r-min 0.05 --sigma-t 1 --emod-GPa 60
+# 6 MPa at E* 6 GPa is E* / sigma_cn 1,000, below the table's 60,000 / 20 = 3,000.
+refused "E\* / sigma_cn = 1000, outside" --ratio 2 --r-min 0.2 --sigma-t 1 --emod-GPa 6
+refused "cannot read the table" --table missing.csv --ratio 2 --r-min 0.2 --sigma-t 1 --emod-GPa 60
+printf 'r_ratio,r_min_mm,K_B,sigma_cn_min_MPa,sigma_cn_max_MPa\n1,0.1,,5,20\n' > kb.csv
+refused "cell without a fit" --ratio 1 --r-min 0.1 --sigma-t 1 --emod-GPa 60
+echo "lookup: ok"
