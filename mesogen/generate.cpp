@@ -298,6 +298,7 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
   summary["packing"] = {{"disc_count_formula", packing.disc_count_formula},
                         {"initial_porosity", packing.initial_porosity},
                         {"expansion_factor", packing.expansion_factor},
+                        {"expansion_steps", packing.expansion_steps},
                         {"porosity", packing.porosity},
                         {"mean_overlap_mm", packing.mean_overlap / units::mm},
                         {"mean_overlap_ratio", packing.mean_overlap_ratio},

@@ -47,7 +47,7 @@ void check_controls(const Container& mould, const MortarPackingControls& c) {
   if (!(c.density > 0)) bad("density", "must be > 0");
   if (c.max_steps <= 0) bad("max_steps", "must be > 0");
   if (!(c.local_damping >= 0 && c.local_damping < 1)) bad("local_damping", "must be in [0, 1)");
-  if (c.expansion_steps <= 0) bad("expansion_steps", "must be > 0");
+  if (c.expansion_steps < 0) bad("expansion_steps", "must be >= 0 (0: from r_ratio)");
   if (c.wall_segments < 3) bad("wall_segments", "must be >= 3");
 }
 
@@ -173,6 +173,11 @@ double candidate_stiffness(const dem::World& w, double area) {
 
 }  // namespace
 
+long default_expansion_steps(double r_ratio) {
+  const double ratio_over_4 = r_ratio / 4;
+  return std::max(500L, std::lround(500 * ratio_over_4 * ratio_over_4));
+}
+
 MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c, Rng& rng) {
   check_controls(mould, c);
   MortarPacking out;
@@ -223,28 +228,31 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   // Expansion to m x half radius, spread over `expansion_steps` cycles: applied at once, a small
   // disc next to a large one can start with an overlap beyond its own radius, where the contact
   // normal means nothing and the instability guard (rightly) stops the run.
-  const long ramp = std::max(1L, c.expansion_steps);
+  const long ramp =
+      c.expansion_steps > 0 ? c.expansion_steps : default_expansion_steps(out.r_ratio);
+  out.expansion_steps = ramp;
   const double growth = std::pow(out.expansion_factor, 1.0 / static_cast<double>(ramp));
+  // The expansion and the cycles at the expanded radii until the violent start has calmed
+  // down: a disc squeezed through by the expansion is caught by the overlap guard in either
+  // (measured: most stops come a few cycles after the ramp's end).
   try {
     for (long s = 0; s < ramp && world.step_count() < c.max_steps; ++s) {
       world.scale_radii(growth);
       world.step();
     }
+    while (world.step_count() < c.max_steps) {
+      world.step();
+      if (world.step_count() % kCheckEvery == 0 &&
+          dem::unbalanced_force_ratio(world) < kExpandedRatio)
+        break;
+    }
   } catch (const RunError& e) {
     std::ostringstream msg;
-    msg << "mortar packing, radius expansion over " << ramp
-        << " cycles (mortar.expansion_steps): " << e.what()
-        << ". A wide radius range needs a slower expansion: raise "
-        << "mortar.expansion_steps (R_max / R_min = 10 packs with 20,000)";
+    msg << "mortar packing, radius expansion over " << ramp << " cycles (mortar.expansion_steps";
+    if (c.expansion_steps == 0) msg << ", the default for R_max / R_min = " << out.r_ratio;
+    msg << "): " << e.what()
+        << ". A wide radius range needs a slower expansion: raise mortar.expansion_steps";
     throw RunError(msg.str());
-  }
-
-  // Cycle at the expanded radii until the violent start has calmed down.
-  while (world.step_count() < c.max_steps) {
-    world.step();
-    if (world.step_count() % kCheckEvery == 0 &&
-        dem::unbalanced_force_ratio(world) < kExpandedRatio)
-      break;
   }
 
   world.neighbors.skin = 0.2 * r_min;

@@ -149,3 +149,35 @@ TEST(MortarPacking, RejectsBadControls) {
 }
 
 }  // namespace
+
+namespace {
+
+// A wide radius range gets a slower expansion by default (docs/generator.md "The default
+// expansion"): on a 30 mm disc at R_max / R_min = 8 the old fixed 500 cycles let the overlap
+// guard stop some seeds (a small disc squeezed through between two large ones), with the key to
+// raise named; the default (2,000 cycles) packs every one of them.
+TEST(MortarPacking, WideRadiusRangePacksWithTheDefaultExpansion) {
+  EXPECT_EQ(cdem::mesogen::default_expansion_steps(2.5), 500);
+  EXPECT_EQ(cdem::mesogen::default_expansion_steps(8), 2000);
+  MortarPackingControls c;
+  c.r_mean = 0.675e-3;
+  c.r_ratio = 8;
+  int stopped_at_500 = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    MortarPackingControls fixed = c;
+    fixed.expansion_steps = 500;
+    try {
+      (void)pack(disc(30e-3), fixed, seed);
+    } catch (const cdem::RunError& e) {
+      ++stopped_at_500;
+      EXPECT_NE(std::string(e.what()).find("mortar.expansion_steps"), std::string::npos)
+          << e.what();
+    }
+    const MortarPacking p = pack(disc(30e-3), c, seed);
+    EXPECT_EQ(p.expansion_steps, 2000);
+    EXPECT_TRUE(p.converged) << "seed " << seed;
+  }
+  EXPECT_GT(stopped_at_500, 0) << "the case no longer shows why the default grows";
+}
+
+}  // namespace
