@@ -1,0 +1,90 @@
+#pragma once
+// The multi-thread cycle (WorldSettings::threads > 1): the force pass, the sums onto the discs
+// and bodies and the integration in one job of a persistent thread team per step
+// (dem/worker_team.hpp), with one barrier inside it.
+//
+// Phase 1: each thread evaluates a contiguous block of the sorted pair list with the pair
+// kernel of the one-thread pass and stores what each pair puts on its two discs; thread 0 also
+// evaluates the disc-wall pairs. Barrier. Phase 2: each thread owns a contiguous range of
+// bodies (and so of discs, cut where the work is balanced) and sums every disc's contributions
+// in the sorted pair order (pairs where it is the second disc, then where it is the first: the
+// order of the one-thread pass), then its wall contacts, then integrates its bodies.
+//
+// Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
+// thread for any thread count; the scalar totals (virial, slip work, released energy, energy
+// ledger terms) are summed in pair or body order after the region from per-pair or per-body
+// terms. In a step where a bond broke or a guard tripped the region stops before the
+// integration: the caller records the cracks (which read the positions of the step) or stops,
+// and integrates afterwards, as the one-thread cycle does.
+#include <cstdint>
+#include <vector>
+
+#include "dem/bodies.hpp"
+#include "dem/contact_solver.hpp"
+#include "dem/discs.hpp"
+#include "dem/integrator.hpp"
+#include "dem/neighbor_list.hpp"
+#include "dem/wall.hpp"
+#include "dem/worker_team.hpp"
+
+namespace cdem::dem {
+
+struct ThreadedStep {
+  ForcePassResult pass;
+  bool integrated = false;  // false: a bond broke or a guard tripped; the caller integrates
+  RangeMotion motion;       // the step's sums over every body, in body order, if integrated
+};
+
+// What a threaded step needs besides the state it changes.
+struct ThreadedStepSettings {
+  const ContactLaws* laws = nullptr;
+  const BondModels* bonds = nullptr;
+  double dt = 0;             // s
+  double guard = 0;          // max overlap / radius
+  double alpha = 0;          // local damping
+  bool book_energy = false;  // form the integration's energy terms
+  int threads = 2;
+};
+
+class ThreadedCycle {
+ public:
+  ThreadedStep step(Bodies& bodies, Discs& discs, Walls& walls, NeighborList& list,
+                    ContactForces& pair, ContactForces& wall_pair, const ThreadedStepSettings& s);
+
+ private:
+  // What one pair puts on its discs (forces on the second disc, moments on each) and its term
+  // of the virial.
+  struct PairSum {
+    double fx, fy, moment_i, moment_j, virial;
+  };
+  // One thread's results of a step (padded so two threads never share a cache line).
+  struct alignas(64) Lane {
+    std::vector<std::pair<std::int32_t, double>> slips;  // pairs with non-zero slip work (J)
+    std::vector<std::int32_t> broken;                    // pairs whose bond broke, ascending
+    long touching = 0;
+    long bad = -1;
+    RangeMotion motion;
+  };
+
+  // Per-disc lists of the pair list (rebuilt when the list is): where each disc is the second
+  // disc, where the first, its disc-wall pairs, and a running work estimate that places the
+  // cuts between the threads' disc ranges.
+  void plan(const Discs& discs, const NeighborList& list);
+  // First disc of thread t's range of `threads`, at the start of a body.
+  std::size_t range_start(const Bodies& bodies, const Discs& discs, int t, int threads) const;
+  // Sums the contributions of every pair and wall pair onto discs [begin, end).
+  void sum_disc_forces(Discs& discs, const ContactForces& wall_pair, std::size_t begin,
+                       std::size_t end) const;
+
+  long planned_build_ = -1;
+  std::size_t planned_pairs_ = 0, planned_discs_ = 0, planned_walls_ = 0;
+  std::vector<std::int32_t> first_start_, second_start_, second_pairs_, wall_start_;
+  std::vector<double> work_before_;  // pair ends and bodies before each disc (a work estimate)
+  std::vector<PairSum> sums_;
+  std::vector<BodyStepEnergy> body_energy_;
+  std::vector<double> wall_slip_;  // J, per disc-wall pair
+  std::vector<Lane> lanes_;
+  WorkerTeamHandle team_;
+};
+
+}  // namespace cdem::dem
