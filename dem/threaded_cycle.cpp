@@ -7,10 +7,11 @@
 
 namespace cdem::dem {
 
-void ThreadedCycle::plan(const Discs& discs, const NeighborList& list) {
+void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const NeighborList& list,
+                         int threads) {
   const std::size_t n = discs.size(), count = list.keys.size(), walls = list.wall_keys.size();
   if (planned_build_ == list.build_count && planned_pairs_ == count && planned_discs_ == n &&
-      planned_walls_ == walls)
+      planned_walls_ == walls && planned_threads_ == threads)
     return;
   first_start_.assign(n + 1, 0);
   second_start_.assign(n + 1, 0);
@@ -32,44 +33,68 @@ void ThreadedCycle::plan(const Discs& discs, const NeighborList& list) {
   for (std::size_t k = 0; k < count; ++k)
     second_pairs_[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
         static_cast<std::int32_t>(k);
-  // Phase 2's work per disc: one per pair end and wall pair, and about as much again for the
-  // disc's share of its body's integration (a rough balance is all the cut needs).
-  work_before_.resize(n + 1);
-  work_before_[0] = 0;
+
+  // Cuts between the threads' disc ranges, at body starts, balancing a work estimate: the pairs
+  // a disc is first of (its thread evaluates them) and about a third of a pair for the disc's
+  // share of the sums and the integration.
+  std::vector<double> work_before(n + 1, 0.0);
   for (std::size_t i = 0; i < n; ++i)
-    work_before_[i + 1] = work_before_[i] + 2.0 + (first_start_[i + 1] - first_start_[i]) +
-                          (second_start_[i + 1] - second_start_[i]) +
-                          (wall_start_[i + 1] - wall_start_[i]);
+    work_before[i + 1] = work_before[i] + 0.3 + (first_start_[i + 1] - first_start_[i]);
+  cuts_.assign(static_cast<std::size_t>(threads) + 1, n);
+  cuts_[0] = 0;
+  for (int t = 1; t < threads; ++t) {
+    const double target = work_before[n] * t / threads;
+    auto i = static_cast<std::size_t>(
+        std::lower_bound(work_before.begin(), work_before.end(), target) - work_before.begin());
+    i = std::max(i, cuts_[static_cast<std::size_t>(t) - 1]);
+    while (i < n && bodies.first_disc[static_cast<std::size_t>(discs.body[i])] !=
+                        static_cast<std::int32_t>(i))
+      ++i;
+    cuts_[static_cast<std::size_t>(t)] = std::min(i, n);
+  }
+  // Discs that receive a pair of an earlier thread's range (its first disc is below the
+  // disc's range): their sums wait for the barrier. Every other disc gets all its pairs from
+  // its own thread, in pair order, so that thread adds them as it evaluates them.
+  shared_.assign(n, 0);
+  std::vector<std::size_t> range_of(n);
+  for (int t = 0; t < threads; ++t)
+    for (std::size_t i = cuts_[static_cast<std::size_t>(t)];
+         i < cuts_[static_cast<std::size_t>(t) + 1]; ++i)
+      range_of[i] = static_cast<std::size_t>(t);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(list.first[k]),
+               j = static_cast<std::size_t>(list.second[k]);
+    if (range_of[i] != range_of[j]) shared_[j] = 1;
+  }
+  direct_.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(list.first[k]),
+               j = static_cast<std::size_t>(list.second[k]);
+    direct_[k] = static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
+                                           (shared_[j] ? 0 : kDirectSecond));
+  }
+  shared_discs_.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (shared_[i]) shared_discs_.push_back(static_cast<std::int32_t>(i));
   sums_.resize(count);
+  virial_.resize(count);
   wall_slip_.resize(walls);
   planned_build_ = list.build_count;
   planned_pairs_ = count;
   planned_discs_ = n;
   planned_walls_ = walls;
+  planned_threads_ = threads;
 }
 
-std::size_t ThreadedCycle::range_start(const Bodies& bodies, const Discs& discs, int t,
-                                       int threads) const {
-  const std::size_t n = discs.size();
-  if (t <= 0) return 0;
-  if (t >= threads) return n;
-  const double target = work_before_[n] * t / threads;
-  auto i = static_cast<std::size_t>(
-      std::lower_bound(work_before_.begin(), work_before_.end(), target) - work_before_.begin());
-  // Move to the start of a body, so a clump's pebbles and the body stay with one thread.
-  while (i < n &&
-         bodies.first_disc[static_cast<std::size_t>(discs.body[i])] != static_cast<std::int32_t>(i))
-    ++i;
-  return std::min(i, n);
-}
-
-void ThreadedCycle::sum_disc_forces(Discs& discs, const ContactForces& wall_pair, std::size_t begin,
-                                    std::size_t end) const {
+void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const {
   const PairSum* sums = sums_.data();
-  for (std::size_t i = begin; i < end; ++i) {
+  const auto first = std::lower_bound(shared_discs_.begin(), shared_discs_.end(),
+                                      static_cast<std::int32_t>(begin));
+  for (auto it = first; it != shared_discs_.end() && *it < static_cast<std::int32_t>(end); ++it) {
+    const auto i = static_cast<std::size_t>(*it);
     // The one-thread pass adds pair k onto both discs in ascending k, starting from zero: the
     // pairs where i is the second disc (first disc < i) all come before those where it is the
-    // first. Then its wall pairs, in wall-pair order.
+    // first.
     double fx = 0, fy = 0, m = 0;
     for (std::int32_t s = second_start_[i]; s < second_start_[i + 1]; ++s) {
       const PairSum& p = sums[second_pairs_[static_cast<std::size_t>(s)]];
@@ -83,15 +108,22 @@ void ThreadedCycle::sum_disc_forces(Discs& discs, const ContactForces& wall_pair
       fy -= p.fy;
       m += p.moment_i;
     }
-    for (std::int32_t k = wall_start_[i]; k < wall_start_[i + 1]; ++k) {
-      if (!wall_pair_loaded(wall_pair, static_cast<std::size_t>(k))) continue;
-      fx += wall_pair.fx[k];
-      fy += wall_pair.fy[k];
-      m += wall_pair.moment[k];
-    }
     discs.fx[i] = fx;
     discs.fy[i] = fy;
     discs.moment[i] = m;
+  }
+}
+
+void ThreadedCycle::add_wall_pairs(Discs& discs, const NeighborList& list,
+                                   const ContactForces& wall_pair, std::size_t begin,
+                                   std::size_t end) const {
+  for (std::size_t k = static_cast<std::size_t>(wall_start_[begin]);
+       k < static_cast<std::size_t>(wall_start_[end]); ++k) {
+    if (!wall_pair_loaded(wall_pair, k)) continue;
+    const auto i = static_cast<std::size_t>(list.wall_disc[k]);
+    discs.fx[i] += wall_pair.fx[k];
+    discs.fy[i] += wall_pair.fy[k];
+    discs.moment[i] += wall_pair.moment[k];
   }
 }
 
@@ -100,9 +132,10 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
                                  const ThreadedStepSettings& s) {
   using Geometry = DiscPairKernel::Geometry;
   prepare_force_results(pair, wall_pair, list);
-  plan(discs, list);
-  if (lanes_.size() < static_cast<std::size_t>(s.threads))
-    lanes_.resize(static_cast<std::size_t>(s.threads));
+  WorkerTeam& team = team_.get(s.threads);
+  const int nt = team.size();
+  plan(bodies, discs, list, nt);
+  if (lanes_.size() < static_cast<std::size_t>(nt)) lanes_.resize(static_cast<std::size_t>(nt));
   if (s.book_energy) body_energy_.resize(bodies.size());
   const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard);
   const std::size_t count = list.keys.size();
@@ -110,8 +143,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
   long bad_wall = -1;
   bool integrated = false;
   double unused_slip = 0;
-  WorkerTeam& team = team_.get(s.threads);
-  const int nt = team.size();
+  const std::int32_t *first = list.first.data(), *second = list.second.data();
+  double *disc_fx = discs.fx.data(), *disc_fy = discs.fy.data(), *disc_m = discs.moment.data();
   auto job = [&](int t) {
     Lane& lane = lanes_[static_cast<std::size_t>(t)];
     lane.slips.clear();
@@ -119,11 +152,15 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
     lane.touching = 0;
     lane.bad = -1;
     lane.motion = {};
-    // Phase 1: this thread's block of pairs, in blocks of kGeometryBlock as in one thread.
-    const std::size_t pair_begin =
-        count * static_cast<std::size_t>(t) / static_cast<std::size_t>(nt);
-    const std::size_t pair_end =
-        count * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(nt);
+    const std::size_t disc_begin = cuts_[static_cast<std::size_t>(t)];
+    const std::size_t disc_end = cuts_[static_cast<std::size_t>(t) + 1];
+    // Phase 1: the pairs whose first disc is this thread's, in blocks of kGeometryBlock as in
+    // one thread, added at once onto the discs no other thread touches.
+    std::fill(disc_fx + disc_begin, disc_fx + disc_end, 0.0);
+    std::fill(disc_fy + disc_begin, disc_fy + disc_end, 0.0);
+    std::fill(disc_m + disc_begin, disc_m + disc_end, 0.0);
+    const auto pair_begin = static_cast<std::size_t>(first_start_[disc_begin]);
+    const auto pair_end = static_cast<std::size_t>(first_start_[disc_end]);
     Geometry g[kGeometryBlock];
     long bad = static_cast<long>(count);
     for (std::size_t start = pair_begin; start < pair_end; start += kGeometryBlock) {
@@ -134,7 +171,20 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
         bool within_guard;
         const PairForce f = kernel.evaluate(k, gk, within_guard);
         if (!within_guard) bad = std::min(bad, static_cast<long>(k));
-        sums_[k] = {f.fx, f.fy, f.moment_i, f.moment_j, f.normal * (gk.ri + gk.rj - f.overlap)};
+        virial_[k] = f.normal * (gk.ri + gk.rj - f.overlap);
+        const std::uint8_t direct = direct_[k];
+        if (direct != (kDirectFirst | kDirectSecond))
+          sums_[k] = {f.fx, f.fy, f.moment_i, f.moment_j};
+        if (direct & kDirectSecond) {
+          disc_fx[second[k]] += f.fx;
+          disc_fy[second[k]] += f.fy;
+        }
+        if (direct & kDirectFirst) {
+          disc_fx[first[k]] -= f.fx;
+          disc_fy[first[k]] -= f.fy;
+          disc_m[first[k]] += f.moment_i;
+        }
+        if (direct & kDirectSecond) disc_m[second[k]] += f.moment_j;
         lane.touching += f.overlap > 0;
         if (f.slip_work != 0) lane.slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
         if (f.failure != BondFailure::None) lane.broken.push_back(static_cast<std::int32_t>(k));
@@ -152,9 +202,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
       const Lane& other = lanes_[static_cast<std::size_t>(u)];
       stop = stop || other.bad >= 0 || !other.broken.empty();
     }
-    const std::size_t disc_begin = range_start(bodies, discs, t, nt);
-    const std::size_t disc_end = range_start(bodies, discs, t + 1, nt);
-    sum_disc_forces(discs, wall_pair, disc_begin, disc_end);
+    sum_shared_discs(discs, disc_begin, disc_end);
+    add_wall_pairs(discs, list, wall_pair, disc_begin, disc_end);
     if (!stop && disc_begin < disc_end) {
       const std::size_t body_begin = static_cast<std::size_t>(discs.body[disc_begin]);
       const std::size_t body_end =
@@ -184,7 +233,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
     const std::uint32_t elements = pair.failed_elements[static_cast<std::size_t>(k)];
     r.bonds_broken += elements ? std::popcount(elements) : 1;
   }
-  for (const PairSum& p : sums_) r.virial += p.virial;
+  for (const double v : virial_) r.virial += v;
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;
   r.bad_wall_pair = bad_wall;

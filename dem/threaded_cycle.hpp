@@ -52,10 +52,9 @@ class ThreadedCycle {
                     ContactForces& pair, ContactForces& wall_pair, const ThreadedStepSettings& s);
 
  private:
-  // What one pair puts on its discs (forces on the second disc, moments on each) and its term
-  // of the virial.
+  // What one pair puts on its discs: forces on the second disc, moments on each.
   struct PairSum {
-    double fx, fy, moment_i, moment_j, virial;
+    double fx, fy, moment_i, moment_j;
   };
   // One thread's results of a step (padded so two threads never share a cache line).
   struct alignas(64) Lane {
@@ -65,22 +64,29 @@ class ThreadedCycle {
     long bad = -1;
     RangeMotion motion;
   };
+  // direct_ bits: the pair's thread adds it onto its first / second disc as it evaluates it.
+  static constexpr std::uint8_t kDirectFirst = 1, kDirectSecond = 2;
 
-  // Per-disc lists of the pair list (rebuilt when the list is): where each disc is the second
-  // disc, where the first, its disc-wall pairs, and a running work estimate that places the
-  // cuts between the threads' disc ranges.
-  void plan(const Discs& discs, const NeighborList& list);
-  // First disc of thread t's range of `threads`, at the start of a body.
-  std::size_t range_start(const Bodies& bodies, const Discs& discs, int t, int threads) const;
-  // Sums the contributions of every pair and wall pair onto discs [begin, end).
-  void sum_disc_forces(Discs& discs, const ContactForces& wall_pair, std::size_t begin,
-                       std::size_t end) const;
+  // Cuts the discs into `threads` ranges and finds the shared discs (rebuilt when the list or
+  // the team is): per-disc lists of the pairs (where each disc is the second disc, where the
+  // first) and of its disc-wall pairs.
+  void plan(const Bodies& bodies, const Discs& discs, const NeighborList& list, int threads);
+  // Sums, in pair order, the pairs of the shared discs of [begin, end).
+  void sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const;
+  // Adds the disc-wall pairs of discs [begin, end), in wall-pair order.
+  void add_wall_pairs(Discs& discs, const NeighborList& list, const ContactForces& wall_pair,
+                      std::size_t begin, std::size_t end) const;
 
   long planned_build_ = -1;
   std::size_t planned_pairs_ = 0, planned_discs_ = 0, planned_walls_ = 0;
+  int planned_threads_ = 0;
   std::vector<std::int32_t> first_start_, second_start_, second_pairs_, wall_start_;
-  std::vector<double> work_before_;  // pair ends and bodies before each disc (a work estimate)
-  std::vector<PairSum> sums_;
+  std::vector<std::size_t> cuts_;           // thread t owns discs [cuts_[t], cuts_[t + 1])
+  std::vector<std::uint8_t> shared_;        // per disc: 1 if an earlier range's pair reaches it
+  std::vector<std::int32_t> shared_discs_;  // the shared discs, ascending
+  std::vector<std::uint8_t> direct_;        // per pair: kDirectFirst | kDirectSecond
+  std::vector<PairSum> sums_;               // per pair, written only where a disc is shared
+  std::vector<double> virial_;              // N m, per pair: normal force x centre distance
   std::vector<BodyStepEnergy> body_energy_;
   std::vector<double> wall_slip_;  // J, per disc-wall pair
   std::vector<Lane> lanes_;
