@@ -152,6 +152,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
     lane.touching = 0;
     lane.bad = -1;
     lane.motion = {};
+    lane.virial = 0;
     const std::size_t disc_begin = cuts_[static_cast<std::size_t>(t)];
     const std::size_t disc_end = cuts_[static_cast<std::size_t>(t) + 1];
     // Phase 1: the pairs whose first disc is this thread's, in blocks of kGeometryBlock as in
@@ -171,7 +172,13 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
         bool within_guard;
         const PairForce f = kernel.evaluate(k, gk, within_guard);
         if (!within_guard) bad = std::min(bad, static_cast<long>(k));
-        virial_[k] = f.normal * (gk.ri + gk.rj - f.overlap);
+        // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
+        // others store theirs for the chain to go on in pair order after the job.
+        const double virial = f.normal * (gk.ri + gk.rj - f.overlap);
+        if (t == 0)
+          lane.virial += virial;
+        else
+          virial_[k] = virial;
         const std::uint8_t direct = direct_[k];
         if (direct != (kDirectFirst | kDirectSecond))
           sums_[k] = {f.fx, f.fy, f.moment_i, f.moment_j};
@@ -209,8 +216,10 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
       const std::size_t body_end =
           disc_end < discs.size() ? static_cast<std::size_t>(discs.body[disc_end]) : bodies.size();
       gather_body_forces(bodies, discs, body_begin, body_end);
-      lane.motion = integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, body_begin,
-                                    body_end, s.book_energy ? body_energy_.data() : nullptr);
+      // Likewise thread 0's energy sums are the start of the chain over the bodies.
+      lane.motion =
+          integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, body_begin, body_end,
+                          s.book_energy && t > 0 ? body_energy_.data() : nullptr);
     }
     if (t == 0) integrated = !stop;
   };
@@ -233,7 +242,9 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
     const std::uint32_t elements = pair.failed_elements[static_cast<std::size_t>(k)];
     r.bonds_broken += elements ? std::popcount(elements) : 1;
   }
-  for (const double v : virial_) r.virial += v;
+  r.virial = lanes_[0].virial;
+  for (std::size_t k = static_cast<std::size_t>(first_start_[cuts_[1]]); k < count; ++k)
+    r.virial += virial_[k];
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;
   r.bad_wall_pair = bad_wall;
@@ -241,14 +252,19 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
   out.integrated = integrated;
   if (integrated) {
     RangeMotion& m = out.motion;
+    m.damped = lanes_[0].motion.damped;
+    m.applied = lanes_[0].motion.applied;
+    m.prescribed = lanes_[0].motion.prescribed;
     for (int u = 0; u < nt; ++u) {
       const RangeMotion& lane = lanes_[static_cast<std::size_t>(u)].motion;
       m.position_sum += lane.position_sum;
       m.disc_speed2 = std::max(m.disc_speed2, lane.disc_speed2);
       m.pebble_speed = std::max(m.pebble_speed, lane.pebble_speed);
     }
+    const std::size_t rest =
+        cuts_[1] < discs.size() ? static_cast<std::size_t>(discs.body[cuts_[1]]) : bodies.size();
     if (s.book_energy)
-      for (std::size_t b = 0; b < bodies.size(); ++b) {
+      for (std::size_t b = rest; b < bodies.size(); ++b) {
         m.damped += body_energy_[b].damped;
         m.applied += body_energy_[b].applied;
         m.prescribed -= body_energy_[b].prescribed;

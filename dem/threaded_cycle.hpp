@@ -3,17 +3,21 @@
 // and bodies and the integration in one job of a persistent thread team per step
 // (dem/worker_team.hpp), with one barrier inside it.
 //
-// Phase 1: each thread evaluates a contiguous block of the sorted pair list with the pair
-// kernel of the one-thread pass and stores what each pair puts on its two discs; thread 0 also
-// evaluates the disc-wall pairs. Barrier. Phase 2: each thread owns a contiguous range of
-// bodies (and so of discs, cut where the work is balanced) and sums every disc's contributions
-// in the sorted pair order (pairs where it is the second disc, then where it is the first: the
-// order of the one-thread pass), then its wall contacts, then integrates its bodies.
+// Each thread owns a contiguous range of discs (cut at body starts where a work estimate is
+// balanced) and so of bodies and of the sorted pair list (the pairs whose first disc is its).
+// Phase 1: it evaluates its pairs with the pair kernel of the one-thread pass and adds each at
+// once onto the discs that no other thread's pair reaches, which therefore get all their pairs
+// from it in pair order; for a shared disc (reached from an earlier range: discs near a cut,
+// and the clumps' pebbles, numbered after the mortar) it stores the pair's part. Thread
+// `threads - 1` also evaluates the disc-wall pairs. Barrier. Phase 2: it sums its shared discs
+// in pair order from the stored parts (pairs where the disc is second, then where it is first:
+// the order of the one-thread pass), adds its wall pairs, and integrates its bodies.
 //
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
-// thread for any thread count; the scalar totals (virial, slip work, released energy, energy
-// ledger terms) are summed in pair or body order after the region from per-pair or per-body
-// terms. In a step where a bond broke or a guard tripped the region stops before the
+// thread for any thread count. The scalar totals (virial, slip work, released energy, energy
+// ledger terms) are summed in pair or body order: thread 0, whose pairs and bodies come first,
+// sums its own as it goes, and the chain goes on after the job over the stored terms of the
+// others. In a step where a bond broke or a guard tripped the job stops before the
 // integration: the caller records the cracks (which read the positions of the step) or stops,
 // and integrates afterwards, as the one-thread cycle does.
 #include <cstdint>
@@ -62,6 +66,7 @@ class ThreadedCycle {
     std::vector<std::int32_t> broken;                    // pairs whose bond broke, ascending
     long touching = 0;
     long bad = -1;
+    double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
     RangeMotion motion;
   };
   // direct_ bits: the pair's thread adds it onto its first / second disc as it evaluates it.
