@@ -37,7 +37,7 @@ struct WorldSettings {
   // Bond law by ContactClass (default none: linear everywhere). Bonds exist only where
   // install_bonds (dem/bond_installation.hpp) put them; a pair's bond breaks for good.
   BondModels bonds{};
-  // OpenMP threads of a cycle (> 1: force pass and integration in one parallel region per step,
+  // Threads of a cycle (> 1: force pass and integration in one job of a thread team per step,
   // dem/threaded_cycle.hpp). Every sum runs in the order of the one-thread cycle whatever the
   // count, so results are bitwise the same for any value.
   int threads = 1;
