@@ -1,8 +1,9 @@
 #pragma once
 // The force pass: every candidate pair is evaluated with its contact law (one independent
-// kernel per pair, touching only that pair's slots), then the pair forces are added onto the
-// discs and walls in the fixed sorted pair order. The split keeps the result independent of the
-// number of threads: the kernel may run in parallel, the sums always run in the same order.
+// kernel per pair, touching only that pair's slots), and the pair forces are added onto the
+// discs and walls in the fixed sorted pair order. This is the one-thread pass; the multi-thread
+// cycle (dem/threaded_cycle.hpp) evaluates the same kernels and adds the same values in the same
+// order per disc, so results do not depend on the number of threads.
 #include <array>
 #include <vector>
 
@@ -46,9 +47,6 @@ struct ContactForces {
   std::vector<std::uint32_t> failed_elements, failed_shear;  // flat joints (bits per element)
   // Pairs whose bond broke in this pass, ascending (disc-disc only; walls are not bonded).
   std::vector<std::int32_t> broken;
-  // Multi-thread pass only: every pair's result from the parallel kernel, added onto the discs
-  // serially afterwards (the one-thread pass adds each pair as soon as it is evaluated).
-  std::vector<PairForce> evaluated;
 };
 
 struct ForcePassResult {
@@ -73,11 +71,30 @@ using ContactLaws = std::array<LinearContact, kContactClassCount>;
 // Evaluates all contacts, updates the persistent shear and bond state (breaking bonds that
 // reach their strength) and fills forces, discs.fx/fy/moment and the wall force sums.
 // `laws` are the linear parts by class, `bonds` the bond laws by class (a pair's bond kind is
-// its own state, set at installation). `max_overlap_ratio` is the instability-guard threshold;
-// `threads` > 1 runs the pair kernel with OpenMP (results do not depend on it).
+// its own state, set at installation). `max_overlap_ratio` is the instability-guard threshold.
 ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, NeighborList& list,
                                        ContactForces& pair, ContactForces& wall_pair,
                                        const ContactLaws& laws, const BondModels& bonds, double dt,
-                                       double max_overlap_ratio, int threads = 1);
+                                       double max_overlap_ratio);
+
+// Pieces of the pass shared with the multi-thread cycle.
+
+// Sizes the per-pair results to the neighbour list.
+void prepare_force_results(ContactForces& pair, ContactForces& wall_pair, const NeighborList& list);
+// Evaluates every disc-wall pair into `wall_pair` (the wall is the first body, the disc the
+// second; n points from the closest point of the segment or arc to the disc centre) and updates
+// their shear state. Slip work is added to `slip_work` in pair order, or, with `slip_by_pair`,
+// stored per pair instead. Returns the first pair tripping the guard, or -1.
+long disc_wall_forces(const Discs& discs, const Walls& walls, NeighborList& list,
+                      ContactForces& wall_pair, const LinearContact& law, double dt, double guard,
+                      double& slip_work, double* slip_by_pair);
+// False for a disc-wall pair that puts nothing on its disc (apart): the sums skip it.
+inline bool wall_pair_loaded(const ContactForces& wall_pair, std::size_t k) {
+  return wall_pair.normal[k] != 0 || wall_pair.fx[k] != 0 || wall_pair.fy[k] != 0;
+}
+// The walls' force and stress sums (walls.fx ... syy) and the disc-wall part of the virial and
+// of the touching count, in wall-pair order.
+void wall_totals(Walls& walls, const NeighborList& list, const ContactForces& wall_pair,
+                 const Discs& discs, ForcePassResult& result);
 
 }  // namespace cdem::dem

@@ -17,6 +17,10 @@
 
 namespace cdem::dem {
 
+// Pairs per block of the force pass: their geometries (sqrt, division) are computed first, in
+// a loop with no dependency between iterations, then their laws. 64 geometries fit in L1.
+inline constexpr std::size_t kGeometryBlock = 64;
+
 class DiscPairKernel {
  public:
   struct Geometry {

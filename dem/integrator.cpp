@@ -5,9 +5,8 @@
 
 namespace cdem::dem {
 
-void gather_body_forces(Bodies& b, const Discs& d) {
-  const std::size_t n = b.size();
-  for (std::size_t k = 0; k < n; ++k) {
+void gather_body_forces(Bodies& b, const Discs& d, std::size_t begin, std::size_t end) {
+  for (std::size_t k = begin; k < end; ++k) {
     const std::int32_t first = b.first_disc[k];
     if (!b.is_clump[k]) {
       b.fx[k] = d.fx[first] + b.fx_applied[k];
@@ -66,26 +65,28 @@ void advance(double& v, double force, double applied, double inv_inertia, double
 
 // kBook = false is the same loop without the energy terms, kDamped = false without local
 // damping (alpha = 0: its force and energy terms are zero); each combination is instantiated
-// separately so the loop carries no branch per degree of freedom.
+// separately so the loop carries no branch per degree of freedom. With `per_body`, each body's
+// energy terms are also stored there (the multi-thread cycle sums them in body order).
 template <bool kBook, bool kDamped>
-StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger& ledger) {
-  const std::size_t n = b.size();
-  double damped = 0, applied = 0, prescribed = 0;
+RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::size_t begin,
+                             std::size_t end, BodyStepEnergy* per_body) {
+  RangeMotion m;
   // Sum of every position: non-finite exactly when some position is (positions are far from
   // overflow), so the loop carries one addition per body instead of a test and a branch; the
   // body is looked for only when the sum says there is one.
   double position_sum = 0;
   // Largest squared speed of a free disc and largest pebble speed bound of a clump (m/s).
   double disc_speed2 = 0, pebble_speed = 0;
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     if (!b.prescribed[k]) {
       if constexpr (kBook) {
         StepEnergy e;
         advance<kDamped>(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
         advance<kDamped>(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
         advance<kDamped>(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, e);
-        damped += e.damped;
-        applied += e.applied;
+        m.damped += e.damped;
+        m.applied += e.applied;
+        if (per_body) per_body[k] = {e.damped, e.applied, 0.0};
       } else {
         b.vx[k] += dt * b.inv_mass_dyn[k] * damped_force<kDamped>(b.fx[k], b.vx[k], alpha);
         b.vy[k] += dt * b.inv_mass_dyn[k] * damped_force<kDamped>(b.fy[k], b.vy[k], alpha);
@@ -94,8 +95,10 @@ StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, Energy
       }
     } else if constexpr (kBook) {
       // The contacts push on the body with F - F_applied; it does the opposite work on them.
-      prescribed -= (b.fx[k] - b.fx_applied[k]) * b.vx[k] + (b.fy[k] - b.fy_applied[k]) * b.vy[k] +
-                    b.moment[k] * b.omega[k];
+      const double work = (b.fx[k] - b.fx_applied[k]) * b.vx[k] +
+                          (b.fy[k] - b.fy_applied[k]) * b.vy[k] + b.moment[k] * b.omega[k];
+      m.prescribed -= work;
+      if (per_body) per_body[k] = {0.0, 0.0, work};
     }
     b.x[k] += dt * b.vx[k];
     b.y[k] += dt * b.vy[k];
@@ -129,15 +132,34 @@ StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, Energy
       d.omega[i] = b.omega[k];
     }
   }
-  if constexpr (kBook) {
-    ledger.damping += 0.5 * dt * damped;
-    ledger.applied_work += 0.5 * dt * applied;
-    ledger.prescribed_work += dt * prescribed;
-  }
+  m.position_sum = position_sum;
+  m.disc_speed2 = disc_speed2;
+  m.pebble_speed = pebble_speed;
+  return m;
+}
+
+}  // namespace
+
+RangeMotion integrate_range(Bodies& b, Discs& d, double dt, double alpha, bool book,
+                            std::size_t begin, std::size_t end, BodyStepEnergy* per_body) {
+  if (alpha != 0)
+    return book ? integrate_bodies<true, true>(b, d, dt, alpha, begin, end, per_body)
+                : integrate_bodies<false, true>(b, d, dt, alpha, begin, end, per_body);
+  return book ? integrate_bodies<true, false>(b, d, dt, alpha, begin, end, per_body)
+              : integrate_bodies<false, false>(b, d, dt, alpha, begin, end, per_body);
+}
+
+void book_step_energy(const RangeMotion& m, double dt, EnergyLedger& ledger) {
+  ledger.damping += 0.5 * dt * m.damped;
+  ledger.applied_work += 0.5 * dt * m.applied;
+  ledger.prescribed_work += dt * m.prescribed;
+}
+
+StepMotion step_motion(const Bodies& b, const RangeMotion& m, double dt) {
   StepMotion motion;
-  motion.max_displacement = dt * std::max(std::sqrt(disc_speed2), pebble_speed);
-  if (!std::isfinite(position_sum))
-    for (std::size_t k = 0; k < n; ++k)
+  motion.max_displacement = dt * std::max(std::sqrt(m.disc_speed2), m.pebble_speed);
+  if (!std::isfinite(m.position_sum))
+    for (std::size_t k = 0; k < b.size(); ++k)
       if (!std::isfinite(b.x[k] + b.y[k] + b.theta[k])) {
         motion.bad_body = static_cast<long>(k);
         break;
@@ -145,15 +167,10 @@ StepMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, Energy
   return motion;
 }
 
-}  // namespace
-
 StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger) {
-  EnergyLedger unused;
-  if (alpha != 0)
-    return ledger ? integrate_bodies<true, true>(b, d, dt, alpha, *ledger)
-                  : integrate_bodies<false, true>(b, d, dt, alpha, unused);
-  return ledger ? integrate_bodies<true, false>(b, d, dt, alpha, *ledger)
-                : integrate_bodies<false, false>(b, d, dt, alpha, unused);
+  const RangeMotion m = integrate_range(b, d, dt, alpha, ledger != nullptr, 0, b.size(), nullptr);
+  if (ledger) book_step_energy(m, dt, *ledger);
+  return step_motion(b, m, dt);
 }
 
 }  // namespace cdem::dem

@@ -1,8 +1,9 @@
 #pragma once
 // Explicit central-difference (leapfrog / velocity Verlet) integration of translation and
-// rotation, with PFC local (non-viscous) damping applied per degree of freedom. Serial: the
-// loops are memory-bound, and every OpenMP region adds a barrier per cycle, which stalls badly
-// when another job shares the cores (measured: a second region doubled the 2-thread time).
+// rotation, with PFC local (non-viscous) damping applied per degree of freedom. The loops run
+// over a range of bodies, so the multi-thread cycle (dem/threaded_cycle.hpp) integrates each
+// thread's bodies in the same parallel region as its force pass instead of opening another
+// (every region adds a barrier per cycle, which stalls when another job shares the cores).
 #include <cmath>
 
 #include "dem/bodies.hpp"
@@ -21,9 +22,12 @@ inline double local_damping(double force, double velocity, double alpha) {
   return force - (velocity != 0 ? damping : 0.0);
 }
 
-// Sums the disc forces and moments of every body about its centroid into bodies.fx/fy/moment
-// (plus the applied loads).
-void gather_body_forces(Bodies& bodies, const Discs& discs);
+// Sums the disc forces and moments of bodies [begin, end) about their centroids into
+// bodies.fx/fy/moment (plus the applied loads).
+void gather_body_forces(Bodies& bodies, const Discs& discs, std::size_t begin, std::size_t end);
+inline void gather_body_forces(Bodies& bodies, const Discs& discs) {
+  gather_body_forces(bodies, discs, 0, bodies.size());
+}
 
 // v(t + dt/2) = v(t - dt/2) + dt F_damped / m; x(t + dt) = x(t) + dt v(t + dt/2); likewise
 // for the rotation. Prescribed bodies keep their velocity. Then carries the body motion to the
@@ -39,5 +43,27 @@ struct StepMotion {
   double max_displacement = 0;  // m, bound on the largest disc displacement of the step
 };
 StepMotion integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger);
+
+// The pieces of integrate for a range of bodies. Energy terms of one body's step before the
+// common factors (damping and applied work: force x (v_old + v_new); prescribed: the work rate
+// the contacts receive from a prescribed body).
+struct BodyStepEnergy {
+  double damped = 0, applied = 0, prescribed = 0;
+};
+// Sums over a range, in body order, and the motion bounds (m/s, squared for free discs) and the
+// running position sum of the non-finite test.
+struct RangeMotion {
+  double damped = 0, applied = 0, prescribed = 0;
+  double position_sum = 0, disc_speed2 = 0, pebble_speed = 0;
+};
+// Integrates bodies [begin, end); with `book` it forms the energy terms, and with `per_body`
+// (indexed by body) also stores each body's, so that ranges integrated by several threads can
+// be summed in body order afterwards, with the bits of one loop.
+RangeMotion integrate_range(Bodies& bodies, Discs& discs, double dt, double alpha, bool book,
+                            std::size_t begin, std::size_t end, BodyStepEnergy* per_body);
+// Adds the sums of a whole step (all bodies, in body order) to the ledger.
+void book_step_energy(const RangeMotion& step, double dt, EnergyLedger& ledger);
+// The step's result from its sums (the bad body is looked for only if the sum is non-finite).
+StepMotion step_motion(const Bodies& bodies, const RangeMotion& step, double dt);
 
 }  // namespace cdem::dem

@@ -259,9 +259,24 @@ void World::check_energy() {
 
 void World::step() {
   if (rebuild_pending_ || neighbors.needs_rebuild(discs, walls, moved_bound_)) rebuild();
-  last_pass_ =
-      compute_contact_forces(discs, walls, neighbors, pair_forces, wall_forces, settings.laws,
-                             settings.bonds, dt_, settings.max_overlap_ratio, settings.threads);
+  const bool book = settings.energy_tracking;
+  ThreadedStep threaded;
+  if (settings.threads > 1) {
+    ThreadedStepSettings ts;
+    ts.laws = &settings.laws;
+    ts.bonds = &settings.bonds;
+    ts.dt = dt_;
+    ts.guard = settings.max_overlap_ratio;
+    ts.alpha = settings.local_damping;
+    ts.book_energy = book;
+    ts.threads = settings.threads;
+    threaded = threaded_.step(bodies, discs, walls, neighbors, pair_forces, wall_forces, ts);
+    last_pass_ = threaded.pass;
+  } else {
+    last_pass_ =
+        compute_contact_forces(discs, walls, neighbors, pair_forces, wall_forces, settings.laws,
+                               settings.bonds, dt_, settings.max_overlap_ratio);
+  }
   if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0) {
     std::ostringstream what;
     long disc;
@@ -286,9 +301,14 @@ void World::step() {
   bond_energy_released_ += last_pass_.bond_energy_released;
   if (!servos.empty()) update_wall_servos(*this);
   account_wall_work();
-  gather_body_forces(bodies, discs);
-  const StepMotion motion = integrate(bodies, discs, dt_, settings.local_damping,
-                                      settings.energy_tracking ? &energy : nullptr);
+  StepMotion motion;
+  if (threaded.integrated) {  // the region integrated already (no bond broke, no guard tripped)
+    if (book) book_step_energy(threaded.motion, dt_, energy);
+    motion = step_motion(bodies, threaded.motion, dt_);
+  } else {
+    gather_body_forces(bodies, discs);
+    motion = integrate(bodies, discs, dt_, settings.local_damping, book ? &energy : nullptr);
+  }
   if (motion.bad_body >= 0)
     fail("has a non-finite position or velocity", bodies.first_disc[motion.bad_body]);
   moved_bound_ += motion.max_displacement;

@@ -17,6 +17,7 @@
 #include "dem/linear_contact.hpp"
 #include "dem/neighbor_list.hpp"
 #include "dem/servo.hpp"
+#include "dem/threaded_cycle.hpp"
 #include "dem/wall.hpp"
 
 namespace cdem::dem {
@@ -36,8 +37,9 @@ struct WorldSettings {
   // Bond law by ContactClass (default none: linear everywhere). Bonds exist only where
   // install_bonds (dem/bond_installation.hpp) put them; a pair's bond breaks for good.
   BondModels bonds{};
-  // OpenMP threads for the disc-disc pair kernel (the one parallel loop of a cycle). Every sum
-  // runs in a fixed order whatever the count, so results are bitwise the same for any value.
+  // Threads of a cycle (> 1: force pass and integration in one job of a thread team per step,
+  // dem/threaded_cycle.hpp). Every sum runs in the order of the one-thread cycle whatever the
+  // count, so results are bitwise the same for any value.
   int threads = 1;
   // Runaway kinetic energy guard, checked every `energy_check_interval` steps: the run stops
   // when kinetic (integration inertia) + contact strain + damped energy exceeds
@@ -137,6 +139,7 @@ class World {
   // rebuild check skip its pass over every disc while the bound alone rules a rebuild out.
   double moved_bound_ = std::numeric_limits<double>::infinity();
   ForcePassResult last_pass_;
+  ThreadedCycle threaded_;                         // plan and scratch of the multi-thread cycle
   std::vector<double> stiffness_, rot_stiffness_;  // per body, scratch of update_time_step
 };
 

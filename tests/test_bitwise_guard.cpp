@@ -12,6 +12,10 @@
 // that says why. Updated since: the energy ledgers of the two packings (rough side walls) after
 // an opening wall contact booked its last increment's slip work as a pair does (commit ee66aa7;
 // every other part, the motion included, kept its 1faa2bf hash).
+//
+// Each world also runs with 2 and 3 threads (the multi-thread cycle, dem/threaded_cycle.hpp) and
+// must give the same hashes: results do not depend on the thread count, and 3 threads cut the
+// lists where 2 do not.
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -137,8 +141,9 @@ void expect_hashes(const WorldHashes& got, const WorldHashes& want) {
 // A mortar packing (10 x 20 mm, ~320 discs) in its four mould walls, every third disc an
 // aggregate disc so the pairs fall in all three classes M, ITZ and A; the top and bottom walls
 // close in at 0.5 m/s each so wall contacts load, slip and (bonded) break bonds.
-World loaded_packing(const BondModels& bonds) {
+World loaded_packing(const BondModels& bonds, int threads) {
   WorldSettings s;
+  s.threads = threads;
   s.laws.fill(LinearContact{16e9, 1.45, 0.5});
   s.bonds = bonds;
   World w(s);
@@ -169,9 +174,11 @@ constexpr bool kRecordedToolchain = false;
   GTEST_SKIP() << "hashes recorded with GCC 12.2, x86-64, Release without -march; re-record " \
                   "them for this toolchain (see the file's header)"
 
-TEST(BitwiseGuard, UnbondedPacking) {
+class BitwiseGuard : public testing::TestWithParam<int> {};  // the thread count
+
+TEST_P(BitwiseGuard, UnbondedPacking) {
   SKIP_UNLESS_RECORDED_TOOLCHAIN();
-  World w = loaded_packing({});
+  World w = loaded_packing({}, GetParam());
   w.cycle(kSteps);
   ASSERT_GT(w.last_force_pass().touching, 300);  // a packing: about 2 contacts per disc or more
   expect_hashes(hash_world(w),
@@ -179,7 +186,7 @@ TEST(BitwiseGuard, UnbondedPacking) {
                  13213359110230497906ull, 7583932441347881461ull, 5649913253872245412ull});
 }
 
-TEST(BitwiseGuard, BondedPacking) {
+TEST_P(BitwiseGuard, BondedPacking) {
   SKIP_UNLESS_RECORDED_TOOLCHAIN();
   BondModels bonds{};
   BondModel& m = bonds[static_cast<int>(ContactClass::Mortar)];
@@ -194,7 +201,7 @@ TEST(BitwiseGuard, BondedPacking) {
   BondModel& a = bonds[static_cast<int>(ContactClass::Aggregate)];
   a.kind = BondKind::Contact;
   a.contact = {2e6, 2e6};
-  World w = loaded_packing(bonds);
+  World w = loaded_packing(bonds, GetParam());
   w.refresh_neighbors();
   const long installed = install_bonds(w).total();
   ASSERT_GT(installed, 300);
@@ -210,9 +217,10 @@ TEST(BitwiseGuard, BondedPacking) {
 // (the same mortar, gradation law, shapes and seed), the C30 materials, a uniaxial test stopped
 // after kSteps loading steps: genesis (removal of floating discs, bond installation, relaxation)
 // and platen loading through the lab layer.
-TEST(BitwiseGuard, ReducedC30Uniaxial) {
+TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
   SKIP_UNLESS_RECORDED_TOOLCHAIN();
-  const auto dir = test::scratch_dir("BitwiseGuard", "ReducedC30Uniaxial");
+  const auto dir =
+      test::scratch_dir("BitwiseGuard", "ReducedC30Uniaxial" + std::to_string(GetParam()));
   test::write_text(dir / "spec.toml",
                    "seed = 1\n[specimen]\nshape = \"rectangle\"\nwidth_mm = 40\nheight_mm = 80\n"
                    "[gradation]\ntype = \"walraven\"\np_k = 0.75\nd_min_mm = 5\nd_max_mm = 10\n"
@@ -234,7 +242,8 @@ TEST(BitwiseGuard, ReducedC30Uniaxial) {
   test::write_text(dir / "materials.toml", text.str());
   test::write_text(dir / "test.toml",
                    "seed = 1\nspecimen = \"specimen.h5\"\nmaterials = \"materials.toml\"\n"
-                   "[test]\ntype = \"uniaxial\"\nhistory_interval = 100\n");
+                   "[test]\ntype = \"uniaxial\"\nhistory_interval = 100\nthreads = " +
+                       std::to_string(GetParam()) + "\n");
   const LabTestInput input = read_lab_test(dir / "test.toml");
   const Specimen specimen = read_specimen(dir / "specimen.h5");
   ASSERT_GT(specimen.r.size(), 1000u);
@@ -267,5 +276,7 @@ TEST(BitwiseGuard, ReducedC30Uniaxial) {
   const auto& b = r.genesis.bonds;
   EXPECT_GT(b[0] + b[1] + b[2], 1000);  // more bonds than discs: a bonded packing
 }
+
+INSTANTIATE_TEST_SUITE_P(Threads, BitwiseGuard, testing::Values(1, 2, 3));
 
 }  // namespace

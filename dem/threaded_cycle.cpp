@@ -1,0 +1,276 @@
+#include "dem/threaded_cycle.hpp"
+
+#include <algorithm>
+#include <bit>
+
+#include "dem/disc_pair_kernel.hpp"
+
+namespace cdem::dem {
+
+void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const NeighborList& list,
+                         int threads) {
+  const std::size_t n = discs.size(), count = list.keys.size(), walls = list.wall_keys.size();
+  if (planned_build_ == list.build_count && planned_pairs_ == count && planned_discs_ == n &&
+      planned_walls_ == walls && planned_threads_ == threads)
+    return;
+  first_start_.assign(n + 1, 0);
+  second_start_.assign(n + 1, 0);
+  wall_start_.assign(n + 1, 0);
+  for (std::size_t k = 0; k < count; ++k) {
+    ++first_start_[static_cast<std::size_t>(list.first[k]) + 1];
+    ++second_start_[static_cast<std::size_t>(list.second[k]) + 1];
+  }
+  for (std::size_t k = 0; k < walls; ++k)
+    ++wall_start_[static_cast<std::size_t>(list.wall_disc[k]) + 1];
+  for (std::size_t i = 0; i < n; ++i) {
+    first_start_[i + 1] += first_start_[i];
+    second_start_[i + 1] += second_start_[i];
+    wall_start_[i + 1] += wall_start_[i];
+  }
+  // Pairs where each disc is the second, in ascending pair order (a stable counting sort).
+  second_pairs_.resize(count);
+  std::vector<std::int32_t> next(second_start_.begin(), second_start_.end() - 1);
+  for (std::size_t k = 0; k < count; ++k)
+    second_pairs_[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
+        static_cast<std::int32_t>(k);
+
+  // Cuts between the threads' disc ranges, at body starts, balancing a work estimate: the pairs
+  // a disc is first of (its thread evaluates them) and about a third of a pair for the disc's
+  // share of the sums and the integration.
+  std::vector<double> work_before(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    work_before[i + 1] = work_before[i] + 0.3 + (first_start_[i + 1] - first_start_[i]);
+  cuts_.assign(static_cast<std::size_t>(threads) + 1, n);
+  cuts_[0] = 0;
+  for (int t = 1; t < threads; ++t) {
+    const double target = work_before[n] * t / threads;
+    auto i = static_cast<std::size_t>(
+        std::lower_bound(work_before.begin(), work_before.end(), target) - work_before.begin());
+    i = std::max(i, cuts_[static_cast<std::size_t>(t) - 1]);
+    while (i < n && bodies.first_disc[static_cast<std::size_t>(discs.body[i])] !=
+                        static_cast<std::int32_t>(i))
+      ++i;
+    cuts_[static_cast<std::size_t>(t)] = std::min(i, n);
+  }
+  // Discs that receive a pair of an earlier thread's range (its first disc is below the
+  // disc's range): their sums wait for the barrier. Every other disc gets all its pairs from
+  // its own thread, in pair order, so that thread adds them as it evaluates them.
+  shared_.assign(n, 0);
+  std::vector<std::size_t> range_of(n);
+  for (int t = 0; t < threads; ++t)
+    for (std::size_t i = cuts_[static_cast<std::size_t>(t)];
+         i < cuts_[static_cast<std::size_t>(t) + 1]; ++i)
+      range_of[i] = static_cast<std::size_t>(t);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(list.first[k]),
+               j = static_cast<std::size_t>(list.second[k]);
+    if (range_of[i] != range_of[j]) shared_[j] = 1;
+  }
+  direct_.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(list.first[k]),
+               j = static_cast<std::size_t>(list.second[k]);
+    direct_[k] = static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
+                                           (shared_[j] ? 0 : kDirectSecond));
+  }
+  shared_discs_.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (shared_[i]) shared_discs_.push_back(static_cast<std::int32_t>(i));
+  sums_.resize(count);
+  virial_.resize(count);
+  wall_slip_.resize(walls);
+  planned_build_ = list.build_count;
+  planned_pairs_ = count;
+  planned_discs_ = n;
+  planned_walls_ = walls;
+  planned_threads_ = threads;
+}
+
+void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const {
+  const PairSum* sums = sums_.data();
+  const auto first = std::lower_bound(shared_discs_.begin(), shared_discs_.end(),
+                                      static_cast<std::int32_t>(begin));
+  for (auto it = first; it != shared_discs_.end() && *it < static_cast<std::int32_t>(end); ++it) {
+    const auto i = static_cast<std::size_t>(*it);
+    // The one-thread pass adds pair k onto both discs in ascending k, starting from zero: the
+    // pairs where i is the second disc (first disc < i) all come before those where it is the
+    // first.
+    double fx = 0, fy = 0, m = 0;
+    for (std::int32_t s = second_start_[i]; s < second_start_[i + 1]; ++s) {
+      const PairSum& p = sums[second_pairs_[static_cast<std::size_t>(s)]];
+      fx += p.fx;
+      fy += p.fy;
+      m += p.moment_j;
+    }
+    for (std::int32_t k = first_start_[i]; k < first_start_[i + 1]; ++k) {
+      const PairSum& p = sums[k];
+      fx -= p.fx;
+      fy -= p.fy;
+      m += p.moment_i;
+    }
+    discs.fx[i] = fx;
+    discs.fy[i] = fy;
+    discs.moment[i] = m;
+  }
+}
+
+void ThreadedCycle::add_wall_pairs(Discs& discs, const NeighborList& list,
+                                   const ContactForces& wall_pair, std::size_t begin,
+                                   std::size_t end) const {
+  for (std::size_t k = static_cast<std::size_t>(wall_start_[begin]);
+       k < static_cast<std::size_t>(wall_start_[end]); ++k) {
+    if (!wall_pair_loaded(wall_pair, k)) continue;
+    const auto i = static_cast<std::size_t>(list.wall_disc[k]);
+    discs.fx[i] += wall_pair.fx[k];
+    discs.fy[i] += wall_pair.fy[k];
+    discs.moment[i] += wall_pair.moment[k];
+  }
+}
+
+ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, NeighborList& list,
+                                 ContactForces& pair, ContactForces& wall_pair,
+                                 const ThreadedStepSettings& s) {
+  using Geometry = DiscPairKernel::Geometry;
+  prepare_force_results(pair, wall_pair, list);
+  WorkerTeam& team = team_.get(s.threads);
+  const int nt = team.size();
+  plan(bodies, discs, list, nt);
+  if (lanes_.size() < static_cast<std::size_t>(nt)) lanes_.resize(static_cast<std::size_t>(nt));
+  if (s.book_energy) body_energy_.resize(bodies.size());
+  const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard);
+  const std::size_t count = list.keys.size();
+  const LinearContact& wall_law = (*s.laws)[static_cast<int>(ContactClass::Wall)];
+  long bad_wall = -1;
+  bool integrated = false;
+  double unused_slip = 0;
+  const std::int32_t *first = list.first.data(), *second = list.second.data();
+  double *disc_fx = discs.fx.data(), *disc_fy = discs.fy.data(), *disc_m = discs.moment.data();
+  auto job = [&](int t) {
+    Lane& lane = lanes_[static_cast<std::size_t>(t)];
+    lane.slips.clear();
+    lane.broken.clear();
+    lane.touching = 0;
+    lane.bad = -1;
+    lane.motion = {};
+    lane.virial = 0;
+    const std::size_t disc_begin = cuts_[static_cast<std::size_t>(t)];
+    const std::size_t disc_end = cuts_[static_cast<std::size_t>(t) + 1];
+    // Phase 1: the pairs whose first disc is this thread's, in blocks of kGeometryBlock as in
+    // one thread, added at once onto the discs no other thread touches.
+    std::fill(disc_fx + disc_begin, disc_fx + disc_end, 0.0);
+    std::fill(disc_fy + disc_begin, disc_fy + disc_end, 0.0);
+    std::fill(disc_m + disc_begin, disc_m + disc_end, 0.0);
+    const auto pair_begin = static_cast<std::size_t>(first_start_[disc_begin]);
+    const auto pair_end = static_cast<std::size_t>(first_start_[disc_end]);
+    Geometry g[kGeometryBlock];
+    long bad = static_cast<long>(count);
+    for (std::size_t start = pair_begin; start < pair_end; start += kGeometryBlock) {
+      const std::size_t end = std::min(start + kGeometryBlock, pair_end);
+      for (std::size_t k = start; k < end; ++k) g[k - start] = kernel.geometry(k);
+      for (std::size_t k = start; k < end; ++k) {
+        const Geometry& gk = g[k - start];
+        bool within_guard;
+        const PairForce f = kernel.evaluate(k, gk, within_guard);
+        if (!within_guard) bad = std::min(bad, static_cast<long>(k));
+        // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
+        // others store theirs for the chain to go on in pair order after the job.
+        const double virial = f.normal * (gk.ri + gk.rj - f.overlap);
+        if (t == 0)
+          lane.virial += virial;
+        else
+          virial_[k] = virial;
+        const std::uint8_t direct = direct_[k];
+        if (direct != (kDirectFirst | kDirectSecond))
+          sums_[k] = {f.fx, f.fy, f.moment_i, f.moment_j};
+        if (direct & kDirectSecond) {
+          disc_fx[second[k]] += f.fx;
+          disc_fy[second[k]] += f.fy;
+        }
+        if (direct & kDirectFirst) {
+          disc_fx[first[k]] -= f.fx;
+          disc_fy[first[k]] -= f.fy;
+          disc_m[first[k]] += f.moment_i;
+        }
+        if (direct & kDirectSecond) disc_m[second[k]] += f.moment_j;
+        lane.touching += f.overlap > 0;
+        if (f.slip_work != 0) lane.slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
+        if (f.failure != BondFailure::None) lane.broken.push_back(static_cast<std::int32_t>(k));
+      }
+    }
+    if (bad < static_cast<long>(count)) lane.bad = bad;
+    if (t == nt - 1)
+      bad_wall = disc_wall_forces(discs, walls, list, wall_pair, wall_law, s.dt, s.guard,
+                                  unused_slip, wall_slip_.data());
+    team.barrier();
+    // Phase 2: this thread's discs and bodies. Every thread reads the same flags, so all take
+    // the same branch.
+    bool stop = bad_wall >= 0;
+    for (int u = 0; u < nt; ++u) {
+      const Lane& other = lanes_[static_cast<std::size_t>(u)];
+      stop = stop || other.bad >= 0 || !other.broken.empty();
+    }
+    sum_shared_discs(discs, disc_begin, disc_end);
+    add_wall_pairs(discs, list, wall_pair, disc_begin, disc_end);
+    if (!stop && disc_begin < disc_end) {
+      const std::size_t body_begin = static_cast<std::size_t>(discs.body[disc_begin]);
+      const std::size_t body_end =
+          disc_end < discs.size() ? static_cast<std::size_t>(discs.body[disc_end]) : bodies.size();
+      gather_body_forces(bodies, discs, body_begin, body_end);
+      // Likewise thread 0's energy sums are the start of the chain over the bodies.
+      lane.motion =
+          integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, body_begin, body_end,
+                          s.book_energy && t > 0 ? body_energy_.data() : nullptr);
+    }
+    if (t == 0) integrated = !stop;
+  };
+  team.run(job);
+
+  // The totals, in the order of the one-thread pass.
+  ThreadedStep out;
+  ForcePassResult& r = out.pass;
+  pair.broken.clear();
+  long bad = -1;
+  for (int u = 0; u < nt; ++u) {
+    const Lane& lane = lanes_[static_cast<std::size_t>(u)];
+    r.touching += lane.touching;
+    if (bad < 0) bad = lane.bad;
+    for (const auto& [k, work] : lane.slips) r.slip_work += work;
+    pair.broken.insert(pair.broken.end(), lane.broken.begin(), lane.broken.end());
+  }
+  for (const std::int32_t k : pair.broken) {
+    r.bond_energy_released += pair.bond_energy_released[static_cast<std::size_t>(k)];
+    const std::uint32_t elements = pair.failed_elements[static_cast<std::size_t>(k)];
+    r.bonds_broken += elements ? std::popcount(elements) : 1;
+  }
+  r.virial = lanes_[0].virial;
+  for (std::size_t k = static_cast<std::size_t>(first_start_[cuts_[1]]); k < count; ++k)
+    r.virial += virial_[k];
+  for (const double work : wall_slip_) r.slip_work += work;
+  r.bad_pair = bad;
+  r.bad_wall_pair = bad_wall;
+  wall_totals(walls, list, wall_pair, discs, r);
+  out.integrated = integrated;
+  if (integrated) {
+    RangeMotion& m = out.motion;
+    m.damped = lanes_[0].motion.damped;
+    m.applied = lanes_[0].motion.applied;
+    m.prescribed = lanes_[0].motion.prescribed;
+    for (int u = 0; u < nt; ++u) {
+      const RangeMotion& lane = lanes_[static_cast<std::size_t>(u)].motion;
+      m.position_sum += lane.position_sum;
+      m.disc_speed2 = std::max(m.disc_speed2, lane.disc_speed2);
+      m.pebble_speed = std::max(m.pebble_speed, lane.pebble_speed);
+    }
+    const std::size_t rest =
+        cuts_[1] < discs.size() ? static_cast<std::size_t>(discs.body[cuts_[1]]) : bodies.size();
+    if (s.book_energy)
+      for (std::size_t b = rest; b < bodies.size(); ++b) {
+        m.damped += body_energy_[b].damped;
+        m.applied += body_energy_[b].applied;
+        m.prescribed -= body_energy_[b].prescribed;
+      }
+  }
+  return out;
+}
+
+}  // namespace cdem::dem

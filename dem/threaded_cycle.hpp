@@ -1,0 +1,101 @@
+#pragma once
+// The multi-thread cycle (WorldSettings::threads > 1): the force pass, the sums onto the discs
+// and bodies and the integration in one job of a persistent thread team per step
+// (dem/worker_team.hpp), with one barrier inside it.
+//
+// Each thread owns a contiguous range of discs (cut at body starts where a work estimate is
+// balanced) and so of bodies and of the sorted pair list (the pairs whose first disc is its).
+// Phase 1: it evaluates its pairs with the pair kernel of the one-thread pass and adds each at
+// once onto the discs that no other thread's pair reaches, which therefore get all their pairs
+// from it in pair order; for a shared disc (reached from an earlier range: discs near a cut,
+// and the clumps' pebbles, numbered after the mortar) it stores the pair's part. Thread
+// `threads - 1` also evaluates the disc-wall pairs. Barrier. Phase 2: it sums its shared discs
+// in pair order from the stored parts (pairs where the disc is second, then where it is first:
+// the order of the one-thread pass), adds its wall pairs, and integrates its bodies.
+//
+// Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
+// thread for any thread count. The scalar totals (virial, slip work, released energy, energy
+// ledger terms) are summed in pair or body order: thread 0, whose pairs and bodies come first,
+// sums its own as it goes, and the chain goes on after the job over the stored terms of the
+// others. In a step where a bond broke or a guard tripped the job stops before the
+// integration: the caller records the cracks (which read the positions of the step) or stops,
+// and integrates afterwards, as the one-thread cycle does.
+#include <cstdint>
+#include <vector>
+
+#include "dem/bodies.hpp"
+#include "dem/contact_solver.hpp"
+#include "dem/discs.hpp"
+#include "dem/integrator.hpp"
+#include "dem/neighbor_list.hpp"
+#include "dem/wall.hpp"
+#include "dem/worker_team.hpp"
+
+namespace cdem::dem {
+
+struct ThreadedStep {
+  ForcePassResult pass;
+  bool integrated = false;  // false: a bond broke or a guard tripped; the caller integrates
+  RangeMotion motion;       // the step's sums over every body, in body order, if integrated
+};
+
+// What a threaded step needs besides the state it changes.
+struct ThreadedStepSettings {
+  const ContactLaws* laws = nullptr;
+  const BondModels* bonds = nullptr;
+  double dt = 0;             // s
+  double guard = 0;          // max overlap / radius
+  double alpha = 0;          // local damping
+  bool book_energy = false;  // form the integration's energy terms
+  int threads = 2;
+};
+
+class ThreadedCycle {
+ public:
+  ThreadedStep step(Bodies& bodies, Discs& discs, Walls& walls, NeighborList& list,
+                    ContactForces& pair, ContactForces& wall_pair, const ThreadedStepSettings& s);
+
+ private:
+  // What one pair puts on its discs: forces on the second disc, moments on each.
+  struct PairSum {
+    double fx, fy, moment_i, moment_j;
+  };
+  // One thread's results of a step (padded so two threads never share a cache line).
+  struct alignas(64) Lane {
+    std::vector<std::pair<std::int32_t, double>> slips;  // pairs with non-zero slip work (J)
+    std::vector<std::int32_t> broken;                    // pairs whose bond broke, ascending
+    long touching = 0;
+    long bad = -1;
+    double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
+    RangeMotion motion;
+  };
+  // direct_ bits: the pair's thread adds it onto its first / second disc as it evaluates it.
+  static constexpr std::uint8_t kDirectFirst = 1, kDirectSecond = 2;
+
+  // Cuts the discs into `threads` ranges and finds the shared discs (rebuilt when the list or
+  // the team is): per-disc lists of the pairs (where each disc is the second disc, where the
+  // first) and of its disc-wall pairs.
+  void plan(const Bodies& bodies, const Discs& discs, const NeighborList& list, int threads);
+  // Sums, in pair order, the pairs of the shared discs of [begin, end).
+  void sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const;
+  // Adds the disc-wall pairs of discs [begin, end), in wall-pair order.
+  void add_wall_pairs(Discs& discs, const NeighborList& list, const ContactForces& wall_pair,
+                      std::size_t begin, std::size_t end) const;
+
+  long planned_build_ = -1;
+  std::size_t planned_pairs_ = 0, planned_discs_ = 0, planned_walls_ = 0;
+  int planned_threads_ = 0;
+  std::vector<std::int32_t> first_start_, second_start_, second_pairs_, wall_start_;
+  std::vector<std::size_t> cuts_;           // thread t owns discs [cuts_[t], cuts_[t + 1])
+  std::vector<std::uint8_t> shared_;        // per disc: 1 if an earlier range's pair reaches it
+  std::vector<std::int32_t> shared_discs_;  // the shared discs, ascending
+  std::vector<std::uint8_t> direct_;        // per pair: kDirectFirst | kDirectSecond
+  std::vector<PairSum> sums_;               // per pair, written only where a disc is shared
+  std::vector<double> virial_;              // N m, per pair: normal force x centre distance
+  std::vector<BodyStepEnergy> body_energy_;
+  std::vector<double> wall_slip_;  // J, per disc-wall pair
+  std::vector<Lane> lanes_;
+  WorkerTeamHandle team_;
+};
+
+}  // namespace cdem::dem

@@ -1,0 +1,73 @@
+#include "dem/worker_team.hpp"
+
+namespace cdem::dem {
+
+namespace {
+
+// Waits until `a` no longer holds `old`: a short spin (the partner is usually a few
+// microseconds away when both run), then yields (a descheduled partner may be waiting for this
+// core), then sleeps until notified.
+void wait_while_equal(const std::atomic<std::uint32_t>& a, std::uint32_t old) {
+  constexpr int kSpins = 2000, kYields = 20;
+  for (int i = 0; i < kSpins; ++i) {
+    if (a.load(std::memory_order_acquire) != old) return;
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+  for (int i = 0; i < kYields; ++i) {
+    if (a.load(std::memory_order_acquire) != old) return;
+    std::this_thread::yield();
+  }
+  while (a.load(std::memory_order_acquire) == old) a.wait(old, std::memory_order_acquire);
+}
+
+}  // namespace
+
+WorkerTeam::WorkerTeam(int threads) : size_(threads < 1 ? 1 : threads) {
+  workers_.reserve(static_cast<std::size_t>(size_ - 1));
+  for (int t = 1; t < size_; ++t) workers_.emplace_back([this, t] { work(t); });
+}
+
+WorkerTeam::~WorkerTeam() {
+  stopping_ = true;
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();
+  for (std::thread& w : workers_) w.join();
+}
+
+void WorkerTeam::run(void (*call)(void*, int), void* job) {
+  call_ = call;
+  job_ = job;
+  running_.store(static_cast<std::uint32_t>(size_ - 1), std::memory_order_relaxed);
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();
+  call(job, 0);
+  for (std::uint32_t left; (left = running_.load(std::memory_order_acquire)) != 0;)
+    wait_while_equal(running_, left);
+}
+
+void WorkerTeam::work(int t) {
+  std::uint32_t seen = 0;
+  for (;;) {
+    wait_while_equal(generation_, seen);
+    seen = generation_.load(std::memory_order_acquire);
+    if (stopping_) return;
+    call_(job_, t);
+    running_.fetch_sub(1, std::memory_order_acq_rel);
+    running_.notify_all();
+  }
+}
+
+void WorkerTeam::barrier() {
+  const std::uint32_t generation = barrier_generation_.load(std::memory_order_acquire);
+  if (arrived_.fetch_add(1, std::memory_order_acq_rel) + 1 == static_cast<std::uint32_t>(size_)) {
+    arrived_.store(0, std::memory_order_relaxed);
+    barrier_generation_.fetch_add(1, std::memory_order_release);
+    barrier_generation_.notify_all();
+    return;
+  }
+  wait_while_equal(barrier_generation_, generation);
+}
+
+}  // namespace cdem::dem
