@@ -45,7 +45,7 @@ double solver_bytes(const cdem::dem::World& w) {
     for (const auto* v : {&f->normal, &f->overlap, &f->fx, &f->fy, &f->moment, &f->cx, &f->cy,
                           &f->bond_energy_released})
       sum += bytes(*v);
-    sum += bytes(f->failure) + bytes(f->evaluated);
+    sum += bytes(f->failure);
   }
   return sum;
 }
