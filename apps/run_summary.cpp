@@ -169,11 +169,24 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   j["genesis"] = g;
   // Smooth joints installed, one entry per [[test.joints]] set (docs/smooth_joint.md).
   if (!r.joints.contacts.empty()) {
+    // At the end of the run, per set: bonds intact, and joints broken in tension and in shear.
+    const std::size_t set_count = r.joints.contacts.size();
+    std::vector<long> intact(set_count, 0), tension(set_count, 0), shear(set_count, 0);
+    const dem::JointStates& js = r.joint_states;
+    for (std::size_t e = 0; e < js.size(); ++e) {
+      const auto s = static_cast<std::size_t>(js.set[e]);
+      intact[s] += js.bonded[e];
+      tension[s] += js.mode[e] == 1;
+      shear[s] += js.mode[e] == 2;
+    }
     nlohmann::ordered_json sets = nlohmann::ordered_json::array();
-    for (std::size_t s = 0; s < r.joints.contacts.size(); ++s)
+    for (std::size_t s = 0; s < set_count; ++s)
       sets.push_back({{"contacts", r.joints.contacts[s]},
                       {"contact_area_m2", r.joints.area[s]},
-                      {"open_pairs", r.joints.open[s]}});
+                      {"open_pairs", r.joints.open[s]},
+                      {"bonded_at_end", intact[s]},
+                      {"broken_tension", tension[s]},
+                      {"broken_shear", shear[s]}});
     j["smooth_joints"] = sets;
   }
   return j;

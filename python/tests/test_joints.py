@@ -61,6 +61,13 @@ def test_joint_sets_from_a_dict_are_installed_and_reported(tiny, monkeypatch, tm
     crack_pairs = list(zip(r.cracks["first"].tolist(), r.cracks["second"].tolist()))
     assert sum(p in joint_pairs for p in crack_pairs) == np.sum(broken)
     assert np.sum(j["bonded"]) == sets[0]["contacts"] - np.sum(broken)
+    # The summary's end counts per set are those of the joints' own states.
+    for s, counts in enumerate(sets):
+        in_set = j["set"] == s
+        assert counts["bonded_at_end"] == np.sum(j["bonded"][in_set])
+        assert counts["broken_tension"] == np.sum(j["mode"][in_set] == 1)
+        assert counts["broken_shear"] == np.sum(j["mode"][in_set] == 2)
+    assert sets[0]["broken_tension"] + sets[0]["broken_shear"] == np.sum(broken)
     # The result file holds the same joints.
     f = cdem.read_result(tmp_path / "result.h5")
     g = f["joints"]
