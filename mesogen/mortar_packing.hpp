@@ -44,8 +44,9 @@ constexpr double kMinPackedRatio = 1.2;
 // large ones (whose radii grow r_ratio times faster) is squeezed through (the overlap guard stops
 // the run). Measured on 4 seeds each (docs/generator.md): ratio 8 stopped at 500 cycles (3 of 4)
 // and 1,000 (1 of 4), packed at 2,000 (its default); ratio 10 stopped at 2,000 (1 of 4), packed
-// at 3,125 (its default); ratio 20 packed at 12,500 (its default); ratio 6 packed at 500 in 36 of
-// 36 campaign runs.
+// at 3,125 (its default); ratio 20 packed at 12,500 (its default). A mitigation, not a cure: one
+// ratio-6 packing that packed at 500 stops at its default 1,125 (the stops come as the growth
+// ends; docs/generator.md "The default expansion").
 long default_expansion_steps(double r_ratio);
 
 struct MortarPacking {
