@@ -14,27 +14,16 @@ namespace {
 // guard, or -1.
 long disc_disc_pass(Discs& d, NeighborList& list, ContactForces& out, const ContactLaws& laws,
                     const BondModels& bonds, double dt, double guard, ForcePassResult& result) {
-  using Geometry = DiscPairKernel::Geometry;
   const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard);
   const std::size_t count = list.keys.size();
-  long bad = static_cast<long>(count);
   out.broken.clear();
-  Geometry g[kGeometryBlock];
-  for (std::size_t start = 0; start < count; start += kGeometryBlock) {
-    const std::size_t end = std::min(start + kGeometryBlock, count);
-    for (std::size_t k = start; k < end; ++k) g[k - start] = kernel.geometry(k);
-    for (std::size_t k = start; k < end; ++k) {
-      bool within_guard;
-      const PairForce f = kernel.evaluate(k, g[k - start], within_guard);
-      if (!within_guard) bad = std::min(bad, static_cast<long>(k));
-      kernel.add(k, f, result, out.broken);
-    }
-  }
-  return bad == static_cast<long>(count) ? -1 : bad;
+  const std::size_t bad =
+      kernel.evaluate_range(0, count, [&](std::size_t k, const auto&, const PairForce& f) {
+        kernel.add(k, f, result, out.broken);
+      });
+  return bad == count ? -1 : static_cast<long>(bad);
 }
 
-// Tangential velocity (m/s) of disc i's contact point relative to wall wi, along t = (-ny, nx);
-// arm = R - overlap / 2 (m), as for a disc pair.
 double wall_slip_velocity(const Discs& d, const Walls& walls, std::int32_t i, std::int32_t wi,
                           double nx, double ny, double arm) {
   return (d.vx[i] - walls.vx[wi]) * -ny + (d.vy[i] - walls.vy[wi]) * nx - arm * d.omega[i];
@@ -133,6 +122,17 @@ void prepare_force_results(ContactForces& pair, ContactForces& wall_pair,
   resize(wall_pair, list.wall_keys.size(), true);
 }
 
+void add_wall_pairs(Discs& discs, const NeighborList& list, const ContactForces& wall_pair,
+                    std::size_t begin, std::size_t end) {
+  for (std::size_t k = begin; k < end; ++k) {
+    if (!wall_pair_loaded(wall_pair, k)) continue;
+    const std::int32_t i = list.wall_disc[k];
+    discs.fx[i] += wall_pair.fx[k];
+    discs.fy[i] += wall_pair.fy[k];
+    discs.moment[i] += wall_pair.moment[k];
+  }
+}
+
 void wall_totals(Walls& walls, const NeighborList& list, const ContactForces& wall_pair,
                  const Discs& discs, ForcePassResult& result) {
   for (std::size_t w = 0; w < walls.size(); ++w)
@@ -166,13 +166,7 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, NeighborList&
   result.bad_wall_pair =
       disc_wall_forces(discs, walls, list, wall_pair, laws[static_cast<int>(ContactClass::Wall)],
                        dt, max_overlap_ratio, result.slip_work, nullptr);
-  for (std::size_t k = 0; k < list.wall_keys.size(); ++k) {
-    if (!wall_pair_loaded(wall_pair, k)) continue;
-    const std::int32_t i = list.wall_disc[k];
-    discs.fx[i] += wall_pair.fx[k];
-    discs.fy[i] += wall_pair.fy[k];
-    discs.moment[i] += wall_pair.moment[k];
-  }
+  add_wall_pairs(discs, list, wall_pair, 0, list.wall_keys.size());
   wall_totals(walls, list, wall_pair, discs, result);
   return result;
 }

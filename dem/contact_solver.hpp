@@ -92,6 +92,9 @@ long disc_wall_forces(const Discs& discs, const Walls& walls, NeighborList& list
 inline bool wall_pair_loaded(const ContactForces& wall_pair, std::size_t k) {
   return wall_pair.normal[k] != 0 || wall_pair.fx[k] != 0 || wall_pair.fy[k] != 0;
 }
+// Adds the loaded disc-wall pairs [begin, end) onto their discs, in pair order.
+void add_wall_pairs(Discs& discs, const NeighborList& list, const ContactForces& wall_pair,
+                    std::size_t begin, std::size_t end);
 // The walls' force and stress sums (walls.fx ... syy) and the disc-wall part of the virial and
 // of the touching count, in wall-pair order.
 void wall_totals(Walls& walls, const NeighborList& list, const ContactForces& wall_pair,

@@ -110,6 +110,27 @@ class DiscPairKernel {
   // overlap exceeds the instability guard. Unbonded pairs (all of them in an unbonded run) take the
   // short linear path and never touch the bond arrays; the branch follows the bond kind, which
   // changes only when a bond breaks, so it is well predicted.
+  // Evaluates pairs [begin, end) in blocks of kGeometryBlock (a block's geometries first, then
+  // their laws) and hands each to take(k, geometry, force) in ascending k: the loop of the
+  // one-thread pass and of each thread's range. Returns the first pair tripping the guard, or
+  // `end` when none does.
+  template <class Take>
+  std::size_t evaluate_range(std::size_t begin, std::size_t end, Take&& take) const {
+    Geometry g[kGeometryBlock];
+    std::size_t bad = end;
+    for (std::size_t start = begin; start < end; start += kGeometryBlock) {
+      const std::size_t stop = std::min(start + kGeometryBlock, end);
+      for (std::size_t k = start; k < stop; ++k) g[k - start] = geometry(k);
+      for (std::size_t k = start; k < stop; ++k) {
+        bool within_guard;
+        const PairForce f = evaluate(k, g[k - start], within_guard);
+        if (!within_guard) bad = std::min(bad, k);
+        take(k, g[k - start], f);
+      }
+    }
+    return bad;
+  }
+
   PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
     within_guard = g.overlap <= guard_ * std::min(g.ri, g.rj);
     const PairForce f =

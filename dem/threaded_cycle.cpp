@@ -114,19 +114,6 @@ void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_
   }
 }
 
-void ThreadedCycle::add_wall_pairs(Discs& discs, const NeighborList& list,
-                                   const ContactForces& wall_pair, std::size_t begin,
-                                   std::size_t end) const {
-  for (std::size_t k = static_cast<std::size_t>(wall_start_[begin]);
-       k < static_cast<std::size_t>(wall_start_[end]); ++k) {
-    if (!wall_pair_loaded(wall_pair, k)) continue;
-    const auto i = static_cast<std::size_t>(list.wall_disc[k]);
-    discs.fx[i] += wall_pair.fx[k];
-    discs.fy[i] += wall_pair.fy[k];
-    discs.moment[i] += wall_pair.moment[k];
-  }
-}
-
 ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, NeighborList& list,
                                  ContactForces& pair, ContactForces& wall_pair,
                                  const ThreadedStepSettings& s) {
@@ -162,42 +149,33 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
     std::fill(disc_m + disc_begin, disc_m + disc_end, 0.0);
     const auto pair_begin = static_cast<std::size_t>(first_start_[disc_begin]);
     const auto pair_end = static_cast<std::size_t>(first_start_[disc_end]);
-    Geometry g[kGeometryBlock];
-    long bad = static_cast<long>(count);
-    for (std::size_t start = pair_begin; start < pair_end; start += kGeometryBlock) {
-      const std::size_t end = std::min(start + kGeometryBlock, pair_end);
-      for (std::size_t k = start; k < end; ++k) g[k - start] = kernel.geometry(k);
-      for (std::size_t k = start; k < end; ++k) {
-        const Geometry& gk = g[k - start];
-        bool within_guard;
-        const PairForce f = kernel.evaluate(k, gk, within_guard);
-        if (!within_guard) bad = std::min(bad, static_cast<long>(k));
-        // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
-        // others store theirs for the chain to go on in pair order after the job.
-        const double virial = f.normal * (gk.ri + gk.rj - f.overlap);
-        if (t == 0)
-          lane.virial += virial;
-        else
-          virial_[k] = virial;
-        const std::uint8_t direct = direct_[k];
-        if (direct != (kDirectFirst | kDirectSecond))
-          sums_[k] = {f.fx, f.fy, f.moment_i, f.moment_j};
-        if (direct & kDirectSecond) {
-          disc_fx[second[k]] += f.fx;
-          disc_fy[second[k]] += f.fy;
-        }
-        if (direct & kDirectFirst) {
-          disc_fx[first[k]] -= f.fx;
-          disc_fy[first[k]] -= f.fy;
-          disc_m[first[k]] += f.moment_i;
-        }
-        if (direct & kDirectSecond) disc_m[second[k]] += f.moment_j;
-        lane.touching += f.overlap > 0;
-        if (f.slip_work != 0) lane.slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
-        if (f.failure != BondFailure::None) lane.broken.push_back(static_cast<std::int32_t>(k));
-      }
-    }
-    if (bad < static_cast<long>(count)) lane.bad = bad;
+    const std::size_t bad = kernel.evaluate_range(
+        pair_begin, pair_end, [&](std::size_t k, const Geometry& gk, const PairForce& f) {
+          // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
+          // others store theirs for the chain to go on in pair order after the job.
+          const double virial = f.normal * (gk.ri + gk.rj - f.overlap);
+          if (t == 0)
+            lane.virial += virial;
+          else
+            virial_[k] = virial;
+          const std::uint8_t direct = direct_[k];
+          if (direct != (kDirectFirst | kDirectSecond))
+            sums_[k] = {f.fx, f.fy, f.moment_i, f.moment_j};
+          if (direct & kDirectSecond) {
+            disc_fx[second[k]] += f.fx;
+            disc_fy[second[k]] += f.fy;
+          }
+          if (direct & kDirectFirst) {
+            disc_fx[first[k]] -= f.fx;
+            disc_fy[first[k]] -= f.fy;
+            disc_m[first[k]] += f.moment_i;
+          }
+          if (direct & kDirectSecond) disc_m[second[k]] += f.moment_j;
+          lane.touching += f.overlap > 0;
+          if (f.slip_work != 0) lane.slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
+          if (f.failure != BondFailure::None) lane.broken.push_back(static_cast<std::int32_t>(k));
+        });
+    if (bad < pair_end) lane.bad = static_cast<long>(bad);
     if (t == nt - 1)
       bad_wall = disc_wall_forces(discs, walls, list, wall_pair, wall_law, s.dt, s.guard,
                                   unused_slip, wall_slip_.data());
@@ -210,7 +188,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Nei
       stop = stop || other.bad >= 0 || !other.broken.empty();
     }
     sum_shared_discs(discs, disc_begin, disc_end);
-    add_wall_pairs(discs, list, wall_pair, disc_begin, disc_end);
+    add_wall_pairs(discs, list, wall_pair, static_cast<std::size_t>(wall_start_[disc_begin]),
+                   static_cast<std::size_t>(wall_start_[disc_end]));
     if (!stop && disc_begin < disc_end) {
       const std::size_t body_begin = static_cast<std::size_t>(discs.body[disc_begin]);
       const std::size_t body_end =

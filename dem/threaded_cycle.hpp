@@ -78,9 +78,6 @@ class ThreadedCycle {
   void plan(const Bodies& bodies, const Discs& discs, const NeighborList& list, int threads);
   // Sums, in pair order, the pairs of the shared discs of [begin, end).
   void sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const;
-  // Adds the disc-wall pairs of discs [begin, end), in wall-pair order.
-  void add_wall_pairs(Discs& discs, const NeighborList& list, const ContactForces& wall_pair,
-                      std::size_t begin, std::size_t end) const;
 
   long planned_build_ = -1;
   std::size_t planned_pairs_ = 0, planned_discs_ = 0, planned_walls_ = 0;
