@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
+#include "io/input_table.hpp"
+#include "mesogen/generate.hpp"
+#include "mesogen/generator_input.hpp"
 #include "mesogen/mortar_packing.hpp"
 
 namespace {
@@ -146,38 +149,82 @@ TEST(MortarPacking, RejectsBadControls) {
   c = {};
   c.r_ratio = 0.5;
   EXPECT_THROW(pack(rectangle(0.02, 0.02), c, 1), cdem::InputError);
+  c = {};
+  c.overlap_guard = 0;
+  EXPECT_THROW(pack(rectangle(0.02, 0.02), c, 1), cdem::InputError);
 }
 
 }  // namespace
 
 namespace {
 
-// A wide radius range gets a slower expansion by default (docs/generator.md "The default
-// expansion"): on a 30 mm disc at R_max / R_min = 8 the old fixed 500 cycles let the overlap
-// guard stop some seeds (a small disc squeezed through between two large ones), with the key to
-// raise named; the default (2,000 cycles) packs every one of them.
+// A wide radius range still gets a slower expansion by default (docs/generator.md "The default
+// expansion"): at R_max / R_min = 20 a 500-cycle expansion closes the gaps between large discs
+// faster than the smallest discs (R_min 0.05 mm) get out, and one ends wholly inside a larger
+// disc (the packing's guard, 2 x the smaller radius, stops it with the key to raise named);
+// the default (12,500 cycles) packs every seed. Measured on this 20 mm disc, seeds 1-8: 5 of 8
+// stopped at 500 cycles, 8 of 8 packed at the default.
 TEST(MortarPacking, WideRadiusRangePacksWithTheDefaultExpansion) {
   EXPECT_EQ(cdem::mesogen::default_expansion_steps(2.5), 500);
-  EXPECT_EQ(cdem::mesogen::default_expansion_steps(8), 2000);
+  EXPECT_EQ(cdem::mesogen::default_expansion_steps(20), 12500);
   MortarPackingControls c;
-  c.r_mean = 0.675e-3;
-  c.r_ratio = 8;
+  c.r_mean = 0.525e-3;
+  c.r_ratio = 20;
   int stopped_at_500 = 0;
-  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     MortarPackingControls fixed = c;
     fixed.expansion_steps = 500;
     try {
-      (void)pack(disc(30e-3), fixed, seed);
+      (void)pack(disc(20e-3), fixed, seed);
     } catch (const cdem::RunError& e) {
       ++stopped_at_500;
-      EXPECT_NE(std::string(e.what()).find("mortar.expansion_steps"), std::string::npos)
-          << e.what();
+      const std::string what = e.what();
+      EXPECT_NE(what.find("more than 2 x the smaller radius"), std::string::npos) << what;
+      EXPECT_NE(what.find("mortar.expansion_steps"), std::string::npos) << what;
     }
-    const MortarPacking p = pack(disc(30e-3), c, seed);
-    EXPECT_EQ(p.expansion_steps, 2000);
+    const MortarPacking p = pack(disc(20e-3), c, seed);
+    EXPECT_EQ(p.expansion_steps, 12500);
     EXPECT_TRUE(p.converged) << "seed " << seed;
   }
   EXPECT_GT(stopped_at_500, 0) << "the case no longer shows why the default grows";
+}
+
+}  // namespace
+namespace {
+
+// The stop of the table campaign (issue 13, docs/generator.md "The default expansion"): a
+// 30 mm disc of R_max / R_min 6 at R_mean 0.525 mm, seed 4 (tables/brazilian_kb_base.toml with
+// r_ratio = 6.0, r_mean_mm = 0.525). At the end of the expansion a smallest disc carries a
+// largest one against the mould and is squeezed past its own radius, by the force any large
+// disc carries at that stress: the engine's lab-test guard (1 x the smaller radius) stops the
+// packing, the packing's own guard (2: the smaller disc wholly inside the larger) lets it relax
+// to sigma0, jammed.
+TEST(MortarPacking, SmallDiscSqueezedPastItsRadiusByTheExpansionIsNoInstability) {
+  cdem::mesogen::GeneratorInput in =
+      cdem::mesogen::read_generator_input(cdem::InputTable::parse_string(
+          "[specimen]\nshape = \"disc\"\ndiameter_mm = 30\n"
+          "[mortar]\nr_mean_mm = 0.525\nr_ratio = 6.0\nporosity = 0.12\n",
+          "ratio-6 table disc"));
+  constexpr std::uint64_t kSeed = 4;
+  in.mortar.overlap_guard = 1;  // the engine's default: the stop this case was filed for
+  try {
+    (void)cdem::mesogen::generate(in, kSeed);
+    ADD_FAILURE() << "the case no longer squeezes a disc past its radius: it tests nothing";
+  } catch (const cdem::RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 1 x the smaller radius"), std::string::npos)
+        << e.what();
+  }
+  in.mortar.overlap_guard = MortarPackingControls{}.overlap_guard;
+  cdem::mesogen::GenerateReport report;
+  const cdem::Specimen s = cdem::mesogen::generate(in, kSeed, report);
+  const auto& p = report.summary["packing"];
+  EXPECT_TRUE(p["converged"].get<bool>());
+  EXPECT_EQ(p["expansion_steps"].get<long>(), cdem::mesogen::default_expansion_steps(6));
+  EXPECT_NEAR(p["residual_stress_MPa"].get<double>(), 0.1, 0.05 * 0.1);  // sigma0, tolerance
+  // Relaxed to sigma0 the squeeze is gone: even a smallest disc bridging a largest one would
+  // overlap by sigma0 / E* rho (1 + rho) of its radius only (rho = 6, E* 16 GPa).
+  EXPECT_LT(p["mean_overlap_ratio"].get<double>(), 0.1e6 / 16e9 * 6 * 7);
+  EXPECT_EQ(static_cast<long>(s.r.size()), p["disc_count_formula"].get<long>());
 }
 
 }  // namespace
