@@ -28,7 +28,7 @@ struct MortarPackingControls {
   // twice as slow to keep the packing jammed (measured on the reference mould: 10,350 instead
   // of 6,350 cycles, and a slightly looser packing).
   double local_damping = 0.3;
-  int threads = 1;  // OpenMP threads of the DEM cycles (result does not depend on it)
+  int threads = 1;  // threads of the DEM cycles (the result does not depend on it)
   // Overlap guard of the packing cycles, x the smaller radius of a pair. Not the engine's 1 (a
   // lab test's): at the stress the expansion reaches on purpose, a small disc carrying a large
   // one's load is squeezed past its own radius in a sound packing (pack_mortar says why). At 2
