@@ -254,10 +254,10 @@ void World::fail(const std::string& what, long disc) const {
   throw RunError(out.str());
 }
 
-// Work done on the discs_ by the walls_ over this step, mid-step rule: the force of this pass
+// Work done on the discs by the walls over this step, mid-step rule: the force of this pass
 // times the mean of the wall displacement of the previous step and of this one.
 void World::account_wall_work() {
-  if (energy_.last_dx.size() != walls_.size()) {  // walls_ were added (never inside a run)
+  if (energy_.last_dx.size() != walls_.size()) {  // walls were added (never inside a run)
     energy_.last_dx.resize(walls_.size(), 0.0);
     energy_.last_dy.resize(walls_.size(), 0.0);
   }
@@ -275,10 +275,10 @@ void World::account_wall_work() {
   energy_.last_step = dt_;
 }
 
-// Every energy_check_interval steps (an O(bodies_ + pairs) pass, about 1/6 of a cycle on the
-// reference specimen): restart the bookkeeping if energy_ was added outside the step since the
+// Every energy_check_interval steps (an O(bodies + pairs) pass, about 1/6 of a cycle on the
+// reference specimen): restart the bookkeeping if energy was added outside the step since the
 // last check (radius scaling every cycle of the packing's servo must not pay it each cycle),
-// otherwise look for runaway kinetic energy_.
+// otherwise look for runaway kinetic energy.
 void World::check_energy() {
   if (!settings_.energy_tracking) return;
   if (settings_.energy_check_interval < 1 || steps_ % settings_.energy_check_interval != 0) return;
@@ -289,8 +289,8 @@ void World::check_energy() {
   const RunawayCheck r = runaway_check(*this);
   if (r.body < 0) return;
   std::ostringstream what;
-  what << "runaway kinetic energy_: kinetic + strain + damped energy_ " << r.accounted
-       << " J/m exceeds " << settings_.runaway_energy_factor << " x the energy_ put in " << r.input
+  what << "runaway kinetic energy: kinetic + strain + damped energy " << r.accounted
+       << " J/m exceeds " << settings_.runaway_energy_factor << " x the energy put in " << r.input
        << " J/m (kinetic " << r.kinetic << " J/m; body " << r.body << " holds the most)";
   fail(what.str(), bodies_.first_disc[r.body]);
 }
