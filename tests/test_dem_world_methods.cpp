@@ -12,13 +12,7 @@
 
 namespace {
 
-using cdem::dem::Bodies;
-using cdem::dem::Discs;
-using cdem::dem::LinearContact;
-using cdem::dem::NeighborList;
-using cdem::dem::Walls;
-using cdem::dem::World;
-using cdem::dem::WorldSettings;
+using namespace cdem::dem;
 
 // Read access only: the views are const references, so no caller can change an array behind
 // the World's back.
