@@ -63,17 +63,17 @@ C30World build_c30_world(int law) {
   World w = world_from_specimen(cleaned, settings);
   install_test_bonds(w, options, report);
   double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (std::size_t i = 0; i < w.discs.size(); ++i) {
-    xmin = std::min(xmin, w.discs.x[i] - w.discs.r[i]);
-    xmax = std::max(xmax, w.discs.x[i] + w.discs.r[i]);
-    ymin = std::min(ymin, w.discs.y[i] - w.discs.r[i]);
-    ymax = std::max(ymax, w.discs.y[i] + w.discs.r[i]);
+  for (std::size_t i = 0; i < w.discs().size(); ++i) {
+    xmin = std::min(xmin, w.discs().x[i] - w.discs().r[i]);
+    xmax = std::max(xmax, w.discs().x[i] + w.discs().r[i]);
+    ymin = std::min(ymin, w.discs().y[i] - w.discs().r[i]);
+    ymax = std::max(ymax, w.discs().y[i] + w.discs().r[i]);
   }
   const double over = kPlatenOverhang * (xmax - xmin);
   const int bottom = w.add_wall(xmin - over, ymin, xmax + over, ymin);
   const int top = w.add_wall(xmax + over, ymax, xmin - over, ymax);
-  w.walls.vy[bottom] = kPlatenVelocity;
-  w.walls.vy[top] = -kPlatenVelocity;
+  w.set_wall_velocity(bottom, 0, kPlatenVelocity);
+  w.set_wall_velocity(top, 0, -kPlatenVelocity);
   return C30World{std::move(w), report};
 }
 
@@ -94,19 +94,21 @@ void BM_C30BondedSpecimenCycles(benchmark::State& state) {
   }
   const C30World& c30 = c30_world(static_cast<int>(state.range(1)));
   cdem::dem::World w = c30.world;
-  w.settings.threads = static_cast<int>(state.range(0));
+  cdem::dem::WorldSettings s = w.settings();
+  s.threads = static_cast<int>(state.range(0));
+  w.set_settings(s);
   const auto by_class = cdem::dem::intact_bond_count(w);
   const long bonds_at_start = std::accumulate(by_class.begin(), by_class.end(), 0L);
   cdem::bench::time_cycles(state, w, kSteps);
-  const long active = std::count(w.discs.active.begin(), w.discs.active.end(), 1);
-  state.counters["discs"] = static_cast<double>(w.discs.size());
+  const long active = std::count(w.discs().active.begin(), w.discs().active.end(), 1);
+  state.counters["discs"] = static_cast<double>(w.discs().size());
   state.counters["contact_active_discs"] = static_cast<double>(active);
   state.counters["clumps"] =
-      static_cast<double>(std::count(w.bodies.is_clump.begin(), w.bodies.is_clump.end(), 1));
-  state.counters["candidate_pairs"] = static_cast<double>(w.neighbors.keys.size());
+      static_cast<double>(std::count(w.bodies().is_clump.begin(), w.bodies().is_clump.end(), 1));
+  state.counters["candidate_pairs"] = static_cast<double>(w.neighbors().keys.size());
   state.counters["touching"] = static_cast<double>(w.last_force_pass().touching);
   state.counters["intact_bonds"] = static_cast<double>(bonds_at_start);
-  state.counters["bonds_broken"] = static_cast<double>(w.cracks.size());
+  state.counters["bonds_broken"] = static_cast<double>(w.cracks().size());
   state.counters["relaxation_steps"] = static_cast<double>(c30.genesis.relaxation_steps);
   state.counters["dt_ns"] = w.time_step() * 1e9;
 }

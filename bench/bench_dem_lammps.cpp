@@ -29,10 +29,13 @@ long steps_from_environment() {
 cdem::dem::World comparison_world() {
   const auto& packing = cdem::bench::reference_packing(1.0);
   cdem::dem::World w = cdem::bench::reference_world(packing, 1);
-  w.settings.local_damping = 0;  // LAMMPS nve/sphere has no local damping
-  w.walls.vy[0] = w.walls.vy[2] = 0;
+  cdem::dem::WorldSettings s = w.settings();
+  s.local_damping = 0;  // LAMMPS nve/sphere has no local damping
+  w.set_settings(s);
+  w.set_wall_velocity(0, 0, 0);
+  w.set_wall_velocity(2, 0, 0);
   w.step();  // neighbour list, automatic step
-  w.settings.fixed_time_step = w.time_step();
+  w.set_fixed_time_step(w.time_step());
   return w;
 }
 
@@ -40,20 +43,20 @@ void export_for_lammps(const cdem::dem::World& w, const std::string& dir, long s
   std::ofstream data(dir + "/packing.data");
   data << std::setprecision(17);
   data << "cdem reference packing, monodisperse (SI)\n\n"
-       << w.discs.size() << " atoms\n1 atom types\n\n";
+       << w.discs().size() << " atoms\n1 atom types\n\n";
   data << "0 0.1 xlo xhi\n0 0.2 ylo yhi\n-0.001 0.001 zlo zhi\n\nAtoms # sphere\n\n";
-  for (std::size_t i = 0; i < w.discs.size(); ++i)
-    data << i + 1 << " 1 " << 2 * w.discs.r[i] << ' ' << cdem::bench::kDensity << ' '
-         << w.discs.x[i] << ' ' << w.discs.y[i] << " 0\n";
+  for (std::size_t i = 0; i < w.discs().size(); ++i)
+    data << i + 1 << " 1 " << 2 * w.discs().r[i] << ' ' << cdem::bench::kDensity << ' '
+         << w.discs().x[i] << ' ' << w.discs().y[i] << " 0\n";
   std::ofstream params(dir + "/params.in");
   params << std::setprecision(17);
   const double kn = cdem::bench::kEmod;  // equal radii, t = 1 m
   params << "variable kn equal " << kn << "\nvariable kt equal " << kn / cdem::bench::kKappa
          << "\nvariable knw equal " << 2 * kn << "\nvariable ktw equal "
          << 2 * kn / cdem::bench::kKappa << "\nvariable mu equal " << cdem::bench::kFriction
-         << "\nvariable dt equal " << w.time_step() << "\nvariable skin equal " << w.neighbors.skin
-         << "\nvariable density equal " << cdem::bench::kDensity << "\nvariable steps equal "
-         << steps << '\n';
+         << "\nvariable dt equal " << w.time_step() << "\nvariable skin equal "
+         << w.neighbors().skin << "\nvariable density equal " << cdem::bench::kDensity
+         << "\nvariable steps equal " << steps << '\n';
 }
 
 void BM_CdemSameStateAsLammps(benchmark::State& state) {
@@ -67,7 +70,7 @@ void BM_CdemSameStateAsLammps(benchmark::State& state) {
     state.ResumeTiming();
     w.cycle(steps);
   }
-  state.counters["discs"] = static_cast<double>(w.discs.size());
+  state.counters["discs"] = static_cast<double>(w.discs().size());
   state.counters["steps"] = static_cast<double>(steps);
   state.counters["touching"] = static_cast<double>(w.last_force_pass().touching);
   state.counters["dt"] = w.time_step();

@@ -22,9 +22,9 @@ double bytes(const V& v) {
 
 // Heap bytes of the per-disc and per-pair arrays the step uses (capacities).
 double solver_bytes(const cdem::dem::World& w) {
-  const auto& b = w.bodies;
-  const auto& d = w.discs;
-  const auto& n = w.neighbors;
+  const auto& b = w.bodies();
+  const auto& d = w.discs();
+  const auto& n = w.neighbors();
   double sum = 0;
   for (const auto* v :
        {&b.x,          &b.y,        &b.theta,    &b.vx,           &b.vy,
@@ -41,7 +41,7 @@ double solver_bytes(const cdem::dem::World& w) {
          bytes(n.state.bond_shear) + bytes(n.state.bond_moment) + bytes(n.state.bond_gap) +
          bytes(n.wall_keys) + bytes(n.wall_disc) + bytes(n.wall_index) +
          bytes(n.wall_state.shear_force);
-  for (const auto* f : {&w.pair_forces, &w.wall_forces}) {
+  for (const auto* f : {&w.pair_forces(), &w.wall_forces()}) {
     for (const auto* v : {&f->normal, &f->overlap, &f->fx, &f->fy, &f->moment, &f->cx, &f->cy,
                           &f->bond_energy_released})
       sum += bytes(*v);
@@ -56,15 +56,17 @@ void BM_ReferenceSpecimenCycles(benchmark::State& state) {
   const bool energy_tracking = state.range(2) != 0;
   const auto& packing = cdem::bench::reference_packing();
   cdem::dem::World w = cdem::bench::reference_world(packing, threads, bonds);
-  w.settings.energy_tracking = energy_tracking;
+  cdem::dem::WorldSettings s = w.settings();
+  s.energy_tracking = energy_tracking;
+  w.set_settings(s);
   w.cycle(10);  // neighbour lists and pair arrays at their working size
   cdem::bench::time_cycles(state, w, kSteps);
-  const double discs = static_cast<double>(w.discs.size());
+  const double discs = static_cast<double>(w.discs().size());
   state.counters["discs"] = discs;
-  state.counters["candidate_pairs"] = static_cast<double>(w.neighbors.keys.size());
+  state.counters["candidate_pairs"] = static_cast<double>(w.neighbors().keys.size());
   state.counters["touching"] = static_cast<double>(w.last_force_pass().touching);
   state.counters["intact_bonds"] = static_cast<double>(
-      std::count_if(w.neighbors.state.bond.begin(), w.neighbors.state.bond.end(),
+      std::count_if(w.neighbors().state.bond.begin(), w.neighbors().state.bond.end(),
                     [](std::uint8_t b) { return b != 0; }));
   state.counters["solver_bytes_per_disc"] = solver_bytes(w) / discs;
 }

@@ -14,9 +14,9 @@ inline void time_cycles(benchmark::State& state, dem::World& w, long steps) {
   for (auto _ : state) {
     for (long s = 0; s < steps; ++s) {
       w.step();
-      pair_updates += static_cast<long>(w.neighbors.keys.size() + w.neighbors.wall_keys.size());
+      pair_updates += static_cast<long>(w.neighbors().keys.size() + w.neighbors().wall_keys.size());
     }
-    disc_steps += steps * static_cast<long>(w.discs.size());
+    disc_steps += steps * static_cast<long>(w.discs().size());
   }
   state.counters["disc_steps_per_s"] =
       benchmark::Counter(static_cast<double>(disc_steps), benchmark::Counter::kIsRate);

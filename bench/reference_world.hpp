@@ -62,8 +62,8 @@ inline dem::World reference_world(const mesogen::MortarPacking& p, int threads,
     w.refresh_neighbors();
     dem::install_bonds(w);
   }
-  w.walls.vy[0] = 0.02;
-  w.walls.vy[2] = -0.02;
+  w.set_wall_velocity(0, 0, 0.02);
+  w.set_wall_velocity(2, 0, -0.02);
   return w;
 }
 

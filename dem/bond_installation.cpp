@@ -11,8 +11,8 @@ InstalledBonds install_bonds(World& world, const BondInstallation& options) {
   if (!(options.gap_ratio >= 0) || !std::isfinite(options.gap_ratio))
     throw std::invalid_argument("bond installation: gap_ratio must be finite and >= 0");
   world.refresh_neighbors();
-  const Discs& d = world.discs;
-  NeighborList& list = world.neighbors;
+  const Discs& d = world.discs();
+  NeighborList& list = world.neighbors_;
   double rmax = 0;
   for (std::size_t i = 0; i < d.size(); ++i)
     if (d.active[i]) rmax = std::max(rmax, d.r[i]);
@@ -26,7 +26,7 @@ InstalledBonds install_bonds(World& world, const BondInstallation& options) {
   for (std::size_t k = 0; k < list.keys.size(); ++k) {
     const std::int32_t i = list.first[k], j = list.second[k];
     const std::uint8_t cls = list.contact_class[k];
-    const BondKind kind = world.settings.bonds[cls].kind;
+    const BondKind kind = world.settings().bonds[cls].kind;
     if (kind == BondKind::None || state.bond[k] != 0) continue;
     const double gap = disc_gap(d, i, j);
     if (!within_bond_gap(gap, options.gap_ratio, std::min(d.r[i], d.r[j]))) continue;
@@ -37,7 +37,7 @@ InstalledBonds install_bonds(World& world, const BondInstallation& options) {
       // The interface takes over the linear contact's forces: its normal force follows from
       // the overlap (zero-force reference at the installation gap, if any), its elements share
       // the linear shear force.
-      const FlatJointParams& p = world.settings.bonds[cls].flat_joint;
+      const FlatJointParams& p = world.settings().bonds[cls].flat_joint;
       const bool slit = flat_joint_is_slit(list.keys[k], p.slit_fraction);
       state.joint[k] =
           list.flat_joints.add(p.elements, std::max(gap, 0.0), state.shear_force[k], slit);
@@ -53,7 +53,7 @@ InstalledBonds install_bonds(World& world, const BondInstallation& options) {
 
 std::array<long, kContactClassCount> intact_bond_count(const World& world) {
   std::array<long, kContactClassCount> count{};
-  const NeighborList& list = world.neighbors;
+  const NeighborList& list = world.neighbors();
   for (std::size_t k = 0; k < list.keys.size(); ++k)
     count[list.contact_class[k]] += list.intact_bonds(k);
   return count;

@@ -14,7 +14,7 @@ namespace {
 // Normal force the discs exert on a wall along its left normal (the inward normal of the walls
 // built here), N per m, compression positive.
 double inward_force(const World& world, int wall) {
-  const Walls& w = world.walls;
+  const Walls& w = world.walls();
   const double ex = w.bx[wall] - w.ax[wall], ey = w.by[wall] - w.ay[wall];
   const double len = std::hypot(ex, ey);
   return -(w.fx[wall] * -ey + w.fy[wall] * ex) / len;
@@ -38,16 +38,16 @@ Confinement::Confinement(World& world, double sigma3, double platen_velocity, in
   right_ = world.add_wall(x1, y0 - reach, x1, y1 + reach);
   left_ = world.add_wall(x0, y1 + reach, x0, y0 - reach);
   for (const int wall : {left_, right_})
-    world.servos.add(world, wall, sigma3, max_velocity_, options.relaxation);
+    world.add_wall_servo(wall, sigma3, max_velocity_, options.relaxation);
   update_targets(world);
 }
 
 double Confinement::width(const World& world) const {
-  return world.walls.ax[right_] - world.walls.ax[left_];
+  return world.walls().ax[right_] - world.walls().ax[left_];
 }
 
 double Confinement::height(const World& world) const {
-  return world.walls.ay[top_] - world.walls.ay[bottom_];
+  return world.walls().ay[top_] - world.walls().ay[bottom_];
 }
 
 double Confinement::face_stress(const World& world, int wall, double face) const {
@@ -61,16 +61,20 @@ double Confinement::side_stress(const World& world) const {
 
 void Confinement::update_targets(World& world) const {
   const double w = width(world), h = height(world);
-  for (WallServo& s : world.servos.servos) {
-    const double length = world.walls.length(s.wall);
-    if (s.wall == left_ || s.wall == right_) s.target_stress = sigma3_ * h / length;
-    if (s.wall == bottom_ || s.wall == top_) s.target_stress = sigma3_ * w / length;
+  const std::vector<WallServo>& servos = world.servos().servos;
+  for (std::size_t k = 0; k < servos.size(); ++k) {
+    const int wall = servos[k].wall;
+    const double length = world.walls().length(wall);
+    if (wall == left_ || wall == right_)
+      world.set_servo_target(static_cast<int>(k), sigma3_ * h / length);
+    if (wall == bottom_ || wall == top_)
+      world.set_servo_target(static_cast<int>(k), sigma3_ * w / length);
   }
 }
 
 ConsolidationReport Confinement::consolidate(World& world) {
   for (const int wall : {bottom_, top_})
-    world.servos.add(world, wall, sigma3_, max_velocity_, options_.relaxation);
+    world.add_wall_servo(wall, sigma3_, max_velocity_, options_.relaxation);
   ConsolidationReport report;
   long within = 0;
   double worst_held = 0;
@@ -102,12 +106,10 @@ ConsolidationReport Confinement::consolidate(World& world) {
     }
   }
   // Loading phase: the platens leave the servo and stop; the side walls keep theirs.
-  auto& servos = world.servos.servos;
-  servos.erase(
-      std::remove_if(servos.begin(), servos.end(),
-                     [&](const WallServo& s) { return s.wall == bottom_ || s.wall == top_; }),
-      servos.end());
-  for (const int wall : {bottom_, top_}) world.walls.vx[wall] = world.walls.vy[wall] = 0;
+  for (const int wall : {bottom_, top_}) {
+    world.remove_wall_servos(wall);
+    world.set_wall_velocity(wall, 0, 0);
+  }
   report.width = width(world);
   report.height = height(world);
   return report;

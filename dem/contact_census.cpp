@@ -8,8 +8,8 @@ namespace cdem::dem {
 
 std::array<long, kContactClassCount> contact_census(const World& world, double gap_tolerance) {
   std::array<long, kContactClassCount> count{};
-  const NeighborList& nl = world.neighbors;
-  const Discs& d = world.discs;
+  const NeighborList& nl = world.neighbors();
+  const Discs& d = world.discs();
   for (std::size_t k = 0; k < nl.keys.size(); ++k) {
     const auto i = nl.first[k], j = nl.second[k];
     if (disc_gap(d, i, j) <= gap_tolerance) ++count[nl.contact_class[k]];

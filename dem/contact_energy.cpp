@@ -6,20 +6,20 @@ namespace cdem::dem {
 
 ContactEnergy contact_energy(const World& world) {
   ContactEnergy e;
-  const Discs& d = world.discs;
-  const NeighborList& list = world.neighbors;
+  const Discs& d = world.discs();
+  const NeighborList& list = world.neighbors();
   const ContactStates& state = list.state;
-  const ContactForces& pair = world.pair_forces;
+  const ContactForces& pair = world.pair_forces();
   for (std::size_t k = 0; k < pair.normal.size(); ++k) {
     const std::int32_t i = list.first[k], j = list.second[k];
     const std::uint8_t cls = list.contact_class[k];
-    const LinearContact& law = world.settings.laws[cls];
+    const LinearContact& law = world.settings().laws[cls];
     if (state.bond[k] == static_cast<std::uint8_t>(BondKind::FlatJoint)) {
       // The interface carries the whole contact: its energy is booked as bond strain.
       const FlatJointStates& joints = list.flat_joints;
       const auto joint = static_cast<std::size_t>(state.joint[k]);
       const double inverse_length = 1.0 / (d.r[i] + d.r[j]);
-      const FlatJointGeometry g = flat_joint_geometry(world.settings.bonds[cls].flat_joint, law,
+      const FlatJointGeometry g = flat_joint_geometry(world.settings().bonds[cls].flat_joint, law,
                                                       d.r[i], d.r[j], inverse_length);
       const double gap = -pair.overlap[k] - joints.gap0[joint];
       e.bond_strain +=
@@ -45,15 +45,15 @@ ContactEnergy contact_energy(const World& world) {
     e.linear_strain += 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
     if (state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel)) {
       const ParallelBondGeometry g =
-          parallel_bond_geometry(world.settings.bonds[cls].parallel, d.r[i], d.r[j]);
+          parallel_bond_geometry(world.settings().bonds[cls].parallel, d.r[i], d.r[j]);
       e.bond_strain += parallel_bond_strain_energy(
           {state.bond_normal[k], state.bond_shear[k], state.bond_moment[k]}, g);
     }
   }
-  const LinearContact& wall_law = world.settings.laws[static_cast<int>(ContactClass::Wall)];
+  const LinearContact& wall_law = world.settings().laws[static_cast<int>(ContactClass::Wall)];
   const double kn = wall_law.wall_normal_stiffness(), ks = wall_law.shear_stiffness(kn);
-  for (std::size_t k = 0; k < world.wall_forces.normal.size(); ++k) {
-    const double fn = world.wall_forces.normal[k], fs = list.wall_state.shear_force[k];
+  for (std::size_t k = 0; k < world.wall_forces().normal.size(); ++k) {
+    const double fn = world.wall_forces().normal[k], fs = list.wall_state.shear_force[k];
     e.linear_strain += 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
   }
   e.friction = world.friction_dissipated();

@@ -18,7 +18,7 @@ double contact_strain_energy(const World& world) {
 }
 
 double kinetic_energy_dynamic(const World& world) {
-  const Bodies& b = world.bodies;
+  const Bodies& b = world.bodies();
   double e = 0;
   for (std::size_t k = 0; k < b.size(); ++k)
     e += 0.5 * ((b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]) / b.inv_mass_dyn[k] +
@@ -27,11 +27,11 @@ double kinetic_energy_dynamic(const World& world) {
 }
 
 double strain_to_half_step(const World& world) {
-  const EnergyLedger& l = world.energy;
-  if (!world.settings.energy_tracking) return l.wall_strain_to_half_step;
+  const EnergyLedger& l = world.energy();
+  if (!world.settings().energy_tracking) return l.wall_strain_to_half_step;
   // Power of the contact forces (F - F_applied) . v at the new half-step velocity, in body
   // order, prescribed bodies included.
-  const Bodies& b = world.bodies;
+  const Bodies& b = world.bodies();
   double power = 0;
   for (std::size_t k = 0; k < b.size(); ++k)
     power += (b.fx[k] - b.fx_applied[k]) * b.vx[k] + (b.fy[k] - b.fy_applied[k]) * b.vy[k] +
@@ -40,7 +40,7 @@ double strain_to_half_step(const World& world) {
 }
 
 void restart_energy_reference(World& world) {
-  EnergyLedger& e = world.energy;
+  EnergyLedger& e = world.energy_;
   // Called by World::step after the integration: kinetic energy and work terms at t + dt/2,
   // strain energy carried there from x(t).
   const ContactEnergy c = contact_energy(world);
@@ -53,13 +53,13 @@ void restart_energy_reference(World& world) {
 }
 
 Energies energies(const World& world) {
-  const Bodies& b = world.bodies;
+  const Bodies& b = world.bodies();
   Energies e;
   for (std::size_t k = 0; k < b.size(); ++k)
     e.kinetic += 0.5 * (b.mass[k] * (b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]) +
                         b.inertia[k] * b.omega[k] * b.omega[k]);
   e.kinetic_dynamic = kinetic_energy_dynamic(world);
-  const EnergyLedger& l = world.energy;
+  const EnergyLedger& l = world.energy();
   const ContactEnergy c = contact_energy(world);
   e.contact_strain_now = c.linear_strain;
   e.bond_strain = c.bond_strain;

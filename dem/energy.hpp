@@ -72,7 +72,7 @@ struct Energies {
 
 // Change of the contact strain energy from x(t) to x(t + dt/2) in the last step, J/m: minus half
 // the work of the contact forces of the step over its displacements (walls: from the ledger;
-// bodies: the contact forces and half-step velocities the step left in world.bodies, zero with
+// bodies: the contact forces and half-step velocities the step left in world.bodies(), zero with
 // energy tracking off). The stored energy is reported at the half step, where the kinetic
 // energy and the work terms are; for linear springs this makes the discrete balance exact
 // (U(x_n) alone is off by the energy exchanged in half a step, which at omega dt ~ 0.5 is a

@@ -33,9 +33,9 @@ struct BodySets {
 
 Fragments find_fragments(const World& world, double clump_density,
                          const std::vector<double>& sieve) {
-  const Bodies& bodies = world.bodies;
-  const Discs& discs = world.discs;
-  const NeighborList& list = world.neighbors;
+  const Bodies& bodies = world.bodies();
+  const Discs& discs = world.discs();
+  const NeighborList& list = world.neighbors();
   BodySets sets(bodies.size());
   for (std::size_t k = 0; k < list.keys.size(); ++k)
     if (list.intact_bonds(k) > 0)
@@ -93,7 +93,7 @@ Fragments find_fragments(const World& world, double clump_density,
 }
 
 void add_clump_outlines(Fragments& f, const World& world, const Specimen& specimen) {
-  const Bodies& bodies = world.bodies;
+  const Bodies& bodies = world.bodies();
   std::size_t c = 0;
   for (std::size_t b = 0; b < bodies.size() && c < specimen.clumps.size(); ++b) {
     if (!bodies.is_clump[b]) continue;

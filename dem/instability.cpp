@@ -19,13 +19,13 @@ constexpr double kStiffnessContrast = 100.0;
 
 // Candidate pair k of the world, with its current bond.
 ContactStiffness pair_stiffness(const World& w, std::size_t k) {
-  const NeighborList& list = w.neighbors;
+  const NeighborList& list = w.neighbors();
   const std::uint8_t cls = list.contact_class[k];
   const auto kind = static_cast<BondKind>(list.state.bond[k]);
   if (kind == BondKind::SmoothJoint)
     return smooth_joint_stiffness(list.smooth_joints, list.state.joint[k]);
-  return dem::pair_stiffness(w.settings.laws[cls], w.settings.bonds[cls], kind,
-                             w.discs.r[list.first[k]], w.discs.r[list.second[k]]);
+  return dem::pair_stiffness(w.settings().laws[cls], w.settings().bonds[cls], kind,
+                             w.discs().r[list.first[k]], w.discs().r[list.second[k]]);
 }
 
 // Current stiffness seen by body b (sum max(kn, ks) and sum ks arm^2 + bond bending over its
@@ -36,8 +36,8 @@ struct BodyStiffness {
 };
 
 BodyStiffness body_stiffness(const World& w, long body) {
-  const Discs& d = w.discs;
-  const NeighborList& list = w.neighbors;
+  const Discs& d = w.discs();
+  const NeighborList& list = w.neighbors();
   BodyStiffness s;
   const auto add = [&](std::int32_t disc, const ContactStiffness& c) {
     const double arm = std::hypot(d.offset_x[disc], d.offset_y[disc]) + d.r[disc];
@@ -50,7 +50,7 @@ BodyStiffness body_stiffness(const World& w, long body) {
     add(d.body[i] == body ? i : j, pair_stiffness(w, k));
   }
   const ContactStiffness wall =
-      wall_stiffness(w.settings.laws[static_cast<int>(ContactClass::Wall)]);
+      wall_stiffness(w.settings().laws[static_cast<int>(ContactClass::Wall)]);
   for (std::size_t k = 0; k < list.wall_keys.size(); ++k)
     if (d.body[list.wall_disc[k]] == body) add(list.wall_disc[k], wall);
   return s;
@@ -89,11 +89,11 @@ StiffnessRange disc_stiffness_range(const World& w, long disc) {
     r.kn_max = std::max(r.kn_max, kn);
     ++r.contacts;
   };
-  const NeighborList& list = w.neighbors;
+  const NeighborList& list = w.neighbors();
   for (std::size_t k = 0; k < list.keys.size(); ++k)
     if (list.first[k] == disc || list.second[k] == disc) add(pair_stiffness(w, k).normal);
   const double kn_wall =
-      wall_stiffness(w.settings.laws[static_cast<int>(ContactClass::Wall)]).normal;
+      wall_stiffness(w.settings().laws[static_cast<int>(ContactClass::Wall)]).normal;
   for (std::size_t k = 0; k < list.wall_keys.size(); ++k)
     if (list.wall_disc[k] == disc) add(kn_wall);
   if (r.contacts == 0) r.kn_min = 0;
@@ -101,17 +101,17 @@ StiffnessRange disc_stiffness_range(const World& w, long disc) {
 }
 
 std::string describe_instability(const World& w, long disc) {
-  const long body = w.discs.body[disc];
+  const long body = w.discs().body[disc];
   const double dt = w.time_step();
   const BodyStiffness k = body_stiffness(w, body);
-  const double m = 1.0 / w.bodies.inv_mass_dyn[body],
-               inertia = 1.0 / w.bodies.inv_inertia_dyn[body];
+  const double m = 1.0 / w.bodies().inv_mass_dyn[body],
+               inertia = 1.0 / w.bodies().inv_inertia_dyn[body];
   double body_critical = std::numeric_limits<double>::infinity();
   if (k.translational > 0) body_critical = std::sqrt(m / k.translational);
   if (k.rotational > 0) body_critical = std::min(body_critical, std::sqrt(inertia / k.rotational));
   const StiffnessRange range = disc_stiffness_range(w, disc);
   const double contrast = range.kn_min > 0 ? range.kn_max / range.kn_min : 1.0;
-  const WorldSettings& s = w.settings;
+  const WorldSettings& s = w.settings();
 
   std::ostringstream out;
   out << "body " << body << "; time step dt = " << dt << " s, critical step of body " << body
@@ -150,7 +150,7 @@ std::string describe_instability(const World& w, long disc) {
 }
 
 RunawayCheck runaway_check(const World& w) {
-  const Bodies& b = w.bodies;
+  const Bodies& b = w.bodies();
   RunawayCheck r;
   double largest = -1;
   long largest_body = -1;
@@ -163,9 +163,9 @@ RunawayCheck runaway_check(const World& w) {
       largest_body = static_cast<long>(k);
     }
   }
-  r.accounted = r.kinetic + contact_strain_energy(w) + strain_to_half_step(w) + w.energy.damping;
-  r.input = w.energy.input();
-  if (r.accounted > 0 && r.accounted > w.settings.runaway_energy_factor * r.input)
+  r.accounted = r.kinetic + contact_strain_energy(w) + strain_to_half_step(w) + w.energy().damping;
+  r.input = w.energy().input();
+  if (r.accounted > 0 && r.accounted > w.settings().runaway_energy_factor * r.input)
     r.body = largest_body;
   return r;
 }

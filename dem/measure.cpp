@@ -14,7 +14,7 @@ namespace {
 // A disc-disc pair carries force when it touches or holds an intact bond (a bonded pair may be
 // in tension across a small gap).
 bool carries_force(const World& w, std::size_t k) {
-  return w.pair_forces.overlap[k] > 0 || w.neighbors.state.bond[k] != 0;
+  return w.pair_forces().overlap[k] > 0 || w.neighbors().state.bond[k] != 0;
 }
 
 // Calls visit(contact point, branch vector, force on the second body) for every touching
@@ -22,24 +22,24 @@ bool carries_force(const World& w, std::size_t k) {
 // the second body, carry the sign that makes the sum compression positive.
 template <class Visit>
 void for_each_contact(const World& w, Visit&& visit) {
-  const Discs& d = w.discs;
-  const NeighborList& nl = w.neighbors;
-  for (std::size_t k = 0; k < w.pair_forces.normal.size(); ++k) {
+  const Discs& d = w.discs();
+  const NeighborList& nl = w.neighbors();
+  for (std::size_t k = 0; k < w.pair_forces().normal.size(); ++k) {
     if (!carries_force(w, k)) continue;
     const std::int32_t i = nl.first[k], j = nl.second[k];
     const double lx = d.x[j] - d.x[i], ly = d.y[j] - d.y[i];
     const double len = std::hypot(lx, ly);
-    const double arm = d.r[i] - 0.5 * w.pair_forces.overlap[k];
+    const double arm = d.r[i] - 0.5 * w.pair_forces().overlap[k];
     const Eigen::Vector2d point(d.x[i] + lx * arm / len, d.y[i] + ly * arm / len);
     visit(point, Eigen::Vector2d(lx, ly),
-          Eigen::Vector2d(w.pair_forces.fx[k], w.pair_forces.fy[k]));
+          Eigen::Vector2d(w.pair_forces().fx[k], w.pair_forces().fy[k]));
   }
-  for (std::size_t k = 0; k < w.wall_forces.normal.size(); ++k) {
-    if (w.wall_forces.overlap[k] <= 0) continue;
+  for (std::size_t k = 0; k < w.wall_forces().normal.size(); ++k) {
+    if (w.wall_forces().overlap[k] <= 0) continue;
     const std::int32_t i = nl.wall_disc[k];
-    const Eigen::Vector2d point(w.wall_forces.cx[k], w.wall_forces.cy[k]);
+    const Eigen::Vector2d point(w.wall_forces().cx[k], w.wall_forces().cy[k]);
     const Eigen::Vector2d branch(d.x[i] - point.x(), d.y[i] - point.y());
-    visit(point, branch, Eigen::Vector2d(w.wall_forces.fx[k], w.wall_forces.fy[k]));
+    visit(point, branch, Eigen::Vector2d(w.wall_forces().fx[k], w.wall_forces().fy[k]));
   }
 }
 
@@ -62,7 +62,7 @@ Eigen::Matrix2d contact_stress(const World& world, const Box& region) {
 }
 
 Eigen::Matrix2d wall_stress(const World& world, double area, const Eigen::Vector2d& origin) {
-  const Walls& w = world.walls;
+  const Walls& w = world.walls();
   Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
   for (std::size_t k = 0; k < w.size(); ++k) {
     s(0, 0) += w.sxx[k] - origin.x() * w.fx[k];
@@ -74,7 +74,7 @@ Eigen::Matrix2d wall_stress(const World& world, double area, const Eigen::Vector
 }
 
 double wall_normal_stress(const World& world, int wall) {
-  const Walls& w = world.walls;
+  const Walls& w = world.walls();
   const double ex = w.bx[wall] - w.ax[wall], ey = w.by[wall] - w.ay[wall];
   const double len = std::hypot(ex, ey);
   // The force on the wall along either normal; discs on one side push it outward.
@@ -84,11 +84,11 @@ double wall_normal_stress(const World& world, int wall) {
 OverlapStatistics overlap_statistics(const World& world) {
   OverlapStatistics o;
   double sum = 0, sum_ratio = 0;
-  for (std::size_t k = 0; k < world.pair_forces.overlap.size(); ++k) {
-    const double ov = world.pair_forces.overlap[k];
+  for (std::size_t k = 0; k < world.pair_forces().overlap.size(); ++k) {
+    const double ov = world.pair_forces().overlap[k];
     if (ov <= 0) continue;
-    const double rmin =
-        std::min(world.discs.r[world.neighbors.first[k]], world.discs.r[world.neighbors.second[k]]);
+    const double rmin = std::min(world.discs().r[world.neighbors().first[k]],
+                                 world.discs().r[world.neighbors().second[k]]);
     ++o.contacts;
     sum += ov;
     sum_ratio += ov / rmin;
@@ -103,25 +103,25 @@ OverlapStatistics overlap_statistics(const World& world) {
 
 double coordination_number(const World& world) {
   long active = 0;
-  for (auto a : world.discs.active) active += a ? 1 : 0;
+  for (auto a : world.discs().active) active += a ? 1 : 0;
   if (!active) return 0;
   long touching = 0;
-  for (double ov : world.pair_forces.overlap) touching += ov > 0 ? 1 : 0;
+  for (double ov : world.pair_forces().overlap) touching += ov > 0 ? 1 : 0;
   return 2.0 * static_cast<double>(touching) / static_cast<double>(active);
 }
 
 long floating_disc_count(const World& world, int min_contacts) {
-  std::vector<int> count(world.discs.size(), 0);
-  for (std::size_t k = 0; k < world.pair_forces.overlap.size(); ++k) {
+  std::vector<int> count(world.discs().size(), 0);
+  for (std::size_t k = 0; k < world.pair_forces().overlap.size(); ++k) {
     if (!carries_force(world, k)) continue;
-    ++count[world.neighbors.first[k]];
-    ++count[world.neighbors.second[k]];
+    ++count[world.neighbors().first[k]];
+    ++count[world.neighbors().second[k]];
   }
-  for (std::size_t k = 0; k < world.wall_forces.overlap.size(); ++k)
-    if (world.wall_forces.overlap[k] > 0) ++count[world.neighbors.wall_disc[k]];
+  for (std::size_t k = 0; k < world.wall_forces().overlap.size(); ++k)
+    if (world.wall_forces().overlap[k] > 0) ++count[world.neighbors().wall_disc[k]];
   long floating = 0;
-  for (std::size_t i = 0; i < world.discs.size(); ++i)
-    if (world.discs.active[i] && count[i] < min_contacts) ++floating;
+  for (std::size_t i = 0; i < world.discs().size(); ++i)
+    if (world.discs().active[i] && count[i] < min_contacts) ++floating;
   return floating;
 }
 
@@ -132,20 +132,20 @@ double unbalanced_force_ratio(const World& world) {
     sum_contact += std::sqrt(f.fx[k] * f.fx[k] + f.fy[k] * f.fy[k]);
     ++contacts;
   };
-  for (std::size_t k = 0; k < world.pair_forces.normal.size(); ++k)
-    if (carries_force(world, k)) add(world.pair_forces, k);
-  for (std::size_t k = 0; k < world.wall_forces.normal.size(); ++k)
-    if (world.wall_forces.overlap[k] > 0) add(world.wall_forces, k);
+  for (std::size_t k = 0; k < world.pair_forces().normal.size(); ++k)
+    if (carries_force(world, k)) add(world.pair_forces(), k);
+  for (std::size_t k = 0; k < world.wall_forces().normal.size(); ++k)
+    if (world.wall_forces().overlap[k] > 0) add(world.wall_forces(), k);
   if (contacts == 0 || sum_contact <= 0) return 0;
   long free_bodies = 0;
-  for (auto pr : world.bodies.prescribed) free_bodies += pr ? 0 : 1;
+  for (auto pr : world.bodies().prescribed) free_bodies += pr ? 0 : 1;
   if (!free_bodies) return 0;
   const double mean_net = world.sum_body_force() / static_cast<double>(free_bodies);
   return mean_net / (sum_contact / static_cast<double>(contacts));
 }
 
 double kinetic_energy(const World& world) {
-  const Bodies& b = world.bodies;
+  const Bodies& b = world.bodies();
   double e = 0;
   for (std::size_t k = 0; k < b.size(); ++k)
     e += 0.5 * (b.mass[k] * (b.vx[k] * b.vx[k] + b.vy[k] * b.vy[k]) +
@@ -159,8 +159,9 @@ double strain_energy(const World& world) {
 
 double porosity(const World& world, double area) {
   double solid = 0;
-  for (std::size_t i = 0; i < world.discs.size(); ++i)
-    if (world.discs.active[i]) solid += std::numbers::pi * world.discs.r[i] * world.discs.r[i];
+  for (std::size_t i = 0; i < world.discs().size(); ++i)
+    if (world.discs().active[i])
+      solid += std::numbers::pi * world.discs().r[i] * world.discs().r[i];
   return 1.0 - solid / area;
 }
 

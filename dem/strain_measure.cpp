@@ -5,7 +5,7 @@
 namespace cdem::dem {
 
 StrainGauge::StrainGauge(const World& world, const Box& region) {
-  const Discs& d = world.discs;
+  const Discs& d = world.discs();
   double cx = 0, cy = 0;
   for (std::size_t i = 0; i < d.size(); ++i) {
     if (!region.contains(d.x[i], d.y[i])) continue;
@@ -31,7 +31,7 @@ StrainGauge::StrainGauge(const World& world, const Box& region) {
 }
 
 Eigen::Matrix2d StrainGauge::gradient(const World& world) const {
-  const Discs& d = world.discs;
+  const Discs& d = world.discs();
   Eigen::Vector3d bx = Eigen::Vector3d::Zero(), by = Eigen::Vector3d::Zero();
   // Displacements relative to the reference: u = x - X. The region's centroid cancels in the
   // gradient (it only shifts u0), so current positions can be used relative to anything fixed.

@@ -1,7 +1,10 @@
 #pragma once
 // The DEM world: bodies, their discs, walls, the neighbour list and the contact laws, advanced
-// one cycle at a time. Data are public structure-of-arrays (read them freely; change positions
-// or radii only through the functions below so the neighbour list stays valid).
+// one cycle at a time. Its state is read through const views of the structure-of-arrays
+// (`bodies()`, `discs()`, ...) and changed only through the methods below, each of which carries
+// its own side effects (neighbour list and time step, energy reference), so no caller has to
+// remember them. Engine parts that edit the world's arrays in place (bond and joint
+// installation, the wall servos, the energy reference) are its friends.
 #include <array>
 #include <limits>
 #include <string>
@@ -21,6 +24,11 @@
 #include "dem/wall.hpp"
 
 namespace cdem::dem {
+
+struct BondInstallation;  // dem/bond_installation.hpp
+struct InstalledBonds;
+struct JointSet;  // dem/smooth_joint_install.hpp
+struct InstalledJoints;
 
 struct WorldSettings {
   double local_damping = 0.7;     // alpha, 0 = off
@@ -67,7 +75,17 @@ class World {
   int add_clump(double cx, double cy, double mass, double inertia, const std::vector<double>& px,
                 const std::vector<double>& py, const std::vector<double>& pr,
                 const std::vector<std::uint8_t>& active);
-  int add_wall(double ax, double ay, double bx, double by) { return walls.add(ax, ay, bx, by); }
+  // A segment wall from a to b (m); the discs are on its left (dem/wall.hpp).
+  int add_wall(double ax, double ay, double bx, double by) { return walls_.add(ax, ay, bx, by); }
+  // An arc wall (dem/wall.hpp): centre (ox, oy) and radius in m, spanning mid_angle +-
+  // half_angle (rad); the discs are inside.
+  int add_arc_wall(double ox, double oy, double radius, double mid_angle, double half_angle) {
+    return walls_.add_arc(ox, oy, radius, mid_angle, half_angle);
+  }
+  // Appends wall `index` of `from` (geometry, velocity, friction), returns its index here.
+  int append_wall(const Walls& from, int index) {
+    return walls_.append(from, static_cast<std::size_t>(index));
+  }
   void add_container_walls(const Container& mould, int polygon_sides = 256);
 
   // One cycle: (neighbour rebuild if needed), force pass, wall servos, energy bookkeeping,
@@ -85,6 +103,62 @@ class World {
   // Sets a body's velocity (m/s, rad/s) and carries it to its discs at once, so the next force
   // pass already sees it (prescribed motions, initial conditions).
   void set_body_velocity(int body, double vx, double vy, double omega);
+  // Takes a disc out of every contact (it rides along with its body) or back in; the neighbour
+  // list is rebuilt at the next step.
+  void set_contact_active(int disc, bool active) {
+    discs_.active[disc] = active;
+    rebuild_pending_ = true;
+  }
+  // Holds a body's velocity at what set_body_velocity gives it (forces no longer change it) or
+  // frees it again. Its stiffness leaves (or joins) the automatic time step at the next
+  // neighbour rebuild, as before this method existed (results depend on when that happens).
+  void set_prescribed(int body, bool prescribed) { bodies_.prescribed[body] = prescribed; }
+  // External load on a body, added to every force pass (N per m of thickness).
+  void set_applied_force(int body, double fx, double fy) {
+    bodies_.fx_applied[body] = fx;
+    bodies_.fy_applied[body] = fy;
+  }
+  // A wall's velocity (m/s); it moves by velocity x dt after every step. A servo on the wall
+  // overrides it at the next step.
+  void set_wall_velocity(int wall, double vx, double vy) {
+    walls_.vx[wall] = vx;
+    walls_.vy[wall] = vy;
+  }
+  // Friction coefficient of the contacts of one wall (-, >= 0).
+  void set_wall_friction(int wall, double friction) { walls_.friction[wall] = friction; }
+  // Stress servo on a wall (dem/servo.hpp: target stress in Pa, compression positive; velocity
+  // cap in m/s; relaxation in (0, 1]). Returns the servo's index. Throws std::invalid_argument
+  // for a bad wall or bad values.
+  int add_wall_servo(int wall, double target_stress, double max_velocity, double relaxation = 0.5) {
+    return servos_.add(*this, wall, target_stress, max_velocity, relaxation);
+  }
+  // New target of servo `servo`, Pa (compression positive).
+  void set_servo_target(int servo, double target_stress) {
+    servos_.servos[static_cast<std::size_t>(servo)].target_stress = target_stress;
+  }
+  // Takes every servo off wall `wall` (which keeps its last velocity); servo indices after it
+  // shift down.
+  void remove_wall_servos(int wall);
+
+  // Replaces the settings (std::invalid_argument if check_settings refuses them). The neighbour
+  // list and the time step are rebuilt at the next step (they follow the contact laws, the
+  // skin, the safety factor, the fixed or scaled step); switching density scaling off gives
+  // the bodies back their true inverse masses and inertias.
+  void set_settings(const WorldSettings& settings);
+  // Density scaling on (every body's inertia set at the next rebuild for `scaled_time_step`,
+  // s) or off; through set_settings, so the step follows at the next step.
+  void set_density_scaling(bool on, double scaled_time_step);
+  // A fixed time step, s (0: automatic again); through set_settings.
+  void set_fixed_time_step(double time_step);
+  // Neighbour-list skin, m (> 0; the extra gap under which a pair stays a candidate), in place
+  // of settings().skin; the list is rebuilt with it at the next step.
+  void set_neighbor_skin(double skin) {
+    neighbors_.skin = skin;
+    rebuild_pending_ = true;
+  }
+  // Empties the crack log (the cracks of a relaxation that are not the test's).
+  void clear_cracks() { cracks_.clear(); }
+
   // Forces a neighbour-list rebuild (and time step update) at the next step.
   void invalidate_neighbors() { rebuild_pending_ = true; }
   // Rebuilds the neighbour list now if it is out of date (as step() would), so its candidate
@@ -95,7 +169,7 @@ class World {
   // settings.energy_check_interval): the reference absorbs what the accumulated work and
   // damping terms (which are kept) do not explain. scale_radii, set_body_velocity and adding
   // bodies call it.
-  void reset_energy_reference() { energy.reference_pending = true; }
+  void reset_energy_reference() { energy_.reference_pending = true; }
 
   double time_step() const { return dt_; }
   // min sqrt(m_dyn / sum k) (and the rotational analogue) over free bodies at the last
@@ -113,23 +187,44 @@ class World {
   // the break; for a contact bond its tensile normal spring), J per m of thickness.
   double bond_energy_released() const { return bond_energy_released_; }
 
-  WorldSettings settings;
-  Bodies bodies;
-  Discs discs;
-  Walls walls;
-  NeighborList neighbors;
-  ContactForces pair_forces, wall_forces;
-  CrackLog cracks;  // every bond failure, in the order they happened
-  WallServos servos;
-  EnergyLedger energy;
+  // Read-only views of the state (structure of arrays; units in their headers).
+  const WorldSettings& settings() const { return settings_; }
+  const Bodies& bodies() const { return bodies_; }
+  const Discs& discs() const { return discs_; }
+  const Walls& walls() const { return walls_; }
+  const NeighborList& neighbors() const { return neighbors_; }
+  const ContactForces& pair_forces() const { return pair_forces_; }
+  const ContactForces& wall_forces() const { return wall_forces_; }
+  const CrackLog& cracks() const { return cracks_; }  // every bond failure, in order
+  const WallServos& servos() const { return servos_; }
+  const EnergyLedger& energy() const { return energy_; }
 
  private:
+  // Engine parts that edit the arrays in place and carry their own side effects.
+  friend InstalledBonds install_bonds(World& world, const BondInstallation& options);
+  friend InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>& sets,
+                                               double gap_ratio);
+  friend void update_wall_servos(World& world);
+  friend void restart_energy_reference(World& world);
+  // Tests only (defined in tests/world_test_access.hpp): states the methods above never make,
+  // such as a stiffness raised without a time-step update, to test the instability diagnosis.
+  friend struct WorldTestAccess;
+
   void rebuild();
   void update_time_step();
   void account_wall_work();
   void check_energy();
   [[noreturn]] void fail(const std::string& what, long disc) const;
 
+  WorldSettings settings_;
+  Bodies bodies_;
+  Discs discs_;
+  Walls walls_;
+  NeighborList neighbors_;
+  ContactForces pair_forces_, wall_forces_;
+  CrackLog cracks_;  // every bond failure, in the order they happened
+  WallServos servos_;
+  EnergyLedger energy_;
   double dt_ = 0, dt_critical_ = 0, time_ = 0;
   double friction_dissipated_ = 0, bond_energy_released_ = 0;  // J/m
   long steps_ = 0;

@@ -25,8 +25,8 @@ World world_from_specimen(const Specimen& s, const WorldSettings& settings,
   for (std::size_t i = 0; i < n; ++i) {
     if (s.clump[i] >= 0) continue;
     const int b = world.add_disc(s.x[i], s.y[i], s.r[i], s.mortar_density, DiscMaterial::Mortar);
-    const std::int32_t disc = world.bodies.first_disc[b];
-    world.discs.active[disc] = s.contact_active[i];
+    const std::int32_t disc = world.bodies().first_disc[b];
+    world.set_contact_active(disc, s.contact_active[i] != 0);
     map[i] = disc;
   }
   std::vector<double> px, py, pr;
@@ -49,7 +49,7 @@ World world_from_specimen(const Specimen& s, const WorldSettings& settings,
     const int b = world.add_clump(clump.centroid.x(), clump.centroid.y(), clump.mass, clump.inertia,
                                   px, py, pr, active);
     for (std::size_t p = 0; p < pebbles[c].size(); ++p)
-      map[pebbles[c][p]] = world.bodies.first_disc[b] + static_cast<std::int32_t>(p);
+      map[pebbles[c][p]] = world.bodies().first_disc[b] + static_cast<std::int32_t>(p);
   }
   if (world_disc_of) *world_disc_of = std::move(map);
   return world;

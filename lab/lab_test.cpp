@@ -351,7 +351,7 @@ void LabHistory::push_energies(const World& world, double boundary_work_so_far) 
   friction_energy.push_back(energy.friction);
   breakage_energy.push_back(energy.bond_breakage);
   boundary_work.push_back(boundary_work_so_far);
-  bonds_broken.push_back(static_cast<long>(world.cracks.size()));
+  bonds_broken.push_back(static_cast<long>(world.cracks().size()));
 }
 
 namespace {
@@ -373,33 +373,34 @@ struct Loading {
   // Force of the specimen on the loading pair, mean of the two ends (N per m), positive in the
   // sense of the test (compression for platens, tension for grips); a beam: the platen's load P.
   double force(const World& w) const {
-    if (bending) return w.walls.fy[top_wall];
-    if (!grips) return 0.5 * (w.walls.fy[top_wall] - w.walls.fy[bottom_wall]);
+    if (bending) return w.walls().fy[top_wall];
+    if (!grips) return 0.5 * (w.walls().fy[top_wall] - w.walls().fy[bottom_wall]);
     double top = 0, bottom = 0;
-    for (const std::int32_t b : top_grip) top += w.bodies.fy[b];
-    for (const std::int32_t b : bottom_grip) bottom += w.bodies.fy[b];
+    for (const std::int32_t b : top_grip) top += w.bodies().fy[b];
+    for (const std::int32_t b : bottom_grip) bottom += w.bodies().fy[b];
     return 0.5 * (bottom - top);
   }
   // Sum of the supports' reactions on a beam (N per m), upward positive.
   double support_reaction(const World& w) const {
-    return -(w.walls.fy[bottom_wall] + w.walls.fy[right_support]);
+    return -(w.walls().fy[bottom_wall] + w.walls().fy[right_support]);
   }
   // Change of the distance between the two ends (m), positive in the sense of the test; a beam:
   // the load point's deflection (the supports stand still).
   double travel(const World& w) const {
-    if (!grips) return (top_y0 - bottom_y0) - (w.walls.ay[top_wall] - w.walls.ay[bottom_wall]);
-    return (w.bodies.y[top_grip.front()] - top_y0) - (w.bodies.y[bottom_grip.front()] - bottom_y0);
+    if (!grips) return (top_y0 - bottom_y0) - (w.walls().ay[top_wall] - w.walls().ay[bottom_wall]);
+    return (w.bodies().y[top_grip.front()] - top_y0) -
+           (w.bodies().y[bottom_grip.front()] - bottom_y0);
   }
   // Work done on the specimen by the loading ends over one step of length dt (J per m).
   double work(const World& w, double dt) const {
     double p = 0;
     if (!grips) {
       for (const int k : {bottom_wall, top_wall, right_support})
-        if (k >= 0) p -= w.walls.fx[k] * w.walls.vx[k] + w.walls.fy[k] * w.walls.vy[k];
+        if (k >= 0) p -= w.walls().fx[k] * w.walls().vx[k] + w.walls().fy[k] * w.walls().vy[k];
     } else {
       for (const auto* band : {&bottom_grip, &top_grip})
         for (const std::int32_t b : *band)
-          p -= w.bodies.fx[b] * w.bodies.vx[b] + w.bodies.fy[b] * w.bodies.vy[b];
+          p -= w.bodies().fx[b] * w.bodies().vx[b] + w.bodies().fy[b] * w.bodies().vy[b];
     }
     return p * dt;
   }
@@ -412,7 +413,7 @@ struct Extent {
 
 Extent disc_extent(const World& w) {
   Extent e;
-  const Discs& s = w.discs;
+  const Discs& s = w.discs();
   for (std::size_t i = 0; i < s.size(); ++i) {
     e.xmin = std::min(e.xmin, s.x[i] - s.r[i]);
     e.xmax = std::max(e.xmax, s.x[i] + s.r[i]);
@@ -472,7 +473,7 @@ Walls make_platens(const LabTestControls& c, const Discs& d, const Extent& e) {
 // support: the lowest). The beam's faces are rough at the scale of a disc, so a short plate
 // set at the specimen's extent could hang a fraction of a radius clear of the discs under it.
 double plate_height(const World& world, double xa, double xb, bool from_above) {
-  const Discs& d = world.discs;
+  const Discs& d = world.discs();
   double best = from_above ? -std::numeric_limits<double>::infinity()
                            : std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < d.size(); ++i) {
@@ -505,12 +506,12 @@ Loading set_up_bending(World& world, const Specimen& specimen, const LabTestCont
     return world.add_wall(x - half_plate, y, x + half_plate, y);
   };
   l.bottom_wall = support(xc - half_span);
-  world.walls.friction[l.bottom_wall] = c.pin_friction;
+  world.set_wall_friction(l.bottom_wall, c.pin_friction);
   l.right_support = support(xc + half_span);
   const double top = plate_height(world, xc - half_plate, xc + half_plate, true);
   l.top_wall = world.add_wall(xc + half_plate, top, xc - half_plate, top);
-  world.walls.vy[l.top_wall] = -c.platen_velocity;
-  l.bottom_y0 = world.walls.ay[l.bottom_wall];
+  world.set_wall_velocity(l.top_wall, 0, -c.platen_velocity);
+  l.bottom_y0 = world.walls().ay[l.bottom_wall];
   l.top_y0 = top;
   l.gauge_length = beam.height;
   l.section = 2 * beam.height * beam.height / (3 * c.span);
@@ -524,8 +525,8 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
   const double v = c.platen_velocity;
   if (c.type == LabTestType::ThreePointBending) return set_up_bending(world, specimen, c);
   if (c.type != LabTestType::DirectTension) {
-    l.bottom_wall = world.walls.append(platens, 0);
-    l.top_wall = world.walls.append(platens, 1);
+    l.bottom_wall = world.append_wall(platens, 0);
+    l.top_wall = world.append_wall(platens, 1);
     // The platens' displacements are those of any of their points (they translate); the gauge
     // is the specimen's extent between them, where flat platens sit.
     l.bottom_y0 = platens.ay[0];
@@ -539,8 +540,8 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
   const double height = e.ymax - e.ymin;
   l.grips = true;
   const double band = c.grip_fraction * height;
-  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
-    const double y = world.bodies.y[b];
+  for (std::size_t b = 0; b < world.bodies().size(); ++b) {
+    const double y = world.bodies().y[b];
     if (y <= e.ymin + band)
       l.bottom_grip.push_back(static_cast<std::int32_t>(b));
     else if (y >= e.ymax - band)
@@ -550,11 +551,11 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
     throw InputError(input.file, "test.grip_fraction", "a grip band holds no disc; widen it");
   for (const auto& [band_bodies, vy] : {std::pair{&l.bottom_grip, -v}, std::pair{&l.top_grip, v}})
     for (const std::int32_t b : *band_bodies) {
-      world.bodies.prescribed[b] = 1;
+      world.set_prescribed(b, true);
       world.set_body_velocity(b, 0, vy, 0);
     }
-  l.bottom_y0 = world.bodies.y[l.bottom_grip.front()];
-  l.top_y0 = world.bodies.y[l.top_grip.front()];
+  l.bottom_y0 = world.bodies().y[l.bottom_grip.front()];
+  l.top_y0 = world.bodies().y[l.top_grip.front()];
   l.gauge_length = height - 2 * band;
   l.section = specimen.container.width;
   return l;
@@ -587,7 +588,7 @@ BendingResult analyse_bending(const LabHistory& h, const Specimen& beam, const L
   b.final_deflection = h.deflection.back();
   b.final_load = h.platen_force.back();
   double mass = 0;  // kg/m, physical masses (density scaling leaves them)
-  for (const double m : world.bodies.mass) mass += m;
+  for (const double m : world.bodies().mass) mass += m;
   b.mass_between_supports = mass * b.span / b.length;
   b.self_weight_work = b.mass_between_supports * kStandardGravity * b.final_deflection;
   b.fracture_energy = rilem_fracture_energy(b.work_of_fracture, b.mass_between_supports,
@@ -626,9 +627,7 @@ void warn_density_scaling(LabTestResult& res, const LabTestHooks& hooks, double 
 // no kinetic energy changes with the masses.
 void scale_density_from_here(World& world, double factor) {
   world.refresh_neighbors();
-  world.settings.scaled_time_step = factor * world.time_step();
-  world.settings.density_scaling = true;
-  world.invalidate_neighbors();
+  world.set_density_scaling(true, factor * world.time_step());
 }
 
 }  // namespace
@@ -707,15 +706,14 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     return res;
   }
-  const Walls platens = make_platens(c, world.discs, e);
+  const Walls platens = make_platens(c, world.discs(), e);
   Loading loading = set_up_loading(world, cleaned, input, platens, e);
   if (c.density_step_factor > 0) {
     scale_density_from_here(world, c.density_step_factor);
     warn_density_scaling(res, hooks, c.density_step_factor);
   } else if (c.density_scaling) {
     World true_masses = world;  // the absolute step against the step the true masses allow
-    true_masses.settings.density_scaling = false;
-    true_masses.invalidate_neighbors();
+    true_masses.set_density_scaling(false, true_masses.settings().scaled_time_step);
     true_masses.refresh_neighbors();
     warn_density_scaling(res, hooks, c.scaled_time_step / true_masses.time_step());
   }
@@ -726,18 +724,18 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     confinement.emplace(world, c.confining_stress, c.platen_velocity, loading.bottom_wall,
                         loading.top_wall, e.xmin, e.xmax, e.ymin, e.ymax, c.confinement);
     res.consolidation = confinement->consolidate(world);
-    loading.bottom_y0 = world.walls.ay[loading.bottom_wall];
-    loading.top_y0 = world.walls.ay[loading.top_wall];
+    loading.bottom_y0 = world.walls().ay[loading.bottom_wall];
+    loading.top_y0 = world.walls().ay[loading.top_wall];
     loading.gauge_length = loading.top_y0 - loading.bottom_y0;
-    world.walls.vy[loading.bottom_wall] = c.platen_velocity;
-    world.walls.vy[loading.top_wall] = -c.platen_velocity;
+    world.set_wall_velocity(loading.bottom_wall, 0, c.platen_velocity);
+    world.set_wall_velocity(loading.top_wall, 0, -c.platen_velocity);
   }
   res.confining_stress = c.type == LabTestType::Biaxial ? c.confining_stress : 0;
   const long step0 = world.step_count();
   const double time0 = world.time();
   world.refresh_neighbors();
   res.time_step = world.time_step();
-  res.walls = world.walls;
+  res.walls = world.walls();
   res.width =
       c.type == LabTestType::Brazilian || bending ? specimen.container.width : loading.section;
   res.height = c.type == LabTestType::Brazilian ? specimen.container.width : loading.gauge_length;
@@ -758,7 +756,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   long installed = 0;
   for (const long b : res.genesis.bonds) installed += b;
   const long intact_bonds =
-      installed - res.genesis.relaxation_cracks - static_cast<long>(world.cracks.size());
+      installed - res.genesis.relaxation_cracks - static_cast<long>(world.cracks().size());
   if (installed > 0 && intact_bonds <= 0)
     warn(res, hooks,
          "every bond broke before the loading (genesis relaxation or consolidation): the "
@@ -769,7 +767,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   if (bending && c.cmod_control) servo = CmodServo{c.cmod_rate, kCmodServoSpeedCap * c.cmod_rate};
   if (bending) cmod.emplace(world, cleaned.container, e.ymin);
   PeakStopRule stop(stop_options, e.xmin, e.ymin, e.xmax, e.ymax, intact_bonds,
-                    world.cracks.size());
+                    world.cracks().size());
   const long quiet_steps = static_cast<long>(kQuietFraction * static_cast<double>(c.max_steps));
   bool quiet_warned = false;
   // The stress (Pa) the peak and the stop rule follow: axial, or the deviator of a biaxial test.
@@ -795,7 +793,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
       h.support_reaction.push_back(loading.support_reaction(world));
     }
     const StopReason reason = stop.observe(h.axial_strain.back(), last_loading_stress(),
-                                           h.lateral_strain.back(), world.cracks, at_max_steps);
+                                           h.lateral_strain.back(), world.cracks(), at_max_steps);
     if (hooks.progress) hooks.progress(h, stop.peak(), c.max_steps);
     if (reason == StopReason::None && hooks.should_stop && hooks.should_stop(world, h)) {
       warn(res, hooks,
@@ -823,8 +821,9 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   while (reason == StopReason::None) {
     if (confinement) confinement->update_targets(world);
     if (servo)
-      world.walls.vy[loading.top_wall] =
-          -servo->platen_velocity(cmod->opening(world), world.time() - time0, world.time_step());
+      world.set_wall_velocity(
+          loading.top_wall, 0,
+          -servo->platen_velocity(cmod->opening(world), world.time() - time0, world.time_step()));
     world.step();
     boundary_work += loading.work(world, world.time_step());
     const long s = world.step_count() - step0;
@@ -883,7 +882,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     hooks.snapshot(world, world.step_count() - step0, world.time() - time0);  // the last state
 
   res.steps = world.step_count() - step0;
-  tally_cracks(res, world.cracks, time0);
+  tally_cracks(res, world.cracks(), time0);
   res.fragments = fragments_at_end(world, cleaned, c);
   res.joint_states = joint_states(world, res.cracks, 0);
   const auto peak_at = std::max_element(h.axial_stress.begin(), h.axial_stress.end());

@@ -72,8 +72,8 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
   std::vector<std::int32_t> world_disc_of;
   World world = world_from_specimen(specimen, settings, &world_disc_of);
   world.refresh_neighbors();
-  const NeighborList& list = world.neighbors;
-  const Discs& d = world.discs;
+  const NeighborList& list = world.neighbors();
+  const Discs& d = world.discs();
 
   // The contact pairs (gap within the bond tolerance), found once; removal only deletes pairs.
   std::vector<std::int32_t> first, second;
@@ -109,7 +109,7 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
     }
     long newly = 0;
     for (std::size_t i = 0; i < d.size(); ++i) {
-      if (removed[i] || world.bodies.is_clump[d.body[i]]) continue;
+      if (removed[i] || world.bodies().is_clump[d.body[i]]) continue;
       if (contacts[i] < options.min_contacts) {
         removed[i] = 1;
         ++newly;
@@ -151,7 +151,7 @@ void install_test_bonds(World& world, const GenesisOptions& options, GenesisRepo
   BondInstallation installation;
   installation.gap_ratio = options.bond_gap_ratio;
   report.bonds = install_bonds(world, installation).by_class;
-  report.discs = static_cast<long>(world.discs.size());
+  report.discs = static_cast<long>(world.discs().size());
   const long start = world.step_count();
   for (;;) {
     world.cycle(100);
@@ -163,13 +163,13 @@ void install_test_bonds(World& world, const GenesisOptions& options, GenesisRepo
       break;
   }
   report.relaxation_steps = world.step_count() - start;
-  report.relaxation_cracks = static_cast<long>(world.cracks.size());
-  for (const Crack& c : world.cracks.cracks)
+  report.relaxation_cracks = static_cast<long>(world.cracks().size());
+  for (const Crack& c : world.cracks().cracks)
     ++report.relaxation_cracks_by_class[static_cast<std::size_t>(c.contact_class)];
-  check_genesis_damage(world.settings, options, report);
-  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+  check_genesis_damage(world.settings(), options, report);
+  for (std::size_t b = 0; b < world.bodies().size(); ++b)
     world.set_body_velocity(static_cast<int>(b), 0, 0, 0);
-  world.cracks.clear();
+  world.clear_cracks();
 }
 
 }  // namespace cdem::dem

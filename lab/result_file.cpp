@@ -268,7 +268,7 @@ std::vector<NamedPath> ResultFile::outputs(const std::string& flag,
 }
 
 void ResultFile::snapshot(const World& world, long step, double time) {
-  const Discs& d = world.discs;
+  const Discs& d = world.discs();
   H5::Group root = file_->openGroup(group_).openGroup("snapshots");
   const std::size_t index = static_cast<std::size_t>(
       std::count_if(snapshots_.begin(), snapshots_.end(),
@@ -294,7 +294,7 @@ void ResultFile::snapshot(const World& world, long step, double time) {
   std::vector<std::int32_t> tag(d.size()), clump(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) {
     tag[i] = static_cast<std::int32_t>(d.material[i]);
-    clump[i] = world.bodies.is_clump[d.body[i]] ? d.body[i] : -1;
+    clump[i] = world.bodies().is_clump[d.body[i]] ? d.body[i] : -1;
   }
   write_array(g, "tag", tag, "", "0 = mortar disc, 1 = aggregate pebble");
   write_array(g, "clump", clump, "", "body index of the disc's clump, -1 = a free disc");
@@ -305,14 +305,14 @@ void ResultFile::snapshot(const World& world, long step, double time) {
   }
   snapshot_bonds(root, g, world, time);
   bond_count_.assign(d.size(), 0);
-  const NeighborList& list = world.neighbors;
+  const NeighborList& list = world.neighbors();
   for (std::size_t k = 0; k < list.keys.size(); ++k)
     if (list.intact_bonds(k) > 0) {
       ++bond_count_[list.first[k]];
       ++bond_count_[list.second[k]];
     }
   write_array(g, "bonds", bond_count_, "", "intact bonds of the disc");
-  const std::size_t joints = world.neighbors.smooth_joints.size();
+  const std::size_t joints = world.neighbors().smooth_joints.size();
   if (joints > 0) snapshot_joints(root, g, world, time, index == 0);
   snapshots_.push_back({group_, index, step, time, d.size(), bond_keys_.size(), joints});
 }
@@ -321,8 +321,8 @@ void ResultFile::snapshot(const World& world, long step, double time) {
 // network (their pairs, class and law in `root`); every snapshot stores each one's intact
 // bonds (flat joint: bonded elements; 0 = broken) and its latest failure from the crack log.
 void ResultFile::snapshot_bonds(H5::Group& root, H5::Group& g, const World& world, double time) {
-  const NeighborList& list = world.neighbors;
-  const auto& cracks = world.cracks.cracks;
+  const NeighborList& list = world.neighbors();
+  const auto& cracks = world.cracks().cracks;
   if (bond_group_ != group_) {
     bond_group_ = group_;
     bond_keys_.clear();
@@ -369,7 +369,7 @@ void ResultFile::snapshot_bonds(H5::Group& root, H5::Group& g, const World& worl
 
 void ResultFile::snapshot_joints(H5::Group& root, H5::Group& g, const World& world, double time,
                                  bool first) {
-  const JointStates s = joint_states(world, world.cracks.cracks, world.time() - time);
+  const JointStates s = joint_states(world, world.cracks().cracks, world.time() - time);
   if (first) {
     write_array(root, "joint_pairs", s.pairs(), "",
                 "the two discs of each smooth joint (XDMF lines)", 2);

@@ -90,7 +90,8 @@ long ShpbBars::cells_for(const BarProperties& bar, double max_step) {
   return std::max(1L, static_cast<long>(std::ceil(bar.length / (bar.wave_speed() * max_step))));
 }
 
-void ShpbBars::couple(Walls& walls) {
+void ShpbBars::couple(World& world) {
+  const Walls& walls = world.walls();
   const double area = o_.bar.area();
   incident_.advance();
   transmitted_.advance();
@@ -100,9 +101,8 @@ void ShpbBars::couple(Walls& walls) {
   incident_.set_end_stress(BarEnd::Right, -walls.fy[incident_face_] / area);
   transmitted_.set_end_stress(BarEnd::Left, walls.fy[transmitted_face_] / area);
   transmitted_.set_end_stress(BarEnd::Right, 0);  // free end
-  walls.vx[incident_face_] = walls.vx[transmitted_face_] = 0;
-  walls.vy[incident_face_] = incident_.end_velocity(BarEnd::Right);
-  walls.vy[transmitted_face_] = transmitted_.end_velocity(BarEnd::Left);
+  world.set_wall_velocity(incident_face_, 0, incident_.end_velocity(BarEnd::Right));
+  world.set_wall_velocity(transmitted_face_, 0, transmitted_.end_velocity(BarEnd::Left));
 }
 
 void ShpbGaugeRecords::reserve(std::size_t n) {
@@ -113,9 +113,9 @@ void ShpbGaugeRecords::reserve(std::size_t n) {
 
 double ShpbBars::coupling_number(const World& world) const {
   // Before the first force pass of the neighbour list there are no contact forces to count.
-  if (world.wall_forces.overlap.size() != world.neighbors.wall_keys.size()) return 0;
+  if (world.wall_forces().overlap.size() != world.neighbors().wall_keys.size()) return 0;
   const double kn =
-      world.settings.laws[static_cast<int>(ContactClass::Wall)].wall_normal_stiffness();
+      world.settings().laws[static_cast<int>(ContactClass::Wall)].wall_normal_stiffness();
   const long contacts = std::max(wall_contact_count(world, incident_face_),
                                  wall_contact_count(world, transmitted_face_));
   return time_step() * static_cast<double>(contacts) * kn / (o_.bar.impedance() * o_.bar.area());
@@ -138,12 +138,10 @@ ShpbBars attach_shpb_bars(World& world, const Box& e, const ShpbOptions& o) {
   const double xc = 0.5 * (e.xmin + e.xmax), half = 0.5 * o.bar.width;
   const int incident = world.add_wall(xc - half, e.ymin, xc + half, e.ymin);
   const int transmitted = world.add_wall(xc + half, e.ymax, xc - half, e.ymax);
-  world.settings.fixed_time_step = 0;
-  world.invalidate_neighbors();
+  world.set_fixed_time_step(0);
   world.refresh_neighbors();
   ShpbBars bars(o, ShpbBars::cells_for(o.bar, world.time_step()), incident, transmitted);
-  world.settings.fixed_time_step = bars.time_step();
-  world.invalidate_neighbors();
+  world.set_fixed_time_step(bars.time_step());
   world.refresh_neighbors();
   return bars;
 }
@@ -225,16 +223,16 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
   res.gauge_discs = gauge.disc_count();
   LabHistory& h = res.history;
   h.reserve(static_cast<std::size_t>(needed / c.history_interval + 2));
-  const double y0_incident = world.walls.ay[incident_face];
-  const double y0_transmitted = world.walls.ay[transmitted_face];
+  const double y0_incident = world.walls().ay[incident_face];
+  const double y0_transmitted = world.walls().ay[transmitted_face];
   const long step0 = world.step_count();
   const double time0 = world.time();
   double face_work = 0;  // J/m
   const auto record = [&] {
     const double force =
-        0.5 * (world.walls.fy[transmitted_face] - world.walls.fy[incident_face]);  // N/m
+        0.5 * (world.walls().fy[transmitted_face] - world.walls().fy[incident_face]);  // N/m
     const double travel = (y0_transmitted - y0_incident) -
-                          (world.walls.ay[transmitted_face] - world.walls.ay[incident_face]);
+                          (world.walls().ay[transmitted_face] - world.walls().ay[incident_face]);
     h.step.push_back(world.step_count() - step0);
     h.time.push_back(world.time() - time0);
     h.axial_strain.push_back(travel / res.height);
@@ -250,17 +248,17 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
 
   using Clock = std::chrono::steady_clock;
   Clock::duration in_bars{};
-  out.gauges.record(bars, world.walls);
+  out.gauges.record(bars, world.walls());
   record();
   if (hooks.snapshot && c.snapshot_interval > 0) hooks.snapshot(world, 0, 0.0);
   for (long s = 1; s <= needed; ++s) {
     world.step();
     // Work of this step: the force of its pass over the faces' displacement in it.
     for (const int f : {incident_face, transmitted_face})
-      face_work -= world.walls.fy[f] * world.walls.vy[f] * world.time_step();
+      face_work -= world.walls().fy[f] * world.walls().vy[f] * world.time_step();
     const Clock::time_point t0 = Clock::now();
-    bars.couple(world.walls);
-    out.gauges.record(bars, world.walls);
+    bars.couple(world);
+    out.gauges.record(bars, world.walls());
     in_bars += Clock::now() - t0;
     if (s % c.history_interval == 0 || s == needed) record();
     if (hooks.snapshot && c.snapshot_interval > 0 && (s % c.snapshot_interval == 0 || s == needed))
@@ -295,7 +293,7 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
   if (disc_specimen) out.dynamic_tensile_strength = brazilian_strength(res.peak_force, res.width);
   res.stop_reason = StopReason::PulsePassed;
   res.steps = world.step_count() - step0;
-  tally_cracks(res, world.cracks, time0);
+  tally_cracks(res, world.cracks(), time0);
 }
 
 }  // namespace cdem::dem

@@ -78,7 +78,7 @@ class ShpbBars {
   // After a World step: advances both bars one step, loads the incident bar's far end with the
   // pulse, takes the forces of the discs on the faces from the walls' last force pass as the end
   // stresses, and sets the faces' velocities (along y) to the bar-end velocities.
-  void couple(Walls& walls);
+  void couple(World& world);
 
   double time_step() const { return incident_.time_step(); }
   const ElasticBar& incident() const { return incident_; }

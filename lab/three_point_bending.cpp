@@ -35,7 +35,7 @@ double characteristic_length(double young_modulus, double fracture_energy,
 }
 
 CmodGauge::CmodGauge(const World& world, const Container& mould, double bottom) {
-  const Discs& d = world.discs;
+  const Discs& d = world.discs();
   const double xc = 0.5 * mould.width, half = mould.notched() ? 0.5 * mould.notch_width : 0;
   // (squared distance to the side's corner, disc) of every contact-active disc, per side.
   std::vector<std::pair<double, std::int32_t>> side[2];
@@ -60,7 +60,7 @@ CmodGauge::CmodGauge(const World& world, const Container& mould, double bottom) 
 
 double CmodGauge::mean_x(const World& world, const std::vector<std::int32_t>& discs) const {
   double sum = 0;
-  for (const std::int32_t i : discs) sum += world.discs.x[i];
+  for (const std::int32_t i : discs) sum += world.discs().x[i];
   return sum / static_cast<double>(discs.size());
 }
 

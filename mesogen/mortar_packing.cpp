@@ -135,19 +135,19 @@ std::vector<std::size_t> spatial_order(const std::vector<double>& x, const std::
 // move (affine response): (1 / 2A) sum kn L^2 over the touching contacts (Pa). Isotropic
 // compression of a jammed packing is close to affine, so this is a fair estimate.
 double touching_stiffness(const dem::World& w, double area) {
-  const dem::Discs& d = w.discs;
-  const dem::LinearContact& law = w.settings.laws[0];
+  const dem::Discs& d = w.discs();
+  const dem::LinearContact& law = w.settings().laws[0];
   double sum = 0;
-  for (std::size_t k = 0; k < w.neighbors.keys.size(); ++k) {
-    if (w.pair_forces.overlap[k] <= 0) continue;
-    const std::int32_t i = w.neighbors.first[k], j = w.neighbors.second[k];
+  for (std::size_t k = 0; k < w.neighbors().keys.size(); ++k) {
+    if (w.pair_forces().overlap[k] <= 0) continue;
+    const std::int32_t i = w.neighbors().first[k], j = w.neighbors().second[k];
     const double l = d.r[i] + d.r[j];
     sum += law.normal_stiffness(d.r[i], d.r[j]) * l * l;
   }
-  const double kw = w.settings.laws[3].wall_normal_stiffness();
-  for (std::size_t k = 0; k < w.neighbors.wall_keys.size(); ++k) {
-    if (w.wall_forces.overlap[k] <= 0) continue;
-    const double l = d.r[w.neighbors.wall_disc[k]];
+  const double kw = w.settings().laws[3].wall_normal_stiffness();
+  for (std::size_t k = 0; k < w.neighbors().wall_keys.size(); ++k) {
+    if (w.wall_forces().overlap[k] <= 0) continue;
+    const double l = d.r[w.neighbors().wall_disc[k]];
     sum += kw * l * l;
   }
   return sum / (2.0 * area);
@@ -156,17 +156,17 @@ double touching_stiffness(const dem::World& w, double area) {
 // The same over all candidate pairs (touching or within the skin): the response once the near
 // pairs close, used when re-compressing a packing that has few contacts.
 double candidate_stiffness(const dem::World& w, double area) {
-  const dem::Discs& d = w.discs;
-  const dem::LinearContact& law = w.settings.laws[0];
+  const dem::Discs& d = w.discs();
+  const dem::LinearContact& law = w.settings().laws[0];
   double sum = 0;
-  for (std::size_t k = 0; k < w.neighbors.keys.size(); ++k) {
-    const std::int32_t i = w.neighbors.first[k], j = w.neighbors.second[k];
+  for (std::size_t k = 0; k < w.neighbors().keys.size(); ++k) {
+    const std::int32_t i = w.neighbors().first[k], j = w.neighbors().second[k];
     const double l = d.r[i] + d.r[j];
     sum += law.normal_stiffness(d.r[i], d.r[j]) * l * l;
   }
-  const double kw = w.settings.laws[3].wall_normal_stiffness();
-  for (std::size_t k = 0; k < w.neighbors.wall_keys.size(); ++k) {
-    const double l = d.r[w.neighbors.wall_disc[k]];
+  const double kw = w.settings().laws[3].wall_normal_stiffness();
+  for (std::size_t k = 0; k < w.neighbors().wall_keys.size(); ++k) {
+    const double l = d.r[w.neighbors().wall_disc[k]];
     sum += kw * l * l;
   }
   return sum / (2.0 * area);
@@ -265,8 +265,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
     throw RunError(msg.str());
   }
 
-  world.neighbors.skin = 0.2 * r_min;
-  world.invalidate_neighbors();
+  world.set_neighbor_skin(0.2 * r_min);
 
   // Radius servo at fixed mould, two stages.
   // 1. Decompression: all radii shrink by one common factor per cycle chosen so the contact
@@ -311,7 +310,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
     // around for thousands of cycles, keeping the unbalanced-force ratio up; quenching during
     // the decompression instead makes the packing unjam, so it is done in the hold stage only.
     if (holding)
-      for (std::size_t b = 0; b < world.bodies.size(); ++b)
+      for (std::size_t b = 0; b < world.bodies().size(); ++b)
         world.set_body_velocity(static_cast<int>(b), 0, 0, 0);
     hold_rate = 0;
     if (holding && std::abs(wall_sigma - c.sigma0) > band) {
@@ -331,9 +330,9 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
     throw RunError(msg.str());
   }
 
-  out.x = world.discs.x;
-  out.y = world.discs.y;
-  out.r = world.discs.r;
+  out.x = world.discs().x;
+  out.y = world.discs().y;
+  out.r = world.discs().r;
   out.porosity = dem::porosity(world, area);
   const dem::OverlapStatistics ov = dem::overlap_statistics(world);
   out.mean_overlap = ov.mean_overlap;

@@ -27,7 +27,8 @@ inline std::pair<dem::World, long> bonded_pair(const dem::BondModel& bond, const
   World w(s);
   w.add_disc(0, 0, spec.r1, 2000);
   w.add_disc(spec.r1 + spec.r2 + spec.gap, 0, spec.r2, 2000);
-  w.bodies.prescribed[0] = w.bodies.prescribed[1] = 1;
+  w.set_prescribed(0, true);
+  w.set_prescribed(1, true);
   BondInstallation options;
   options.gap_ratio = 2 * spec.gap / spec.r1 + 1e-9;
   const long installed = install_bonds(w, options).total();

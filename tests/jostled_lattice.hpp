@@ -37,7 +37,7 @@ inline void add_hex_lattice(dem::World& w) {
 // Velocities up to 2 m/s and spins up to 500 rad/s, from a fixed seed.
 inline void jostle(dem::World& w) {
   Rng rng(11);
-  for (std::size_t b = 0; b < w.bodies.size(); ++b)
+  for (std::size_t b = 0; b < w.bodies().size(); ++b)
     w.set_body_velocity(static_cast<int>(b), rng.uniform(-2, 2), rng.uniform(-2, 2),
                         rng.uniform(-500, 500));
 }
@@ -45,9 +45,9 @@ inline void jostle(dem::World& w) {
 // Positions, spins, cracks and energies of the world, to compare bit for bit.
 inline std::vector<double> world_bits(const dem::World& w) {
   std::vector<double> out;
-  for (std::size_t b = 0; b < w.bodies.size(); ++b)
-    out.insert(out.end(), {w.bodies.x[b], w.bodies.y[b], w.bodies.omega[b]});
-  for (const dem::Crack& c : w.cracks.cracks) out.insert(out.end(), {c.time, c.x, c.y});
+  for (std::size_t b = 0; b < w.bodies().size(); ++b)
+    out.insert(out.end(), {w.bodies().x[b], w.bodies().y[b], w.bodies().omega[b]});
+  for (const dem::Crack& c : w.cracks().cracks) out.insert(out.end(), {c.time, c.x, c.y});
   const dem::ContactEnergy e = dem::contact_energy(w);
   out.insert(out.end(),
              {e.bond_strain, e.linear_strain, w.bond_energy_released(), w.friction_dissipated()});

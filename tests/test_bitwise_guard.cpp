@@ -76,31 +76,31 @@ struct WorldHashes {
 WorldHashes hash_world(const World& w) {
   WorldHashes out;
   StateHash p, v, s, sh, b, e;
-  p.add(w.bodies.x);
-  p.add(w.bodies.y);
-  p.add(w.bodies.theta);
-  p.add(w.discs.x);
-  p.add(w.discs.y);
-  p.add(w.discs.r);
-  p.add(w.walls.ax);
-  p.add(w.walls.ay);
-  p.add(w.walls.bx);
-  p.add(w.walls.by);
-  v.add(w.bodies.vx);
-  v.add(w.bodies.vy);
-  v.add(w.discs.vx);
-  v.add(w.discs.vy);
-  v.add(w.walls.vx);
-  v.add(w.walls.vy);
-  s.add(w.bodies.omega);
-  s.add(w.discs.omega);
-  const NeighborList& n = w.neighbors;
+  p.add(w.bodies().x);
+  p.add(w.bodies().y);
+  p.add(w.bodies().theta);
+  p.add(w.discs().x);
+  p.add(w.discs().y);
+  p.add(w.discs().r);
+  p.add(w.walls().ax);
+  p.add(w.walls().ay);
+  p.add(w.walls().bx);
+  p.add(w.walls().by);
+  v.add(w.bodies().vx);
+  v.add(w.bodies().vy);
+  v.add(w.discs().vx);
+  v.add(w.discs().vy);
+  v.add(w.walls().vx);
+  v.add(w.walls().vy);
+  s.add(w.bodies().omega);
+  s.add(w.discs().omega);
+  const NeighborList& n = w.neighbors();
   sh.add(n.keys);
   sh.add(n.state.shear_force);
   sh.add(n.wall_keys);
   sh.add(n.wall_state.shear_force);
-  sh.add(w.walls.fx);
-  sh.add(w.walls.fy);
+  sh.add(w.walls().fx);
+  sh.add(w.walls().fy);
   for (const ContactStates* c : {&n.state, &n.wall_state}) {
     b.add(c->bond);
     b.add(c->bond_normal);
@@ -113,8 +113,8 @@ WorldHashes hash_world(const World& w) {
   b.add(n.flat_joints.theta);
   b.add(n.flat_joints.bonded);
   b.add(n.flat_joints.element_shear);
-  b.add_bits(w.cracks.size());
-  const EnergyLedger& l = w.energy;
+  b.add_bits(w.cracks().size());
+  const EnergyLedger& l = w.energy();
   for (double x : {l.wall_work, l.applied_work, l.prescribed_work, l.damping, l.reference,
                    w.friction_dissipated(), w.bond_energy_released(), w.time(), w.time_step()})
     e.add(x);
@@ -153,9 +153,10 @@ World loaded_packing(const BondModels& bonds, int threads) {
     w.add_disc(sp.x[i], sp.y[i], sp.r[i], 2000,
                i % 3 == 0 ? DiscMaterial::Aggregate : DiscMaterial::Mortar);
   // Walls: bottom, right, top, left (dem/world.hpp, add_container_walls); the side walls rough.
-  w.walls.vy[0] = 0.5;
-  w.walls.vy[2] = -0.5;
-  w.walls.friction[1] = w.walls.friction[3] = 0.3;
+  w.set_wall_velocity(0, 0, 0.5);
+  w.set_wall_velocity(2, 0, -0.5);
+  w.set_wall_friction(1, 0.3);
+  w.set_wall_friction(3, 0.3);
   return w;
 }
 
@@ -207,7 +208,7 @@ TEST_P(BitwiseGuard, BondedPacking) {
   ASSERT_GT(installed, 300);
   w.cycle(kSteps);
   // The low strengths are there so bonds break within the run (crack state in the hash).
-  EXPECT_GT(w.cracks.size(), 0u);
+  EXPECT_GT(w.cracks().size(), 0u);
   expect_hashes(hash_world(w),
                 {3351484541296415143ull, 7105804999011506489ull, 16419950979526734813ull,
                  9880204086044575497ull, 7390021104962847279ull, 7423571374197343303ull});

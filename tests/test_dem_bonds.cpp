@@ -59,13 +59,13 @@ Expected expected(const ParallelBondParams& p) {
 }
 
 bool bonded(const World& w) {
-  return w.neighbors.state.bond.at(0) != 0;
+  return w.neighbors().state.bond.at(0) != 0;
 }
 
 // Velocity of disc 1 along the current tangent t = (-ny, nx) of the pair (an orbit about
 // disc 0 that keeps the distance: pure shear at the contact).
 void orbit(World& w, double speed) {
-  const double dx = w.bodies.x[1] - w.bodies.x[0], dy = w.bodies.y[1] - w.bodies.y[0];
+  const double dx = w.bodies().x[1] - w.bodies().x[0], dy = w.bodies().y[1] - w.bodies().y[0];
   const double d = std::hypot(dx, dy);
   w.set_body_velocity(1, -speed * dy / d, speed * dx / d, 0);
 }
@@ -74,28 +74,28 @@ TEST(ParallelBondWorld, NormalForceIsKbnAbDelta) {
   const auto p = mortar_bond();
   World w = bonded_pair(parallel(p));
   const Expected e = expected(p);
-  const double x0 = w.bodies.x[1];
+  const double x0 = w.bodies().x[1];
   w.set_body_velocity(1, 0.02, 0, 0);  // opening, m/s
   for (int n = 0; n < 200; ++n) {
     w.step();
     // The incremental law integrates the imposed velocity: n v dt after n passes, which is the
     // displacement at the end of step n (the pass of step 1 already sees the set velocity).
-    const double delta = w.bodies.x[1] - x0;
+    const double delta = w.bodies().x[1] - x0;
     const double fn = e.kbn * e.ab * delta;  // tension, pulls disc 1 back
-    ASSERT_NEAR(w.bodies.fx[1], -fn, 1e-9 * fn);
-    ASSERT_NEAR(w.bodies.fx[0], fn, 1e-9 * fn);
-    ASSERT_NEAR(w.bodies.fy[1], 0, 1e-12 * fn);
+    ASSERT_NEAR(w.bodies().fx[1], -fn, 1e-9 * fn);
+    ASSERT_NEAR(w.bodies().fx[0], fn, 1e-9 * fn);
+    ASSERT_NEAR(w.bodies().fy[1], 0, 1e-12 * fn);
   }
   EXPECT_TRUE(bonded(w));
   // Closing back past the start gap: the linear part joins in once the discs overlap.
   w.set_body_velocity(1, -0.02, 0, 0);
   for (int n = 0; n < 400; ++n) w.step();
-  const double delta = w.bodies.x[1] - x0;                   // negative: compression of the bond
-  const double overlap = kL - (w.bodies.x[1] + 0.02 * kDt);  // at the position of the pass
+  const double delta = w.bodies().x[1] - x0;                   // negative: compression of the bond
+  const double overlap = kL - (w.bodies().x[1] + 0.02 * kDt);  // at the position of the pass
   ASSERT_GT(overlap, 0);
   const double kn = 2 * kR1 * kE / kL;  // linear part, SPEC 4
   const double expected_fx = -e.kbn * e.ab * delta + kn * overlap;
-  EXPECT_NEAR(w.bodies.fx[1], expected_fx, 1e-8 * expected_fx);
+  EXPECT_NEAR(w.bodies().fx[1], expected_fx, 1e-8 * expected_fx);
 }
 
 TEST(ParallelBondWorld, ShearForceIsKbsAbDeltaS) {
@@ -107,12 +107,12 @@ TEST(ParallelBondWorld, ShearForceIsKbsAbDeltaS) {
     orbit(w, speed);
     w.step();
     const double delta_s = n * speed * kDt;
-    const double fs = e.kbs * e.ab * delta_s;              // restoring: against the motion (+t)
-    const double tx = -w.bodies.y[1], ty = w.bodies.x[1];  // t of the pass, up to 1e-6
-    const double ft = (w.bodies.fx[1] * tx + w.bodies.fy[1] * ty) / std::hypot(tx, ty);
+    const double fs = e.kbs * e.ab * delta_s;                  // restoring: against the motion (+t)
+    const double tx = -w.bodies().y[1], ty = w.bodies().x[1];  // t of the pass, up to 1e-6
+    const double ft = (w.bodies().fx[1] * tx + w.bodies().fy[1] * ty) / std::hypot(tx, ty);
     ASSERT_NEAR(ft, -fs, 1e-6 * fs);
     // Moment of the shear force about disc 1's centre: -arm_2 Fs with arm_2 = R2 + gap / 2.
-    ASSERT_NEAR(w.bodies.moment[1], (kR2 + 0.5 * kGap) * fs, 1e-6 * kR2 * fs);
+    ASSERT_NEAR(w.bodies().moment[1], (kR2 + 0.5 * kGap) * fs, 1e-6 * kR2 * fs);
   }
 }
 
@@ -129,9 +129,9 @@ TEST(ParallelBondWorld, BendingMomentIsKbnIbTheta) {
     w.step();
     const double theta = n * (w1 - w0) * kDt;
     const double m = e.kbn * e.ib * theta;
-    ASSERT_NEAR(w.bodies.moment[1], -m, 1e-9 * m);
-    ASSERT_NEAR(w.bodies.moment[0], m, 1e-9 * m);
-    ASSERT_NEAR(w.bodies.fy[1], 0, 1e-9 * m / kR1);
+    ASSERT_NEAR(w.bodies().moment[1], -m, 1e-9 * m);
+    ASSERT_NEAR(w.bodies().moment[0], m, 1e-9 * m);
+    ASSERT_NEAR(w.bodies().fy[1], 0, 1e-9 * m / kR1);
   }
 }
 
@@ -151,13 +151,13 @@ TEST(ParallelBondWorld, TensileFailureAtSigmaBWithBendingAndCrackRecord) {
   ASSERT_GT(std::abs(steps_to_strength - std::round(steps_to_strength)), 1e-6);
   double pass_x = 0, pass_y = 0;
   for (long n = 1; n <= fail_step; ++n) {
-    pass_x = w.bodies.x[1];
-    pass_y = w.bodies.y[1];
+    pass_x = w.bodies().x[1];
+    pass_y = w.bodies().y[1];
     w.step();
     ASSERT_EQ(bonded(w), n < fail_step) << "step " << n;
   }
-  ASSERT_EQ(w.cracks.size(), 1u);
-  const Crack& c = w.cracks.cracks[0];
+  ASSERT_EQ(w.cracks().size(), 1u);
+  const Crack& c = w.cracks().cracks[0];
   EXPECT_EQ(c.mode, cdem::dem::BondFailure::Tension);
   EXPECT_EQ(c.contact_class, ContactClass::Mortar);
   EXPECT_EQ(c.bond, BondKind::Parallel);
@@ -182,8 +182,8 @@ TEST(ParallelBondWorld, TensileFailureAtSigmaBWithBendingAndCrackRecord) {
   const double released = 0.5 * e.kbn * e.ab * opening * opening + 0.5 * e.kbn * e.ib * bend * bend;
   EXPECT_NEAR(w.bond_energy_released(), released, 1e-9 * released);
   // Broken and apart: no force, no moment.
-  EXPECT_EQ(w.bodies.fx[1], 0);
-  EXPECT_EQ(w.bodies.moment[1], 0);
+  EXPECT_EQ(w.bodies().fx[1], 0);
+  EXPECT_EQ(w.bodies().moment[1], 0);
 }
 
 // Normal compression first, then pure shear: tau_b = c_b - sigma tan(phi_b) with sigma < 0.
@@ -199,7 +199,7 @@ TEST(ParallelBondWorld, ShearFailureAtTauBIncludingFrictionAngle) {
   for (int n = 0; n < close_steps; ++n) w.step();
   const double delta_c = close_steps * v_close * kDt;
   const double sigma = -e.kbn * delta_c;
-  EXPECT_NEAR(w.neighbors.state.bond_normal[0] / e.ab, sigma, 1e-9 * std::abs(sigma));
+  EXPECT_NEAR(w.neighbors().state.bond_normal[0] / e.ab, sigma, 1e-9 * std::abs(sigma));
   const double tau_b = p.cohesion - sigma * std::tan(p.friction_angle);
   const double speed = 0.01;
   const double per_step = e.kbs * speed * kDt;  // Pa per step
@@ -213,9 +213,9 @@ TEST(ParallelBondWorld, ShearFailureAtTauBIncludingFrictionAngle) {
     w.step();
     ASSERT_EQ(bonded(w), n < fail_step) << "step " << n;
   }
-  ASSERT_EQ(w.cracks.size(), 1u);
-  EXPECT_EQ(w.cracks.cracks[0].mode, cdem::dem::BondFailure::Shear);
-  EXPECT_EQ(w.cracks.cracks[0].contact_class, ContactClass::Mortar);
+  ASSERT_EQ(w.cracks().size(), 1u);
+  EXPECT_EQ(w.cracks().cracks[0].mode, cdem::dem::BondFailure::Shear);
+  EXPECT_EQ(w.cracks().cracks[0].contact_class, ContactClass::Mortar);
 }
 
 // After failure only the linear part remains: compression only, slip at mu Fn.
@@ -225,19 +225,19 @@ TEST(ParallelBondWorld, AfterFailureLinearWithFriction) {
   World w = bonded_pair(parallel(p), kGap, mu);
   w.set_body_velocity(1, 0.05, 0, 0);
   while (bonded(w)) w.step();
-  EXPECT_EQ(w.cracks.cracks.at(0).mode, cdem::dem::BondFailure::Tension);
+  EXPECT_EQ(w.cracks().cracks.at(0).mode, cdem::dem::BondFailure::Tension);
   // Apart: no tension any more.
   w.step();
-  EXPECT_EQ(w.bodies.fx[1], 0);
+  EXPECT_EQ(w.bodies().fx[1], 0);
   // Push back into an overlap, then shear: the force saturates at mu Fn.
   w.set_body_velocity(1, -0.05, 0, 0);
-  while (w.bodies.x[1] > kL - 2e-7) w.step();
+  while (w.bodies().x[1] > kL - 2e-7) w.step();
   w.set_body_velocity(1, 0, 0, 0);
   w.step();
   const double kn = 2 * kR1 * kE / kL;
-  const double overlap = kL - std::hypot(w.bodies.x[1], w.bodies.y[1]);
+  const double overlap = kL - std::hypot(w.bodies().x[1], w.bodies().y[1]);
   const double fn = kn * overlap;
-  EXPECT_NEAR(w.bodies.fx[1], fn, 1e-9 * fn);
+  EXPECT_NEAR(w.bodies().fx[1], fn, 1e-9 * fn);
   const double speed = 0.01;
   for (int n = 0; n < 1500; ++n) {
     orbit(w, speed);
@@ -251,16 +251,16 @@ TEST(ParallelBondWorld, AfterFailureLinearWithFriction) {
   }
   const double slid = 500 * speed * kDt;
   EXPECT_NEAR(w.friction_dissipated() - friction_before, mu * fn * slid, 1e-5 * mu * fn * slid);
-  const double shear = std::abs(w.neighbors.state.shear_force[0]);
-  const double fn_now = kn * (kL - std::hypot(w.bodies.x[1], w.bodies.y[1]));
+  const double shear = std::abs(w.neighbors().state.shear_force[0]);
+  const double fn_now = kn * (kL - std::hypot(w.bodies().x[1], w.bodies().y[1]));
   EXPECT_NEAR(shear, mu * fn_now, 1e-6 * fn);
   EXPECT_GT(w.friction_dissipated(), 0);
   // Pull apart again: no force at all (no tension, shear forgotten).
   w.set_body_velocity(1, 0.05, 0, 0);
   for (int n = 0; n < 100; ++n) w.step();
-  EXPECT_EQ(w.bodies.fx[1], 0);
-  EXPECT_EQ(w.bodies.fy[1], 0);
-  EXPECT_EQ(w.cracks.size(), 1u);
+  EXPECT_EQ(w.bodies().fx[1], 0);
+  EXPECT_EQ(w.bodies().fy[1], 0);
+  EXPECT_EQ(w.cracks().size(), 1u);
 }
 
 BondModel contact_bond(double sigma_cn, double tau_cs) {
@@ -288,13 +288,13 @@ TEST(ContactBondWorld, CarriesTensionThenBreaksAtSigmaCnA) {
     ASSERT_EQ(bonded(w), n < fail_step) << "step " << n;
     if (n < fail_step) {
       const double tension = kn * (n - 1) * v * kDt;
-      ASSERT_NEAR(w.bodies.fx[1], -tension, 1e-9 * sigma_cn * area);
+      ASSERT_NEAR(w.bodies().fx[1], -tension, 1e-9 * sigma_cn * area);
     }
   }
-  EXPECT_EQ(w.bodies.fx[1], 0);
-  ASSERT_EQ(w.cracks.size(), 1u);
-  EXPECT_EQ(w.cracks.cracks[0].mode, cdem::dem::BondFailure::Tension);
-  EXPECT_EQ(w.cracks.cracks[0].bond, BondKind::Contact);
+  EXPECT_EQ(w.bodies().fx[1], 0);
+  ASSERT_EQ(w.cracks().size(), 1u);
+  EXPECT_EQ(w.cracks().cracks[0].mode, cdem::dem::BondFailure::Tension);
+  EXPECT_EQ(w.cracks().cracks[0].bond, BondKind::Contact);
 }
 
 // Contact bond in shear at zero normal force: no slip while bonded (mu Fn = 0 would allow no
@@ -313,14 +313,14 @@ TEST(ContactBondWorld, NoSlipWhileBondedThenBreaksAtTauCsA) {
     w.step();
     ASSERT_EQ(bonded(w), n < fail_step) << "step " << n;
     if (n < fail_step) {
-      ASSERT_NEAR(std::abs(w.neighbors.state.shear_force[0]), n * per_step, 1e-6 * n * per_step);
+      ASSERT_NEAR(std::abs(w.neighbors().state.shear_force[0]), n * per_step, 1e-6 * n * per_step);
       ASSERT_EQ(w.friction_dissipated(), 0);  // no slip while bonded
     }
   }
-  ASSERT_EQ(w.cracks.size(), 1u);
-  EXPECT_EQ(w.cracks.cracks[0].mode, cdem::dem::BondFailure::Shear);
+  ASSERT_EQ(w.cracks().size(), 1u);
+  EXPECT_EQ(w.cracks().cracks[0].mode, cdem::dem::BondFailure::Shear);
   // Broken, at zero normal force: the friction limit mu Fn = 0 leaves no shear force.
-  EXPECT_EQ(w.neighbors.state.shear_force[0], 0);
+  EXPECT_EQ(w.neighbors().state.shear_force[0], 0);
 }
 
 }  // namespace

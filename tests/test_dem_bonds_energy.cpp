@@ -57,7 +57,7 @@ World oscillator_world(double dt) {
 // central-difference estimate), J per m.
 double kinetic(const World& w, const std::vector<double>& previous) {
   double e = 0;
-  const Bodies& b = w.bodies;
+  const Bodies& b = w.bodies();
   for (std::size_t i = 0; i < b.size(); ++i) {
     const double vx = 0.5 * (b.vx[i] + previous[3 * i]), vy = 0.5 * (b.vy[i] + previous[3 * i + 1]);
     const double om = 0.5 * (b.omega[i] + previous[3 * i + 2]);
@@ -68,8 +68,8 @@ double kinetic(const World& w, const std::vector<double>& previous) {
 
 std::vector<double> velocities(const World& w) {
   std::vector<double> v;
-  for (std::size_t i = 0; i < w.bodies.size(); ++i)
-    v.insert(v.end(), {w.bodies.vx[i], w.bodies.vy[i], w.bodies.omega[i]});
+  for (std::size_t i = 0; i < w.bodies().size(); ++i)
+    v.insert(v.end(), {w.bodies().vx[i], w.bodies().vy[i], w.bodies().omega[i]});
   return v;
 }
 
@@ -90,7 +90,7 @@ TEST(BondEnergy, NormalOscillatorKeepsEnergyAndPeriod) {
     const ContactEnergy ce = contact_energy(w);
     ASSERT_EQ(ce.linear_strain, 0);
     worst = std::max(worst, std::abs(kinetic(w, previous) + ce.bond_strain - e0) / e0);
-    const double rel = w.bodies.vx[1] - w.bodies.vx[0];
+    const double rel = w.bodies().vx[1] - w.bodies().vx[0];
     // The velocity rel holds over (t - dt, t]: interpolate the sign change between half steps.
     if (last_rel > 0 && rel <= 0)
       maxima.push_back(w.time() - 1.5 * w.time_step() +
@@ -101,7 +101,7 @@ TEST(BondEnergy, NormalOscillatorKeepsEnergyAndPeriod) {
   ASSERT_GE(maxima.size(), 19u);
   const double measured = (maxima.back() - maxima.front()) / static_cast<double>(maxima.size() - 1);
   EXPECT_NEAR(measured, o.period, 1e-3 * o.period);
-  EXPECT_EQ(w.cracks.size(), 0u);
+  EXPECT_EQ(w.cracks().size(), 0u);
   EXPECT_EQ(w.friction_dissipated(), 0);
 }
 
@@ -171,7 +171,7 @@ struct Snapshot {
 Snapshot run(int threads) {
   World w = jostling_world(threads, 7);
   w.cycle(1500);
-  return {w.bodies.x, w.bodies.y, w.bodies.theta, w.cracks.cracks, contact_energy(w)};
+  return {w.bodies().x, w.bodies().y, w.bodies().theta, w.cracks().cracks, contact_energy(w)};
 }
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
@@ -222,10 +222,12 @@ TEST(BondDeterminism, SameInputTwiceAndOneOrTwoThreadsGiveTheSameBits) {
 // with about 260 bonds breaking and friction taking more than half of the initial energy.
 TEST(BondEnergy, BalanceClosesOnAJostlingBondedLattice) {
   World w = jostling_world(1, 11);
-  w.settings.local_damping = 0;
+  WorldSettings s = w.settings();
+  s.local_damping = 0;
   // The balance error is a discretisation error of the violent collisions, breaks and slips:
   // measured 2.4e-2, 8.2e-3, 2.9e-3, 1.2e-3 at safety factors 0.8, 0.4, 0.2, 0.1.
-  w.settings.time_step_safety = 0.2;
+  s.time_step_safety = 0.2;
+  w.set_settings(s);
   std::vector<double> previous = velocities(w);
   w.step();
   const auto total = [&](const std::vector<double>& before) {
@@ -240,7 +242,7 @@ TEST(BondEnergy, BalanceClosesOnAJostlingBondedLattice) {
     worst = std::max(worst, std::abs(total(previous) - e0) / e0);
   }
   const ContactEnergy ce = contact_energy(w);
-  EXPECT_GT(w.cracks.size(), 20u);
+  EXPECT_GT(w.cracks().size(), 20u);
   EXPECT_GT(ce.friction, 0);
   EXPECT_GT(ce.bond_breakage, 0);
   EXPECT_GT(ce.friction, 0.1 * e0);  // the terms matter: a large share of the balance

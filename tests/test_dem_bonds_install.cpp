@@ -84,22 +84,23 @@ TEST(WorldFromSpecimen, MortarDiscsAndClumps) {
   const cdem::Specimen s = synthetic_specimen();
   std::vector<std::int32_t> map;
   const World w = world_from_specimen(s, concrete_settings(), &map);
-  ASSERT_EQ(w.discs.size(), s.disc_count());
-  EXPECT_EQ(w.bodies.size(), 6u + 2u);  // 6 mortar discs, 2 clumps
+  ASSERT_EQ(w.discs().size(), s.disc_count());
+  EXPECT_EQ(w.bodies().size(), 6u + 2u);  // 6 mortar discs, 2 clumps
   for (std::size_t i = 0; i < s.disc_count(); ++i) {
     const std::int32_t d = map[i];
-    EXPECT_EQ(w.discs.x[d], s.x[i]);
-    EXPECT_EQ(w.discs.r[d], s.r[i]);
-    EXPECT_EQ(w.discs.active[d], s.contact_active[i]);
-    EXPECT_EQ(w.discs.material[d], s.clump[i] < 0 ? DiscMaterial::Mortar : DiscMaterial::Aggregate);
-    const std::int32_t b = w.discs.body[d];
+    EXPECT_EQ(w.discs().x[d], s.x[i]);
+    EXPECT_EQ(w.discs().r[d], s.r[i]);
+    EXPECT_EQ(w.discs().active[d], s.contact_active[i]);
+    EXPECT_EQ(w.discs().material[d],
+              s.clump[i] < 0 ? DiscMaterial::Mortar : DiscMaterial::Aggregate);
+    const std::int32_t b = w.discs().body[d];
     if (s.clump[i] < 0) {
-      EXPECT_DOUBLE_EQ(w.bodies.mass[b], s.mortar_density * std::numbers::pi * s.r[i] * s.r[i]);
+      EXPECT_DOUBLE_EQ(w.bodies().mass[b], s.mortar_density * std::numbers::pi * s.r[i] * s.r[i]);
     } else {
       const cdem::Clump& c = s.clumps[s.clump[i]];
-      EXPECT_EQ(w.bodies.mass[b], c.mass);
-      EXPECT_EQ(w.bodies.inertia[b], c.inertia);
-      EXPECT_EQ(w.bodies.x[b], c.centroid.x());
+      EXPECT_EQ(w.bodies().mass[b], c.mass);
+      EXPECT_EQ(w.bodies().inertia[b], c.inertia);
+      EXPECT_EQ(w.bodies().x[b], c.centroid.x());
     }
   }
   cdem::Specimen bad = s;
@@ -117,7 +118,7 @@ TEST(BondInstallation, BondsExactlyWithinToleranceWithTheirClass) {
   // Brute force over all disc pairs: different bodies, both active, gap <= ratio x min radius.
   std::set<std::uint64_t> expected;
   std::array<long, kContactClassCount> by_class{};
-  const Discs& d = w.discs;
+  const Discs& d = w.discs();
   for (std::size_t i = 0; i < d.size(); ++i)
     for (std::size_t j = i + 1; j < d.size(); ++j) {
       if (d.body[i] == d.body[j] || !d.active[i] || !d.active[j]) continue;
@@ -137,16 +138,16 @@ TEST(BondInstallation, BondsExactlyWithinToleranceWithTheirClass) {
     const auto i = static_cast<std::uint32_t>(map[a]), j = static_cast<std::uint32_t>(map[b]);
     return pair_key(std::min(i, j), std::max(i, j));
   };
-  const auto& keys = w.neighbors.keys;
+  const auto& keys = w.neighbors().keys;
   for (const auto& [a, b] : {std::pair{8, 9}, std::pair{10, 5}}) {
     const auto it = std::find(keys.begin(), keys.end(), key(a, b));
     ASSERT_NE(it, keys.end()) << a << "-" << b << " should be a candidate";
-    EXPECT_EQ(w.neighbors.state.bond[static_cast<std::size_t>(it - keys.begin())], 0);
+    EXPECT_EQ(w.neighbors().state.bond[static_cast<std::size_t>(it - keys.begin())], 0);
   }
   EXPECT_EQ(std::find(keys.begin(), keys.end(), key(6, 11)), keys.end());
 
   std::set<std::uint64_t> bonded;
-  const NeighborList& nl = w.neighbors;
+  const NeighborList& nl = w.neighbors();
   for (std::size_t k = 0; k < nl.keys.size(); ++k) {
     if (!nl.state.bond[k]) continue;
     bonded.insert(nl.keys[k]);
@@ -176,25 +177,25 @@ TEST(BondInstallation, BondedPairSurvivesRebuildsBeyondTheSkin) {
   w.add_disc(0, 0, kRm, 2000);
   w.add_disc(2 * kRm, 0, kRm, 2000);
   w.add_disc(10 * kRm, 0, kRm, 2000);  // unbonded, far away
-  for (int b = 0; b < 3; ++b) w.bodies.prescribed[b] = 1;
+  for (int b = 0; b < 3; ++b) w.set_prescribed(b, true);
   ASSERT_EQ(install_bonds(w).total(), 1);
-  const double skin = w.neighbors.skin;
+  const double skin = w.neighbors().skin;
   const double v = 1.0;  // m/s opening
   w.set_body_velocity(1, v, 0, 0);
-  const long builds = w.neighbors.build_count;
-  const double x0 = w.bodies.x[1];
-  while (w.bodies.x[1] - x0 < 3 * skin) w.step();
+  const long builds = w.neighbors().build_count;
+  const double x0 = w.bodies().x[1];
+  while (w.bodies().x[1] - x0 < 3 * skin) w.step();
   w.invalidate_neighbors();
   w.set_body_velocity(1, 0, 0, 0);
   w.step();
-  EXPECT_GT(w.neighbors.build_count, builds + 1);
-  ASSERT_EQ(w.neighbors.keys.size(), 1u);
-  EXPECT_EQ(w.neighbors.keys[0], pair_key(0, 1));
-  EXPECT_EQ(w.neighbors.state.bond[0], static_cast<std::uint8_t>(BondKind::Parallel));
+  EXPECT_GT(w.neighbors().build_count, builds + 1);
+  ASSERT_EQ(w.neighbors().keys.size(), 1u);
+  EXPECT_EQ(w.neighbors().keys[0], pair_key(0, 1));
+  EXPECT_EQ(w.neighbors().state.bond[0], static_cast<std::uint8_t>(BondKind::Parallel));
   // The bond still pulls with kbn Ab delta.
   const double kbn_ab = 16e9 / (2 * kRm) * 2 * kRm;
-  const double delta = w.bodies.x[1] - x0;
-  EXPECT_NEAR(w.bodies.fx[1], -kbn_ab * delta, 1e-9 * kbn_ab * delta);
+  const double delta = w.bodies().x[1] - x0;
+  EXPECT_NEAR(w.bodies().fx[1], -kbn_ab * delta, 1e-9 * kbn_ab * delta);
 }
 
 }  // namespace

@@ -26,22 +26,23 @@ TEST(Clump, ForceOnOnePebbleGivesForceAndMomentAboutTheCentroid) {
   w.add_wall(a - 0.5e-3, -r + delta, a + 0.5e-3, -r + delta);
   w.step();
   const double f = 2 * 16e9 * delta;  // disc-wall kn = 2 E*
-  EXPECT_NEAR(w.bodies.fx[0], 0, 1e-9 * f);
-  EXPECT_NEAR(w.bodies.fy[0], f, 1e-9 * f);
-  EXPECT_NEAR(w.bodies.moment[0], a * f, 1e-9 * a * f);  // (+a, 0) x (0, f)
+  EXPECT_NEAR(w.bodies().fx[0], 0, 1e-9 * f);
+  EXPECT_NEAR(w.bodies().fy[0], f, 1e-9 * f);
+  EXPECT_NEAR(w.bodies().moment[0], a * f, 1e-9 * a * f);  // (+a, 0) x (0, f)
   const double dt = s.fixed_time_step;
-  EXPECT_NEAR(w.bodies.vy[0], f * dt / mass, 1e-9 * f * dt / mass);
-  EXPECT_NEAR(w.bodies.omega[0], a * f * dt / inertia, 1e-9 * a * f * dt / inertia);
+  EXPECT_NEAR(w.bodies().vy[0], f * dt / mass, 1e-9 * f * dt / mass);
+  EXPECT_NEAR(w.bodies().omega[0], a * f * dt / inertia, 1e-9 * a * f * dt / inertia);
   // Pebbles follow the rigid motion: velocity v + omega x offset, position from theta.
-  const double omega = w.bodies.omega[0], vy = w.bodies.vy[0];
-  EXPECT_NEAR(w.discs.vy[1], vy + omega * a, 1e-12);
-  EXPECT_NEAR(w.discs.vy[0], vy - omega * a, 1e-12);
-  const double theta = w.bodies.theta[0];
-  EXPECT_NEAR(w.discs.x[1], w.bodies.x[0] + a * std::cos(theta), 1e-15);
-  EXPECT_NEAR(w.discs.y[1], w.bodies.y[0] + a * std::sin(theta), 1e-15);
+  const double omega = w.bodies().omega[0], vy = w.bodies().vy[0];
+  EXPECT_NEAR(w.discs().vy[1], vy + omega * a, 1e-12);
+  EXPECT_NEAR(w.discs().vy[0], vy - omega * a, 1e-12);
+  const double theta = w.bodies().theta[0];
+  EXPECT_NEAR(w.discs().x[1], w.bodies().x[0] + a * std::cos(theta), 1e-15);
+  EXPECT_NEAR(w.discs().y[1], w.bodies().y[0] + a * std::sin(theta), 1e-15);
   // Many steps later the clump is still rigid.
   w.cycle(1000);
-  EXPECT_NEAR(std::hypot(w.discs.x[1] - w.discs.x[0], w.discs.y[1] - w.discs.y[0]), 2 * a, 1e-15);
+  EXPECT_NEAR(std::hypot(w.discs().x[1] - w.discs().x[0], w.discs().y[1] - w.discs().y[0]), 2 * a,
+              1e-15);
 }
 
 // A clump built from an aggregate polygon (mass = rho A, inertia = rho J about the centroid)
@@ -62,23 +63,22 @@ TEST(Clump, PolygonClumpTranslatesAndSpinsRigidly) {
   const int b = w.add_clump(c.x(), c.y(), mass, inertia, px, py, {5e-4, 6e-4, 5e-4, 4e-4, 5e-4},
                             {1, 1, 1, 1, 0});
   const double fx = 0.3, fy = -0.2, omega = 5000;  // N, N, rad/s
-  w.bodies.fx_applied[b] = fx;
-  w.bodies.fy_applied[b] = fy;
+  w.set_applied_force(b, fx, fy);
   w.set_body_velocity(b, 0, 0, omega);
   const auto distances = [&w] {
     std::vector<double> d;
-    for (std::size_t i = 0; i < w.discs.size(); ++i)
-      for (std::size_t j = i + 1; j < w.discs.size(); ++j)
-        d.push_back(std::hypot(w.discs.x[j] - w.discs.x[i], w.discs.y[j] - w.discs.y[i]));
+    for (std::size_t i = 0; i < w.discs().size(); ++i)
+      for (std::size_t j = i + 1; j < w.discs().size(); ++j)
+        d.push_back(std::hypot(w.discs().x[j] - w.discs().x[i], w.discs().y[j] - w.discs().y[i]));
     return d;
   };
   const std::vector<double> before = distances();
   const long steps = 200000;
   w.cycle(steps);
   const double t = steps * 1e-7;
-  EXPECT_NEAR(w.bodies.vx[b], fx * t / mass, 1e-9 * std::abs(fx * t / mass));
-  EXPECT_NEAR(w.bodies.vy[b], fy * t / mass, 1e-9 * std::abs(fy * t / mass));
-  EXPECT_DOUBLE_EQ(w.bodies.omega[b], omega);
+  EXPECT_NEAR(w.bodies().vx[b], fx * t / mass, 1e-9 * std::abs(fx * t / mass));
+  EXPECT_NEAR(w.bodies().vy[b], fy * t / mass, 1e-9 * std::abs(fy * t / mass));
+  EXPECT_DOUBLE_EQ(w.bodies().omega[b], omega);
   EXPECT_GT(omega * t, 10 * 2 * 3.14159);  // many turns
   const std::vector<double> after = distances();
   for (std::size_t k = 0; k < before.size(); ++k) EXPECT_NEAR(after[k], before[k], 1e-15);

@@ -76,16 +76,16 @@ TEST(DiscDiscImpact, ContactTimeAndRestitution) {
   w.set_body_velocity(1, v2, 0, 0);
 
   const auto gap = [&] {
-    return std::hypot(w.discs.x[1] - w.discs.x[0], w.discs.y[1] - w.discs.y[0]) - r1 - r2;
+    return std::hypot(w.discs().x[1] - w.discs().x[0], w.discs().y[1] - w.discs().y[0]) - r1 - r2;
   };
   const double duration = contact_duration(w, gap);
   ASSERT_GT(duration, 0);
   EXPECT_NEAR(duration / tc, 1.0, 1e-3);
   const double approach = v1 - v2;
-  const double separation = w.bodies.vx[1] - w.bodies.vx[0];
+  const double separation = w.bodies().vx[1] - w.bodies().vx[0];
   EXPECT_NEAR(separation / approach, 1.0, 1e-3);
   // Momentum is exchanged, not created.
-  EXPECT_NEAR(m1 * w.bodies.vx[0] + m2 * w.bodies.vx[1], m1 * v1 + m2 * v2, 1e-12);
+  EXPECT_NEAR(m1 * w.bodies().vx[0] + m2 * w.bodies().vx[1], m1 * v1 + m2 * v2, 1e-12);
 }
 
 TEST(DiscWallImpact, ContactTimeAndRestitution) {
@@ -99,12 +99,12 @@ TEST(DiscWallImpact, ContactTimeAndRestitution) {
   w.add_wall(0, -0.01, 0, 0.01);
   w.add_disc(r + 50 * dt * -v, 0.002, r, kRho);
   w.set_body_velocity(0, v, 0, 0);
-  const auto gap = [&] { return w.discs.x[0] - r; };
+  const auto gap = [&] { return w.discs().x[0] - r; };
   const double duration = contact_duration(w, gap);
   ASSERT_GT(duration, 0);
   EXPECT_NEAR(duration / tc, 1.0, 1e-3);
-  EXPECT_NEAR(w.bodies.vx[0] / -v, 1.0, 1e-3);
-  EXPECT_NEAR(w.bodies.vy[0], 0.0, 1e-12);
+  EXPECT_NEAR(w.bodies().vx[0] / -v, 1.0, 1e-3);
+  EXPECT_NEAR(w.bodies().vy[0], 0.0, 1e-12);
 }
 
 TEST(DiscWallImpact, MovingWallKicksADiscAtRestToTwiceItsSpeed) {
@@ -119,17 +119,17 @@ TEST(DiscWallImpact, MovingWallKicksADiscAtRestToTwiceItsSpeed) {
   s.skin = 1e-8;  // a thin skin, so the moving wall must trigger rebuilds to find the disc
   World w(s);
   const int wall = w.add_wall(0, -0.01, 0, 0.01);
-  w.walls.vx[wall] = v;
+  w.set_wall_velocity(wall, v, 0);
   w.add_disc(r + 1000 * v * dt, 0, r, kRho);  // reached after 1,000 steps
   double impulse = 0;
   for (int n = 0; n < 8000; ++n) {
     w.step();
-    impulse += -w.walls.fx[wall] * dt;  // force on the disc = -force on the wall
+    impulse += -w.walls().fx[wall] * dt;  // force on the disc = -force on the wall
   }
-  EXPECT_GT(w.neighbors.build_count, 1);
-  EXPECT_NEAR(w.bodies.vx[0] / (2 * v), 1.0, 1e-3);
+  EXPECT_GT(w.neighbors().build_count, 1);
+  EXPECT_NEAR(w.bodies().vx[0] / (2 * v), 1.0, 1e-3);
   EXPECT_NEAR(impulse / (m * 2 * v), 1.0, 1e-3);
-  EXPECT_NEAR(w.walls.ax[wall], v * w.time(), 1e-12);
+  EXPECT_NEAR(w.walls().ax[wall], v * w.time(), 1e-12);
 }
 
 TEST(DiscWallImpact, EndPointOfSegmentIsAContact) {
@@ -141,9 +141,9 @@ TEST(DiscWallImpact, EndPointOfSegmentIsAContact) {
   const double c = std::sqrt(0.5) * (r - 1e-6);  // centre at 45 degrees beyond the end point
   w.add_disc(c, c, r, kRho);
   w.step();
-  EXPECT_GT(w.bodies.fx[0], 0);
-  EXPECT_NEAR(w.bodies.fx[0], w.bodies.fy[0], 1e-9 * w.bodies.fx[0]);
-  EXPECT_NEAR(std::hypot(w.bodies.fx[0], w.bodies.fy[0]), 2 * kE * 1e-6, 1e-6 * 2 * kE * 1e-6);
+  EXPECT_GT(w.bodies().fx[0], 0);
+  EXPECT_NEAR(w.bodies().fx[0], w.bodies().fy[0], 1e-9 * w.bodies().fx[0]);
+  EXPECT_NEAR(std::hypot(w.bodies().fx[0], w.bodies().fy[0]), 2 * kE * 1e-6, 1e-6 * 2 * kE * 1e-6);
 }
 
 TEST(DiscWallImpact, ArcPushesAlongItsRadius) {
@@ -153,14 +153,14 @@ TEST(DiscWallImpact, ArcPushesAlongItsRadius) {
   const double r = 1e-3, ra = 0.02, overlap = 1e-6;
   const double angle = 100 * pi / 180;
   World w(undamped(1e-8));
-  w.walls.add_arc(0, 0, ra, 0.5 * pi, 0.3);
+  w.add_arc_wall(0, 0, ra, 0.5 * pi, 0.3);
   const double rc = ra - r + overlap;
   w.add_disc(rc * std::cos(angle), rc * std::sin(angle), r, kRho);
   w.step();
   const double f = 2 * kE * overlap;
-  EXPECT_NEAR(w.bodies.fx[0], -f * std::cos(angle), 1e-6 * f);
-  EXPECT_NEAR(w.bodies.fy[0], -f * std::sin(angle), 1e-6 * f);
-  EXPECT_NEAR(w.walls.fx[0], f * std::cos(angle), 1e-6 * f);
+  EXPECT_NEAR(w.bodies().fx[0], -f * std::cos(angle), 1e-6 * f);
+  EXPECT_NEAR(w.bodies().fy[0], -f * std::sin(angle), 1e-6 * f);
+  EXPECT_NEAR(w.walls().fx[0], f * std::cos(angle), 1e-6 * f);
 }
 
 TEST(DiscWallImpact, BeyondTheArcOnlyItsEndPointCounts) {
@@ -168,20 +168,20 @@ TEST(DiscWallImpact, BeyondTheArcOnlyItsEndPointCounts) {
   // the full circle by 1 um feels nothing; one touching the end point is pushed from it.
   const double r = 1e-3, ra = 0.02;
   World w(undamped(1e-8));
-  const int arc = w.walls.add_arc(0, 0, ra, 0.5 * pi, 0.3);
+  const int arc = w.add_arc_wall(0, 0, ra, 0.5 * pi, 0.3);
   const double rc = ra - r + 1e-6, far = 140 * pi / 180;
   w.add_disc(rc * std::cos(far), rc * std::sin(far), r, kRho);
-  const double ex = w.walls.bx[arc], ey = w.walls.by[arc];  // the end at 90 + 17.2 degrees
+  const double ex = w.walls().bx[arc], ey = w.walls().by[arc];  // the end at 90 + 17.2 degrees
   EXPECT_NEAR(std::atan2(ey, ex), 0.5 * pi + 0.3, 1e-12);
   const double dist = r - 1e-6;  // centre 1 um closer than r to the end point, along -x
   w.add_disc(ex - dist, ey, r, kRho);
   w.step();
-  EXPECT_EQ(w.bodies.fx[0], 0);
-  EXPECT_EQ(w.bodies.fy[0], 0);
+  EXPECT_EQ(w.bodies().fx[0], 0);
+  EXPECT_EQ(w.bodies().fy[0], 0);
   // The second disc's centre lies beyond the arc's angular range: pushed from the end, along -x.
   ASSERT_GT(std::atan2(ey, ex - dist), 0.5 * pi + 0.3);
-  EXPECT_NEAR(w.bodies.fx[1], -2 * kE * 1e-6, 1e-6 * 2 * kE * 1e-6);
-  EXPECT_NEAR(w.bodies.fy[1], 0, 1e-9 * 2 * kE * 1e-6);
+  EXPECT_NEAR(w.bodies().fx[1], -2 * kE * 1e-6, 1e-6 * 2 * kE * 1e-6);
+  EXPECT_NEAR(w.bodies().fy[1], 0, 1e-9 * 2 * kE * 1e-6);
 }
 
 }  // namespace

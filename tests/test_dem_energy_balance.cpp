@@ -42,13 +42,13 @@ Compression compress(double damping, long steps) {
   b.spread = 0.01;
   cdem::test::add_block(w, b);
   const double v = -0.5;  // m/s
-  w.walls.vy[2] = v;
+  w.set_wall_velocity(2, 0, v);
   double previous_force = 0;
   Compression c;
   for (long n = 0; n < steps; ++n) {
     w.step();
     // The step used the force at the start of its wall displacement; the next one sees the end.
-    const double force = w.walls.fy[2];
+    const double force = w.walls().fy[2];
     if (n > 0) c.own_work -= 0.5 * (previous_force + force) * v * w.time_step();
     previous_force = force;
   }
@@ -108,14 +108,14 @@ TEST(EnergyBalance, AppliedLoadWorkBalancesAFallingDisc) {
   // the applied load equals kinetic + strain + damping, and m g h for the height lost.
   World w = floor_world(0.3, 0.0);
   const int body = w.add_disc(0, 1e-3, 1e-3, 2500);
-  const double g = 9.81, weight = w.bodies.mass[body] * g;
-  w.bodies.fy_applied[body] = -weight;
-  const double y0 = w.bodies.y[body];
+  const double g = 9.81, weight = w.bodies().mass[body] * g;
+  w.set_applied_force(body, 0, -weight);
+  const double y0 = w.bodies().y[body];
   for (int n = 0; n < 100000; ++n) w.step();
   const cdem::dem::Energies e = cdem::dem::energies(w);
   EXPECT_GT(e.damping, 0);
   EXPECT_LT(e.relative_error(), 1e-3);
-  EXPECT_NEAR(e.applied_work / (weight * (y0 - w.bodies.y[body])), 1, 1e-3);
+  EXPECT_NEAR(e.applied_work / (weight * (y0 - w.bodies().y[body])), 1, 1e-3);
 }
 
 TEST(EnergyBalance, PrescribedBodyWorkIsCounted) {
@@ -127,13 +127,13 @@ TEST(EnergyBalance, PrescribedBodyWorkIsCounted) {
   World w(s);
   const int pusher = w.add_disc(0, 0, 1e-3, 2500);
   w.add_disc(2e-3 + 1e-7, 0, 1e-3, 2500);
-  w.bodies.prescribed[pusher] = 1;
+  w.set_prescribed(pusher, true);
   w.set_body_velocity(pusher, 0.2, 0, 0);
   for (int n = 0; n < 3000; ++n) w.step();
   const cdem::dem::Energies e = cdem::dem::energies(w);
   EXPECT_GT(e.prescribed_work, 0);
   // Kinetic energy of the free disc only: the pusher's own motion is given, not bought.
-  const double free_kinetic = 0.5 * w.bodies.mass[1] * w.bodies.vx[1] * w.bodies.vx[1];
+  const double free_kinetic = 0.5 * w.bodies().mass[1] * w.bodies().vx[1] * w.bodies().vx[1];
   EXPECT_NEAR(e.prescribed_work / (free_kinetic + e.contact_strain), 1, 1e-3);
 }
 
@@ -146,14 +146,14 @@ TEST(EnergyBalance, SlidingDiscLosesAThirdOfItsKineticEnergyToFriction) {
   World w = floor_world(0, 1.0);
   const double r = 1e-3, rho = 2000, load = 1, v0 = 0.1;  // m, kg/m3, N, m/s
   const double kn =
-      w.settings.laws[static_cast<int>(cdem::dem::ContactClass::Wall)].wall_normal_stiffness();
+      w.settings().laws[static_cast<int>(cdem::dem::ContactClass::Wall)].wall_normal_stiffness();
   const int b = w.add_disc(0, r - load / kn, r, rho);  // at its static overlap
-  w.bodies.fy_applied[b] = -load;
+  w.set_applied_force(b, 0, -load);
   w.set_body_velocity(b, v0, 0, 0);
   w.cycle(120000);  // slip ends after v0 / (3 mu F / m) = 0.2 ms, about 75,000 steps
-  const double m = w.bodies.mass[b];
+  const double m = w.bodies().mass[b];
   const cdem::dem::Energies e = cdem::dem::energies(w);
-  EXPECT_NEAR(w.bodies.vx[b], 2.0 / 3.0 * v0, 1e-3 * v0);
+  EXPECT_NEAR(w.bodies().vx[b], 2.0 / 3.0 * v0, 1e-3 * v0);
   EXPECT_NEAR(e.friction, m * v0 * v0 / 6, 2e-3 * m * v0 * v0 / 6);
   EXPECT_LT(e.relative_error(), 1e-3);
 }
@@ -172,7 +172,7 @@ TEST(EnergyBalance, DiscGlancingOffARoughWallClosesTheBalance) {
   w.set_body_velocity(b, 0.2, -0.01, 0);
   w.cycle(20000);
   const cdem::dem::Energies e = cdem::dem::energies(w);
-  ASSERT_GT(w.bodies.y[b], r);  // it has left the floor
+  ASSERT_GT(w.bodies().y[b], r);  // it has left the floor
   EXPECT_EQ(w.last_force_pass().touching_walls, 0);
   EXPECT_GT(e.friction, 0.1 * e.input());  // the stuck spring held a real share
   EXPECT_LT(e.relative_error(), 1e-4);
@@ -186,9 +186,9 @@ TEST(EnergyBalance, BookkeepingDoesNotChangeTheMotion) {
     s.laws.fill(LinearContact{kE, 1.0, 0.5});
     World w(s);
     cdem::test::add_block(w, cdem::test::BlockSpec{});
-    w.walls.vy[2] = -0.5;
+    w.set_wall_velocity(2, 0, -0.5);
     w.cycle(2000);
-    return w.bodies.x;
+    return w.bodies().x;
   };
   EXPECT_EQ(run(true), run(false));
 }

@@ -274,29 +274,29 @@ World jointed_pair(const FlatJointParams& p) {
 
 TEST(FlatJointWorld, DiscsFeelTheInterfaceForcesAndMoment) {
   World w = jointed_pair(mortar_joint());
-  const double x0 = w.bodies.x[1];
+  const double x0 = w.bodies().x[1];
   w.set_body_velocity(1, 0.01, 0, 0);  // opening, m/s
   for (int n = 0; n < 100; ++n) w.step();
-  const double delta = w.bodies.x[1] - x0 - 0.01 * kDt;  // at the last pass
-  const double fn = kKn * 2 * kRbar * delta;             // tension: pulls disc 1 back
-  EXPECT_NEAR(w.bodies.fx[1], -fn, 1e-6 * fn);
-  EXPECT_NEAR(w.bodies.fx[0], fn, 1e-6 * fn);
+  const double delta = w.bodies().x[1] - x0 - 0.01 * kDt;  // at the last pass
+  const double fn = kKn * 2 * kRbar * delta;               // tension: pulls disc 1 back
+  EXPECT_NEAR(w.bodies().fx[1], -fn, 1e-6 * fn);
+  EXPECT_NEAR(w.bodies().fx[0], fn, 1e-6 * fn);
   // Spin disc 1 about the contact point (its contact point does not slide: vy = arm omega):
   // the interface resists with -kn I theta on disc 1 and the opposite on disc 0.
-  const double arm = kR2 + 0.5 * (w.bodies.x[1] - kL);  // m, R2 + half the gap
+  const double arm = kR2 + 0.5 * (w.bodies().x[1] - kL);  // m, R2 + half the gap
   w.set_body_velocity(1, 0, arm * 1.0, 1.0);
   for (int n = 0; n < 10; ++n) w.step();
   const double theta = 10 * 1.0 * kDt;
   const double moment = -kKn * std::pow(2 * kRbar, 3) / 12 * theta;
-  EXPECT_NEAR(w.bodies.moment[1], moment, 1e-6 * std::fabs(moment));
-  EXPECT_NEAR(w.bodies.moment[0], -moment, 1e-6 * std::fabs(moment));
+  EXPECT_NEAR(w.bodies().moment[1], moment, 1e-6 * std::fabs(moment));
+  EXPECT_NEAR(w.bodies().moment[0], -moment, 1e-6 * std::fabs(moment));
 }
 
 TEST(FlatJointWorld, TimeStepSeesTheInterfaceStiffness) {
   FlatJointParams p = mortar_joint();
   p.radius_multiplier = 0.5;  // half the linear contact's width: a softer contact
   World w = jointed_pair(p);
-  w.bodies.prescribed[1] = 0;  // disc 1 free; its step follows its stiffness
+  w.set_prescribed(1, false);  // disc 1 free; its step follows its stiffness
   w.step();
   const FlatJointStiffness k =
       flat_joint_stiffness(flat_joint_geometry(p, kE, kKappa, kR1, kR2, 1.0 / kL));
@@ -313,9 +313,9 @@ TEST(FlatJointWorld, OneCrackPerElementAtItsCentroid) {
   const FlatJointParams p = mortar_joint(2);
   World w = jointed_pair(p);
   w.set_body_velocity(1, 0, 0, 20.0);  // rad/s: bending opens element 0 (below the x axis)
-  while (w.cracks.size() == 0 && w.step_count() < 100000) w.step();
-  ASSERT_EQ(w.cracks.size(), 1u);
-  const Crack& c = w.cracks.cracks[0];
+  while (w.cracks().size() == 0 && w.step_count() < 100000) w.step();
+  ASSERT_EQ(w.cracks().size(), 1u);
+  const Crack& c = w.cracks().cracks[0];
   EXPECT_EQ(c.element, 0);
   EXPECT_EQ(c.mode, BondFailure::Tension);
   EXPECT_EQ(c.bond, BondKind::FlatJoint);
@@ -334,10 +334,10 @@ TEST(FlatJointWorld, OneCrackPerElementAtItsCentroid) {
   EXPECT_EQ(intact_bond_count(w)[static_cast<int>(ContactClass::Mortar)], 1);
   // Keep turning: element 1 opens and breaks too, then the open interface is removed.
   w.set_body_velocity(1, 0, 0, -40.0);
-  while (w.cracks.size() < 2 && w.step_count() < 200000) w.step();
-  ASSERT_EQ(w.cracks.size(), 2u);
-  EXPECT_EQ(w.cracks.cracks[1].element, 1);
-  EXPECT_NEAR(w.cracks.cracks[1].y, kRbar / 2, 1e-9);
+  while (w.cracks().size() < 2 && w.step_count() < 200000) w.step();
+  ASSERT_EQ(w.cracks().size(), 2u);
+  EXPECT_EQ(w.cracks().cracks[1].element, 1);
+  EXPECT_NEAR(w.cracks().cracks[1].y, kRbar / 2, 1e-9);
   EXPECT_EQ(intact_bond_count(w)[static_cast<int>(ContactClass::Mortar)], 0);
 }
 
@@ -354,7 +354,7 @@ std::vector<double> jostled_bits(int threads) {
   install_bonds(w, BondInstallation{0.03});
   cdem::test::jostle(w);
   w.cycle(1500);
-  EXPECT_GT(w.cracks.size(), 10u);
+  EXPECT_GT(w.cracks().size(), 10u);
   return cdem::test::world_bits(w);
 }
 

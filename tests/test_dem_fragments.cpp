@@ -8,6 +8,7 @@
 #include "dem/bond_installation.hpp"
 #include "dem/fragments.hpp"
 #include "dem/world.hpp"
+#include "world_test_access.hpp"
 
 namespace {
 
@@ -39,7 +40,7 @@ World row_world() {
   World w(s);
   for (int i = 0; i < 4; ++i) {
     const int b = w.add_disc(i * (2 * kR + kGap), 0, kR, kRho);
-    w.bodies.prescribed[b] = 1;
+    w.set_prescribed(b, true);
   }
   w.add_disc(0, 0.02, kRFree, kRho);
   w.add_clump(0.04, 0.04, kClumpMass, 1e-9, {0.0395, 0.0405}, {0.04, 0.04}, {0.6e-3, 0.6e-3},
@@ -83,8 +84,8 @@ TEST(Fragments, ABrokenBondSplitsTheRow) {
   // Discs 2 and 3 pulled to the right: the bond 1-2 breaks in tension, the row is two pairs.
   w.set_body_velocity(2, 0.05, 0, 0);
   w.set_body_velocity(3, 0.05, 0, 0);
-  for (int n = 0; n < 2000 && w.cracks.size() == 0; ++n) w.step();
-  ASSERT_EQ(w.cracks.size(), 1u);
+  for (int n = 0; n < 2000 && w.cracks().size() == 0; ++n) w.step();
+  ASSERT_EQ(w.cracks().size(), 1u);
   const Fragments f = find_fragments(w, kClumpDensity, {1e-3, 1.8e-3});
   ASSERT_EQ(f.count(), 4u);
   // The free disc (mass 0.64e-6 pi rho) outweighs each pair (0.5e-6 pi rho): it comes first.
@@ -113,11 +114,12 @@ TEST(Fragments, ClumpOutlinesFollowTheirBody) {
   c.centroid = {0.04, 0.04};
   c.vertices = {{0.045, 0.04}, {0.04, 0.042}, {0.038, 0.038}};
   s.clumps = {c};
-  const int body = static_cast<int>(w.bodies.size()) - 1;
-  ASSERT_TRUE(w.bodies.is_clump[body]);
-  w.bodies.x[body] = 0.05;
-  w.bodies.y[body] = 0.03;
-  w.bodies.theta[body] = std::numbers::pi / 2;
+  const int body = static_cast<int>(w.bodies().size()) - 1;
+  ASSERT_TRUE(w.bodies().is_clump[body]);
+  Bodies& bodies = WorldTestAccess::bodies(w);  // the outline follows the body alone
+  bodies.x[body] = 0.05;
+  bodies.y[body] = 0.03;
+  bodies.theta[body] = std::numbers::pi / 2;
   Fragments f = find_fragments(w, kClumpDensity, {1e-3});
   add_clump_outlines(f, w, s);
   ASSERT_EQ(f.clump_outline.size(), 1u);

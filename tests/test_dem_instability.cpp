@@ -11,6 +11,7 @@
 #include "dem/instability.hpp"
 #include "dem/world.hpp"
 #include "dem_block.hpp"
+#include "world_test_access.hpp"
 
 namespace {
 
@@ -18,6 +19,7 @@ using cdem::dem::ContactClass;
 using cdem::dem::LinearContact;
 using cdem::dem::World;
 using cdem::dem::WorldSettings;
+using cdem::dem::WorldTestAccess;
 
 constexpr double kE = 16e9;
 
@@ -93,7 +95,7 @@ TEST(InstabilityDiagnostics, QuietOnAStableRunWithWorkInput) {
   s.laws.fill(LinearContact{kE, 1.0, 0.0});
   World w(s);
   add_kicked_block(w);
-  w.walls.vy[2] = -0.5;
+  w.set_wall_velocity(2, 0, -0.5);
   EXPECT_EQ(run_until_error(w, 5000), "");
 }
 
@@ -116,7 +118,7 @@ TEST(InstabilityDiagnostics, StiffnessRaisedWithoutATimeStepUpdateNamesTheContra
                                     : cdem::dem::DiscMaterial::Mortar);
   w.set_body_velocity(0, 0.01, 0.01, 0);
   w.step();
-  w.settings.laws[static_cast<int>(ContactClass::Itz)].emod = 1e4 * kE;
+  WorldTestAccess::stale_settings(w).laws[static_cast<int>(ContactClass::Itz)].emod = 1e4 * kE;
   const std::string what = run_until_error(w, 20000);
   ASSERT_FALSE(what.empty());
   EXPECT_TRUE(has(what, "likely cause: time step too large")) << what;
@@ -138,7 +140,7 @@ TEST(InstabilityDiagnostics, StaleDensityScalingIsNamed) {
   World w(s);
   add_kicked_block(w, 1e-7);  // 0.1 um per scaled step of 1 s
   w.step();
-  for (auto& law : w.settings.laws) law.emod = 100 * kE;
+  for (auto& law : WorldTestAccess::stale_settings(w).laws) law.emod = 100 * kE;
   const std::string what = run_until_error(w, 20000);
   ASSERT_FALSE(what.empty());
   EXPECT_TRUE(has(what, "bad density scaling")) << what;
@@ -206,8 +208,9 @@ TEST(SettingsCheck, OtherSettingsAreCheckedAndChangesAfterConstructionToo) {
   EXPECT_TRUE(refused([](WorldSettings& s) { s.threads = 0; }));
   World w;
   w.add_disc(0, 0, 1e-3, 2500);
-  w.settings.time_step_safety = 2;
-  EXPECT_THROW(w.step(), std::invalid_argument);
+  WorldSettings bad = w.settings();
+  bad.time_step_safety = 2;
+  EXPECT_THROW(w.set_settings(bad), std::invalid_argument);  // refused when set, not at a step
 }
 
 }  // namespace

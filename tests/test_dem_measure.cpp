@@ -31,7 +31,7 @@ TEST(Measure, DiscSqueezedInASquareBox) {
   box.width = box.height = 2 * kR - 2 * kDelta;
   w.add_container_walls(box);
   w.add_disc(0.5 * box.width, 0.5 * box.height, kR, 2000);
-  w.bodies.prescribed[0] = 1;
+  w.set_prescribed(0, true);
   w.step();
   const double f = 2 * kE * kDelta;  // disc-wall kn = 2 E*
   const double a = box.area();
@@ -60,7 +60,7 @@ TEST(Measure, OverlapsCoordinationAndUnbalance) {
   w.add_disc(0, 0, kR, 2000);
   w.add_disc(2 * kR - kDelta, 0, kR, 2000);
   w.add_disc(4 * kR - 3 * kDelta, 0, kR, 2000);
-  for (int b = 0; b < 3; ++b) w.bodies.prescribed[b] = 1;
+  for (int b = 0; b < 3; ++b) w.set_prescribed(b, true);
   w.step();
   const cdem::dem::OverlapStatistics o = cdem::dem::overlap_statistics(w);
   EXPECT_EQ(o.contacts, 2);
@@ -69,7 +69,7 @@ TEST(Measure, OverlapsCoordinationAndUnbalance) {
   EXPECT_NEAR(o.max_ratio, 2 * kDelta / kR, 1e-12);
   EXPECT_NEAR(cdem::dem::coordination_number(w), 4.0 / 3.0, 1e-12);
   // Prescribed bodies are not counted in the net force: make them free for the ratio.
-  for (int b = 0; b < 3; ++b) w.bodies.prescribed[b] = 0;
+  for (int b = 0; b < 3; ++b) w.set_prescribed(b, false);
   const double kn = kE;  // equal radii
   const double mean_net = (kn * kDelta + kn * kDelta + 2 * kn * kDelta) / 3;
   const double mean_contact = (kn * kDelta + 2 * kn * kDelta) / 2;

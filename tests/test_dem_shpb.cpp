@@ -54,11 +54,11 @@ BarRun run_bars(World& world, const Box& extent, const ShpbOptions& o) {
   const long steps = static_cast<long>(
       std::ceil((o.bar.length / c0 + o.pulse_duration + 0.5 * o.bar.length / c0 + 50e-6) /
                 r.bars.time_step()));
-  r.records.record(r.bars, world.walls);
+  r.records.record(r.bars, world.walls());
   for (long s = 0; s < steps; ++s) {
     world.step();
-    r.bars.couple(world.walls);
-    r.records.record(r.bars, world.walls);
+    r.bars.couple(world);
+    r.records.record(r.bars, world.walls());
     r.max_coupling = std::max(r.max_coupling, r.bars.coupling_number(world));
   }
   return r;

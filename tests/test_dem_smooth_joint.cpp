@@ -64,27 +64,27 @@ double drive(World& w, double vx, double vy, int steps) {
   double work = 0;
   w.set_body_velocity(1, vx, vy, 0);
   for (int n = 0; n < steps; ++n) {
-    const double fx0 = w.bodies.fx[1], fy0 = w.bodies.fy[1];
+    const double fx0 = w.bodies().fx[1], fy0 = w.bodies().fy[1];
     w.step();
-    work -= 0.5 * (fx0 + w.bodies.fx[1]) * vx * kDt + 0.5 * (fy0 + w.bodies.fy[1]) * vy * kDt;
+    work -= 0.5 * (fx0 + w.bodies().fx[1]) * vx * kDt + 0.5 * (fy0 + w.bodies().fy[1]) * vy * kDt;
   }
   return work;
 }
 
 // Force on disc 1 along the joint normal (compression positive) and tangent.
 double joint_normal_force(const World& w) {
-  return w.bodies.fx[1] * kNx + w.bodies.fy[1] * kNy;
+  return w.bodies().fx[1] * kNx + w.bodies().fy[1] * kNy;
 }
 double joint_shear_force(const World& w) {
-  return w.bodies.fx[1] * kTx + w.bodies.fy[1] * kTy;
+  return w.bodies().fx[1] * kTx + w.bodies().fy[1] * kTy;
 }
 
 TEST(SmoothJoint, NormalAndShearStiffnessInTheJointFrame) {
   const SmoothJointParams p = joint_params();
   World w = joint_pair(p);
-  const double x0 = w.bodies.x[1], y0 = w.bodies.y[1];
+  const double x0 = w.bodies().x[1], y0 = w.bodies().y[1];
   drive(w, 0.004, -0.003, 20);  // m/s: a displacement with both joint components
-  const double ux = w.bodies.x[1] - x0, uy = w.bodies.y[1] - y0;
+  const double ux = w.bodies().x[1] - x0, uy = w.bodies().y[1] - y0;
   const double un = ux * kNx + uy * kNy, us = ux * kTx + uy * kTy;  // m
   const double fn = -p.normal_stiffness * kArea * un;               // compression positive
   const double fs = -p.shear_stiffness * kArea * us;
@@ -94,12 +94,13 @@ TEST(SmoothJoint, NormalAndShearStiffnessInTheJointFrame) {
   EXPECT_NEAR(joint_shear_force(w), fs, 1e-9 * std::fabs(fs));
   // Disc 0 feels the opposite; the force off the centre line turns the discs about their
   // centres (arm R - overlap / 2 to the contact point), no joint moment.
-  EXPECT_NEAR(w.bodies.fx[0], -w.bodies.fx[1], 1e-12 * std::fabs(fn));
-  EXPECT_NEAR(w.bodies.fy[0], -w.bodies.fy[1], 1e-12 * std::fabs(fn));
-  const double gap = w.bodies.x[1] - w.bodies.x[0] - kR1 - kR2;  // centres stay near the x axis
+  EXPECT_NEAR(w.bodies().fx[0], -w.bodies().fx[1], 1e-12 * std::fabs(fn));
+  EXPECT_NEAR(w.bodies().fy[0], -w.bodies().fy[1], 1e-12 * std::fabs(fn));
+  const double gap = w.bodies().x[1] - w.bodies().x[0] - kR1 - kR2;  // centres stay near the x axis
   const double arm = kR2 + 0.5 * gap;
-  EXPECT_NEAR(w.bodies.moment[1], -arm * w.bodies.fy[1], 1e-3 * std::fabs(arm * w.bodies.fy[1]));
-  EXPECT_EQ(w.cracks.size(), 0u);
+  EXPECT_NEAR(w.bodies().moment[1], -arm * w.bodies().fy[1],
+              1e-3 * std::fabs(arm * w.bodies().fy[1]));
+  EXPECT_EQ(w.cracks().size(), 0u);
 }
 
 TEST(SmoothJoint, TensileFailureAtSigmaCTimesA) {
@@ -108,23 +109,23 @@ TEST(SmoothJoint, TensileFailureAtSigmaCTimesA) {
   const double v = 0.01;  // m/s along nj: opening
   w.set_body_velocity(1, v * kNx, v * kNy, 0);
   double last_tension = 0;
-  while (w.cracks.size() == 0 && w.step_count() < 10000) {
+  while (w.cracks().size() == 0 && w.step_count() < 10000) {
     last_tension = -joint_normal_force(w);
     w.step();
   }
-  ASSERT_EQ(w.cracks.size(), 1u);
+  ASSERT_EQ(w.cracks().size(), 1u);
   const double strength = p.tensile_strength * kArea;
   const double increment = p.normal_stiffness * kArea * v * kDt;  // N per pass
   EXPECT_LT(last_tension, strength);
   EXPECT_GT(last_tension, strength - increment - 1e-9 * strength);
-  EXPECT_EQ(w.cracks.cracks[0].mode, BondFailure::Tension);
-  EXPECT_EQ(w.cracks.cracks[0].bond, BondKind::SmoothJoint);
-  EXPECT_NEAR(w.cracks.cracks[0].energy, 0.5 * strength * strength / (p.normal_stiffness * kArea),
+  EXPECT_EQ(w.cracks().cracks[0].mode, BondFailure::Tension);
+  EXPECT_EQ(w.cracks().cracks[0].bond, BondKind::SmoothJoint);
+  EXPECT_NEAR(w.cracks().cracks[0].energy, 0.5 * strength * strength / (p.normal_stiffness * kArea),
               0.02 * 0.5 * strength * strength / (p.normal_stiffness * kArea));
   EXPECT_EQ(joint_normal_force(w), 0.0);  // open and unbonded: no force
   EXPECT_EQ(joint_shear_force(w), 0.0);
   EXPECT_EQ(intact_smooth_joints(w), 0);
-  EXPECT_EQ(w.neighbors.intact_bonds(0), 0);
+  EXPECT_EQ(w.neighbors().intact_bonds(0), 0);
 }
 
 // A bonded joint of zero strength does not break at zero force (installed on a pair apart within
@@ -134,12 +135,12 @@ TEST(SmoothJoint, ZeroStrengthBreaksOnlyUnderLoad) {
   p.tensile_strength = p.cohesion = p.friction_angle = 0;
   World w = joint_pair(p);
   for (int n = 0; n < 10; ++n) w.step();
-  EXPECT_EQ(w.cracks.size(), 0u);
+  EXPECT_EQ(w.cracks().size(), 0u);
   // Shear with a little closure (so no rounding-level opening breaks it in tension instead).
   w.set_body_velocity(1, 0.01 * kTx - 0.001 * kNx, 0.01 * kTy - 0.001 * kNy, 0);
   w.step();
-  ASSERT_EQ(w.cracks.size(), 1u);
-  EXPECT_EQ(w.cracks.cracks[0].mode, BondFailure::Shear);
+  ASSERT_EQ(w.cracks().size(), 1u);
+  EXPECT_EQ(w.cracks().cracks[0].mode, BondFailure::Shear);
 }
 
 // Compresses the joint to normal stress sigma (Pa), then shears it along tj until `until`.
@@ -158,12 +159,12 @@ TEST(SmoothJoint, ShearFailureAtCohesionPlusSigmaTanPhi) {
   const double v = 0.01;  // m/s along tj
   w.set_body_velocity(1, v * kTx, v * kTy, 0);
   double last_shear = 0;
-  while (w.cracks.size() == 0 && w.step_count() < 100000) {
+  while (w.cracks().size() == 0 && w.step_count() < 100000) {
     last_shear = std::fabs(joint_shear_force(w));
     w.step();
   }
-  ASSERT_EQ(w.cracks.size(), 1u);
-  EXPECT_EQ(w.cracks.cracks[0].mode, BondFailure::Shear);
+  ASSERT_EQ(w.cracks().size(), 1u);
+  EXPECT_EQ(w.cracks().cracks[0].mode, BondFailure::Shear);
   const double strength = (p.cohesion + sigma * std::tan(p.friction_angle)) * kArea;
   const double increment = p.shear_stiffness * kArea * v * kDt;
   EXPECT_LT(last_shear, strength);
@@ -201,7 +202,7 @@ TEST(SmoothJoint, SlipDilatesTheJoint) {
   EXPECT_NEAR(joint_normal_force(w) - fn0, rise, 1e-6 * rise);
   // The shear force stays at the friction limit mu Fn.
   EXPECT_NEAR(fs1 / joint_normal_force(w), p.friction, 0.01 * p.friction);
-  EXPECT_EQ(w.cracks.size(), 0u);  // a frictional joint has no bond to break
+  EXPECT_EQ(w.cracks().size(), 0u);  // a frictional joint has no bond to break
   EXPECT_GT(w.friction_dissipated(), 0.0);
 }
 
@@ -224,10 +225,10 @@ TEST(SmoothJoint, SlipWithDilationClosesTheEnergyLedger) {
 TEST(SmoothJoint, ElasticLoadUnloadReturnsItsEnergy) {
   const SmoothJointParams p = joint_params();
   World w = joint_pair(p);
-  const double x0 = w.bodies.x[1], y0 = w.bodies.y[1];
+  const double x0 = w.bodies().x[1], y0 = w.bodies().y[1];
   const double vx = -0.003, vy = 0.004;
   const double load = drive(w, vx, vy, 50);
-  const double ux = w.bodies.x[1] - x0, uy = w.bodies.y[1] - y0;
+  const double ux = w.bodies().x[1] - x0, uy = w.bodies().y[1] - y0;
   const double un = ux * kNx + uy * kNy, us = ux * kTx + uy * kTy;
   const double stored =
       0.5 * p.normal_stiffness * kArea * un * un + 0.5 * p.shear_stiffness * kArea * us * us;
@@ -251,23 +252,23 @@ TEST(SmoothJoint, StateSurvivesANeighbourRebuild) {
   const double fn = joint_normal_force(w);
   ASSERT_NEAR(fn, p.normal_stiffness * kArea * 20 * v * kDt, 1e-9 * fn);
   w.add_disc(-5e-3, 0, 0.5e-3, 2000);
-  w.bodies.prescribed[2] = 1;
+  w.set_prescribed(2, true);
   w.invalidate_neighbors();
-  const long builds = w.neighbors.build_count;
+  const long builds = w.neighbors().build_count;
   for (int n = 0; n < 20; ++n) w.step();
-  EXPECT_GT(w.neighbors.build_count, builds);
+  EXPECT_GT(w.neighbors().build_count, builds);
   EXPECT_NEAR(joint_normal_force(w), 2 * fn, 1e-9 * fn);
-  EXPECT_EQ(w.neighbors.smooth_joints.size(), 1u);
+  EXPECT_EQ(w.neighbors().smooth_joints.size(), 1u);
 }
 
 TEST(SmoothJoint, TimeStepSeesTheJointStiffness) {
   const SmoothJointParams p = joint_params();
   World w = joint_pair(p);
-  const ContactStiffness k = smooth_joint_stiffness(w.neighbors.smooth_joints, 0);
+  const ContactStiffness k = smooth_joint_stiffness(w.neighbors().smooth_joints, 0);
   const double kna = p.normal_stiffness * kArea, ksa = p.shear_stiffness * kArea;
   EXPECT_DOUBLE_EQ(k.normal, std::max(kna, ksa));
   EXPECT_DOUBLE_EQ(k.shear, std::max(kna, ksa));
-  w.bodies.prescribed[1] = 0;  // disc 1 free; its step follows its stiffness
+  w.set_prescribed(1, false);  // disc 1 free; its step follows its stiffness
   w.step();
   const double mass = 2000 * std::numbers::pi * kR2 * kR2;
   const double inertia = 0.5 * mass * kR2 * kR2;
@@ -316,7 +317,7 @@ std::vector<double> jostled_bits(int threads) {
   cdem::test::jostle(w);
   w.cycle(1500);
   long smooth_cracks = 0;
-  for (const Crack& c : w.cracks.cracks) smooth_cracks += c.bond == BondKind::SmoothJoint;
+  for (const Crack& c : w.cracks().cracks) smooth_cracks += c.bond == BondKind::SmoothJoint;
   EXPECT_GT(smooth_cracks, 5);
   return cdem::test::world_bits(w);
 }

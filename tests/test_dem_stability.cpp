@@ -97,7 +97,7 @@ TEST(InstabilityGuard, QuietAtTheAutomaticStep) {
   w.add_disc(2 * kR + 1e-7, 0, kR, kRho);
   w.set_body_velocity(0, 0.5, 0, 0);
   EXPECT_NO_THROW(w.cycle(5000));
-  EXPECT_GT(w.bodies.vx[1], 0.49);  // the collision happened and passed the momentum on
+  EXPECT_GT(w.bodies().vx[1], 0.49);  // the collision happened and passed the momentum on
 }
 
 }  // namespace

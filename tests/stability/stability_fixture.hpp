@@ -159,7 +159,7 @@ inline CaseRun run_case(const std::string& name, const fs::path& specimen_file, 
     dem::LabTestHooks hooks;
     hooks.snapshot = [&](const dem::World& world, long step, double time) {
       file.snapshot(world, step, time);
-      if (world.energy.reference_pending) return;  // restarted at the next energy check
+      if (world.energy().reference_pending) return;  // restarted at the next energy check
       run.worst_energy_error =
           std::max(run.worst_energy_error, dem::energies(world).relative_error());
       ++run.energy_samples;

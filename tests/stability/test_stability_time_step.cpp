@@ -66,25 +66,24 @@ FixedStepRun run_fixed_step(double factor, long steps) {
   dem::World world = dem::world_from_specimen(cleaned, settings);
   dem::install_test_bonds(world, {}, report);
   double ymin = 1, ymax = -1;
-  for (std::size_t i = 0; i < world.discs.size(); ++i) {
-    ymin = std::min(ymin, world.discs.y[i] - world.discs.r[i]);
-    ymax = std::max(ymax, world.discs.y[i] + world.discs.r[i]);
+  for (std::size_t i = 0; i < world.discs().size(); ++i) {
+    ymin = std::min(ymin, world.discs().y[i] - world.discs().r[i]);
+    ymax = std::max(ymax, world.discs().y[i] + world.discs().r[i]);
   }
   const double w = specimen.container.width;
   const int bottom = world.add_wall(-w, ymin, 2 * w, ymin);
   const int top = world.add_wall(2 * w, ymax, -w, ymax);
-  world.walls.vy[bottom] = 0.05;
-  world.walls.vy[top] = -0.05;
+  world.set_wall_velocity(bottom, 0, 0.05);
+  world.set_wall_velocity(top, 0, -0.05);
   world.refresh_neighbors();
   FixedStepRun run;
   run.critical = world.critical_time_step();
-  world.settings.fixed_time_step = factor * run.critical;
-  world.invalidate_neighbors();  // the next step recomputes the step with the fixed value
+  world.set_fixed_time_step(factor * run.critical);
   try {
     for (long s = 0; s < steps; ++s) {
       world.step();
-      run.peak_force = std::max(run.peak_force, -world.walls.fy[bottom]);
-      if (s % 500 == 499 && !world.energy.reference_pending)
+      run.peak_force = std::max(run.peak_force, -world.walls().fy[bottom]);
+      if (s % 500 == 499 && !world.energy().reference_pending)
         run.worst_energy_error =
             std::max(run.worst_energy_error, dem::energies(world).relative_error());
     }

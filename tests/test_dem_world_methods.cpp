@@ -1,0 +1,122 @@
+// The World's methods carry their own side effects (issue 15): a caller changes the density
+// scaling, the fixed step, the neighbour skin or the servos through one call, with no
+// invalidate_neighbors() reminder, and the change is in force at the next step. The state is
+// read through const views only.
+#include <type_traits>
+#include <utility>
+
+#include <gtest/gtest.h>
+
+#include "core/specimen.hpp"
+#include "dem/world.hpp"
+
+namespace {
+
+using namespace cdem::dem;
+
+// Read access only: the views are const references, so no caller can change an array behind
+// the World's back.
+static_assert(std::is_same_v<decltype(std::declval<World&>().bodies()), const Bodies&>);
+static_assert(std::is_same_v<decltype(std::declval<World&>().discs()), const Discs&>);
+static_assert(std::is_same_v<decltype(std::declval<World&>().walls()), const Walls&>);
+static_assert(std::is_same_v<decltype(std::declval<World&>().neighbors()), const NeighborList&>);
+static_assert(std::is_same_v<decltype(std::declval<World&>().settings()), const WorldSettings&>);
+
+constexpr double kR = 1e-3;  // m, disc radius
+
+// 3 x 3 discs of radius kR touching their neighbours in a 6 kR square box, at rest: no contact
+// force anywhere, so nothing moves and every rebuild sees the same pairs.
+World resting_square() {
+  WorldSettings s;
+  s.laws.fill(LinearContact{1e9, 1.0, 0.5});
+  World w(s);
+  cdem::Container box;
+  box.width = box.height = 6 * kR;
+  w.add_container_walls(box);
+  for (int iy = 0; iy < 3; ++iy)
+    for (int ix = 0; ix < 3; ++ix) w.add_disc((2 * ix + 1) * kR, (2 * iy + 1) * kR, kR, 2500);
+  return w;
+}
+
+TEST(WorldMethods, DensityScalingSetsTheStepAtTheNextStepWithoutAnInvalidate) {
+  World w = resting_square();
+  w.step();
+  const double true_step = w.time_step();
+  ASSERT_GT(true_step, 0);
+  const double scaled = 10 * true_step;  // s
+  w.set_density_scaling(true, scaled);
+  EXPECT_EQ(w.time_step(), true_step);  // in force from the next step on
+  w.step();
+  // Under density scaling the step is the scaled step by definition (WorldSettings).
+  EXPECT_EQ(w.time_step(), scaled);
+  // ... and the integration masses are set for it, no longer the true ones.
+  const Bodies& b = w.bodies();
+  for (std::size_t k = 0; k < b.size(); ++k) EXPECT_NE(b.inv_mass_dyn[k], 1.0 / b.mass[k]);
+  w.set_density_scaling(false, scaled);
+  w.step();
+  // Back to the true masses: the same pairs give the same automatic step, and the integration
+  // uses the physical masses and inertias again.
+  EXPECT_EQ(w.time_step(), true_step);
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    EXPECT_EQ(b.inv_mass_dyn[k], 1.0 / b.mass[k]);
+    EXPECT_DOUBLE_EQ(b.inv_inertia_dyn[k], 1.0 / b.inertia[k]);
+  }
+}
+
+TEST(WorldMethods, FixedStepTakesOverAtTheNextStepAndZeroGivesTheAutomaticOneBack) {
+  World w = resting_square();
+  w.step();
+  const double automatic = w.time_step();
+  const double fixed = automatic / 3;  // s
+  w.set_fixed_time_step(fixed);
+  const double t0 = w.time();
+  w.step();
+  EXPECT_EQ(w.time_step(), fixed);
+  EXPECT_EQ(w.time(), t0 + fixed);
+  w.set_fixed_time_step(0);
+  w.step();
+  EXPECT_EQ(w.time_step(), automatic);
+}
+
+TEST(WorldMethods, BadSettingsAreRefusedWhenSetAndTheOldOnesKept) {
+  World w = resting_square();
+  WorldSettings bad = w.settings();
+  bad.local_damping = 1.0;  // alpha must be below 1
+  EXPECT_THROW(w.set_settings(bad), std::invalid_argument);
+  EXPECT_EQ(w.settings().local_damping, WorldSettings{}.local_damping);
+  EXPECT_NO_THROW(w.step());
+}
+
+TEST(WorldMethods, NeighbourSkinDecidesWhichPairIsACandidateFromTheNextStep) {
+  // Two discs 0.5 kR apart (surface to surface): a candidate pair only with a skin above that.
+  World w;
+  w.add_disc(0, 0, kR, 2500);
+  w.add_disc(2.5 * kR, 0, kR, 2500);
+  w.set_neighbor_skin(0.4 * kR);
+  w.step();
+  EXPECT_EQ(w.neighbors().skin, 0.4 * kR);
+  EXPECT_EQ(w.neighbors().keys.size(), 0u);
+  w.set_neighbor_skin(0.6 * kR);
+  w.step();
+  EXPECT_EQ(w.neighbors().skin, 0.6 * kR);
+  EXPECT_EQ(w.neighbors().keys.size(), 1u);
+}
+
+TEST(WorldMethods, ServosAreAddedRetargetedAndRemovedByWall) {
+  World w = resting_square();
+  const int bottom = 0, top = 2;  // walls of the square, counter-clockwise from the bottom
+  w.add_wall_servo(bottom, 1e6, 0.01);
+  const int on_top = w.add_wall_servo(top, 1e6, 0.01);
+  w.set_servo_target(on_top, 2e6);
+  EXPECT_EQ(w.servos().servos[static_cast<std::size_t>(on_top)].target_stress, 2e6);
+  w.remove_wall_servos(bottom);
+  ASSERT_EQ(w.servos().size(), 1u);
+  EXPECT_EQ(w.servos().servos[0].wall, top);
+  // The servo drives the top wall into the discs (no contact force yet: stress error 2 MPa,
+  // velocity at its cap, along the inward normal -y); the bottom wall, without one, stays.
+  w.step();
+  EXPECT_DOUBLE_EQ(w.walls().vy[top], -0.01);
+  EXPECT_EQ(w.walls().vy[bottom], 0.0);
+}
+
+}  // namespace
