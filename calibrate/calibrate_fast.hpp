@@ -45,6 +45,30 @@ std::vector<double> fast_start_scales(const CalibrationInput& input,
 Eigen::VectorXd fast_values(const CalibrationInput& input, const std::vector<FastGroup>& groups,
                             const std::vector<double>& scales);
 
+// How the scaled iteration runs. The fast strategy: its groups from the semi-analytical start,
+// the priors' sensitivities, fast.tolerance and its iterations; the tables strategy
+// (calibrate_tables.hpp): the start and sensitivities of the lookup tables, at most two runs.
+struct ScaledPlan {
+  CalibrationStrategy strategy = CalibrationStrategy::Fast;
+  std::string stage_prefix = "fast";  // stages "fast_01", ...
+  std::vector<FastGroup> groups;
+  std::vector<double> start_scales;  // per group
+  // d ln(response of group i's target) / d ln(scale of group j) before any step is measured;
+  // Broyden's update moves it, the clamp of its diagonal is [J(g, g) / 2, 2 J(g, g)].
+  Eigen::MatrixXd sensitivities;
+  double tolerance = 0.02;  // per target on the calibration specimen
+  int max_iterations = 8;
+  int max_refinements = 1;
+};
+
+// The fast strategy's plan (the priors of the header comment).
+ScaledPlan fast_plan(const CalibrationInput& input);
+
+// Iterates the plan's scales on the calibration specimen, verifies, and corrects on the
+// verification mean.
+CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& simulator,
+                                   const ScaledPlan& plan);
+
 CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simulator);
 
 }  // namespace cdem::calib

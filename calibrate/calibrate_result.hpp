@@ -84,9 +84,12 @@ struct CalibrationResult {
   std::vector<Verification> verifications;
   std::string stop_reason;  // what ended the calibration, in words
 
-  // fast strategy
+  // fast and tables strategies
   std::vector<std::string> group_names;  // e.g. "E <- modulus (4 keys)"
   std::vector<FastIteration> iterations;
+  // tables strategy: the cells looked up, the coefficients and the contact values they gave,
+  // as markdown for the report
+  std::string lookup;
 
   // paper strategy
   std::vector<int> kept;     // parameter indices carried into the surface design
