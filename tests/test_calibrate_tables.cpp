@@ -12,6 +12,7 @@
 
 #include "calibrate/calibrate.hpp"
 #include "calibrate/calibrate_tables.hpp"
+#include "calibrate_test_util.hpp"
 #include "core/input_error.hpp"
 #include "scratch_dir.hpp"
 
@@ -19,15 +20,9 @@ namespace {
 
 using namespace cdem::calib;
 
-void write(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
-
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
+using cdem::test::expect_input_error;
+using cdem::test::replace;
+using cdem::test::write;
 
 // K_B at two radius ratios and three E* / sigma_cn levels; K at the middle level is the mean of
 // the outer two on a log scale (1,000 ~ sqrt(300 x 3,000) = 948.7: not exactly, on purpose, the
@@ -85,18 +80,6 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
                               "brazilian_generator = \"disc.toml\"\n" +
                               f.parameters);
   return dir / "cal.toml";
-}
-
-void expect_input_error(const std::filesystem::path& file, const std::string& key,
-                        const std::string& words) {
-  try {
-    read_calibration_input(file);
-    ADD_FAILURE() << "no InputError for " << key;
-  } catch (const cdem::InputError& e) {
-    EXPECT_EQ(e.key(), key) << e.what();
-    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("cal.toml"), std::string::npos) << e.what();
-  }
 }
 
 LookupTable table(const std::string& name, const std::string& text, const std::string& coefficient,
@@ -208,53 +191,49 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
   EXPECT_EQ(in.strategy, CalibrationStrategy::Tables);
   EXPECT_EQ(in.tables.max_iterations, 2);
   EXPECT_DOUBLE_EQ(in.tables.tolerance, 0.05);
+  // Each case: one file of the calibration edited, the key and words of the refusal.
+  struct Case {
+    const char* name;
+    std::string Files::*file;
+    std::string from, to, key, words;
+  };
+  const Case cases[] = {
+      {"nu", &Files::head, "E_GPa = 18", "E_GPa = 18\nnu = 0.2", "targets.nu",
+       "sigma_t (Brazilian, K_B) and E"},
+      {"kratio", &Files::materials, "kratio = 2.5", "kratio = 3.0", "materials.mortar.kratio",
+       "made at 2.5"},
+      {"shear", &Files::materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 40.0",
+       "materials.mortar.cb_shear_strength", "tau_cs / sigma_cn"},
+      {"diameter", &Files::disc, "diameter_mm = 30", "diameter_mm = 50",
+       "specimen.brazilian_generator", "D 30 mm"},
+      {"ratio", &Files::disc, "r_ratio = 3.0", "r_ratio = 6.0", "specimen.brazilian_generator",
+       "R_max / R_min = 6"},
+      {"aggregates", &Files::disc, "[mortar]", "[gradation]\ntype = \"walraven\"\n[mortar]",
+       "specimen.brazilian_generator", "mortar-only"},
+      {"target", &Files::head, "sigma_t_MPa = 9", "sigma_t_MPa = 90", "targets.sigma_t",
+       "outside what the K_B"},
+      {"no_kb", &Files::head, "kb = \"kb.csv\"\n", "", "tables.kb", "missing"},
+      {"kb_missing", &Files::head, "kb = \"kb.csv\"", "kb = \"none.csv\"", "tables.kb",
+       "cannot read"},
+      {"kb_corrupt", &Files::kb, "K_B", "K", "tables.kb", "no column 'K_B'"},
+      {"iterations", &Files::head, "[tables]", "[tables]\nmax_iterations = 3",
+       "tables.max_iterations", ""},
+      {"bounds", &Files::parameters, "bounds = [5, 400]", "bounds = [5, 20]", "parameters",
+       "outside the bounds"},
+  };
+  for (const auto& c : cases) {
+    Files f;
+    f.*c.file = replace(f.*c.file, c.from, c.to);
+    expect_input_error(make_calibration(c.name, f), c.key, c.words);
+  }
+  // Another bond law: its strengths are other keys, so the materials and parameters both change.
   Files f;
-  f.head = replace(kHead, "E_GPa = 18", "E_GPa = 18\nnu = 0.2");
-  expect_input_error(make_calibration("nu", f), "targets.nu", "sigma_t (Brazilian, K_B) and E");
-  f = {};
-  f.materials = replace(kMaterials, "kratio = 2.5", "kratio = 3.0");
-  expect_input_error(make_calibration("kratio", f), "materials.mortar.kratio", "made at 2.5");
-  f = {};
-  f.materials = replace(kMaterials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 40.0");
-  expect_input_error(make_calibration("shear", f), "materials.mortar.cb_shear_strength",
-                     "tau_cs / sigma_cn");
-  f = {};
-  f.materials = replace(kMaterials, "contact_bond", "parallel_bond");
-  f.parameters = replace(kParameters, "cb_tensile_strength_MPa", "pb_tensile_strength_MPa");
-  f.parameters = replace(f.parameters, "cb_shear_strength_MPa", "pb_cohesion_MPa");
-  f.materials = replace(f.materials, "cb_tensile_strength_MPa", "pb_tensile_strength_MPa");
-  f.materials = replace(f.materials, "cb_shear_strength_MPa", "pb_cohesion_MPa");
+  for (auto* text : {&f.materials, &f.parameters}) {
+    *text = replace(*text, "cb_tensile_strength_MPa", "pb_tensile_strength_MPa");
+    *text = replace(*text, "cb_shear_strength_MPa", "pb_cohesion_MPa");
+  }
+  f.materials = replace(f.materials, "contact_bond", "parallel_bond");
   expect_input_error(make_calibration("law", f), "materials.mortar.law", "contact_bond");
-  f = {};
-  f.disc = replace(kDisc, "diameter_mm = 30", "diameter_mm = 50");
-  expect_input_error(make_calibration("diameter", f), "specimen.brazilian_generator", "D 30 mm");
-  f = {};
-  f.disc = replace(kDisc, "r_ratio = 3.0", "r_ratio = 6.0");
-  expect_input_error(make_calibration("ratio", f), "specimen.brazilian_generator",
-                     "R_max / R_min = 6");
-  f = {};
-  f.disc += "[gradation]\ntype = \"walraven\"\n";
-  expect_input_error(make_calibration("aggregates", f), "specimen.brazilian_generator",
-                     "mortar-only");
-  f = {};
-  f.head = replace(kHead, "sigma_t_MPa = 9", "sigma_t_MPa = 90");
-  expect_input_error(make_calibration("target", f), "targets.sigma_t", "outside what the K_B");
-  f = {};
-  f.head = replace(kHead, "kb = \"kb.csv\"\n", "");
-  expect_input_error(make_calibration("no_kb", f), "tables.kb", "missing");
-  f = {};
-  f.head = replace(kHead, "kb = \"kb.csv\"", "kb = \"none.csv\"");
-  expect_input_error(make_calibration("kb_missing", f), "tables.kb", "cannot read");
-  f = {};
-  f.kb = replace(kKB, "K_B", "K");
-  expect_input_error(make_calibration("kb_corrupt", f), "tables.kb", "no column 'K_B'");
-  f = {};
-  f.head = kHead + "max_iterations = 3\n";
-  expect_input_error(make_calibration("iterations", f), "tables.max_iterations", "");
-  f = {};
-  f.parameters = replace(kParameters, "bounds = [5, 400]", "bounds = [5, 20]");
-  f.parameters = replace(f.parameters, "bounds = [10, 800]", "bounds = [10, 40]");
-  expect_input_error(make_calibration("bounds", f), "parameters", "outside the bounds");
 }
 
 // The DEM replaced by the relations the tables hold, off by known factors: E = ke K_E(rho) E*,
