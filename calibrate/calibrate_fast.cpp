@@ -250,7 +250,7 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
       dx[g] = std::log(to.scales[g] / from.scales[g]);
       dy[g] = std::log(to.responses[g] / from.responses[g]);
     }
-    if (!dy.allFinite() || dx.norm() < kMinSecantStep) return;
+    if (!plan.learn || !dy.allFinite() || dx.norm() < kMinSecantStep) return;
     J += (dy - J * dx) * dx.transpose() / dx.squaredNorm();
     for (std::size_t g = 0; g < n; ++g) {  // the safeguard of the diagonal secants, kept
       const double prior =
@@ -367,7 +367,18 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
     for (std::size_t g = 0; g < n && !good.empty(); ++g)
       if (groups[g].target == o.target) o.closest = good.back().responses[g];
   if (!result.out_of_reach.empty()) result.converged = false;
-  if (!result.converged) return result;
+  // A plan that verifies without convergence (the tables strategy) verifies the point of its last
+  // run when its runs on the calibration specimen are used up with every one of them ok.
+  const bool runs_used_up = static_cast<int>(result.iterations.size()) == plan.max_iterations &&
+                            consecutive_failures == 0 && !good.empty();
+  if (!result.converged && plan.verify_unconverged && result.out_of_reach.empty() && runs_used_up) {
+    result.verified_unconverged = true;
+    scales = good.back().scales;
+    result.stop_reason +=
+        " on the calibration specimen; the point of its last run verified on "
+        "the verification specimens";
+  }
+  if (!result.converged && !result.verified_unconverged) return result;
 
   // Verification, and a correction on the verification mean when it misses. Two verifications
   // on the same specimens make a secant of their own (free of the calibration specimen's bias).

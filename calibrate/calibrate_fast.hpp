@@ -59,6 +59,14 @@ struct ScaledPlan {
   double tolerance = 0.02;  // per target on the calibration specimen
   int max_iterations = 8;
   int max_refinements = 1;
+  // When the iterations are used up without meeting the tolerance on the calibration specimen,
+  // verify the point of the last run anyway (the tables strategy: its start is the tables'
+  // estimate of the mean over specimens, and one specimen scatters by more than the tolerance).
+  bool verify_unconverged = false;
+  // Update the sensitivities by Broyden's rule along the steps taken (the fast strategy). The
+  // tables strategy keeps the tables' own: measured over several specimens per cell, while a
+  // secant between two runs of one specimen is that specimen's (a jump of its failure mode).
+  bool learn = true;
 };
 
 // The fast strategy's plan (the priors of the header comment).

@@ -65,8 +65,11 @@ std::string calibration_report_markdown(const CalibrationInput& input, const Cal
      << "Calibration file: `" << input.file.string() << "`, strategy **"
      << strategy_name(r.strategy) << "**.\n\n";
   if (r.success()) {
-    md << "**Result: calibrated.** Every target met on the calibration specimen and, on average, "
-          "on the verification specimens.\n\n";
+    md << (r.verified_unconverged
+               ? "**Result: calibrated.** Every target met, on average, on the verification "
+                 "specimens (not on the calibration specimen: see the convergence table).\n\n"
+               : "**Result: calibrated.** Every target met on the calibration specimen and, on "
+                 "average, on the verification specimens.\n\n");
   } else {
     md << "**Result: NOT calibrated.** " << r.stop_reason << ".";
     if (!r.out_of_reach.empty()) md << " At least one target is out of reach (below).";
@@ -223,6 +226,7 @@ nlohmann::json calibration_report_json(const CalibrationInput& input, const Cali
   j["strategy"] = strategy_name(r.strategy);
   j["success"] = r.success();
   j["converged"] = r.converged;
+  j["verified_unconverged"] = r.verified_unconverged;
   j["stop_reason"] = r.stop_reason;
   if (!r.lookup.empty()) j["lookup"] = r.lookup;
   j["simulations"] = r.simulation_count;

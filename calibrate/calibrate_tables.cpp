@@ -390,6 +390,8 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
   plan.tolerance = input.tables.tolerance;
   plan.max_iterations = input.tables.max_iterations;
   plan.max_refinements = input.tables.max_refinements;
+  plan.verify_unconverged = true;
+  plan.learn = false;
   std::ostringstream md;
 
   const InputTable mortar =
