@@ -4,10 +4,12 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "calibrate/calibrate_input.hpp"
+#include "calibrate/calibrate_simulator.hpp"
 #include "core/input_error.hpp"
 
 namespace cdem::test {
@@ -36,5 +38,23 @@ inline void expect_input_error(const std::filesystem::path& file, const std::str
     EXPECT_NE(std::string(e.what()).find("cal.toml"), std::string::npos) << e.what();
   }
 }
+
+// A stand-in for the DEM that answers point by point, counting the points it was asked.
+class PointModel : public calib::Simulator {
+ public:
+  int points = 0;
+  std::vector<calib::SimulationOutcome> run(
+      const std::string&, const std::vector<calib::SimulationPoint>& batch) override {
+    std::vector<calib::SimulationOutcome> out;
+    for (const auto& p : batch) {
+      ++points;
+      out.push_back(respond(p));
+    }
+    return out;
+  }
+
+ protected:
+  virtual calib::SimulationOutcome respond(const calib::SimulationPoint& p) = 0;
+};
 
 }  // namespace cdem::test

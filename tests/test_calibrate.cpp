@@ -23,6 +23,7 @@ namespace {
 using namespace cdem::calib;
 
 using cdem::test::expect_input_error;
+using cdem::test::PointModel;
 using cdem::test::replace;
 using cdem::test::write;
 
@@ -88,24 +89,6 @@ std::map<std::string, double> values_by_key(const CalibrationInput& input,
     v[input.parameters[i].key] = p.values[static_cast<Eigen::Index>(i)];
   return v;
 }
-
-// A stand-in for the DEM that answers point by point, counting the points it was asked.
-class PointModel : public Simulator {
- public:
-  int points = 0;
-  std::vector<SimulationOutcome> run(const std::string&,
-                                     const std::vector<SimulationPoint>& batch) override {
-    std::vector<SimulationOutcome> out;
-    for (const auto& p : batch) {
-      ++points;
-      out.push_back(respond(p));
-    }
-    return out;
-  }
-
- protected:
-  virtual SimulationOutcome respond(const SimulationPoint& p) = 0;
-};
 
 // The analytic model: power laws with weak couplings between the groups and a per-specimen
 // scatter, shaped like the measured C30 behaviour (E about 1.65 x mortar E*, sigma_u about

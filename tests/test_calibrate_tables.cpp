@@ -239,7 +239,7 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
 // The DEM replaced by the relations the tables hold, off by known factors: E = ke K_E(rho) E*,
 // sigma_t = kb sigma_cn K_B(rho, E* / sigma_cn) / (1 + rho), with K_E and K_B the test tables'
 // (ratio 2 for the rectangle, 3 for the disc), and a scatter between specimens.
-class TableModel : public Simulator {
+class TableModel : public cdem::test::PointModel {
  public:
   TableModel(const CalibrationInput& input, double ke, double kb)
       : input_(input),
@@ -251,29 +251,24 @@ class TableModel : public Simulator {
   // When > 0, the calibration specimen's sigma_t jumps at this sigma_cn (MPa): 1.3 x the
   // tables' above, 0.7 x below (as one D 30 mm disc does between the regimes of E* / sigma_cn).
   double jump_MPa = 0;
-  int points = 0;
-  std::vector<SimulationOutcome> run(const std::string&,
-                                     const std::vector<SimulationPoint>& batch) override {
-    std::vector<SimulationOutcome> out;
-    for (const auto& p : batch) {
-      ++points;
-      const double emod = p.values[0], sigma = p.values[1];
-      const double x = std::clamp(emod * 1000 / sigma, 300.0, 3000.0);
-      SimulationOutcome o;
-      o.ok = true;
-      o.simulations = 2;
-      // The calibration specimen is the tables' own; the others scatter about it by 2 %.
-      const bool first = p.specimen_seed == input_.calibration_seed;
-      const double jump = jump_MPa > 0 ? (sigma >= jump_MPa ? 1.3 : 0.7) : 1;
-      const double bias = first ? jump : other_specimens;
-      const double scatter =
-          first ? 1 : 1 + 0.02 * std::sin(3.0 * static_cast<double>(p.specimen_seed));
-      o.responses[static_cast<int>(CalibrationTarget::E)] = ke_ * 0.5 * emod * scatter;
-      o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
-          kb_ * bias * scatter * sigma * cell_.at(x) / 4;
-      out.push_back(o);
-    }
-    return out;
+
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    const double emod = p.values[0], sigma = p.values[1];
+    const double x = std::clamp(emod * 1000 / sigma, 300.0, 3000.0);
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 2;
+    // The calibration specimen is the tables' own; the others scatter about it by 2 %.
+    const bool first = p.specimen_seed == input_.calibration_seed;
+    const double jump = jump_MPa > 0 ? (sigma >= jump_MPa ? 1.3 : 0.7) : 1;
+    const double bias = first ? jump : other_specimens;
+    const double scatter =
+        first ? 1 : 1 + 0.02 * std::sin(3.0 * static_cast<double>(p.specimen_seed));
+    o.responses[static_cast<int>(CalibrationTarget::E)] = ke_ * 0.5 * emod * scatter;
+    o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
+        kb_ * bias * scatter * sigma * cell_.at(x) / 4;
+    return o;
   }
 
  private:
