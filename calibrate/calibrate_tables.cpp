@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -29,6 +30,13 @@ constexpr double kMinStrengthExponent = 0.5;
 constexpr double kMaxStrengthExponent = 2.0;
 // Bisection steps on ln(E* / sigma_cn) within one segment of the table: 2^-100 of a segment.
 constexpr int kBisections = 100;
+
+// Four significant digits, for the report's lookup lines.
+std::string four(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
 
 bool same(double a, double b) {
   return std::abs(a - b) <= kSameCondition * std::max(std::abs(a), std::abs(b));
@@ -410,10 +418,9 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
     const CellCoefficient k = interpolate_cell(ke, packing, file, "specimen.generator");
     emod_GPa = input.target_value(CalibrationTarget::E) / k.at(0);
     plan.start_scales[ge] = start_scale(input, plan.groups[ge], "emod", emod_GPa, "E* = E / K_E");
-    md << "- E: uniaxial packing R_max/R_min " << shortest_number(packing.r_ratio) << ", R_min "
-       << shortest_number(packing.r_min_mm) << " mm; K_E = " << shortest_number(k.at(0)) << " from "
-       << k.cells << " of `" << ke.file.string()
-       << "`; E* = E / K_E = " << shortest_number(emod_GPa) << " GPa\n";
+    md << "- E: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
+       << four(packing.r_min_mm) << " mm; K_E = " << four(k.at(0)) << " from " << k.cells << " of `"
+       << ke.file.string() << "`; E* = E / K_E = " << four(emod_GPa) << " GPa\n";
     if (!k.note.empty()) md << "  - " << k.note << "\n";
   }
   const std::size_t gt = group_of(plan, CalibrationTarget::SigmaT);
@@ -448,16 +455,15 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
     const auto it = static_cast<Eigen::Index>(gt);
     plan.sensitivities(it, it) = exponent;
     if (ge < plan.groups.size()) plan.sensitivities(it, static_cast<Eigen::Index>(ge)) = b.slope;
-    md << "- sigma_t: Brazilian packing R_max/R_min " << shortest_number(packing.r_ratio)
-       << ", R_min " << shortest_number(packing.r_min_mm) << " mm, D "
-       << shortest_number(packing.diameter_mm) << " mm; K_B from " << k.cells << " of `"
-       << kb.file.string() << "`; at E* = " << shortest_number(emod_GPa)
-       << " GPa the target needs E* / sigma_cn = " << shortest_number(b.emod_per_strength)
-       << ", K_B = " << shortest_number(b.K_B) << ", sigma_cn = " << shortest_number(b.sigma_cn_MPa)
-       << " MPa (tau_cs = " << shortest_number(kb.shear_to_normal) << " sigma_cn)\n"
-       << "  - d ln K_B / d ln(E* / sigma_cn) = " << shortest_number(b.slope)
-       << " there: the correction uses d ln sigma_t / d ln sigma_cn = " << shortest_number(exponent)
-       << (ge < plan.groups.size() ? " and d ln sigma_t / d ln E* = " + shortest_number(b.slope)
+    md << "- sigma_t: Brazilian packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
+       << four(packing.r_min_mm) << " mm, D " << four(packing.diameter_mm) << " mm; K_B from "
+       << k.cells << " of `" << kb.file.string() << "`; at E* = " << four(emod_GPa)
+       << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength)
+       << ", K_B = " << four(b.K_B) << ", sigma_cn = " << four(b.sigma_cn_MPa)
+       << " MPa (tau_cs = " << four(kb.shear_to_normal) << " sigma_cn)\n"
+       << "  - d ln K_B / d ln(E* / sigma_cn) = " << four(b.slope)
+       << " there: the correction uses d ln sigma_t / d ln sigma_cn = " << four(exponent)
+       << (ge < plan.groups.size() ? " and d ln sigma_t / d ln E* = " + four(b.slope)
                                    : std::string())
        << "\n";
     if (!k.note.empty()) md << "  - " << k.note << "\n";
