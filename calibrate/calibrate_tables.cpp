@@ -270,13 +270,12 @@ BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, doubl
     lo = std::min(lo, strength(level));
     hi = std::max(hi, strength(level));
   }
-  throw InputError(
-      calibration_file, "targets.sigma_t",
-      "sigma_t = " + shortest_number(sigma_t_MPa) +
-          " MPa is outside what the K_B table reaches at E* = " + shortest_number(emod_GPa) +
-          " GPa on this packing: " + shortest_number(lo) + " to " + shortest_number(hi) +
-          " MPa (E* / sigma_cn from " + shortest_number(x.front()) + " to " +
-          shortest_number(x.back()) + "); no extrapolation: change the target, E*, or the table");
+  throw InputError(calibration_file, "targets.sigma_t",
+                   "sigma_t = " + four(sigma_t_MPa) +
+                       " MPa is outside what the K_B table reaches at E* = " + four(emod_GPa) +
+                       " GPa on this packing: " + four(lo) + " to " + four(hi) +
+                       " MPa (E* / sigma_cn from " + four(x.front()) + " to " + four(x.back()) +
+                       "); no extrapolation: change the target, E*, or the table");
 }
 
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
