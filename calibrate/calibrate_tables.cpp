@@ -240,7 +240,7 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
   for (const auto& c : corners)
     out.cells += (out.cells.empty() ? "" : ", ") + std::string("R_max/R_min ") +
                  shortest_number(c.ratio) + " at R_min " + shortest_number(c.r_min) +
-                 " mm (weight " + shortest_number(c.weight) + ")";
+                 " mm (weight " + four(c.weight) + ")";
   return out;
 }
 
