@@ -410,6 +410,10 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
       break;
     }
   }
+  if (!result.verifications.empty() && !result.verifications.back().passed)
+    result.stop_reason += "; the verification mean missed the tolerance after " +
+                          std::to_string(result.verifications.size() - 1) +
+                          " correction(s) on it";
   return result;
 }
 
