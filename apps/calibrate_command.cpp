@@ -22,24 +22,23 @@ Action add_calibrate_command(CLI::App& app) {
   auto* c = app.add_subcommand(
       "calibrate",
       "Find the material parameters that give target macro-properties (sigma_u, E, nu, "
-      "sigma_t, G_F): fast or paper strategy, runs as campaigns, verified on independent "
+      "sigma_t, G_F): fast, paper or tables strategy, runs as campaigns, verified on independent "
       "specimens");
   c->add_option("file", o->calibrate.file, "Calibration file (TOML); see docs/calibration.md")
       ->required()
       ->check(CLI::ExistingFile);
   auto* output =
       c->add_option("-o,--output", o->output, "Output directory (overrides the file's output_dir)");
-  auto* strategy = c->add_option("--strategy", o->strategy, "fast or paper (overrides the file's)")
-                       ->check(CLI::IsMember({"fast", "paper"}));
+  auto* strategy =
+      c->add_option("--strategy", o->strategy, "fast, paper or tables (overrides the file's)")
+          ->check(CLI::IsMember({"fast", "paper", "tables"}));
   c->add_option("-j,--jobs", o->calibrate.jobs, "Runs at once (default: one per core)")
       ->check(CLI::PositiveNumber);
   c->add_flag("-q,--quiet", o->quiet, "No campaign progress lines on stderr");
   return [o, c, output, strategy] {
     if (!c->parsed()) return;
     if (output->count()) o->calibrate.output_dir = o->output;
-    if (strategy->count())
-      o->calibrate.strategy = o->strategy == "paper" ? calib::CalibrationStrategy::Paper
-                                                     : calib::CalibrationStrategy::Fast;
+    if (strategy->count()) o->calibrate.strategy = calib::strategy_from_name(o->strategy);
     o->calibrate.verbose = !o->quiet;
     o->calibrate.check_generator = check_generator_text;
     const auto out = calib::run_calibration(o->calibrate);

@@ -9,14 +9,22 @@
 #include "calibrate/calibrate_paper.hpp"
 #include "calibrate/calibrate_plots.hpp"
 #include "calibrate/calibrate_report.hpp"
+#include "calibrate/calibrate_tables.hpp"
 #include "io/atomic_output.hpp"
 #include "io/output_paths.hpp"
 
 namespace cdem::calib {
 
 CalibrationResult calibrate(const CalibrationInput& input, Simulator& simulator) {
-  return input.strategy == CalibrationStrategy::Fast ? calibrate_fast(input, simulator)
-                                                     : calibrate_paper(input, simulator);
+  switch (input.strategy) {
+    case CalibrationStrategy::Paper:
+      return calibrate_paper(input, simulator);
+    case CalibrationStrategy::Tables:
+      return calibrate_tables(input, simulator);
+    case CalibrationStrategy::Fast:
+      break;
+  }
+  return calibrate_fast(input, simulator);
 }
 
 CalibrateOutcome write_calibration(const CalibrationInput& input, CalibrationResult result,

@@ -202,13 +202,36 @@ Eigen::VectorXd fast_values(const CalibrationInput& input, const std::vector<Fas
   return v;
 }
 
+ScaledPlan fast_plan(const CalibrationInput& input) {
+  ScaledPlan plan;
+  plan.groups = fast_groups(input);
+  plan.start_scales = fast_start_scales(input, plan.groups);
+  const auto n = static_cast<Eigen::Index>(plan.groups.size());
+  plan.sensitivities = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index g = 0; g < n; ++g) plan.sensitivities(g, g) = plan.groups[g].prior_exponent;
+  for (Eigen::Index g = 0; g < n; ++g)
+    for (Eigen::Index h = 0; h < n; ++h)
+      if (plan.groups[g].target == CalibrationTarget::GF &&
+          plan.groups[h].target == CalibrationTarget::E)
+        plan.sensitivities(g, h) = kFractureEnergyModulusExponent;
+  plan.tolerance = input.fast.tolerance;
+  plan.max_iterations = input.fast.max_iterations;
+  plan.max_refinements = input.fast.max_refinements;
+  return plan;
+}
+
 CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simulator) {
+  return calibrate_scaled(input, simulator, fast_plan(input));
+}
+
+CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& simulator,
+                                   const ScaledPlan& plan) {
   CalibrationResult result;
-  result.strategy = CalibrationStrategy::Fast;
-  const auto groups = fast_groups(input);
+  result.strategy = plan.strategy;
+  const auto& groups = plan.groups;
   for (const auto& g : groups) result.group_names.push_back(describe(input, g));
   const std::size_t n = groups.size();
-  std::vector<double> scales = fast_start_scales(input, groups);
+  std::vector<double> scales = plan.start_scales;
   std::vector<bool> reachable(n, true);
 
   struct Good {
@@ -220,22 +243,18 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
   // with its own group only) and Broyden's update along every step long enough to measure: a step
   // that moves several groups at once is attributed to all of them, and the couplings the priors
   // leave out (kn/ks moves E as well as nu) are learnt where a step shows them.
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
-  for (std::size_t g = 0; g < n; ++g) J(g, g) = groups[g].prior_exponent;
-  for (std::size_t g = 0; g < n; ++g)
-    for (std::size_t h = 0; h < n; ++h)
-      if (groups[g].target == CalibrationTarget::GF && groups[h].target == CalibrationTarget::E)
-        J(g, h) = kFractureEnergyModulusExponent;
+  Eigen::MatrixXd J = plan.sensitivities;
   const auto learn = [&](const Good& from, const Good& to) {
     Eigen::VectorXd dx(n), dy(n);
     for (std::size_t g = 0; g < n; ++g) {
       dx[g] = std::log(to.scales[g] / from.scales[g]);
       dy[g] = std::log(to.responses[g] / from.responses[g]);
     }
-    if (!dy.allFinite() || dx.norm() < kMinSecantStep) return;
+    if (!plan.learn || !dy.allFinite() || dx.norm() < kMinSecantStep) return;
     J += (dy - J * dx) * dx.transpose() / dx.squaredNorm();
     for (std::size_t g = 0; g < n; ++g) {  // the safeguard of the diagonal secants, kept
-      const double prior = groups[g].prior_exponent;
+      const double prior =
+          plan.sensitivities(static_cast<Eigen::Index>(g), static_cast<Eigen::Index>(g));
       J(g, g) = J(g, g) > 0 ? std::clamp(J(g, g), prior / kExponentSpread, prior * kExponentSpread)
                             : prior;
     }
@@ -271,7 +290,7 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
       const double next = std::clamp(wanted, groups[g].scale_lower, groups[g].scale_upper);
       const bool clamped = next != wanted;
       if (clamped && std::abs(std::log(next / scales[g])) < 1e-12 &&
-          std::abs(y[g] / t - 1) > input.fast.tolerance) {
+          std::abs(y[g] / t - 1) > plan.tolerance) {
         reachable[g] = false;
         const bool upper = wanted > next;
         result.out_of_reach.push_back(
@@ -286,9 +305,10 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
   };
 
   int consecutive_failures = 0;
-  for (int it = 1; it <= input.fast.max_iterations; ++it) {
-    char stage[32];
-    std::snprintf(stage, sizeof stage, "fast_%02d", it);
+  for (int it = 1; it <= plan.max_iterations; ++it) {
+    char number[16];
+    std::snprintf(number, sizeof number, "_%02d", it);
+    const std::string stage = plan.stage_prefix + number;
     const auto outcomes =
         run_batch(simulator, input, result, stage, {"iteration " + std::to_string(it)},
                   {{fast_values(input, groups, scales), input.calibration_seed}});
@@ -320,7 +340,7 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
       y[g] = o.response(groups[g].target);
       const double t = input.target_value(groups[g].target);
       row.errors.push_back(y[g] / t - 1);
-      if (reachable[g] && !(std::abs(y[g] / t - 1) <= input.fast.tolerance)) all_met = false;
+      if (reachable[g] && !(std::abs(y[g] / t - 1) <= plan.tolerance)) all_met = false;
     }
     result.iterations.push_back(row);
     good.push_back({scales, y});
@@ -329,7 +349,7 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
     if (all_met) {
       result.converged = result.out_of_reach.empty();
       result.stop_reason = "every reachable target within " +
-                           shortest_number(input.fast.tolerance * 100) + " % at iteration " +
+                           shortest_number(plan.tolerance * 100) + " % at iteration " +
                            std::to_string(it);
       break;
     }
@@ -338,7 +358,7 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
       result.stop_reason = "every target is out of reach within the bounds";
       break;
     }
-    if (it == input.fast.max_iterations)
+    if (it == plan.max_iterations)
       result.stop_reason = "not converged within " + std::to_string(it) + " iterations";
   }
   // The closest values are those of the point reported (the last that ran): the other groups
@@ -347,12 +367,23 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
     for (std::size_t g = 0; g < n && !good.empty(); ++g)
       if (groups[g].target == o.target) o.closest = good.back().responses[g];
   if (!result.out_of_reach.empty()) result.converged = false;
-  if (!result.converged) return result;
+  // A plan that verifies without convergence (the tables strategy) verifies the point of its last
+  // run when its runs on the calibration specimen are used up with every one of them ok.
+  const bool runs_used_up = static_cast<int>(result.iterations.size()) == plan.max_iterations &&
+                            consecutive_failures == 0 && !good.empty();
+  if (!result.converged && plan.verify_unconverged && result.out_of_reach.empty() && runs_used_up) {
+    result.verified_unconverged = true;
+    scales = good.back().scales;
+    result.stop_reason +=
+        " on the calibration specimen; the point of its last run verified on "
+        "the verification specimens";
+  }
+  if (!result.converged && !result.verified_unconverged) return result;
 
   // Verification, and a correction on the verification mean when it misses. Two verifications
   // on the same specimens make a secant of their own (free of the calibration specimen's bias).
   std::optional<Good> verified;
-  for (int round = 0; round <= input.fast.max_refinements; ++round) {
+  for (int round = 0; round <= plan.max_refinements; ++round) {
     const auto values = fast_values(input, groups, scales);
     auto v = verify(simulator, input, result, values, "verify_" + std::to_string(round + 1));
     if (!v) {
@@ -362,7 +393,7 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
     result.calibrated = values;
     result.verifications.push_back(*v);
     if (v->passed) break;
-    if (round == input.fast.max_refinements) break;
+    if (round == plan.max_refinements) break;
     std::vector<double> mean(n, std::nan(""));
     bool usable = true;
     for (std::size_t g = 0; g < n; ++g) {
@@ -379,6 +410,10 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
       break;
     }
   }
+  if (!result.verifications.empty() && !result.verifications.back().passed)
+    result.stop_reason += "; the verification mean missed the tolerance after " +
+                          std::to_string(result.verifications.size() - 1) +
+                          " correction(s) on it";
   return result;
 }
 

@@ -45,6 +45,38 @@ std::vector<double> fast_start_scales(const CalibrationInput& input,
 Eigen::VectorXd fast_values(const CalibrationInput& input, const std::vector<FastGroup>& groups,
                             const std::vector<double>& scales);
 
+// How the scaled iteration runs. The fast strategy: its groups from the semi-analytical start,
+// the priors' sensitivities, fast.tolerance and its iterations; the tables strategy
+// (calibrate_tables.hpp): the start and sensitivities of the lookup tables, at most two runs.
+struct ScaledPlan {
+  CalibrationStrategy strategy = CalibrationStrategy::Fast;
+  std::string stage_prefix = "fast";  // stages "fast_01", ...
+  std::vector<FastGroup> groups;
+  std::vector<double> start_scales;  // per group
+  // d ln(response of group i's target) / d ln(scale of group j) before any step is measured;
+  // Broyden's update moves it, the clamp of its diagonal is [J(g, g) / 2, 2 J(g, g)].
+  Eigen::MatrixXd sensitivities;
+  double tolerance = 0.02;  // per target on the calibration specimen
+  int max_iterations = 8;
+  int max_refinements = 1;
+  // When the iterations are used up without meeting the tolerance on the calibration specimen,
+  // verify the point of the last run anyway (the tables strategy: its start is the tables'
+  // estimate of the mean over specimens, and one specimen scatters by more than the tolerance).
+  bool verify_unconverged = false;
+  // Update the sensitivities by Broyden's rule along the steps taken (the fast strategy). The
+  // tables strategy keeps the tables' own: measured over several specimens per cell, while a
+  // secant between two runs of one specimen is that specimen's (a jump of its failure mode).
+  bool learn = true;
+};
+
+// The fast strategy's plan (the priors of the header comment).
+ScaledPlan fast_plan(const CalibrationInput& input);
+
+// Iterates the plan's scales on the calibration specimen, verifies, and corrects on the
+// verification mean.
+CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& simulator,
+                                   const ScaledPlan& plan);
+
 CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simulator);
 
 }  // namespace cdem::calib

@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "calibrate/calibrate_fast.hpp"
+#include "calibrate/calibrate_tables.hpp"
 #include "campaign/shortest_number.hpp"
 #include "core/input_error.hpp"
 #include "core/units.hpp"
@@ -104,6 +105,24 @@ ParameterRole parameter_role(const std::string& dotted_key) {
       key_without_unit(std::string_view(dotted_key).substr(dotted_key.rfind('.') + 1));
   const dem::MaterialKey* key = dem::find_material_key(name);
   return key ? key->role : ParameterRole::Other;
+}
+
+CalibrationStrategy strategy_from_name(const std::string& name) {
+  return name == "paper"    ? CalibrationStrategy::Paper
+         : name == "tables" ? CalibrationStrategy::Tables
+                            : CalibrationStrategy::Fast;
+}
+
+const char* strategy_name(CalibrationStrategy strategy) {
+  switch (strategy) {
+    case CalibrationStrategy::Fast:
+      return "fast";
+    case CalibrationStrategy::Paper:
+      return "paper";
+    case CalibrationStrategy::Tables:
+      return "tables";
+  }
+  return "?";
 }
 
 const CalibrationTest* CalibrationInput::test(TestKind kind) const {
@@ -305,12 +324,10 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
   const InputTable root = InputTable::parse_file(file);
   root.reject_unknown_keys({"strategy", "output_dir", "verification_seeds",
                             "verification_tolerance", "targets", "parameters", "specimen", "tests",
-                            "budget", "fast", "paper"});
+                            "budget", "fast", "paper", "tables"});
   CalibrationInput in;
   in.file = file;
-  in.strategy = root.string_or("strategy", "fast", {"fast", "paper"}) == "paper"
-                    ? CalibrationStrategy::Paper
-                    : CalibrationStrategy::Fast;
+  in.strategy = strategy_from_name(root.string_or("strategy", "fast", {"fast", "paper", "tables"}));
   in.output_dir = root.string_or("output_dir", file.stem().string());
   if (in.output_dir.empty()) root.fail("output_dir", "must not be empty");
   read_targets(root, in);
@@ -438,6 +455,7 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
     in.paper.optimizer_seed =
         static_cast<unsigned>(paper->integer_or("optimizer_seed", 20240601, 0, 4294967295LL));
   }
+  if (const auto tables = root.optional_table("tables")) read_tables_settings(*tables, file, in);
   if (strategy) in.strategy = *strategy;
   const int k = static_cast<int>(in.parameters.size());
   if (in.strategy == CalibrationStrategy::Paper) {
@@ -446,6 +464,8 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
       root.fail("parameters", "the paper strategy screens 2 to " + std::to_string(screen_limit) +
                                   " parameters with " + in.paper.screen + "; " + std::to_string(k) +
                                   " given");
+  } else if (in.strategy == CalibrationStrategy::Tables) {
+    check_tables_input(in);
   } else {
     check_fast_parameters(in);
   }

@@ -66,7 +66,10 @@ struct CalibrationParameter {
   ParameterRole role = ParameterRole::Other;
 };
 
-enum class CalibrationStrategy { Fast, Paper };
+enum class CalibrationStrategy { Fast, Paper, Tables };
+// "fast", "paper", "tables" and back (any other name reads as Fast: the input checks the names).
+const char* strategy_name(CalibrationStrategy strategy);
+CalibrationStrategy strategy_from_name(const std::string& name);
 
 struct FastSettings {
   double tolerance = 0.02;  // relative error per target at which the iteration stops
@@ -85,6 +88,16 @@ struct PaperSettings {
   // one verification): the surfaces were fitted on one specimen, the verification mean
   // measures how far the others sit from it.
   int max_refinements = 1;
+};
+
+// The tables strategy (calibrate/calibrate_tables.hpp): the lookup tables it reads, as named in
+// [tables] (resolved against the calibration file), and how far it corrects.
+struct TablesSettings {
+  std::filesystem::path kb_file;  // Brazilian K_B against R_max/R_min, R_min, E*/sigma_cn
+  std::filesystem::path ke_file;  // K_E = E / E* against R_max/R_min, R_min
+  double tolerance = 0.05;        // relative error per target on the calibration specimen
+  int max_iterations = 2;         // runs on the calibration specimen: the lookup and a correction
+  int max_refinements = 1;        // corrections on the verification mean
 };
 
 // One lab test of a calibration: the base test file named in [tests] and the specimens it runs on.
@@ -128,6 +141,7 @@ struct CalibrationInput {
 
   FastSettings fast;
   PaperSettings paper;
+  TablesSettings tables;
 
   const CalibrationTest* test(TestKind kind) const;  // nullptr when no target needs it
   bool needs(TestKind kind) const { return test(kind) != nullptr; }

@@ -13,7 +13,8 @@ std::filesystem::path convergence_plot(const CalibrationInput& input,
                                        const CalibrationResult& result,
                                        const std::filesystem::path& dir) {
   XyChart chart;
-  chart.title = "fast strategy: convergence on the calibration specimen";
+  chart.title = std::string(strategy_name(result.strategy)) +
+                " strategy: convergence on the calibration specimen";
   chart.x_label = "iteration";
   chart.y_label = "relative error (%)";
   chart.x_integer = true;
@@ -27,7 +28,8 @@ std::filesystem::path convergence_plot(const CalibrationInput& input,
     }
     chart.series.push_back(std::move(s));
   }
-  const double tol = 100 * input.fast.tolerance;
+  const double tol = 100 * (result.strategy == CalibrationStrategy::Tables ? input.tables.tolerance
+                                                                           : input.fast.tolerance);
   chart.lines = {{tol, "+tolerance"}, {-tol, "-tolerance"}, {0, ""}};
   const auto png = dir / "convergence.png";
   draw_xy_chart_png(chart, png);

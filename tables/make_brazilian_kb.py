@@ -28,6 +28,10 @@ SEEDS = [1, 2]
 # The CI subset: two packings, one R_min, two strengths, one seed.
 REDUCED = dict(ratios=[1.5, 4], r_min=[0.25], sigma=[5, 10], seeds=[1])
 
+# The keys of the design rows: the packing (the generator reads R_mean, not R_min) and the strengths.
+STRENGTH_KEYS = ["specimen.mortar.r_ratio", "specimen.mortar.r_mean_mm",
+                 "materials.mortar.cb_tensile_strength_MPa",
+                 "materials.mortar.cb_shear_strength_MPa"]
 GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
           "wall_time_s"]
 
@@ -38,16 +42,14 @@ def fmt(x):
     return s[:-2] if s.endswith(".0") else s
 
 
-def campaign(base, output_dir, ratios, r_min, sigma, seeds, header):
-    rows = []
-    for ratio, rmin, s in itertools.product(ratios, r_min, sigma):
-        r_mean = rmin * (1 + ratio) / 2
-        rows.append([ratio, round(r_mean, 12), rmin, s, s * SHEAR_TO_NORMAL])
+def write_campaign(base, output_dir, seeds, gather, keys, rows, header):
+    """An `explicit` campaign of `cdem run` jobs: one design row per entry of rows, the values
+    of keys (dotted keys of the base input) in that order."""
     out = [header,
            f'base = "{base}"',
            f'output_dir = "{output_dir}"',
            f"seeds = {seeds}",
-           "gather = [" + ", ".join(f'"{g}"' for g in GATHER) + "]",
+           "gather = [" + ", ".join(f'"{g}"' for g in gather) + "]",
            "",
            "[job]",
            'command = "run"',
@@ -57,16 +59,21 @@ def campaign(base, output_dir, ratios, r_min, sigma, seeds, header):
            "",
            "[design]",
            'type = "explicit"',
-           "# r_ratio, r_mean_mm, cb_tensile_strength_MPa, cb_shear_strength_MPa",
+           "# " + ", ".join(k.split(".")[-1] for k in keys),
            "runs = ["]
-    for ratio, r_mean, _, s, tau in rows:
-        out.append(f"  [{fmt(ratio)}, {fmt(r_mean)}, {fmt(s)}, {fmt(tau)}],")
+    for row in rows:
+        out.append("  [" + ", ".join(fmt(v) for v in row) + "],")
     out += ["]", ""]
-    for key in ["specimen.mortar.r_ratio", "specimen.mortar.r_mean_mm",
-                "materials.mortar.cb_tensile_strength_MPa",
-                "materials.mortar.cb_shear_strength_MPa"]:
+    for key in keys:
         out += ["[[factors]]", f'key = "{key}"', ""]
     return "\n".join(out)
+
+
+def campaign(base, output_dir, ratios, r_min, sigma, seeds, header):
+    rows = []
+    for ratio, rmin, s in itertools.product(ratios, r_min, sigma):
+        rows.append([ratio, round(rmin * (1 + ratio) / 2, 12), s, s * SHEAR_TO_NORMAL])
+    return write_campaign(base, output_dir, seeds, GATHER, STRENGTH_KEYS, rows, header)
 
 
 def main():

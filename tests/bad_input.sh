@@ -310,6 +310,39 @@ sed -e 's/^G_F_N_per_m = .*/&\nsigma_t_MPa = 2.9/' \
 expect calibrate_gf_with_sigma_t_fast 2 "cal_gf_sigma_t.toml" "targets" "cal_out" -- \
   "$CDEM" calibrate cal_gf_sigma_t.toml -o cal_out -q
 
+# --- cdem calibrate strategy "tables" (issue 17): what the lookup tables do not hold --------------
+mkdir -p tables_case/samples tables_case/tables
+cp -r "$SRC/samples/sandstone" tables_case/samples/
+cp "$SRC/samples/sandstone_calibrate_r2.7.toml" tables_case/samples/cal.toml
+cp "$SRC/tables/brazilian_kb_x_table.csv" "$SRC/tables/uniaxial_ke_table.csv" tables_case/tables/
+tcal() { sed -e "$2" tables_case/samples/cal.toml > "tables_case/samples/$1.toml"; }
+tcal tables_target 's/^sigma_t_MPa = .*/sigma_t_MPa = 90/'
+expect calibrate_tables_target_outside 2 "tables_target.toml" "targets.sigma_t" "cal_out" -- \
+  "$CDEM" calibrate tables_case/samples/tables_target.toml -o cal_out -q
+sed -e 's/^r_ratio = .*/r_ratio = 6.0/' tables_case/samples/sandstone/disc_r2.7.toml \
+  > tables_case/samples/sandstone/disc_wide.toml
+tcal tables_packing 's/disc_r2.7.toml/disc_wide.toml/'
+expect calibrate_tables_packing_outside 2 "tables_packing.toml" "specimen.brazilian_generator" \
+  "cal_out" -- "$CDEM" calibrate tables_case/samples/tables_packing.toml -o cal_out -q
+tcal tables_missing 's#brazilian_kb_x_table.csv#nowhere.csv#'
+expect calibrate_tables_missing 2 "nowhere.csv" "tables.kb" "cal_out" -- \
+  "$CDEM" calibrate tables_case/samples/tables_missing.toml -o cal_out -q
+sed -e 's/^r_ratio,r_min_mm,emod_per_sigma_cn,K_B/r_ratio,r_min_mm,emod_per_sigma_cn,K/' \
+  tables_case/tables/brazilian_kb_x_table.csv > tables_case/tables/corrupt.csv
+tcal tables_corrupt 's#brazilian_kb_x_table.csv#corrupt.csv#'
+expect calibrate_tables_corrupt 2 "corrupt.csv" "tables.kb" "cal_out" -- \
+  "$CDEM" calibrate tables_case/samples/tables_corrupt.toml -o cal_out -q
+sed -e 's/^kratio = .*/kratio = 3.0/' tables_case/samples/sandstone/materials.toml \
+  > tables_case/samples/sandstone/materials_k3.toml
+sed -e 's/materials.toml/materials_k3.toml/' tables_case/samples/sandstone/ucs.toml \
+  > tables_case/samples/sandstone/ucs_k3.toml
+tcal tables_kratio 's#sandstone/ucs.toml#sandstone/ucs_k3.toml#'
+expect calibrate_tables_kratio 2 "tables_kratio.toml" "materials.mortar.kratio" "cal_out" -- \
+  "$CDEM" calibrate tables_case/samples/tables_kratio.toml -o cal_out -q
+tcal tables_nu 's/^E_GPa = 18/&\nnu = 0.2/'
+expect calibrate_tables_nu 2 "tables_nu.toml" "targets.nu" "cal_out" -- \
+  "$CDEM" calibrate tables_case/samples/tables_nu.toml -o cal_out -q
+
 echo "$passed passed, $failures failed"
 [ "$passed" -ge 40 ] || { echo "FAIL: fewer than 40 cases ran"; exit 1; }
 [ "$failures" -eq 0 ]

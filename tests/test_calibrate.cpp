@@ -12,6 +12,7 @@
 #include "calibrate/calibrate_paper.hpp"
 #include "calibrate/calibrate_plots.hpp"
 #include "calibrate/calibrate_report.hpp"
+#include "calibrate_test_util.hpp"
 #include "core/input_error.hpp"
 #include "io/input_table.hpp"
 #include "lab/material_table.hpp"
@@ -21,9 +22,10 @@ namespace {
 
 using namespace cdem::calib;
 
-void write(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
+using cdem::test::expect_input_error;
+using cdem::test::PointModel;
+using cdem::test::replace;
+using cdem::test::write;
 
 const std::string kParameters = R"(
 [[parameters]]
@@ -88,24 +90,6 @@ std::map<std::string, double> values_by_key(const CalibrationInput& input,
   return v;
 }
 
-// A stand-in for the DEM that answers point by point, counting the points it was asked.
-class PointModel : public Simulator {
- public:
-  int points = 0;
-  std::vector<SimulationOutcome> run(const std::string&,
-                                     const std::vector<SimulationPoint>& batch) override {
-    std::vector<SimulationOutcome> out;
-    for (const auto& p : batch) {
-      ++points;
-      out.push_back(respond(p));
-    }
-    return out;
-  }
-
- protected:
-  virtual SimulationOutcome respond(const SimulationPoint& p) = 0;
-};
-
 // The analytic model: power laws with weak couplings between the groups and a per-specimen
 // scatter, shaped like the measured C30 behaviour (E about 1.65 x mortar E*, sigma_u about
 // 1.17 x mortar sigma_b, nu 0.207 at kn/ks = 1.45).
@@ -160,24 +144,6 @@ class AnalyticModel : public PointModel {
  private:
   const CalibrationInput& input_;
 };
-
-void expect_input_error(const std::filesystem::path& file, const std::string& key,
-                        const std::string& words) {
-  try {
-    read_calibration_input(file);
-    ADD_FAILURE() << "no InputError for " << key;
-  } catch (const cdem::InputError& e) {
-    EXPECT_EQ(e.key(), key) << e.what();
-    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("cal.toml"), std::string::npos) << e.what();
-  }
-}
-
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
 
 TEST(CalibrateInput, ReadsTheSample) {
   const auto in =

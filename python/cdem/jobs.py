@@ -142,7 +142,7 @@ def calibrate(path, jobs=1, output=None, strategy=None, verbose=False):
         Runs at once.
     output : path, optional
         Output directory (overrides the file's ``output_dir``).
-    strategy : {"fast", "paper"}, optional
+    strategy : {"fast", "paper", "tables"}, optional
         Overrides the file's strategy.
     verbose : bool
         Pass the campaigns' progress lines to stderr.
@@ -167,8 +167,9 @@ def calibrate(path, jobs=1, output=None, strategy=None, verbose=False):
     if output is not None:
         args += ["-o", os.fspath(output)]
     if strategy is not None:
-        if strategy not in ("fast", "paper"):
-            raise InputError(f"strategy: {strategy!r}: must be \"fast\" or \"paper\"")
+        if strategy not in ("fast", "paper", "tables"):
+            raise InputError(f"strategy: {strategy!r}: must be \"fast\", \"paper\" or "
+                             "\"tables\"")
         args += ["--strategy", strategy]
     if not verbose:
         args.append("-q")

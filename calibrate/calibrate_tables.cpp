@@ -1,0 +1,486 @@
+#include "calibrate/calibrate_tables.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "campaign/shortest_number.hpp"
+#include "core/input_error.hpp"
+#include "core/units.hpp"
+
+namespace cdem::calib {
+
+namespace {
+
+// Two conditions of a table (or a table and the base materials) are the same when they agree to
+// this relative difference: they are written by hand in the inputs (2.5, 0.5, 2), not computed.
+constexpr double kSameCondition = 1e-6;
+// The Brazilian sensitivity d ln sigma_t / d ln sigma_cn = 1 - slope is held in [0.5, 2]: a
+// table segment steeper than that is one specimen's noise rather than the material's trend.
+constexpr double kMinStrengthExponent = 0.5;
+constexpr double kMaxStrengthExponent = 2.0;
+// Bisection steps on ln(E* / sigma_cn) within one segment of the table: 2^-100 of a segment.
+constexpr int kBisections = 100;
+
+// Four significant digits, for the report's lookup lines.
+std::string four(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
+
+bool same(double a, double b) {
+  return std::abs(a - b) <= kSameCondition * std::max(std::abs(a), std::abs(b));
+}
+
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream s(line);
+  std::string cell;
+  while (std::getline(s, cell, ',')) {
+    const auto b = cell.find_first_not_of(" \t\r");
+    const auto e = cell.find_last_not_of(" \t\r");
+    out.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+  }
+  return out;
+}
+
+// Where a coefficient's packing sits among the levels of one dimension: the two levels around
+// it and the weight of the upper one.
+struct Bracket {
+  double lo = 0, hi = 0, weight = 0;
+};
+
+Bracket bracket(const std::set<double>& levels, double x) {
+  const auto above = levels.lower_bound(x);
+  if (above == levels.end()) return {*levels.rbegin(), *levels.rbegin(), 0};
+  if (*above == x || above == levels.begin()) return {*above, *above, 0};
+  const double lo = *std::prev(above);
+  return {lo, *above, (x - lo) / (*above - lo)};
+}
+
+std::string describe_levels(const std::set<double>& levels) {
+  return "[" + shortest_number(*levels.begin()) + ", " + shortest_number(*levels.rbegin()) + "]";
+}
+
+// Value at `level` of a cell whose coefficients are known at `levels` (ascending), piecewise
+// linear in the logarithm of the level; the one value of a table without levels.
+double piecewise_log_linear(const std::vector<double>& levels, const std::vector<double>& values,
+                            double level) {
+  if (levels.size() == 1) return values.front();
+  const auto hi = std::upper_bound(levels.begin(), levels.end(), level);
+  const std::size_t i =
+      std::clamp<std::size_t>(static_cast<std::size_t>(hi - levels.begin()), 1, levels.size() - 1);
+  const double t = std::log(level / levels[i - 1]) / std::log(levels[i] / levels[i - 1]);
+  return values[i - 1] + t * (values[i] - values[i - 1]);
+}
+
+}  // namespace
+
+LookupTable read_lookup_table(const std::filesystem::path& path, const std::string& coefficient,
+                              bool by_strength, const std::string& calibration_file,
+                              const std::string& key) {
+  const auto fail = [&](const std::string& where, const std::string& why) {
+    throw InputError(calibration_file, key, path.string() + where + ": " + why);
+  };
+  std::ifstream in(path);
+  if (!in) fail("", "cannot read the lookup table (" + std::string(std::strerror(errno)) + ")");
+  LookupTable table;
+  table.file = path;
+  table.coefficient = coefficient;
+  table.by_strength = by_strength;
+  std::vector<std::string> need{"r_ratio", "r_min_mm", coefficient,
+                                "kratio",  "friction", "shear_to_normal"};
+  if (by_strength) {
+    need.push_back("emod_per_sigma_cn");
+    need.push_back("diameter_mm");
+  }
+  std::map<std::string, std::size_t> column;
+  std::string line;
+  int line_number = 0;
+  std::set<std::tuple<double, double, double>> seen;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos)
+      continue;
+    const auto cells = split_csv(line);
+    const std::string where = ", line " + std::to_string(line_number);
+    if (column.empty()) {
+      for (std::size_t i = 0; i < cells.size(); ++i) column[cells[i]] = i;
+      for (const auto& c : need)
+        if (!column.count(c))
+          fail(where, "not a " + coefficient + " table: no column '" + c +
+                          "' in the header (docs/lookup_tables.md lists the columns)");
+      continue;
+    }
+    std::map<std::string, double> v;
+    for (const auto& c : need) {
+      const std::size_t i = column[c];
+      const std::string text = i < cells.size() ? cells[i] : "";
+      char* end = nullptr;
+      const double x = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !std::isfinite(x) || !(x > 0))
+        fail(where, "column '" + c + "' is '" + text + "', not a positive number" +
+                        (c == coefficient ? " (a cell without a fit?)" : ""));
+      v[c] = x;
+    }
+    LookupRow row{v["r_ratio"], v["r_min_mm"], by_strength ? v["emod_per_sigma_cn"] : 0,
+                  v[coefficient]};
+    if (table.rows.empty()) {
+      table.kratio = v["kratio"];
+      table.friction = v["friction"];
+      table.shear_to_normal = v["shear_to_normal"];
+      if (by_strength) table.diameter_mm = v["diameter_mm"];
+    } else {
+      for (const auto& [c, first] : {std::pair<std::string, double>{"kratio", table.kratio},
+                                     {"friction", table.friction},
+                                     {"shear_to_normal", table.shear_to_normal}})
+        if (!same(v[c], first))
+          fail(where, "column '" + c + "' is " + shortest_number(v[c]) + ", the first row's " +
+                          shortest_number(first) + ": one table is made at one condition");
+      if (by_strength && !same(v["diameter_mm"], table.diameter_mm))
+        fail(where, "column 'diameter_mm' differs from the first row's: one table, one disc");
+    }
+    if (!seen.insert({row.r_ratio, row.r_min_mm, row.emod_per_strength}).second)
+      fail(where, "the cell R_max/R_min " + shortest_number(row.r_ratio) + ", R_min " +
+                      shortest_number(row.r_min_mm) + " mm" +
+                      (by_strength ? ", E*/sigma_cn " + shortest_number(row.emod_per_strength)
+                                   : std::string()) +
+                      " appears twice");
+    table.rows.push_back(row);
+  }
+  if (table.rows.empty()) fail("", "no rows: not a " + coefficient + " table");
+  return table;
+}
+
+double CellCoefficient::at(double emod_per_strength) const {
+  return piecewise_log_linear(levels, coefficients, emod_per_strength);
+}
+
+CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packing,
+                                 const std::string& calibration_file, const std::string& key) {
+  std::set<double> ratios, r_mins;
+  for (const auto& r : table.rows) {
+    ratios.insert(r.r_ratio);
+    r_mins.insert(r.r_min_mm);
+  }
+  if (packing.r_ratio < *ratios.begin() * (1 - kSameCondition) ||
+      packing.r_ratio > *ratios.rbegin() * (1 + kSameCondition))
+    throw InputError(calibration_file, key,
+                     "R_max / R_min = " + shortest_number(packing.r_ratio) +
+                         " of the specimen (its generator's mortar.r_ratio) is outside the " +
+                         table.coefficient + " table's cells " + describe_levels(ratios) + " (" +
+                         table.file.string() + "); no extrapolation");
+  const Bracket a = bracket(ratios, packing.r_ratio);
+  const Bracket b = bracket(r_mins, packing.r_min_mm);
+  CellCoefficient out;
+  if (packing.r_min_mm < *r_mins.begin() * (1 - kSameCondition) ||
+      packing.r_min_mm > *r_mins.rbegin() * (1 + kSameCondition))
+    out.note = "R_min = " + shortest_number(packing.r_min_mm) + " mm is outside the " +
+               table.coefficient + " table's levels " + describe_levels(r_mins) +
+               " mm: the nearest level, " + shortest_number(b.lo) +
+               " mm, is used (R_min barely matters; docs/lookup_tables.md)";
+  // The corners and their weights; a weight of zero needs no cell.
+  struct Corner {
+    double ratio, r_min, weight;
+    std::vector<double> levels, values;
+  };
+  std::vector<Corner> corners;
+  for (const auto& [ra, wa] : {std::pair{a.lo, 1 - a.weight}, std::pair{a.hi, a.weight}})
+    for (const auto& [rb, wb] : {std::pair{b.lo, 1 - b.weight}, std::pair{b.hi, b.weight}}) {
+      if (wa * wb == 0) continue;
+      Corner c{ra, rb, wa * wb, {}, {}};
+      std::vector<std::pair<double, double>> cell;
+      for (const auto& r : table.rows)
+        if (r.r_ratio == ra && r.r_min_mm == rb)
+          cell.emplace_back(r.emod_per_strength, r.coefficient);
+      if (cell.empty())
+        throw InputError(calibration_file, key,
+                         table.file.string() + " has no cell R_max/R_min " + shortest_number(ra) +
+                             ", R_min " + shortest_number(rb) + " mm, needed to interpolate at " +
+                             shortest_number(packing.r_ratio) + ", " +
+                             shortest_number(packing.r_min_mm) + " mm");
+      std::sort(cell.begin(), cell.end());
+      for (const auto& [x, k] : cell) {
+        c.levels.push_back(x);
+        c.values.push_back(k);
+      }
+      corners.push_back(std::move(c));
+    }
+  // The E* / sigma_cn range every corner covers, and every level inside it.
+  double lo = 0, hi = std::numeric_limits<double>::infinity();
+  for (const auto& c : corners) {
+    lo = std::max(lo, c.levels.front());
+    hi = std::min(hi, c.levels.back());
+  }
+  if (!(lo <= hi))
+    throw InputError(calibration_file, key,
+                     table.file.string() + ": the cells around R_max/R_min " +
+                         shortest_number(packing.r_ratio) +
+                         " share no E* / sigma_cn level; the table cannot interpolate there");
+  std::set<double> levels;
+  for (const auto& c : corners)
+    for (const double x : c.levels)
+      if (x >= lo && x <= hi) levels.insert(x);
+  for (const double x : levels) {
+    double k = 0;
+    for (const auto& c : corners) k += c.weight * piecewise_log_linear(c.levels, c.values, x);
+    out.levels.push_back(x);
+    out.coefficients.push_back(k);
+  }
+  for (const auto& c : corners)
+    out.cells += (out.cells.empty() ? "" : ", ") + std::string("R_max/R_min ") +
+                 shortest_number(c.ratio) + " at R_min " + shortest_number(c.r_min) +
+                 " mm (weight " + four(c.weight) + ")";
+  return out;
+}
+
+BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, double sigma_t_MPa,
+                                double emod_GPa, const std::string& calibration_file) {
+  // sigma_t(x) at E*: x = E* / sigma_cn, sigma_cn = E* / x.
+  const double emod_MPa = emod_GPa * 1e3;
+  const auto strength = [&](double x) { return emod_MPa / x * kb.at(x) / (1 + r_ratio); };
+  const auto& x = kb.levels;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double f0 = strength(x[i]) - sigma_t_MPa, f1 = strength(x[i + 1]) - sigma_t_MPa;
+    if (f0 * f1 > 0) continue;
+    double a = std::log(x[i]), b = std::log(x[i + 1]);
+    for (int k = 0; k < kBisections; ++k) {
+      const double m = 0.5 * (a + b);
+      ((strength(std::exp(m)) - sigma_t_MPa) * f0 > 0 ? a : b) = m;
+    }
+    BrazilianLookup out;
+    out.emod_per_strength = std::exp(0.5 * (a + b));
+    out.K_B = kb.at(out.emod_per_strength);
+    out.sigma_cn_MPa = emod_MPa / out.emod_per_strength;
+    out.slope = std::log(kb.coefficients[i + 1] / kb.coefficients[i]) / std::log(x[i + 1] / x[i]);
+    return out;
+  }
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (const double level : x) {
+    lo = std::min(lo, strength(level));
+    hi = std::max(hi, strength(level));
+  }
+  throw InputError(calibration_file, "targets.sigma_t",
+                   "sigma_t = " + four(sigma_t_MPa) +
+                       " MPa is outside what the K_B table reaches at E* = " + four(emod_GPa) +
+                       " GPa on this packing: " + four(lo) + " to " + four(hi) +
+                       " MPa (E* / sigma_cn from " + four(x.front()) + " to " + four(x.back()) +
+                       "); no extrapolation: change the target, E*, or the table");
+}
+
+void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
+                          CalibrationInput& input) {
+  t.reject_unknown_keys({"kb", "ke", "tolerance", "max_iterations", "max_refinements"});
+  const auto resolve = [&](const char* key) -> std::filesystem::path {
+    if (!t.has(key)) return {};
+    const std::filesystem::path p(t.string(key));
+    return p.is_absolute() ? p : file.parent_path() / p;
+  };
+  input.tables.kb_file = resolve("kb");
+  input.tables.ke_file = resolve("ke");
+  input.tables.tolerance = t.number_or("tolerance", 0.05, Range::open(0, 0.5));
+  input.tables.max_iterations = static_cast<int>(t.integer_or("max_iterations", 2, 1, 2));
+  input.tables.max_refinements = static_cast<int>(t.integer_or("max_refinements", 1, 0, 10));
+}
+
+namespace {
+
+// The packing of a test's generator, and the checks that the tables can speak for it.
+Packing read_packing(const CalibrationTest& test, const std::string& calibration_file,
+                     const std::string& key) {
+  const InputTable g =
+      InputTable::parse_string(test.generator, calibration_file + " (" + key + ")");
+  if (g.has("gradation"))
+    throw InputError(calibration_file, key,
+                     "the tables strategy is for mortar-only (rock) specimens, and this generator "
+                     "has a [gradation] of aggregates; use strategy \"fast\" or \"paper\"");
+  Packing p;
+  const InputTable mortar = g.table("mortar");
+  p.r_ratio = mortar.number_or("r_ratio", 2.5, Range::closed(1, 20));
+  const double r_mean_mm =
+      mortar.quantity("r_mean", Dimension::Length, Range::positive()) / units::mm;
+  p.r_min_mm = 2 * r_mean_mm / (1 + p.r_ratio);
+  const InputTable specimen = g.table("specimen");
+  if (specimen.string_or("shape", "rectangle") == "disc")
+    p.diameter_mm = specimen.quantity("diameter", Dimension::Length, Range::positive()) / units::mm;
+  return p;
+}
+
+// The base materials' mortar against a table's conditions.
+void check_conditions(const CalibrationInput& input, const LookupTable& table,
+                      const std::string& key) {
+  const InputTable mortar = InputTable::parse_string(input.materials, input.file.string())
+                                .table("materials")
+                                .table("mortar");
+  const std::string file = input.file.string();
+  const std::string law = mortar.string_or("law", "linear");
+  if (law != "contact_bond")
+    throw InputError(file, "materials.mortar.law",
+                     "is \"" + law +
+                         "\"; the tables strategy is for contact_bond models (its "
+                         "tables were made with contact bonds)");
+  const double tension =
+      mortar.quantity("cb_tensile_strength", Dimension::Stress, Range::positive());
+  const double shear = mortar.quantity("cb_shear_strength", Dimension::Stress, Range::positive());
+  const std::pair<const char*, std::pair<double, double>> conditions[] = {
+      {"kratio", {mortar.number_or("kratio", 0, Range::any()), table.kratio}},
+      {"friction", {mortar.number_or("friction", 0, Range::any()), table.friction}},
+      {"cb_shear_strength", {shear / tension, table.shear_to_normal}}};
+  for (const auto& [name, values] : conditions)
+    if (!same(values.first, values.second))
+      throw InputError(
+          file, std::string("materials.mortar.") + name,
+          std::string(name == std::string("cb_shear_strength") ? "tau_cs / sigma_cn" : name) +
+              " of the base materials is " + shortest_number(values.first) + ", and the " +
+              table.coefficient + " table (" + key + ", " + table.file.string() + ") was made at " +
+              shortest_number(values.second) +
+              ": set it so, or make a table at that value (docs/lookup_tables.md)");
+}
+
+// The group of the plan that aims at `target`, and the mortar key it must hold.
+std::size_t group_of(const ScaledPlan& plan, CalibrationTarget target) {
+  for (std::size_t g = 0; g < plan.groups.size(); ++g)
+    if (plan.groups[g].target == target) return g;
+  return plan.groups.size();
+}
+
+// Start scale of a group that puts its mortar key `name` at `value`; refuses a value outside the
+// key's bounds.
+double start_scale(const CalibrationInput& input, const FastGroup& group, const std::string& name,
+                   double value, const std::string& what) {
+  for (const int i : group.parameters) {
+    const auto& p = input.parameters[static_cast<std::size_t>(i)];
+    if (p.key.rfind("materials.mortar." + name, 0) != 0) continue;
+    const double scale = value / p.start;
+    if (!(scale >= group.scale_lower && scale <= group.scale_upper))
+      throw InputError(input.file.string(), "parameters",
+                       "the tables put " + p.key + " at " + shortest_number(value) + " (" + what +
+                           "), outside the bounds of the keys of " + target_name(group.target) +
+                           " (a common scale in [" + shortest_number(group.scale_lower) + ", " +
+                           shortest_number(group.scale_upper) +
+                           "] of the start values); widen the bounds");
+    return scale;
+  }
+  throw InputError(input.file.string(), "parameters",
+                   std::string("the tables strategy sets ") + target_name(group.target) +
+                       " through materials.mortar." + name + "; set it free ([[parameters]])");
+}
+
+}  // namespace
+
+ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
+  const std::string file = input.file.string();
+  for (const auto& t : input.targets)
+    if (t.target != CalibrationTarget::SigmaT && t.target != CalibrationTarget::E)
+      throw InputError(file, std::string("targets.") + target_name(t.target),
+                       "the tables strategy has tables for sigma_t (Brazilian, K_B) and E (K_E) "
+                       "only; use strategy \"fast\" or \"paper\" for " +
+                           std::string(target_name(t.target)));
+  check_fast_parameters(input);
+  ScaledPlan plan;
+  plan.strategy = CalibrationStrategy::Tables;
+  plan.stage_prefix = "tables";
+  plan.groups = fast_groups(input);
+  plan.start_scales.assign(plan.groups.size(), 1.0);
+  const auto n = static_cast<Eigen::Index>(plan.groups.size());
+  plan.sensitivities = Eigen::MatrixXd::Identity(n, n);
+  plan.tolerance = input.tables.tolerance;
+  plan.max_iterations = input.tables.max_iterations;
+  plan.max_refinements = input.tables.max_refinements;
+  plan.verify_unconverged = true;
+  plan.learn = false;
+  std::ostringstream md;
+
+  const InputTable mortar =
+      InputTable::parse_string(input.materials, file).table("materials").table("mortar");
+  double emod_GPa = mortar.quantity("emod", Dimension::Stress, Range::positive()) / units::GPa;
+  const std::size_t ge = group_of(plan, CalibrationTarget::E);
+  if (ge < plan.groups.size()) {
+    if (input.tables.ke_file.empty())
+      throw InputError(file, "tables.ke",
+                       "missing: E is a target, and the tables strategy reads K_E (E = K_E E*) "
+                       "from the table named here, e.g. ke = \"tables/uniaxial_ke_table.csv\"");
+    const CalibrationTest& test = *input.test(TestKind::Uniaxial);
+    const LookupTable ke = read_lookup_table(input.tables.ke_file, "K_E", false, file, "tables.ke");
+    check_conditions(input, ke, "tables.ke");
+    const Packing packing = read_packing(test, file, "specimen.generator");
+    const CellCoefficient k = interpolate_cell(ke, packing, file, "specimen.generator");
+    emod_GPa = input.target_value(CalibrationTarget::E) / k.at(0);
+    plan.start_scales[ge] = start_scale(input, plan.groups[ge], "emod", emod_GPa, "E* = E / K_E");
+    md << "- E: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
+       << four(packing.r_min_mm) << " mm; K_E = " << four(k.at(0)) << " from " << k.cells << " of `"
+       << ke.file.string() << "`; E* = E / K_E = " << four(emod_GPa) << " GPa\n";
+    if (!k.note.empty()) md << "  - " << k.note << "\n";
+  }
+  const std::size_t gt = group_of(plan, CalibrationTarget::SigmaT);
+  if (gt < plan.groups.size()) {
+    if (input.test(TestKind::Tension)->name != "brazilian")
+      throw InputError(file, "tests.direct_tension",
+                       "the tables strategy has a Brazilian table (K_B) only; name the sigma_t "
+                       "test as brazilian = \"FILE\"");
+    if (input.tables.kb_file.empty())
+      throw InputError(file, "tables.kb",
+                       "missing: sigma_t is a target, and the tables strategy reads K_B from the "
+                       "table named here, e.g. kb = \"tables/brazilian_kb_x_table.csv\"");
+    const LookupTable kb = read_lookup_table(input.tables.kb_file, "K_B", true, file, "tables.kb");
+    check_conditions(input, kb, "tables.kb");
+    const Packing packing =
+        read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
+    if (!same(packing.diameter_mm, kb.diameter_mm))
+      throw InputError(file, "specimen.brazilian_generator",
+                       "the disc's diameter is " +
+                           (packing.diameter_mm > 0 ? shortest_number(packing.diameter_mm) + " mm"
+                                                    : std::string("not given (not a disc)")) +
+                           ", and the K_B table (" + kb.file.string() + ") was made on D " +
+                           shortest_number(kb.diameter_mm) +
+                           " mm discs: K_B depends on D / R_min (docs/lookup_tables.md); use a "
+                           "disc of that diameter or a table made for yours");
+    const CellCoefficient k = interpolate_cell(kb, packing, file, "specimen.brazilian_generator");
+    const double sigma_t = input.target_value(CalibrationTarget::SigmaT);
+    const BrazilianLookup b = solve_brazilian(k, packing.r_ratio, sigma_t, emod_GPa, file);
+    plan.start_scales[gt] = start_scale(input, plan.groups[gt], "cb_tensile_strength",
+                                        b.sigma_cn_MPa, "sigma_cn from K_B");
+    const double exponent = std::clamp(1 - b.slope, kMinStrengthExponent, kMaxStrengthExponent);
+    const auto it = static_cast<Eigen::Index>(gt);
+    plan.sensitivities(it, it) = exponent;
+    if (ge < plan.groups.size()) plan.sensitivities(it, static_cast<Eigen::Index>(ge)) = b.slope;
+    md << "- sigma_t: Brazilian packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
+       << four(packing.r_min_mm) << " mm, D " << four(packing.diameter_mm) << " mm; K_B from "
+       << k.cells << " of `" << kb.file.string() << "`; at E* = " << four(emod_GPa)
+       << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength)
+       << ", K_B = " << four(b.K_B) << ", sigma_cn = " << four(b.sigma_cn_MPa)
+       << " MPa (tau_cs = " << four(kb.shear_to_normal) << " sigma_cn)\n"
+       << "  - d ln K_B / d ln(E* / sigma_cn) = " << four(b.slope)
+       << " there: the correction uses d ln sigma_t / d ln sigma_cn = " << four(exponent)
+       << (ge < plan.groups.size() ? " and d ln sigma_t / d ln E* = " + four(b.slope)
+                                   : std::string())
+       << "\n";
+    if (!k.note.empty()) md << "  - " << k.note << "\n";
+  }
+  if (lookup) *lookup = md.str();
+  return plan;
+}
+
+void check_tables_input(const CalibrationInput& input) {
+  tables_plan(input);
+}
+
+CalibrationResult calibrate_tables(const CalibrationInput& input, Simulator& simulator) {
+  std::string lookup;
+  const ScaledPlan plan = tables_plan(input, &lookup);
+  CalibrationResult result = calibrate_scaled(input, simulator, plan);
+  result.lookup = lookup;
+  return result;
+}
+
+}  // namespace cdem::calib

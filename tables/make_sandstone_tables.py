@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""Writes the campaign files of the low-E*/sigma_cn Brazilian table and the K_E table (issue 17).
+
+The K_B table of make_brazilian_kb.py holds E* / sigma_cn >= 3,000, where a Brazilian disc's
+strength is proportional to sigma_cn; a rock such as a sandstone (E 18 GPa, so E* about 36 GPa;
+sigma_t 9 MPa, so sigma_cn 40-60 MPa) sits near 600-900, where sigma_t / sigma_cn depends on
+E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
+
+- brazilian_kb_x.toml: K_B at E* / sigma_cn = 300, 600, 1200, 3000 (E* 36 GPa, sigma_cn =
+  E* / level; the sandstone sample lands at 600-900 because K_E is about 0.57, not 1), R_max / R_min 1.5, 2, 3, 4 (the sandstone sample's 1.5, 2.7, 3.4 and their
+  neighbours), one R_min (0.2 mm: R_min barely matters, docs/lookup_tables.md), seeds 11-13
+  (not the seeds 1-6 of the calibrations that use the table, so their specimens are new to it);
+- uniaxial_ke.toml: K_E = E / E* and nu on 20 x 40 mm rectangles at the same packings, at E* /
+  sigma_cn 3000 (E is elastic: the strength only sets how far the run goes, and the steps to the
+  peak fall as 1 / level), seeds 11-13;
+- uniaxial_ke_check.toml: the same at E* / sigma_cn 600, seed 11: does E depend on the strength?
+
+    cd tables && python3 make_sandstone_tables.py            # writes both
+    python3 make_sandstone_tables.py --reduced OUT_DIR        # the CI subset (tests/)
+"""
+import argparse
+import itertools
+import os
+import sys
+
+from make_brazilian_kb import SHEAR_TO_NORMAL, STRENGTH_KEYS, fmt, write_campaign  # noqa: F401
+
+EMOD_GPA = 36.0                           # E* of every run (the base files)
+RADIUS_RATIOS = [1.5, 2, 3, 4]            # R_max / R_min
+R_MIN_MM = [0.2]
+KB_EMOD_PER_SIGMA = [300, 600, 1200, 3000]   # E* / sigma_cn levels of the Brazilian table
+KE_EMOD_PER_SIGMA = [3000]                   # of the K_E runs
+KE_CHECK_EMOD_PER_SIGMA = [600]              # ... and of their check, on one seed
+SEEDS = [11, 12, 13]
+CHECK_SEEDS = [11]
+REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
+               check_seeds=[])
+
+KB_GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
+             "wall_time_s"]
+KE_GATHER = ["young_modulus_GPa", "poisson_ratio", "peak_stress_MPa", "stop_reason", "steps",
+             "cracks.total", "genesis.discs", "wall_time_s"]
+
+
+def rows(ratios, r_min, levels):
+    out = []
+    for ratio, rmin, x in itertools.product(ratios, r_min, levels):
+        s = EMOD_GPA * 1e3 / x
+        out.append([ratio, round(rmin * (1 + ratio) / 2, 12), round(s, 12),
+                    round(s * SHEAR_TO_NORMAL, 12)])
+    return out
+
+
+def header(what, n, seeds, name):
+    return (f"# {what} (issue 17): contact-bonded mortar-only specimens, E* {fmt(EMOD_GPA)} GPa,\n"
+            f"# {n} design points x {len(seeds)} seeds. Written by tables/make_sandstone_tables.py;"
+            " do not edit by hand.\n"
+            f"#   nice -n 10 cdem campaign tables/{name}.toml -j 1   (resumable)\n"
+            "# (docs/lookup_tables.md)")
+
+
+def write(path, text):
+    with open(path + ".tmp", "w") as f:
+        f.write(text)
+    os.replace(path + ".tmp", path)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--reduced", metavar="OUT_DIR", help="write the CI subset into OUT_DIR")
+    ap.add_argument("--base-dir", default=".", help="folder of the base inputs, relative to the "
+                    "campaign files")
+    a = ap.parse_args()
+    lv = dict(ratios=RADIUS_RATIOS, r_min=R_MIN_MM, kb=KB_EMOD_PER_SIGMA, ke=KE_EMOD_PER_SIGMA,
+              ke_check=KE_CHECK_EMOD_PER_SIGMA, seeds=SEEDS, check_seeds=CHECK_SEEDS)
+    out_dir = "."
+    if a.reduced:
+        lv, out_dir = REDUCED, a.reduced
+    for name, what, base, gather, levels, seeds in [
+            ("brazilian_kb_x", "Brazilian K_B against E* / sigma_cn", "brazilian_kb_x_base.toml",
+             KB_GATHER, lv["kb"], lv["seeds"]),
+            ("uniaxial_ke", "Uniaxial K_E = E / E* and nu", "uniaxial_ke_base.toml", KE_GATHER,
+             lv["ke"], lv["seeds"]),
+            ("uniaxial_ke_check", "Uniaxial K_E at a higher strength (check)",
+             "uniaxial_ke_base.toml", KE_GATHER, lv["ke_check"], lv["check_seeds"])]:
+        if not levels:
+            continue
+        r = rows(lv["ratios"], lv["r_min"], levels)
+        text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
+                              gather, STRENGTH_KEYS, r, header(what, len(r), seeds, name))
+        write(os.path.join(out_dir, name + ".toml"), text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
