@@ -63,11 +63,16 @@ def main(out):
               f"| {r['p_end']:.2f} | {r['stop']} | {r['steps']} | {r['wall']:.0f} |")
     print()
     depths = sorted({r["d"] for r in runs})
-    print("| D mm | runs | sigma_N mean MPa | min | max |")
-    print("|---|---|---|---|---|")
+    print("| D mm | runs | P_max mean kN/m | sigma_N mean MPa | CV | min | max |")
+    print("|---|---|---|---|---|---|---|")
     for d in depths:
         s = [r["sigma"] for r in runs if r["d"] == d]
-        print(f"| {d:g} | {len(s)} | {sum(s) / len(s):.3f} | {min(s):.3f} | {max(s):.3f} |")
+        p = [r["p"] for r in runs if r["d"] == d]
+        mean = sum(s) / len(s)
+        cv = (f"{math.sqrt(sum((x - mean) ** 2 for x in s) / (len(s) - 1)) / mean:.1%}"
+              if len(s) > 1 else "-")
+        print(f"| {d:g} | {len(s)} | {sum(p) / len(p):.2f} | {mean:.3f} | {cv} | {min(s):.3f} "
+              f"| {max(s):.3f} |")
     print()
     if len(depths) < 2:
         print("fit: one depth only, no size-effect fit")
