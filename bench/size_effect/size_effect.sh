@@ -20,7 +20,9 @@
 # The stop is chosen for the peak only: the run ends when P has fallen below
 # STOP_FRACTION (0.5) x P_max after it, with the crack across half the ligament (the test's stop
 # rule), or at a deflection of 0.001 D (an error unless P is then below half its peak). W0 and
-# G_F of these runs miss the tail and are not reported.
+# G_F of these runs miss the tail and are not reported. A beam that climbs again after a first
+# drop can stop near STOP_FRACTION before its largest peak: rerun such a run with
+# STOP_FRACTION=0.2 into another OUT_DIR and compare the peaks (docs/lab_tests.md).
 set -euo pipefail
 src="$(cd "$(dirname "$0")/../.." && pwd)"
 build="$(cd "${1:-build}" && pwd)"
