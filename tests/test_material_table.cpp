@@ -208,11 +208,13 @@ friction = 1
   EXPECT_EQ(itz.radius_multiplier, 1);
   EXPECT_EQ(itz.friction_angle, 0);
   EXPECT_EQ(itz.slit_fraction, 0);
-  // The shipped flat-joint sample parses.
-  const MaterialTable sample = read_material_table(std::filesystem::path(CDEM_SOURCE_DIR) /
-                                                   "samples/materials/c30_flat_joint.toml");
-  EXPECT_EQ(bond(sample, ContactClass::Mortar).kind, BondKind::FlatJoint);
-  EXPECT_EQ(bond(sample, ContactClass::Itz).kind, BondKind::FlatJoint);
+  // The shipped flat-joint samples (the fast and the paper calibrations) parse.
+  for (const char* file :
+       {"samples/materials/c30_flat_joint.toml", "samples/materials/c30_flat_joint_paper.toml"}) {
+    const MaterialTable sample = read_material_table(std::filesystem::path(CDEM_SOURCE_DIR) / file);
+    EXPECT_EQ(bond(sample, ContactClass::Mortar).kind, BondKind::FlatJoint) << file;
+    EXPECT_EQ(bond(sample, ContactClass::Itz).kind, BondKind::FlatJoint) << file;
+  }
 }
 }  // namespace
 
