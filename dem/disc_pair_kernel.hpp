@@ -133,8 +133,10 @@ class DiscPairKernel {
 
   PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
     within_guard = g.overlap <= guard_ * std::min(g.ri, g.rj);
-    const PairForce f =
-        bond_[k] == static_cast<std::uint8_t>(BondKind::None) ? linear(k, g) : bonded(k, g);
+    const auto kind = static_cast<BondKind>(bond_[k]);
+    const PairForce f = kind == BondKind::None       ? linear(k, g)
+                        : kind == BondKind::Parallel ? parallel_bonded(k, g)
+                                                     : bonded(k, g);
     normal_[k] = f.normal;
     overlap_[k] = f.overlap;
     fx_[k] = f.fx;
@@ -223,59 +225,80 @@ class DiscPairKernel {
     return f;
   }
 
-  // A pair with an intact contact or parallel bond (SPEC 4; docs/dem_design.md "Bonds in the
-  // contact loop"). In the pass where a bond breaks the contact is already plain linear. A flat
-  // joint, which replaces the linear part, has its own path.
+  // The linear part of a bonded pair (contact or parallel bond): trial shear force of the
+  // step (N, along t) and the compression-only normal force (N).
+  struct BondedLinearPart {
+    double kn, ks, vt, old, trial, fn;
+  };
+  BondedLinearPart bonded_linear_part(std::size_t k, const Geometry& g, int cls) const {
+    BondedLinearPart l;
+    l.kn = laws_[cls].normal_stiffness(g.ri, g.rj, g.inverse_length);
+    l.ks = shear_stiffness(cls, l.kn);
+    l.vt = tangential_velocity(g);
+    l.old = shear_[k];
+    l.trial = linear_shear_increment(l.old, l.ks, l.vt, dt_);
+    l.fn = l.kn * std::max(g.overlap, 0.0);
+    return l;
+  }
+
+  // A pair with an intact parallel bond (SPEC 4; docs/dem_design.md "Bonds in the contact
+  // loop"): the linear contact with Coulomb slip plus the bond's springs. In the pass where the
+  // bond breaks the contact is already plain linear. 83 % of the C30 pairs take this path, so
+  // it has its own function, without the branches of the other bond kinds.
+  PairForce parallel_bonded(std::size_t k, const Geometry& g) const {
+    const int cls = contact_class_[k];
+    const BondedLinearPart l = bonded_linear_part(k, g, cls);
+    const double fs = coulomb_limit(l.trial, laws_[cls].mu, l.fn);
+    PairForce f;
+    f.slip_work = linear_slip_work(l.old, l.trial, fs, l.ks);
+    const ParallelBondParams& p = bonds_[cls].parallel;
+    const ParallelBondGeometry bg = parallel_bond_geometry(p, g.ri, g.rj, g.inverse_length);
+    ParallelBondState pb{bond_normal_[k], bond_shear_[k], bond_moment_[k]};
+    parallel_bond_increment(pb, bg, normal_velocity(g) * dt_, l.vt * dt_,
+                            (w_[g.j] - w_[g.i]) * dt_);
+    f.failure = parallel_bond_failure(pb, bg, p, tan_friction_angle_[cls]);
+    if (f.failure != BondFailure::None) {
+      f.released = parallel_bond_strain_energy(pb, bg);
+      pb = {};
+      bond_[k] = static_cast<std::uint8_t>(BondKind::None);
+      bond_gap_[k] = 0;
+    }
+    bond_normal_[k] = pb.fn;
+    bond_shear_[k] = pb.fs;
+    bond_moment_[k] = pb.m;
+    shear_[k] = fs;
+    // Totals on j: linear part plus bond (the bond's normal force is tension positive).
+    resolve(g, l.fn - pb.fn, fs + pb.fs, pb.m, f);
+    return f;
+  }
+
+  // A pair with a contact bond, flat joint or smooth joint. While a contact bond holds, its
+  // linear part carries tension (zero force at the installation gap) and does not slip.
   PairForce bonded(std::size_t k, const Geometry& g) const {
     const BondKind kind = static_cast<BondKind>(bond_[k]);
     if (kind == BondKind::FlatJoint) return flat_joint(k, g);
     if (kind == BondKind::SmoothJoint) return smooth_joint(k, g);
     const int cls = contact_class_[k];
-    const LinearContact& law = laws_[cls];
-    const double kn = law.normal_stiffness(g.ri, g.rj, g.inverse_length);
-    const double ks = shear_stiffness(cls, kn);
-    const double vt = tangential_velocity(g);
-    const double old = shear_[k];
-    const double trial = linear_shear_increment(old, ks, vt, dt_);
-    double fn = kn * std::max(g.overlap, 0.0);  // linear part, compression positive
+    const BondedLinearPart l = bonded_linear_part(k, g, cls);
+    const double fn_bonded = l.kn * (g.overlap + bond_gap_[k]);
     PairForce f;
-    bool point_bonded = false;
-    if (kind == BondKind::Contact) {
-      // While bonded: tension allowed (zero force at the installation gap), no slip.
-      const double fn_bonded = kn * (g.overlap + bond_gap_[k]);
-      f.failure = contact_bond_failure(fn_bonded, trial,
-                                       contact_bond_strength(bonds_[cls].contact, g.ri, g.rj));
-      point_bonded = f.failure == BondFailure::None;
-      // A break releases the normal spring energy beyond what the plain contact keeps (the
-      // shear spring's drop to the friction limit is booked as slip work below).
-      if (!point_bonded) f.released = 0.5 * (fn_bonded * fn_bonded - fn * fn) / kn;
-      fn = point_bonded ? fn_bonded : fn;
-    }
-    const double fs = point_bonded ? trial : coulomb_limit(trial, law.mu, fn);
-    f.slip_work = linear_slip_work(old, trial, fs, ks);
-    ParallelBondState pb;
-    if (kind == BondKind::Parallel) {
-      const ParallelBondParams& p = bonds_[cls].parallel;
-      const ParallelBondGeometry bg = parallel_bond_geometry(p, g.ri, g.rj, g.inverse_length);
-      const double vn = normal_velocity(g);
-      pb = {bond_normal_[k], bond_shear_[k], bond_moment_[k]};
-      parallel_bond_increment(pb, bg, vn * dt_, vt * dt_, (w_[g.j] - w_[g.i]) * dt_);
-      f.failure = parallel_bond_failure(pb, bg, p, tan_friction_angle_[cls]);
-      if (f.failure != BondFailure::None) {
-        f.released = parallel_bond_strain_energy(pb, bg);
-        pb = {};
-      }
-      bond_normal_[k] = pb.fn;
-      bond_shear_[k] = pb.fs;
-      bond_moment_[k] = pb.m;
-    }
-    if (f.failure != BondFailure::None) {
+    f.failure = contact_bond_failure(fn_bonded, l.trial,
+                                     contact_bond_strength(bonds_[cls].contact, g.ri, g.rj));
+    const bool holds = f.failure == BondFailure::None;
+    // A break releases the normal spring energy beyond what the plain contact keeps (the
+    // shear spring's drop to the friction limit is booked as slip work below).
+    if (!holds) {
+      f.released = 0.5 * (fn_bonded * fn_bonded - l.fn * l.fn) / l.kn;
       bond_[k] = static_cast<std::uint8_t>(BondKind::None);
       bond_gap_[k] = 0;
     }
+    const double fn = holds ? fn_bonded : l.fn;
+    const double fs = holds ? l.trial : coulomb_limit(l.trial, laws_[cls].mu, fn);
+    f.slip_work = linear_slip_work(l.old, l.trial, fs, l.ks);
     shear_[k] = fs;
-    // Totals on j: linear part plus bond (the bond's normal force is tension positive).
-    resolve(g, fn - pb.fn, fs + pb.fs, pb.m, f);
+    // fs + 0.0 turns a -0 shear force into +0, as the sum with the (zero) parallel-bond shear
+    // force did when contact and parallel bonds shared one path: the same bits.
+    resolve(g, fn, fs + 0.0, 0.0, f);
     return f;
   }
 
