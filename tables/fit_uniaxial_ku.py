@@ -36,7 +36,7 @@ from collections import defaultdict
 
 import numpy as np
 
-from fit_brazilian_kb import write_atomic
+from fit_brazilian_kb import save_figure, write_atomic
 from fit_sandstone_tables import RATIO, SIGMA_CN, TAU_CS, common, read_campaign, sd
 
 CONFIRMED = ("post_peak_drop",)
@@ -172,7 +172,7 @@ def plot(table, fits, check, path):
                    marker="o", ls="none", capsize=3, color=color,
                    label=f"R_max/R_min {f['r_ratio']:g}")
         if "rho_c" in f:
-            g = np.array([min(rho), f["rho_c"], max(rho)])
+            g = np.geomspace(min(rho), max(rho), 200)  # the lines are straight in rho
             k = f["K_U_at_rho_c"] + np.where(g < f["rho_c"], f["slope_below"],
                                              f["slope_above"]) * (g - f["rho_c"])
             a.plot(g, k, color=color, lw=1)
@@ -195,10 +195,7 @@ def plot(table, fits, check, path):
     b.grid(alpha=0.3, which="both")
     b.legend(fontsize=8)
     fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=90)
-    import os
-    os.replace(tmp, path)
+    save_figure(fig, path, 90)
 
 
 def markdown(table, fits, check, path):

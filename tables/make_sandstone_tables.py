@@ -47,6 +47,8 @@ SHEAR_TO_NORMAL_LEVELS = [0.25, 0.5, 1, 1.5, 2, 3, 4, 8]   # tau_cs / sigma_cn o
 KB_TAU = dict(ratios=[3], levels=[600], shear=[0.5, 1, 4], seeds=SEEDS)
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
+# The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
+REDUCED_KU = dict(ratios=[4], shear=[0.25], seeds=[11])
 
 KB_GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
              "wall_time_s"]
@@ -99,7 +101,12 @@ def main():
         ("uniaxial_ke_check", "Uniaxial K_E at a higher strength (check)",
          "uniaxial_ke_base.toml", KE_GATHER, rows(lv["ratios"], lv["r_min"], lv["ke_check"]),
          lv["check_seeds"])]
-    if not a.reduced:
+    if a.reduced:
+        campaigns.append(
+            ("uniaxial_ku", "Uniaxial K_U (CI subset)", "uniaxial_ke_base.toml", KU_GATHER,
+             rows(REDUCED_KU["ratios"], R_MIN_MM, KU_EMOD_PER_SIGMA, REDUCED_KU["shear"]),
+             REDUCED_KU["seeds"]))
+    else:
         campaigns += [
             ("uniaxial_ku", "Uniaxial K_U = sigma_u / sigma_cn against tau_cs / sigma_cn",
              "uniaxial_ke_base.toml", KU_GATHER,
