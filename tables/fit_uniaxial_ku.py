@@ -31,6 +31,7 @@ Exit code 1 when a (cell, rho) has no counted run.
 """
 import argparse
 import csv
+import os
 import sys
 from collections import defaultdict
 
@@ -149,8 +150,11 @@ def fit(directory):
 
 
 def write_csv(path, title, columns, rows):
+    """A table with a comment line naming what made it (the script run)."""
+    script = os.path.basename(sys.argv[0])
+
     def write(f):
-        f.write(f"# {title}; made by tables/fit_uniaxial_ku.py (docs/lookup_tables.md)\n")
+        f.write(f"# {title}; made by tables/{script} (docs/lookup_tables.md)\n")
         w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)

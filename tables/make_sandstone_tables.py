@@ -21,6 +21,10 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   K_U depend on E* / sigma_cn?
 - brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 4 (the K_B table holds
   2) on R_max / R_min 3 at E* / sigma_cn 600, seeds 11-13: does K_B depend on tau_cs / sigma_cn?
+- uniaxial_nu.toml: nu (and K_E) against kn / ks (1, 1.5, 2.5, 4) on the K_U table's rectangles
+  and cells at E* / sigma_cn 3000 (the elastic part: cheap), seeds 11-12;
+- direct_tension_kd.toml: direct tension of the same rectangles on R_max / R_min 2.7 at E* /
+  sigma_cn 600, tau_cs = 2 sigma_cn, seeds 11-13: K_D on one cell.
 
     cd tables && python3 make_sandstone_tables.py            # writes both
     python3 make_sandstone_tables.py --reduced OUT_DIR        # the CI subset (tests/)
@@ -45,6 +49,8 @@ KU_EMOD_PER_SIGMA = [600]                 # E* / sigma_cn of the K_U runs
 KU_CHECK = dict(ratios=[2.7], levels=[1200], seeds=[11])
 SHEAR_TO_NORMAL_LEVELS = [0.25, 0.5, 1, 1.5, 2, 3, 4, 8]   # tau_cs / sigma_cn of the K_U runs
 KB_TAU = dict(ratios=[3], levels=[600], shear=[0.5, 1, 4], seeds=SEEDS)
+NU_KRATIO = dict(ratios=KU_RADIUS_RATIOS, levels=[3000], kratio=[1, 1.5, 2.5, 4], seeds=[11, 12])
+KD = dict(ratios=[2.7], levels=[600], seeds=SEEDS)
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
@@ -56,6 +62,7 @@ KE_GATHER = ["young_modulus_GPa", "poisson_ratio", "peak_stress_MPa", "stop_reas
              "cracks.total", "genesis.discs", "wall_time_s"]
 KU_GATHER = KE_GATHER + ["cracks.tension.M", "cracks.shear.M"]
 KB_TAU_GATHER = KB_GATHER + ["cracks.tension.M", "cracks.shear.M"]
+KD_GATHER = KB_TAU_GATHER
 
 
 def rows(ratios, r_min, levels, shear_to_normal=(SHEAR_TO_NORMAL,)):
@@ -118,12 +125,20 @@ def main():
             ("brazilian_kb_tau", "Brazilian K_B at other tau_cs / sigma_cn (check)",
              "brazilian_kb_x_base.toml", KB_TAU_GATHER,
              rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["shear"]),
-             KB_TAU["seeds"])]
+             KB_TAU["seeds"]),
+            ("uniaxial_nu", "Uniaxial nu and K_E against kn / ks", "uniaxial_ke_base.toml",
+             KE_GATHER,
+             [r + [k] for r in rows(NU_KRATIO["ratios"], R_MIN_MM, NU_KRATIO["levels"])
+              for k in NU_KRATIO["kratio"]], NU_KRATIO["seeds"]),
+            ("direct_tension_kd", "Direct tension K_D on one cell", "direct_tension_kd_base.toml",
+             KD_GATHER, rows(KD["ratios"], R_MIN_MM, KD["levels"]),
+             KD["seeds"])]
     for name, what, base, gather, r, seeds in campaigns:
         if not r:
             continue
+        keys = STRENGTH_KEYS + ["materials.mortar.kratio"][:len(r[0]) - len(STRENGTH_KEYS)]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
-                              gather, STRENGTH_KEYS, r, header(what, len(r), seeds, name))
+                              gather, keys, r, header(what, len(r), seeds, name))
         write(os.path.join(out_dir, name + ".toml"), text)
     return 0
 
