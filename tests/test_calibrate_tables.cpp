@@ -476,4 +476,25 @@ TEST(CalibrateTables, UniaxialStrengthInOneCorrectionWhenTheTablesAreOff) {
   EXPECT_TRUE(r.success()) << r.stop_reason;
 }
 
+TEST(CalibrateTables, UniaxialStrengthAloneKeepsTheBaseShearRatio) {
+  // sigma_u and E, no sigma_t: tau_cs / sigma_cn stays the base materials' 80 / 40 = 2, where
+  // the ratio-2 cell has K_U 1.0, so sigma_cn = 32 / 1.0 = 32 MPa and tau_cs 64 MPa.
+  Files f;
+  f.head = replace(kHeadUcs, "sigma_t_MPa = 9\n", "");
+  const auto in = read_calibration_input(make_calibration("ucs_alone", f));
+  TableModel model(in, 1, 1);
+  const auto r = calibrate(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  EXPECT_NEAR(r.calibrated[1], 32, 1e-9);
+  EXPECT_NEAR(r.calibrated[2], 64, 1e-9);
+  // With sigma_u alone (the K_E table, made at 2, not asked), a base tau_cs / sigma_cn outside
+  // the K_U table's levels (10 > 4) is refused.
+  f.head = replace(f.head, "E_GPa = 18\n", "");
+  f.materials =
+      replace(f.materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 400.0");
+  expect_input_error(make_calibration("ucs_alone_rho", f), "materials.mortar.cb_shear_strength",
+                     "outside the K_U table's levels");
+}
+
 }  // namespace
