@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -100,6 +101,21 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
                               "brazilian_generator = \"disc.toml\"\n" +
                               f.parameters);
   return dir / "cal.toml";
+}
+
+// One file of a calibration edited, and the key and words of its refusal.
+struct Edit {
+  const char* name;
+  std::string Files::*file;
+  std::string from, to, key, words;
+};
+
+void expect_refusals(const std::vector<Edit>& edits, const Files& base = {}) {
+  for (const auto& c : edits) {
+    Files f = base;
+    f.*c.file = replace(f.*c.file, c.from, c.to);
+    expect_input_error(make_calibration(c.name, f), c.key, c.words);
+  }
 }
 
 LookupTable table(const std::string& name, const std::string& text, const TableLayout& layout) {
@@ -238,13 +254,7 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
   EXPECT_EQ(in.strategy, CalibrationStrategy::Tables);
   EXPECT_EQ(in.tables.max_iterations, 2);
   EXPECT_DOUBLE_EQ(in.tables.tolerance, 0.05);
-  // Each case: one file of the calibration edited, the key and words of the refusal.
-  struct Case {
-    const char* name;
-    std::string Files::*file;
-    std::string from, to, key, words;
-  };
-  const Case cases[] = {
+  expect_refusals({
       {"nu", &Files::head, "E_GPa = 18", "E_GPa = 18\nnu = 0.2", "targets.nu",
        "sigma_t (Brazilian, K_B), E (K_E) and sigma_u (K_U)"},
       {"kratio", &Files::materials, "kratio = 2.5", "kratio = 3.0", "materials.mortar.kratio",
@@ -268,12 +278,7 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
       {"bounds", &Files::parameters, "bounds = [5, 400]", "bounds = [5, 20]", "parameters",
        "outside the bounds"},
       {"no_ku", &Files::head, "E_GPa = 18", "E_GPa = 18\nsigma_u_MPa = 40", "tables.ku", "missing"},
-  };
-  for (const auto& c : cases) {
-    Files f;
-    f.*c.file = replace(f.*c.file, c.from, c.to);
-    expect_input_error(make_calibration(c.name, f), c.key, c.words);
-  }
+  });
   // Another bond law: its strengths are other keys, so the materials and parameters both change.
   Files f;
   for (auto* text : {&f.materials, &f.parameters}) {
@@ -285,28 +290,21 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
 }
 
 TEST(CalibrateTablesInput, RefusesWhatTheUniaxialTableDoesNotHold) {
-  struct Case {
-    const char* name;
-    std::string Files::*file;
-    std::string from, to, key, words;
-  };
-  const Case cases[] = {
-      // At the Brazilian lookup's sigma_cn (about 43 MPa) the table reaches 1.0 x that at most.
-      {"ucs_high", &Files::head, "sigma_u_MPa = 32", "sigma_u_MPa = 200", "targets.sigma_u",
-       "only from"},
-      {"ku_size", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
-       "20 x 40 mm"},
-      {"ku_kratio", &Files::ku, "2,0.2,0.5,0.5,2.5", "2,0.2,0.5,0.5,3", "tables.ku",
-       "column 'kratio' is 3"},
-      {"ku_missing", &Files::head, "ku = \"ku.csv\"", "ku = \"none.csv\"", "tables.ku",
-       "cannot read"},
-  };
-  for (const auto& c : cases) {
-    Files f;
-    f.head = kHeadUcs;
-    f.*c.file = replace(f.*c.file, c.from, c.to);
-    expect_input_error(make_calibration(c.name, f), c.key, c.words);
-  }
+  Files ucs;
+  ucs.head = kHeadUcs;
+  expect_refusals(
+      {
+          // At the Brazilian lookup's sigma_cn (about 43 MPa) the table reaches 1.0 x that at most.
+          {"ucs_high", &Files::head, "sigma_u_MPa = 32", "sigma_u_MPa = 200", "targets.sigma_u",
+           "only from"},
+          {"ku_size", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
+           "20 x 40 mm"},
+          {"ku_kratio", &Files::ku, "2,0.2,0.5,0.5,2.5", "2,0.2,0.5,0.5,3", "tables.ku",
+           "column 'kratio' is 3"},
+          {"ku_missing", &Files::head, "ku = \"ku.csv\"", "ku = \"none.csv\"", "tables.ku",
+           "cannot read"},
+      },
+      ucs);
   // tau_cs / sigma_cn of the base materials is free when sigma_u sets it (K_B's 2 is not asked).
   Files f;
   f.head = kHeadUcs;
