@@ -305,7 +305,7 @@ UniaxialLookup solve_uniaxial(const CellCoefficient& ku, double sigma_cn_MPa, do
       calibration_file, "targets.sigma_u",
       "sigma_u = " + four(sigma_u_MPa) + " MPa needs K_U = sigma_u / sigma_cn = " + four(wanted) +
           " at sigma_cn = " + four(sigma_cn_MPa) +
-          " MPa, and the K_U table sets it through tau_cs" + " only from " +
+          " MPa, and the K_U table sets it through tau_cs only from " +
           four(k.front() * sigma_cn_MPa) + " to " + four(top * sigma_cn_MPa) +
           " MPa on this packing (K_U " + four(k.front()) + " to " + four(top) +
           ", tau_cs / sigma_cn from " + four(x.front()) +
@@ -368,6 +368,11 @@ void check_size(const LookupTable& table, const std::string& what,
   std::string asked, made;
   bool differs = false;
   for (const auto& [column, value] : size) {
+    if (!(value > 0))  // a disc where the table's specimen is a rectangle, or the other way
+      throw InputError(calibration_file, key,
+                       "the specimen has no " + what + " (another shape), and the " +
+                           table.coefficient() + " table (" + table.file.string() +
+                           ") was made on " + what + " specimens; use the table's shape");
     differs = differs || !same(value, table.condition(column));
     asked += (asked.empty() ? "" : " x ") + shortest_number(value);
     made += (made.empty() ? "" : " x ") + shortest_number(table.condition(column));
