@@ -338,13 +338,19 @@ class TableModel : public cdem::test::PointModel {
   // When > 0, the calibration specimen's sigma_t jumps at this sigma_cn (MPa): 1.3 x the
   // tables' above, 0.7 x below (as one D 30 mm disc does between the regimes of E* / sigma_cn).
   double jump_MPa = 0;
+  // When > 0, the simulations from this one on (counted from 1) fail.
+  int fail_from = 0;
 
  protected:
   SimulationOutcome respond(const SimulationPoint& p) override {
     const double emod = p.values[0], sigma = p.values[1];
     const double x = std::clamp(emod * 1000 / sigma, 300.0, 3000.0);
     SimulationOutcome o;
-    o.ok = true;
+    o.ok = !(fail_from > 0 && points >= fail_from);
+    if (!o.ok) {
+      o.message = "unstable (the model's failure)";
+      return o;
+    }
     o.simulations = 2;
     // The calibration specimen is the tables' own; the others scatter about it by 2 %.
     const bool first = p.specimen_seed == input_.calibration_seed;
@@ -496,6 +502,21 @@ TEST(CalibrateTables, UniaxialStrengthAloneKeepsTheBaseShearRatio) {
       replace(f.materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 400.0");
   expect_input_error(make_calibration("ucs_alone_rho", f), "materials.mortar.cb_shear_strength",
                      "outside the K_U table's levels");
+}
+
+TEST(CalibrateTables, AFailedLastRunIsReportedWithAReason) {
+  // The correction's run fails: no verification, and the stop reason says why (it was empty
+  // when the iterations ran out on a failed run).
+  const auto in = read_calibration_input(make_calibration("last_failed"));
+  TableModel model(in, 1.08, 0.88);
+  model.fail_from = 2;
+  const auto r = calibrate(in, model);
+  EXPECT_FALSE(r.success());
+  EXPECT_TRUE(r.verifications.empty());
+  ASSERT_EQ(r.iterations.size(), 2u);
+  EXPECT_NE(r.stop_reason.find("not converged within 2 iterations (the last 1 failed)"),
+            std::string::npos)
+      << r.stop_reason;
 }
 
 }  // namespace
