@@ -361,6 +361,12 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
     if (it == plan.max_iterations)
       result.stop_reason = "not converged within " + std::to_string(it) + " iterations";
   }
+  // The iterations ran out on a failed run (its back-off continues past the check above): say so
+  // rather than leave the reason empty.
+  if (result.stop_reason.empty())
+    result.stop_reason = "not converged within " + std::to_string(plan.max_iterations) +
+                         " iterations (the last " + std::to_string(consecutive_failures) +
+                         " failed)";
   // The closest values are those of the point reported (the last that ran): the other groups
   // kept moving after a target was found out of reach.
   for (auto& o : result.out_of_reach)
@@ -412,8 +418,7 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
   }
   if (!result.verifications.empty() && !result.verifications.back().passed)
     result.stop_reason += "; the verification mean missed the tolerance after " +
-                          std::to_string(result.verifications.size() - 1) +
-                          " correction(s) on it";
+                          std::to_string(result.verifications.size() - 1) + " correction(s) on it";
   return result;
 }
 

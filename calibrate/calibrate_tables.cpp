@@ -30,6 +30,10 @@ constexpr double kMinStrengthExponent = 0.5;
 constexpr double kMaxStrengthExponent = 2.0;
 // Bisection steps on ln(E* / sigma_cn) within one segment of the table: 2^-100 of a segment.
 constexpr int kBisections = 100;
+// A K_U segment flatter than this d ln K_U / d ln(tau_cs / sigma_cn) does not set tau_cs: there
+// sigma_u is the tension-driven plateau's, and a proportional correction through tau_cs would
+// step by ten times the miss or more.
+constexpr double kMinShearExponent = 0.1;
 
 // Four significant digits, for the report's lookup lines.
 std::string four(double x) {
@@ -69,7 +73,11 @@ Bracket bracket(const std::set<double>& levels, double x) {
 }
 
 std::string describe_levels(const std::set<double>& levels) {
-  return "[" + shortest_number(*levels.begin()) + ", " + shortest_number(*levels.rbegin()) + "]";
+  std::string out = "[";  // appended, not concatenated: GCC 12 warns falsely on "[" + string
+  out += shortest_number(*levels.begin());
+  out += ", ";
+  out += shortest_number(*levels.rbegin());
+  return out + "]";
 }
 
 // Value at `level` of a cell whose coefficients are known at `levels` (ascending), piecewise
@@ -86,9 +94,19 @@ double piecewise_log_linear(const std::vector<double>& levels, const std::vector
 
 }  // namespace
 
-LookupTable read_lookup_table(const std::filesystem::path& path, const std::string& coefficient,
-                              bool by_strength, const std::string& calibration_file,
-                              const std::string& key) {
+const TableLayout kBrazilianTable{"K_B",
+                                  "emod_per_sigma_cn",
+                                  "E* / sigma_cn",
+                                  {"kratio", "friction", "shear_to_normal", "diameter_mm"}};
+const TableLayout kModulusTable{"K_E", "", "", {"kratio", "friction", "shear_to_normal"}};
+const TableLayout kUniaxialStrengthTable{
+    "K_U",
+    "shear_to_normal",
+    "tau_cs / sigma_cn",
+    {"kratio", "friction", "emod_per_sigma_cn", "width_mm", "height_mm"}};
+
+LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayout& layout,
+                              const std::string& calibration_file, const std::string& key) {
   const auto fail = [&](const std::string& where, const std::string& why) {
     throw InputError(calibration_file, key, path.string() + where + ": " + why);
   };
@@ -96,14 +114,11 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const std::stri
   if (!in) fail("", "cannot read the lookup table (" + std::string(std::strerror(errno)) + ")");
   LookupTable table;
   table.file = path;
-  table.coefficient = coefficient;
-  table.by_strength = by_strength;
-  std::vector<std::string> need{"r_ratio", "r_min_mm", coefficient,
-                                "kratio",  "friction", "shear_to_normal"};
-  if (by_strength) {
-    need.push_back("emod_per_sigma_cn");
-    need.push_back("diameter_mm");
-  }
+  table.layout = layout;
+  const std::string& coefficient = layout.coefficient;
+  std::vector<std::string> need{"r_ratio", "r_min_mm", coefficient};
+  if (!layout.level.empty()) need.push_back(layout.level);
+  need.insert(need.end(), layout.conditions.begin(), layout.conditions.end());
   std::map<std::string, std::size_t> column;
   std::string line;
   int line_number = 0;
@@ -133,28 +148,20 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const std::stri
                         (c == coefficient ? " (a cell without a fit?)" : ""));
       v[c] = x;
     }
-    LookupRow row{v["r_ratio"], v["r_min_mm"], by_strength ? v["emod_per_sigma_cn"] : 0,
-                  v[coefficient]};
-    if (table.rows.empty()) {
-      table.kratio = v["kratio"];
-      table.friction = v["friction"];
-      table.shear_to_normal = v["shear_to_normal"];
-      if (by_strength) table.diameter_mm = v["diameter_mm"];
-    } else {
-      for (const auto& [c, first] : {std::pair<std::string, double>{"kratio", table.kratio},
-                                     {"friction", table.friction},
-                                     {"shear_to_normal", table.shear_to_normal}})
-        if (!same(v[c], first))
-          fail(where, "column '" + c + "' is " + shortest_number(v[c]) + ", the first row's " +
-                          shortest_number(first) + ": one table is made at one condition");
-      if (by_strength && !same(v["diameter_mm"], table.diameter_mm))
-        fail(where, "column 'diameter_mm' differs from the first row's: one table, one disc");
+    const LookupRow row{v["r_ratio"], v["r_min_mm"], layout.level.empty() ? 0 : v[layout.level],
+                        v[coefficient]};
+    for (const auto& c : layout.conditions) {
+      const auto [first, inserted] = table.conditions.emplace(c, v[c]);
+      if (!inserted && !same(v[c], first->second))
+        fail(where, "column '" + c + "' is " + shortest_number(v[c]) + ", the first row's " +
+                        shortest_number(first->second) + ": one table is made at one condition");
     }
-    if (!seen.insert({row.r_ratio, row.r_min_mm, row.emod_per_strength}).second)
+    if (!seen.insert({row.r_ratio, row.r_min_mm, row.level}).second)
       fail(where, "the cell R_max/R_min " + shortest_number(row.r_ratio) + ", R_min " +
                       shortest_number(row.r_min_mm) + " mm" +
-                      (by_strength ? ", E*/sigma_cn " + shortest_number(row.emod_per_strength)
-                                   : std::string()) +
+                      (layout.level.empty()
+                           ? std::string()
+                           : ", " + layout.level_name + " " + shortest_number(row.level)) +
                       " appears twice");
     table.rows.push_back(row);
   }
@@ -162,8 +169,8 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const std::stri
   return table;
 }
 
-double CellCoefficient::at(double emod_per_strength) const {
-  return piecewise_log_linear(levels, coefficients, emod_per_strength);
+double CellCoefficient::at(double level) const {
+  return piecewise_log_linear(levels, coefficients, level);
 }
 
 CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packing,
@@ -178,7 +185,7 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
     throw InputError(calibration_file, key,
                      "R_max / R_min = " + shortest_number(packing.r_ratio) +
                          " of the specimen (its generator's mortar.r_ratio) is outside the " +
-                         table.coefficient + " table's cells " + describe_levels(ratios) + " (" +
+                         table.coefficient() + " table's cells " + describe_levels(ratios) + " (" +
                          table.file.string() + "); no extrapolation");
   const Bracket a = bracket(ratios, packing.r_ratio);
   const Bracket b = bracket(r_mins, packing.r_min_mm);
@@ -186,7 +193,7 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
   if (packing.r_min_mm < *r_mins.begin() * (1 - kSameCondition) ||
       packing.r_min_mm > *r_mins.rbegin() * (1 + kSameCondition))
     out.note = "R_min = " + shortest_number(packing.r_min_mm) + " mm is outside the " +
-               table.coefficient + " table's levels " + describe_levels(r_mins) +
+               table.coefficient() + " table's levels " + describe_levels(r_mins) +
                " mm: the nearest level, " + shortest_number(b.lo) +
                " mm, is used (R_min barely matters; docs/lookup_tables.md)";
   // The corners and their weights; a weight of zero needs no cell.
@@ -201,8 +208,7 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
       Corner c{ra, rb, wa * wb, {}, {}};
       std::vector<std::pair<double, double>> cell;
       for (const auto& r : table.rows)
-        if (r.r_ratio == ra && r.r_min_mm == rb)
-          cell.emplace_back(r.emod_per_strength, r.coefficient);
+        if (r.r_ratio == ra && r.r_min_mm == rb) cell.emplace_back(r.level, r.coefficient);
       if (cell.empty())
         throw InputError(calibration_file, key,
                          table.file.string() + " has no cell R_max/R_min " + shortest_number(ra) +
@@ -216,7 +222,7 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
       }
       corners.push_back(std::move(c));
     }
-  // The E* / sigma_cn range every corner covers, and every level inside it.
+  // The range of levels every corner covers, and every level inside it.
   double lo = 0, hi = std::numeric_limits<double>::infinity();
   for (const auto& c : corners) {
     lo = std::max(lo, c.levels.front());
@@ -225,8 +231,8 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
   if (!(lo <= hi))
     throw InputError(calibration_file, key,
                      table.file.string() + ": the cells around R_max/R_min " +
-                         shortest_number(packing.r_ratio) +
-                         " share no E* / sigma_cn level; the table cannot interpolate there");
+                         shortest_number(packing.r_ratio) + " share no " + table.layout.level_name +
+                         " level; the table cannot interpolate there");
   std::set<double> levels;
   for (const auto& c : corners)
     for (const double x : c.levels)
@@ -278,9 +284,38 @@ BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, doubl
                        "); no extrapolation: change the target, E*, or the table");
 }
 
+UniaxialLookup solve_uniaxial(const CellCoefficient& ku, double sigma_cn_MPa, double sigma_u_MPa,
+                              const std::string& calibration_file) {
+  const double wanted = sigma_u_MPa / sigma_cn_MPa;
+  const auto& x = ku.levels;
+  const auto& k = ku.coefficients;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double slope = std::log(k[i + 1] / k[i]) / std::log(x[i + 1] / x[i]);
+    if (!(slope >= kMinShearExponent) || (k[i] - wanted) * (k[i + 1] - wanted) > 0) continue;
+    // K_U is linear in ln(rho) on the segment: rho = x_i (x_{i+1} / x_i)^t.
+    const double t = (wanted - k[i]) / (k[i + 1] - k[i]);
+    return {x[i] * std::pow(x[i + 1] / x[i], t), wanted, slope};
+  }
+  // What the rising segments reach: from the lowest level to the top of the last rising one.
+  double top = k.front();
+  for (std::size_t i = 0; i + 1 < x.size(); ++i)
+    if (std::log(k[i + 1] / k[i]) / std::log(x[i + 1] / x[i]) >= kMinShearExponent)
+      top = std::max(top, k[i + 1]);
+  throw InputError(
+      calibration_file, "targets.sigma_u",
+      "sigma_u = " + four(sigma_u_MPa) + " MPa needs K_U = sigma_u / sigma_cn = " + four(wanted) +
+          " at sigma_cn = " + four(sigma_cn_MPa) +
+          " MPa, and the K_U table sets it through tau_cs only from " +
+          four(k.front() * sigma_cn_MPa) + " to " + four(top * sigma_cn_MPa) +
+          " MPa on this packing (K_U " + four(k.front()) + " to " + four(top) +
+          ", tau_cs / sigma_cn from " + four(x.front()) +
+          "; above, sigma_u is tension-driven and barely moves with tau_cs); no extrapolation: "
+          "change the target or the sigma_t it is calibrated with");
+}
+
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
                           CalibrationInput& input) {
-  t.reject_unknown_keys({"kb", "ke", "tolerance", "max_iterations", "max_refinements"});
+  t.reject_unknown_keys({"kb", "ke", "ku", "tolerance", "max_iterations", "max_refinements"});
   const auto resolve = [&](const char* key) -> std::filesystem::path {
     if (!t.has(key)) return {};
     const std::filesystem::path p(t.string(key));
@@ -288,6 +323,7 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
   };
   input.tables.kb_file = resolve("kb");
   input.tables.ke_file = resolve("ke");
+  input.tables.ku_file = resolve("ku");
   input.tables.tolerance = t.number_or("tolerance", 0.05, Range::open(0, 0.5));
   input.tables.max_iterations = static_cast<int>(t.integer_or("max_iterations", 2, 1, 2));
   input.tables.max_refinements = static_cast<int>(t.integer_or("max_refinements", 1, 0, 10));
@@ -311,14 +347,49 @@ Packing read_packing(const CalibrationTest& test, const std::string& calibration
       mortar.quantity("r_mean", Dimension::Length, Range::positive()) / units::mm;
   p.r_min_mm = 2 * r_mean_mm / (1 + p.r_ratio);
   const InputTable specimen = g.table("specimen");
-  if (specimen.string_or("shape", "rectangle") == "disc")
-    p.diameter_mm = specimen.quantity("diameter", Dimension::Length, Range::positive()) / units::mm;
+  const auto mm = [&](const char* name) {
+    return specimen.quantity(name, Dimension::Length, Range::positive()) / units::mm;
+  };
+  if (specimen.string_or("shape", "rectangle") == "disc") {
+    p.diameter_mm = mm("diameter");
+  } else {
+    p.width_mm = mm("width");
+    p.height_mm = mm("height");
+  }
   return p;
 }
 
-// The base materials' mortar against a table's conditions.
+// The specimen's size (`what`: "D" or "W x H") against the size a table was made on (its
+// conditions named in `size`): the coefficients depend on the size against R_min
+// (docs/lookup_tables.md).
+void check_size(const LookupTable& table, const std::string& what,
+                const std::vector<std::pair<std::string, double>>& size,
+                const std::string& calibration_file, const std::string& key) {
+  std::string asked, made;
+  bool differs = false;
+  for (const auto& [column, value] : size) {
+    if (!(value > 0))  // a disc where the table's specimen is a rectangle, or the other way
+      throw InputError(calibration_file, key,
+                       "the specimen has no " + what + " (another shape), and the " +
+                           table.coefficient() + " table (" + table.file.string() +
+                           ") was made on " + what + " specimens; use the table's shape");
+    differs = differs || !same(value, table.condition(column));
+    asked += (asked.empty() ? "" : " x ") + shortest_number(value);
+    made += (made.empty() ? "" : " x ") + shortest_number(table.condition(column));
+  }
+  if (differs)
+    throw InputError(calibration_file, key,
+                     "the specimen is " + what + " " + asked + " mm, and the " +
+                         table.coefficient() + " table (" + table.file.string() + ") was made on " +
+                         what + " " + made + " mm specimens: " + table.coefficient() +
+                         " depends on the size against R_min (docs/lookup_tables.md); use a "
+                         "specimen of that size or a table made for yours");
+}
+
+// The base materials' mortar against a table's conditions; tau_cs / sigma_cn only when the
+// strategy does not set it (`shear_ratio_free`: a sigma_u target sets it from K_U).
 void check_conditions(const CalibrationInput& input, const LookupTable& table,
-                      const std::string& key) {
+                      const std::string& key, bool shear_ratio_free = false) {
   const InputTable mortar = InputTable::parse_string(input.materials, input.file.string())
                                 .table("materials")
                                 .table("mortar");
@@ -332,19 +403,20 @@ void check_conditions(const CalibrationInput& input, const LookupTable& table,
   const double tension =
       mortar.quantity("cb_tensile_strength", Dimension::Stress, Range::positive());
   const double shear = mortar.quantity("cb_shear_strength", Dimension::Stress, Range::positive());
-  const std::pair<const char*, std::pair<double, double>> conditions[] = {
-      {"kratio", {mortar.number_or("kratio", 0, Range::any()), table.kratio}},
-      {"friction", {mortar.number_or("friction", 0, Range::any()), table.friction}},
-      {"cb_shear_strength", {shear / tension, table.shear_to_normal}}};
-  for (const auto& [name, values] : conditions)
-    if (!same(values.first, values.second))
-      throw InputError(
-          file, std::string("materials.mortar.") + name,
-          std::string(name == std::string("cb_shear_strength") ? "tau_cs / sigma_cn" : name) +
-              " of the base materials is " + shortest_number(values.first) + ", and the " +
-              table.coefficient + " table (" + key + ", " + table.file.string() + ") was made at " +
-              shortest_number(values.second) +
-              ": set it so, or make a table at that value (docs/lookup_tables.md)");
+  std::vector<std::tuple<std::string, std::string, double, double>> conditions{
+      {"kratio", "kratio", mortar.number_or("kratio", 0, Range::any()), table.condition("kratio")},
+      {"friction", "friction", mortar.number_or("friction", 0, Range::any()),
+       table.condition("friction")}};
+  if (table.conditions.count("shear_to_normal") && !shear_ratio_free)
+    conditions.emplace_back("cb_shear_strength", "tau_cs / sigma_cn", shear / tension,
+                            table.condition("shear_to_normal"));
+  for (const auto& [name, words, value, made] : conditions)
+    if (!same(value, made))
+      throw InputError(file, "materials.mortar." + name,
+                       words + " of the base materials is " + shortest_number(value) +
+                           ", and the " + table.coefficient() + " table (" + key + ", " +
+                           table.file.string() + ") was made at " + shortest_number(made) +
+                           ": set it so, or make a table at that value (docs/lookup_tables.md)");
 }
 
 // The group of the plan that aims at `target`, and the mortar key it must hold.
@@ -381,10 +453,11 @@ double start_scale(const CalibrationInput& input, const FastGroup& group, const 
 ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
   const std::string file = input.file.string();
   for (const auto& t : input.targets)
-    if (t.target != CalibrationTarget::SigmaT && t.target != CalibrationTarget::E)
+    if (t.target != CalibrationTarget::SigmaT && t.target != CalibrationTarget::E &&
+        t.target != CalibrationTarget::SigmaU)
       throw InputError(file, std::string("targets.") + target_name(t.target),
-                       "the tables strategy has tables for sigma_t (Brazilian, K_B) and E (K_E) "
-                       "only; use strategy \"fast\" or \"paper\" for " +
+                       "the tables strategy has tables for sigma_t (Brazilian, K_B), E (K_E) and "
+                       "sigma_u (K_U) only; use strategy \"fast\" or \"paper\" for " +
                            std::string(target_name(t.target)));
   check_fast_parameters(input);
   ScaledPlan plan;
@@ -403,16 +476,21 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
 
   const InputTable mortar =
       InputTable::parse_string(input.materials, file).table("materials").table("mortar");
-  double emod_GPa = mortar.quantity("emod", Dimension::Stress, Range::positive()) / units::GPa;
   const std::size_t ge = group_of(plan, CalibrationTarget::E);
+  const std::size_t gt = group_of(plan, CalibrationTarget::SigmaT);
+  const std::size_t gu = group_of(plan, CalibrationTarget::SigmaU);
+  // With sigma_t and sigma_u targets, tau_cs / sigma_cn is the K_U table's to set.
+  const bool both_strengths = gt < plan.groups.size() && gu < plan.groups.size();
+  double emod_GPa = mortar.quantity("emod", Dimension::Stress, Range::positive()) / units::GPa;
   if (ge < plan.groups.size()) {
     if (input.tables.ke_file.empty())
       throw InputError(file, "tables.ke",
                        "missing: E is a target, and the tables strategy reads K_E (E = K_E E*) "
                        "from the table named here, e.g. ke = \"tables/uniaxial_ke_table.csv\"");
     const CalibrationTest& test = *input.test(TestKind::Uniaxial);
-    const LookupTable ke = read_lookup_table(input.tables.ke_file, "K_E", false, file, "tables.ke");
-    check_conditions(input, ke, "tables.ke");
+    const LookupTable ke =
+        read_lookup_table(input.tables.ke_file, kModulusTable, file, "tables.ke");
+    check_conditions(input, ke, "tables.ke", both_strengths);
     const Packing packing = read_packing(test, file, "specimen.generator");
     const CellCoefficient k = interpolate_cell(ke, packing, file, "specimen.generator");
     emod_GPa = input.target_value(CalibrationTarget::E) / k.at(0);
@@ -422,7 +500,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
        << ke.file.string() << "`; E* = E / K_E = " << four(emod_GPa) << " GPa\n";
     if (!k.note.empty()) md << "  - " << k.note << "\n";
   }
-  const std::size_t gt = group_of(plan, CalibrationTarget::SigmaT);
+  double sigma_cn_MPa = 0;  // set by the sigma_t lookup
   if (gt < plan.groups.size()) {
     if (input.test(TestKind::Tension)->name != "brazilian")
       throw InputError(file, "tests.direct_tension",
@@ -432,24 +510,19 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
       throw InputError(file, "tables.kb",
                        "missing: sigma_t is a target, and the tables strategy reads K_B from the "
                        "table named here, e.g. kb = \"tables/brazilian_kb_x_table.csv\"");
-    const LookupTable kb = read_lookup_table(input.tables.kb_file, "K_B", true, file, "tables.kb");
-    check_conditions(input, kb, "tables.kb");
+    const LookupTable kb =
+        read_lookup_table(input.tables.kb_file, kBrazilianTable, file, "tables.kb");
+    check_conditions(input, kb, "tables.kb", both_strengths);
     const Packing packing =
         read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
-    if (!same(packing.diameter_mm, kb.diameter_mm))
-      throw InputError(file, "specimen.brazilian_generator",
-                       "the disc's diameter is " +
-                           (packing.diameter_mm > 0 ? shortest_number(packing.diameter_mm) + " mm"
-                                                    : std::string("not given (not a disc)")) +
-                           ", and the K_B table (" + kb.file.string() + ") was made on D " +
-                           shortest_number(kb.diameter_mm) +
-                           " mm discs: K_B depends on D / R_min (docs/lookup_tables.md); use a "
-                           "disc of that diameter or a table made for yours");
+    check_size(kb, "D", {{"diameter_mm", packing.diameter_mm}}, file,
+               "specimen.brazilian_generator");
     const CellCoefficient k = interpolate_cell(kb, packing, file, "specimen.brazilian_generator");
     const double sigma_t = input.target_value(CalibrationTarget::SigmaT);
     const BrazilianLookup b = solve_brazilian(k, packing.r_ratio, sigma_t, emod_GPa, file);
     plan.start_scales[gt] = start_scale(input, plan.groups[gt], "cb_tensile_strength",
                                         b.sigma_cn_MPa, "sigma_cn from K_B");
+    sigma_cn_MPa = b.sigma_cn_MPa;
     const double exponent = std::clamp(1 - b.slope, kMinStrengthExponent, kMaxStrengthExponent);
     const auto it = static_cast<Eigen::Index>(gt);
     plan.sensitivities(it, it) = exponent;
@@ -459,12 +532,72 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
        << k.cells << " of `" << kb.file.string() << "`; at E* = " << four(emod_GPa)
        << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength)
        << ", K_B = " << four(b.K_B) << ", sigma_cn = " << four(b.sigma_cn_MPa)
-       << " MPa (tau_cs = " << four(kb.shear_to_normal) << " sigma_cn)\n"
+       << " MPa (K_B measured at tau_cs = " << four(kb.condition("shear_to_normal"))
+       << " sigma_cn)\n"
        << "  - d ln K_B / d ln(E* / sigma_cn) = " << four(b.slope)
        << " there: the correction uses d ln sigma_t / d ln sigma_cn = " << four(exponent)
        << (ge < plan.groups.size() ? " and d ln sigma_t / d ln E* = " + four(b.slope)
                                    : std::string())
        << "\n";
+    if (!k.note.empty()) md << "  - " << k.note << "\n";
+  }
+  if (gu < plan.groups.size()) {
+    if (input.tables.ku_file.empty())
+      throw InputError(file, "tables.ku",
+                       "missing: sigma_u is a target, and the tables strategy reads K_U (sigma_u = "
+                       "K_U sigma_cn) from the table named here, e.g. ku = "
+                       "\"tables/uniaxial_ku_table.csv\"");
+    const LookupTable ku =
+        read_lookup_table(input.tables.ku_file, kUniaxialStrengthTable, file, "tables.ku");
+    check_conditions(input, ku, "tables.ku");
+    const Packing packing =
+        read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
+    check_size(ku, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}},
+               file, "specimen.generator");
+    const CellCoefficient k = interpolate_cell(ku, packing, file, "specimen.generator");
+    const double sigma_u = input.target_value(CalibrationTarget::SigmaU);
+    const auto iu = static_cast<Eigen::Index>(gu);
+    md << "- sigma_u: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
+       << four(packing.r_min_mm) << " mm, " << four(packing.width_mm) << " x "
+       << four(packing.height_mm) << " mm; K_U from " << k.cells << " of `" << ku.file.string()
+       << "` (measured at E* / sigma_cn = " << four(ku.condition("emod_per_sigma_cn")) << ")";
+    if (both_strengths) {
+      // sigma_cn is the Brazilian lookup's; tau_cs / sigma_cn solves K_U = sigma_u / sigma_cn.
+      const UniaxialLookup u = solve_uniaxial(k, sigma_cn_MPa, sigma_u, file);
+      plan.start_scales[gu] = start_scale(input, plan.groups[gu], "cb_shear_strength",
+                                          u.shear_to_normal * sigma_cn_MPa, "tau_cs from K_U");
+      plan.sensitivities(iu, iu) = u.slope;
+      plan.sensitivities(iu, static_cast<Eigen::Index>(gt)) = 1 - u.slope;
+      md << "; at sigma_cn = " << four(sigma_cn_MPa)
+         << " MPa (E* / sigma_cn = " << four(emod_GPa * 1e3 / sigma_cn_MPa)
+         << ") the target needs K_U = " << four(u.K_U)
+         << ", tau_cs / sigma_cn = " << four(u.shear_to_normal)
+         << ", tau_cs = " << four(u.shear_to_normal * sigma_cn_MPa) << " MPa\n"
+         << "  - d ln K_U / d ln(tau_cs / sigma_cn) = " << four(u.slope)
+         << " there: the correction uses d ln sigma_u / d ln tau_cs = " << four(u.slope)
+         << " and d ln sigma_u / d ln sigma_cn = " << four(1 - u.slope)
+         << "; K_B is read at its own tau_cs / sigma_cn (docs/lookup_tables.md \"K_B against "
+            "tau_cs / sigma_cn\")\n";
+    } else {
+      // No sigma_t target: tau_cs / sigma_cn stays the base materials', and sigma_cn (with
+      // tau_cs, one group) solves sigma_u = K_U sigma_cn.
+      const InputTable base =
+          InputTable::parse_string(input.materials, file).table("materials").table("mortar");
+      const double rho = base.quantity("cb_shear_strength", Dimension::Stress, Range::positive()) /
+                         base.quantity("cb_tensile_strength", Dimension::Stress, Range::positive());
+      if (rho < k.levels.front() * (1 - kSameCondition) ||
+          rho > k.levels.back() * (1 + kSameCondition))
+        throw InputError(file, "materials.mortar.cb_shear_strength",
+                         "tau_cs / sigma_cn of the base materials is " + shortest_number(rho) +
+                             ", outside the K_U table's levels [" + four(k.levels.front()) + ", " +
+                             four(k.levels.back()) + "] (" + ku.file.string() +
+                             "); no extrapolation");
+      const double K = k.at(rho);
+      plan.start_scales[gu] = start_scale(input, plan.groups[gu], "cb_tensile_strength",
+                                          sigma_u / K, "sigma_cn from K_U");
+      md << "; at the base materials' tau_cs / sigma_cn = " << four(rho) << ", K_U = " << four(K)
+         << ", sigma_cn = " << four(sigma_u / K) << " MPa (tau_cs / sigma_cn kept)\n";
+    }
     if (!k.note.empty()) md << "  - " << k.note << "\n";
   }
   if (lookup) *lookup = md.str();

@@ -7,10 +7,15 @@
 //   E = K_E E*                                  (uniaxial; K_E per packing cell)
 //   sigma_t = sigma_cn K_B / (1 + R_max/R_min)  (Brazilian, SPEC 7; K_B per packing cell and
 //                                                E* / sigma_cn level)
+//   sigma_u = sigma_cn K_U                      (uniaxial; K_U per packing cell and
+//                                                tau_cs / sigma_cn level)
 // E* follows from the E target; sigma_cn then solves the Brazilian relation at that E* (K_B
-// depends on E* / sigma_cn, so the equation is implicit). A packing, or a target, outside what
-// the tables hold is refused (InputError, exit 2): there the coefficients were not measured.
+// depends on E* / sigma_cn, so the equation is implicit); tau_cs / sigma_cn then solves the
+// uniaxial relation at that sigma_cn (with no sigma_t target, sigma_cn solves it at the base
+// materials' tau_cs / sigma_cn). A packing, or a target, outside what the tables hold is refused
+// (InputError, exit 2): there the coefficients were not measured.
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,36 +24,48 @@
 
 namespace cdem::calib {
 
-// One row of a lookup table: a packing cell (R_max / R_min, R_min) and, in the Brazilian table,
-// a level of E* / sigma_cn; the coefficient measured there.
+// The columns of one kind of lookup table: its coefficient, the column of its second dimension
+// (none for K_E), and the conditions its runs were made at (every row the same).
+struct TableLayout {
+  std::string coefficient;              // "K_B", "K_E" or "K_U"
+  std::string level;                    // column of the second dimension; empty: none
+  std::string level_name;               // the same in words, for messages
+  std::vector<std::string> conditions;  // columns that every row holds at one value
+};
+// K_B per cell and E* / sigma_cn, on D discs, at one tau_cs / sigma_cn.
+extern const TableLayout kBrazilianTable;
+// K_E = E / E* per cell.
+extern const TableLayout kModulusTable;
+// K_U = sigma_u / sigma_cn per cell and tau_cs / sigma_cn, on W x H rectangles, at one E* /
+// sigma_cn.
+extern const TableLayout kUniaxialStrengthTable;
+
+// One row of a lookup table: a packing cell (R_max / R_min, R_min), the level of its second
+// dimension (E* / sigma_cn for K_B, tau_cs / sigma_cn for K_U; 0 without one), the coefficient.
 struct LookupRow {
-  double r_ratio = 0;            // R_max / R_min
-  double r_min_mm = 0;           // smallest disc radius, mm
-  double emod_per_strength = 0;  // E* / sigma_cn (dimensionless); 0 in a table without it
-  double coefficient = 0;        // K_B or K_E
+  double r_ratio = 0;      // R_max / R_min
+  double r_min_mm = 0;     // smallest disc radius, mm
+  double level = 0;        // dimensionless; 0 in a table without a second dimension
+  double coefficient = 0;  // K_B, K_E or K_U
 };
 
 // A lookup table file: CSV, lines starting with '#' are comments, then a header naming at least
-// r_ratio, r_min_mm, the coefficient's column, emod_per_sigma_cn (Brazilian table), and the
-// conditions its runs were made at (every row the same): kratio, friction, shear_to_normal
-// (tau_cs / sigma_cn) and, for the Brazilian disc, diameter_mm.
+// r_ratio, r_min_mm, the coefficient's column, the level's column and the conditions of its
+// layout.
 struct LookupTable {
   std::filesystem::path file;
-  std::string coefficient;   // "K_B" or "K_E"
-  bool by_strength = false;  // has the E* / sigma_cn dimension (K_B)
+  TableLayout layout;
   std::vector<LookupRow> rows;
-  double kratio = 0;           // kn / ks of its runs
-  double friction = 0;         // mu of its runs
-  double shear_to_normal = 0;  // tau_cs / sigma_cn of its runs
-  double diameter_mm = 0;      // disc diameter of its runs (K_B); 0 when not given
+  std::map<std::string, double> conditions;  // per column of layout.conditions
+  const std::string& coefficient() const { return layout.coefficient; }
+  double condition(const std::string& column) const { return conditions.at(column); }
 };
 
 // Reads and checks a table. Throws InputError naming the calibration file, the key that named the
 // table (`tables.kb`), the table file and line: file missing, a column missing, a value that is not
 // a positive finite number, conditions that differ between rows, a row given twice, no rows.
-LookupTable read_lookup_table(const std::filesystem::path& path, const std::string& coefficient,
-                              bool by_strength, const std::string& calibration_file,
-                              const std::string& key);
+LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayout& layout,
+                              const std::string& calibration_file, const std::string& key);
 
 // The packing a generator input asks for (its [mortar] r_ratio and r_mean; R_min = 2 R_mean /
 // (1 + R_max / R_min)) and, for a disc, its diameter.
@@ -56,18 +73,21 @@ struct Packing {
   double r_ratio = 0;
   double r_min_mm = 0;
   double diameter_mm = 0;  // 0 when not a disc
+  double width_mm = 0;     // 0 when not a rectangle
+  double height_mm = 0;
 };
 
 // A coefficient interpolated at a packing: linear in R_max / R_min between the two cells around
 // it (outside the cells: refused), linear in R_min between levels, the nearest level outside
-// them (R_min barely matters, docs/lookup_tables.md; `note` says so); for the Brazilian table
-// as a function of E* / sigma_cn, piecewise linear in ln(E* / sigma_cn) between the levels.
+// them (R_min barely matters, docs/lookup_tables.md; `note` says so); as a function of the
+// table's level (E* / sigma_cn for K_B, tau_cs / sigma_cn for K_U), piecewise linear in the
+// logarithm of the level between the levels.
 struct CellCoefficient {
-  std::vector<double> levels;        // E* / sigma_cn levels, ascending ({0} without the dimension)
+  std::vector<double> levels;        // ascending ({0} without the dimension)
   std::vector<double> coefficients;  // at each level
   std::string cells;                 // the cells used, in words
   std::string note;                  // R_min outside the levels: the nearest was used
-  double at(double emod_per_strength) const;  // within [levels.front(), levels.back()]
+  double at(double level) const;     // within [levels.front(), levels.back()]
 };
 CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packing,
                                  const std::string& calibration_file, const std::string& key);
@@ -84,13 +104,28 @@ struct BrazilianLookup {
 BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, double sigma_t_MPa,
                                 double emod_GPa, const std::string& calibration_file);
 
+// tau_cs / sigma_cn for a uniaxial target at sigma_cn: the smallest level rho at which K_U(rho) =
+// sigma_u / sigma_cn, on a segment of the table where K_U rises with rho by at least
+// d ln K_U / d ln rho = 0.1 (where it is flatter, tau_cs does not set sigma_u: the tension-driven
+// regime). Refused (InputError on `targets.sigma_u`, naming the strengths the table reaches at
+// that sigma_cn) when there is none.
+struct UniaxialLookup {
+  double shear_to_normal = 0;  // tau_cs / sigma_cn
+  double K_U = 0;              // sigma_u / sigma_cn there
+  double slope = 0;            // d ln K_U / d ln(tau_cs / sigma_cn) on the segment of the solution
+};
+UniaxialLookup solve_uniaxial(const CellCoefficient& ku, double sigma_cn_MPa, double sigma_u_MPa,
+                              const std::string& calibration_file);
+
 // [tables] of the calibration file into input.tables (paths resolved against the file).
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
                           CalibrationInput& input);
 
 // The plan of the tables strategy: the fast strategy's groups, started at the looked-up values,
 // with the sensitivities the tables give (d ln sigma_t / d ln sigma_cn = 1 - slope, d ln
-// sigma_t / d ln E* = slope, E proportional to E*), and input.tables' tolerance and run counts.
+// sigma_t / d ln E* = slope, E proportional to E*; d ln sigma_u / d ln tau_cs = s and d ln
+// sigma_u / d ln sigma_cn = 1 - s with s the K_U table's slope), and input.tables' tolerance and
+// run counts.
 // `lookup` gets the report's markdown. Throws InputError for everything the strategy cannot do.
 ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup = nullptr);
 

@@ -107,6 +107,17 @@ def fit_cell(ratio, r_min, runs, n_left_out, wall_s):
     return row, True
 
 
+def save_figure(fig, path, dpi):
+    """A matplotlib figure to PNG through a temporary file (never a half-written plot)."""
+    tmp = path + ".tmp.png"
+    try:
+        fig.savefig(tmp, dpi=dpi)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
 def write_atomic(path, write):
     tmp = path + ".tmp"
     try:
@@ -136,9 +147,7 @@ def plot(table, path):
     ax.grid(alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
+    save_figure(fig, path, 110)
 
 
 def main():

@@ -30,7 +30,7 @@ from collections import defaultdict
 
 import numpy as np
 
-from fit_brazilian_kb import write_atomic
+from fit_brazilian_kb import save_figure, write_atomic
 
 RATIO = "specimen.mortar.r_ratio"
 R_MEAN = "specimen.mortar.r_mean_mm"
@@ -174,9 +174,7 @@ def plot(kb, ke, path):
     b.set_title("Uniaxial, 20 x 40 mm, kn/ks 2.5")
     b.grid(alpha=0.3)
     fig.tight_layout()
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
+    save_figure(fig, path, 110)
 
 
 def markdown(kb, ke, check, path):

@@ -14,6 +14,17 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   sigma_cn 3000 (E is elastic: the strength only sets how far the run goes, and the steps to the
   peak fall as 1 / level), seeds 11-13;
 - uniaxial_ke_check.toml: the same at E* / sigma_cn 600, seed 11: does E depend on the strength?
+- uniaxial_ku.toml: the uniaxial strength K_U = sigma_u / sigma_cn against tau_cs / sigma_cn
+  (0.25 to 8) on the same rectangles, R_max / R_min 1.5, 2.7, 4, at E* / sigma_cn 600 (where
+  the sandstone sits), seeds 11-13; the cracks by mode (tension, shear) say which bonds fail;
+- uniaxial_ku_check.toml: the same at E* / sigma_cn 1200 on R_max / R_min 2.7, seed 11: does
+  K_U depend on E* / sigma_cn?
+- brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 4 (the K_B table holds
+  2) on R_max / R_min 3 at E* / sigma_cn 600, seeds 11-13: does K_B depend on tau_cs / sigma_cn?
+- uniaxial_nu.toml: nu (and K_E) against kn / ks (1, 1.5, 2.5, 4) on the K_U table's rectangles
+  and cells at E* / sigma_cn 3000 (the elastic part: cheap), seeds 11-12;
+- direct_tension_kd.toml: direct tension of the same rectangles on R_max / R_min 2.7 at E* /
+  sigma_cn 600, tau_cs = 2 sigma_cn, seeds 11-13: K_D on one cell.
 
     cd tables && python3 make_sandstone_tables.py            # writes both
     python3 make_sandstone_tables.py --reduced OUT_DIR        # the CI subset (tests/)
@@ -33,21 +44,34 @@ KE_EMOD_PER_SIGMA = [3000]                   # of the K_E runs
 KE_CHECK_EMOD_PER_SIGMA = [600]              # ... and of their check, on one seed
 SEEDS = [11, 12, 13]
 CHECK_SEEDS = [11]
+KU_RADIUS_RATIOS = [1.5, 2.7, 4]          # R_max / R_min of the uniaxial strength table
+KU_EMOD_PER_SIGMA = [600]                 # E* / sigma_cn of the K_U runs
+KU_CHECK = dict(ratios=[2.7], levels=[1200], seeds=[11])
+SHEAR_TO_NORMAL_LEVELS = [0.25, 0.5, 1, 1.5, 2, 3, 4, 8]   # tau_cs / sigma_cn of the K_U runs
+KB_TAU = dict(ratios=[3], levels=[600], shear=[0.5, 1, 4], seeds=SEEDS)
+NU_KRATIO = dict(ratios=KU_RADIUS_RATIOS, levels=[3000], kratio=[1, 1.5, 2.5, 4], seeds=[11, 12])
+KD = dict(ratios=[2.7], levels=[600], seeds=SEEDS)
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
+# The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
+REDUCED_KU = dict(ratios=[4], shear=[0.25], seeds=[11])
 
 KB_GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
              "wall_time_s"]
 KE_GATHER = ["young_modulus_GPa", "poisson_ratio", "peak_stress_MPa", "stop_reason", "steps",
              "cracks.total", "genesis.discs", "wall_time_s"]
+KU_GATHER = KE_GATHER + ["cracks.tension.M", "cracks.shear.M"]
+KB_TAU_GATHER = KB_GATHER + ["cracks.tension.M", "cracks.shear.M"]
+KD_GATHER = KB_TAU_GATHER
 
 
-def rows(ratios, r_min, levels):
+def rows(ratios, r_min, levels, shear_to_normal=(SHEAR_TO_NORMAL,)):
+    """Design rows (r_ratio, R_mean, sigma_cn, tau_cs): sigma_cn = E* / level, tau_cs = rho
+    sigma_cn for each tau_cs / sigma_cn rho."""
     out = []
-    for ratio, rmin, x in itertools.product(ratios, r_min, levels):
+    for ratio, rmin, x, rho in itertools.product(ratios, r_min, levels, shear_to_normal):
         s = EMOD_GPA * 1e3 / x
-        out.append([ratio, round(rmin * (1 + ratio) / 2, 12), round(s, 12),
-                    round(s * SHEAR_TO_NORMAL, 12)])
+        out.append([ratio, round(rmin * (1 + ratio) / 2, 12), round(s, 12), round(s * rho, 12)])
     return out
 
 
@@ -76,18 +100,45 @@ def main():
     out_dir = "."
     if a.reduced:
         lv, out_dir = REDUCED, a.reduced
-    for name, what, base, gather, levels, seeds in [
-            ("brazilian_kb_x", "Brazilian K_B against E* / sigma_cn", "brazilian_kb_x_base.toml",
-             KB_GATHER, lv["kb"], lv["seeds"]),
-            ("uniaxial_ke", "Uniaxial K_E = E / E* and nu", "uniaxial_ke_base.toml", KE_GATHER,
-             lv["ke"], lv["seeds"]),
-            ("uniaxial_ke_check", "Uniaxial K_E at a higher strength (check)",
-             "uniaxial_ke_base.toml", KE_GATHER, lv["ke_check"], lv["check_seeds"])]:
-        if not levels:
+    campaigns = [
+        ("brazilian_kb_x", "Brazilian K_B against E* / sigma_cn", "brazilian_kb_x_base.toml",
+         KB_GATHER, rows(lv["ratios"], lv["r_min"], lv["kb"]), lv["seeds"]),
+        ("uniaxial_ke", "Uniaxial K_E = E / E* and nu", "uniaxial_ke_base.toml", KE_GATHER,
+         rows(lv["ratios"], lv["r_min"], lv["ke"]), lv["seeds"]),
+        ("uniaxial_ke_check", "Uniaxial K_E at a higher strength (check)",
+         "uniaxial_ke_base.toml", KE_GATHER, rows(lv["ratios"], lv["r_min"], lv["ke_check"]),
+         lv["check_seeds"])]
+    if a.reduced:
+        campaigns.append(
+            ("uniaxial_ku", "Uniaxial K_U (CI subset)", "uniaxial_ke_base.toml", KU_GATHER,
+             rows(REDUCED_KU["ratios"], R_MIN_MM, KU_EMOD_PER_SIGMA, REDUCED_KU["shear"]),
+             REDUCED_KU["seeds"]))
+    else:
+        campaigns += [
+            ("uniaxial_ku", "Uniaxial K_U = sigma_u / sigma_cn against tau_cs / sigma_cn",
+             "uniaxial_ke_base.toml", KU_GATHER,
+             rows(KU_RADIUS_RATIOS, R_MIN_MM, KU_EMOD_PER_SIGMA, SHEAR_TO_NORMAL_LEVELS), SEEDS),
+            ("uniaxial_ku_check", "Uniaxial K_U at a lower strength (check)",
+             "uniaxial_ke_base.toml", KU_GATHER,
+             rows(KU_CHECK["ratios"], R_MIN_MM, KU_CHECK["levels"], SHEAR_TO_NORMAL_LEVELS),
+             KU_CHECK["seeds"]),
+            ("brazilian_kb_tau", "Brazilian K_B at other tau_cs / sigma_cn (check)",
+             "brazilian_kb_x_base.toml", KB_TAU_GATHER,
+             rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["shear"]),
+             KB_TAU["seeds"]),
+            ("uniaxial_nu", "Uniaxial nu and K_E against kn / ks", "uniaxial_ke_base.toml",
+             KE_GATHER,
+             [r + [k] for r in rows(NU_KRATIO["ratios"], R_MIN_MM, NU_KRATIO["levels"])
+              for k in NU_KRATIO["kratio"]], NU_KRATIO["seeds"]),
+            ("direct_tension_kd", "Direct tension K_D on one cell", "direct_tension_kd_base.toml",
+             KD_GATHER, rows(KD["ratios"], R_MIN_MM, KD["levels"]),
+             KD["seeds"])]
+    for name, what, base, gather, r, seeds in campaigns:
+        if not r:
             continue
-        r = rows(lv["ratios"], lv["r_min"], levels)
+        keys = STRENGTH_KEYS + ["materials.mortar.kratio"][:len(r[0]) - len(STRENGTH_KEYS)]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
-                              gather, STRENGTH_KEYS, r, header(what, len(r), seeds, name))
+                              gather, keys, r, header(what, len(r), seeds, name))
         write(os.path.join(out_dir, name + ".toml"), text)
     return 0
 

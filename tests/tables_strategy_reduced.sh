@@ -3,9 +3,11 @@
 # (issue 17; docs/lookup_tables.md, docs/calibration.md "Tables strategy"):
 #  - the reduced design of tables/make_sandstone_tables.py --reduced (R_max / R_min 3 at R_min
 #    0.2 mm: K_B at E* / sigma_cn 600 and 3000, K_E at 3000, seed 11: three runs of the full
-#    tables' inputs) run by `cdem campaign` and fitted by tables/fit_sandstone_tables.py; each
-#    run's sigma_t and E equal, to the last digit, the same run in the shipped raw results
-#    (tables/brazilian_kb_x_results.csv, tables/uniaxial_ke_results.csv): the shipped tables are
+#    tables' inputs; and one run of the K_U table, R_max / R_min 4 at tau_cs / sigma_cn 0.25)
+#    run by `cdem campaign` and fitted by tables/fit_sandstone_tables.py; each run's sigma_t, E
+#    and sigma_u equal, to the last digit, the same run in the shipped raw results
+#    (tables/brazilian_kb_x_results.csv, tables/uniaxial_ke_results.csv,
+#    tables/uniaxial_ku_results.csv): the shipped tables are
 #    what their campaigns make; the fitted K_B falls as E* / sigma_cn rises (the jaws load more
 #    discs at low E* / sigma_cn: docs/lab_tests.md);
 #  - `cdem calibrate` with strategy "tables" on the shipped tables, a sigma_t target alone on the
@@ -24,15 +26,18 @@ cd "$work"
 (cd "$SRC/tables" && /usr/bin/python3 make_sandstone_tables.py --reduced "$work" --base-dir "$SRC/tables")
 "$CDEM" campaign brazilian_kb_x.toml -o kb -j 2 -q
 "$CDEM" campaign uniaxial_ke.toml -o ke -j 2 -q
+"$CDEM" campaign uniaxial_ku.toml -o ku -j 2 -q
 (cd "$SRC/tables" && /usr/bin/python3 fit_sandstone_tables.py --kb "$work/kb" --ke "$work/ke" \
   --kb-out "$work/kb.csv" --ke-out "$work/ke.csv") >/dev/null
 /usr/bin/python3 - "$SRC/tables" <<'PY'
 import csv, sys
 ok = True
 keys = ("specimen.mortar.r_ratio", "specimen.mortar.r_mean_mm",
-        "materials.mortar.cb_tensile_strength_MPa", "seed")
+        "materials.mortar.cb_tensile_strength_MPa", "materials.mortar.cb_shear_strength_MPa",
+        "seed")
 for run_dir, shipped_file, field in (("kb", "brazilian_kb_x_results.csv", "tensile_strength_MPa"),
-                                     ("ke", "uniaxial_ke_results.csv", "young_modulus_GPa")):
+                                     ("ke", "uniaxial_ke_results.csv", "young_modulus_GPa"),
+                                     ("ku", "uniaxial_ku_results.csv", "peak_stress_MPa")):
     shipped = {tuple(float(r[k]) for k in keys): r
                for r in csv.DictReader(open(f"{sys.argv[1]}/{shipped_file}"))}
     for r in csv.DictReader(open(f"{run_dir}/results.csv")):

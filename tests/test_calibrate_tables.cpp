@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -40,6 +41,20 @@ const std::string kKE =
     "r_ratio,r_min_mm,K_E,kratio,friction,shear_to_normal\n"
     "2,0.2,0.5,2.5,0.5,2\n"
     "4,0.2,0.7,2.5,0.5,2\n";
+// K_U = sigma_u / sigma_cn at two radius ratios and five tau_cs / sigma_cn levels: proportional
+// to tau_cs / sigma_cn up to 0.5 (shear-driven), then flattening (tension-driven).
+const std::string kKU =
+    "r_ratio,r_min_mm,shear_to_normal,K_U,kratio,friction,emod_per_sigma_cn,width_mm,height_mm\n"
+    "2,0.2,0.25,0.25,2.5,0.5,600,20,40\n"
+    "2,0.2,0.5,0.5,2.5,0.5,600,20,40\n"
+    "2,0.2,1,0.9,2.5,0.5,600,20,40\n"
+    "2,0.2,2,1.0,2.5,0.5,600,20,40\n"
+    "2,0.2,4,1.02,2.5,0.5,600,20,40\n"
+    "4,0.2,0.25,0.35,2.5,0.5,600,20,40\n"
+    "4,0.2,0.5,0.7,2.5,0.5,600,20,40\n"
+    "4,0.2,1,1.1,2.5,0.5,600,20,40\n"
+    "4,0.2,2,1.2,2.5,0.5,600,20,40\n"
+    "4,0.2,4,1.22,2.5,0.5,600,20,40\n";
 
 const std::string kMaterials =
     "[materials.mortar]\nlaw = \"contact_bond\"\nemod_GPa = 30.0\nkratio = 2.5\nfriction = 0.5\n"
@@ -57,8 +72,13 @@ const std::string kParameters =
     "[[parameters]]\nkey = \"materials.mortar.cb_tensile_strength_MPa\"\nbounds = [5, 400]\n"
     "[[parameters]]\nkey = \"materials.mortar.cb_shear_strength_MPa\"\nbounds = [10, 800]\n";
 
+// The three targets: sigma_u 32 MPa with the rest of kHead (at the Brazilian lookup's sigma_cn,
+// about 42 MPa, K_U about 0.76: on the ratio-2 cell's segment 0.5 -> 1).
+const std::string kHeadUcs = replace(replace(kHead, "E_GPa = 18", "E_GPa = 18\nsigma_u_MPa = 32"),
+                                     "ke = \"ke.csv\"", "ke = \"ke.csv\"\nku = \"ku.csv\"");
+
 struct Files {
-  std::string head = kHead, kb = kKB, ke = kKE, materials = kMaterials, disc = kDisc,
+  std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, materials = kMaterials, disc = kDisc,
               rectangle = kRectangle, parameters = kParameters;
 };
 
@@ -74,6 +94,7 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
   write(dir / "disc.toml", f.disc);
   write(dir / "kb.csv", f.kb);
   write(dir / "ke.csv", f.ke);
+  write(dir / "ku.csv", f.ku);
   write(dir / "cal.toml", f.head +
                               "[tests]\nuniaxial = \"ucs.toml\"\nbrazilian = \"brazilian.toml\"\n"
                               "[specimen]\ngenerator = \"rectangle.toml\"\n"
@@ -82,15 +103,29 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
   return dir / "cal.toml";
 }
 
-LookupTable table(const std::string& name, const std::string& text, const std::string& coefficient,
-                  bool by_strength) {
+// One file of a calibration edited, and the key and words of its refusal.
+struct Edit {
+  const char* name;
+  std::string Files::*file;
+  std::string from, to, key, words;
+};
+
+void expect_refusals(const std::vector<Edit>& edits, const Files& base = {}) {
+  for (const auto& c : edits) {
+    Files f = base;
+    f.*c.file = replace(f.*c.file, c.from, c.to);
+    expect_input_error(make_calibration(c.name, f), c.key, c.words);
+  }
+}
+
+LookupTable table(const std::string& name, const std::string& text, const TableLayout& layout) {
   const auto dir = cdem::test::scratch_dir("calibrate_tables", name);
   write(dir / "t.csv", text);
-  return read_lookup_table(dir / "t.csv", coefficient, by_strength, "cal.toml", "tables.kb");
+  return read_lookup_table(dir / "t.csv", layout, "cal.toml", "tables.kb");
 }
 
 TEST(TablesLookup, InterpolatesLinearlyInTheRadiusRatio) {
-  const auto ke = table("ke", kKE, "K_E", false);
+  const auto ke = table("ke", kKE, kModulusTable);
   EXPECT_DOUBLE_EQ(interpolate_cell(ke, {3, 0.2, 0}, "cal.toml", "k").at(0), 0.6);
   EXPECT_DOUBLE_EQ(interpolate_cell(ke, {2, 0.2, 0}, "cal.toml", "k").at(0), 0.5);  // a cell
   EXPECT_DOUBLE_EQ(interpolate_cell(ke, {3.5, 0.2, 0}, "cal.toml", "k").at(0), 0.65);
@@ -102,7 +137,7 @@ TEST(TablesLookup, InterpolatesLinearlyInTheRadiusRatio) {
 }
 
 TEST(TablesLookup, InterpolatesLogLinearlyInTheStrengthLevel) {
-  const auto kb = table("kb", kKB, "K_B", true);
+  const auto kb = table("kb", kKB, kBrazilianTable);
   const auto cell = interpolate_cell(kb, {3, 0.2, 30}, "cal.toml", "k");
   ASSERT_EQ(cell.levels.size(), 3u);
   EXPECT_DOUBLE_EQ(cell.at(300), 1.2);  // (0.9 + 1.5) / 2
@@ -117,13 +152,13 @@ TEST(TablesLookup, InvertsTheBrazilianRelation) {
       "r_ratio,r_min_mm,emod_per_sigma_cn,K_B,kratio,friction,"
       "shear_to_normal,diameter_mm\n"
       "2,0.2,100,0.6,2.5,0.5,2,30\n2,0.2,5000,0.6,2.5,0.5,2,30\n";
-  const auto kb = interpolate_cell(table("flat", flat, "K_B", true), {2, 0.2, 30}, "c", "k");
+  const auto kb = interpolate_cell(table("flat", flat, kBrazilianTable), {2, 0.2, 30}, "c", "k");
   const auto b = solve_brazilian(kb, 2, 10, 30, "cal.toml");
   EXPECT_NEAR(b.emod_per_strength, 30000 * 0.6 / (3 * 10), 1e-9);  // 600
   EXPECT_NEAR(b.sigma_cn_MPa, 50, 1e-9);
   EXPECT_DOUBLE_EQ(b.slope, 0);
   // On the sloped table: the solution reproduces the target through the interpolated K_B.
-  const auto sloped = interpolate_cell(table("kb2", kKB, "K_B", true), {3, 0.2, 30}, "c", "k");
+  const auto sloped = interpolate_cell(table("kb2", kKB, kBrazilianTable), {3, 0.2, 30}, "c", "k");
   const auto s = solve_brazilian(sloped, 3, 9, 30, "cal.toml");
   EXPECT_NEAR(s.sigma_cn_MPa * sloped.at(s.emod_per_strength) / 4, 9, 1e-9);
   EXPECT_NEAR(s.sigma_cn_MPa, 30000 / s.emod_per_strength, 1e-9);
@@ -132,7 +167,7 @@ TEST(TablesLookup, InvertsTheBrazilianRelation) {
 }
 
 TEST(TablesLookup, RefusesWhatTheTablesDoNotHold) {
-  const auto kb = table("refuse", kKB, "K_B", true);
+  const auto kb = table("refuse", kKB, kBrazilianTable);
   try {
     interpolate_cell(kb, {5, 0.2, 30}, "cal.toml", "specimen.brazilian_generator");
     ADD_FAILURE() << "ratio 5 accepted";
@@ -157,11 +192,39 @@ TEST(TablesLookup, RefusesWhatTheTablesDoNotHold) {
   EXPECT_NO_THROW(solve_brazilian(cell, 3, 29.9, 30, "cal.toml"));
 }
 
+TEST(TablesLookup, InvertsTheUniaxialRelation) {
+  // At ratio 3 the cell is the mean of the two: K_U 0.3, 0.6, 1.0, 1.1, 1.12 at tau_cs / sigma_cn
+  // 0.25, 0.5, 1, 2, 4.
+  const auto cell = interpolate_cell(table("ku", kKU, kUniaxialStrengthTable), {3, 0.2}, "c", "k");
+  ASSERT_EQ(cell.levels.size(), 5u);
+  EXPECT_NEAR(cell.at(1), 1.0, 1e-12);
+  // sigma_u 40 MPa at sigma_cn 50 MPa: K_U 0.8, half way between 0.6 (at 0.5) and 1.0 (at 1),
+  // so half way in ln between 0.5 and 1: rho = sqrt(0.5); slope ln(1.0 / 0.6) / ln 2.
+  const auto u = solve_uniaxial(cell, 50, 40, "cal.toml");
+  EXPECT_NEAR(u.shear_to_normal, std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(u.K_U, 0.8, 1e-12);
+  EXPECT_NEAR(u.slope, std::log(1.0 / 0.6) / std::log(2.0), 1e-12);
+  // The segment 2 -> 4 rises by d ln K_U / d ln rho = ln(1.12 / 1.1) / ln 2 = 0.026 < 0.1: the
+  // table sets sigma_u through tau_cs from 0.3 x 50 = 15 to 1.1 x 50 = 55 MPa only.
+  for (const double target : {14.0, 55.5}) {
+    try {
+      solve_uniaxial(cell, 50, target, "cal.toml");
+      ADD_FAILURE() << "sigma_u " << target << " accepted";
+    } catch (const cdem::InputError& e) {
+      EXPECT_EQ(e.key(), "targets.sigma_u");
+      EXPECT_NE(std::string(e.what()).find("from 15 to 55 MPa"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NEAR(solve_uniaxial(cell, 50, 54.9, "cal.toml").shear_to_normal,
+              std::pow(2.0, (1.098 - 1.0) / 0.1), 1e-9);  // on the segment 1 -> 2
+  EXPECT_NEAR(solve_uniaxial(cell, 50, 15, "cal.toml").shear_to_normal, 0.25, 1e-12);
+}
+
 TEST(TablesLookup, RefusesACorruptTable) {
   const auto expect = [](const std::string& name, const std::string& text,
                          const std::string& words) {
     try {
-      table(name, text, "K_B", true);
+      table(name, text, kBrazilianTable);
       ADD_FAILURE() << name << " accepted";
     } catch (const cdem::InputError& e) {
       EXPECT_EQ(e.key(), "tables.kb");
@@ -178,7 +241,7 @@ TEST(TablesLookup, RefusesACorruptTable) {
   expect("empty", "# nothing\n", "no rows");
   expect("binary", std::string("\x01\x02\x03,\xff\n1,2\n", 10), "no column");
   try {
-    read_lookup_table("/nonexistent/kb.csv", "K_B", true, "cal.toml", "tables.kb");
+    read_lookup_table("/nonexistent/kb.csv", kBrazilianTable, "cal.toml", "tables.kb");
     ADD_FAILURE() << "missing table accepted";
   } catch (const cdem::InputError& e) {
     EXPECT_EQ(e.key(), "tables.kb");
@@ -191,15 +254,9 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
   EXPECT_EQ(in.strategy, CalibrationStrategy::Tables);
   EXPECT_EQ(in.tables.max_iterations, 2);
   EXPECT_DOUBLE_EQ(in.tables.tolerance, 0.05);
-  // Each case: one file of the calibration edited, the key and words of the refusal.
-  struct Case {
-    const char* name;
-    std::string Files::*file;
-    std::string from, to, key, words;
-  };
-  const Case cases[] = {
+  expect_refusals({
       {"nu", &Files::head, "E_GPa = 18", "E_GPa = 18\nnu = 0.2", "targets.nu",
-       "sigma_t (Brazilian, K_B) and E"},
+       "sigma_t (Brazilian, K_B), E (K_E) and sigma_u (K_U)"},
       {"kratio", &Files::materials, "kratio = 2.5", "kratio = 3.0", "materials.mortar.kratio",
        "made at 2.5"},
       {"shear", &Files::materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 40.0",
@@ -208,6 +265,9 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
        "specimen.brazilian_generator", "D 30 mm"},
       {"ratio", &Files::disc, "r_ratio = 3.0", "r_ratio = 6.0", "specimen.brazilian_generator",
        "R_max / R_min = 6"},
+      {"not_disc", &Files::disc, "shape = \"disc\"\ndiameter_mm = 30",
+       "shape = \"rectangle\"\nwidth_mm = 30\nheight_mm = 30", "specimen.brazilian_generator",
+       "has no D"},
       {"aggregates", &Files::disc, "[mortar]", "[gradation]\ntype = \"walraven\"\n[mortar]",
        "specimen.brazilian_generator", "mortar-only"},
       {"target", &Files::head, "sigma_t_MPa = 9", "sigma_t_MPa = 90", "targets.sigma_t",
@@ -220,12 +280,8 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
        "tables.max_iterations", ""},
       {"bounds", &Files::parameters, "bounds = [5, 400]", "bounds = [5, 20]", "parameters",
        "outside the bounds"},
-  };
-  for (const auto& c : cases) {
-    Files f;
-    f.*c.file = replace(f.*c.file, c.from, c.to);
-    expect_input_error(make_calibration(c.name, f), c.key, c.words);
-  }
+      {"no_ku", &Files::head, "E_GPa = 18", "E_GPa = 18\nsigma_u_MPa = 40", "tables.ku", "missing"},
+  });
   // Another bond law: its strengths are other keys, so the materials and parameters both change.
   Files f;
   for (auto* text : {&f.materials, &f.parameters}) {
@@ -236,28 +292,65 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
   expect_input_error(make_calibration("law", f), "materials.mortar.law", "contact_bond");
 }
 
+TEST(CalibrateTablesInput, RefusesWhatTheUniaxialTableDoesNotHold) {
+  Files ucs;
+  ucs.head = kHeadUcs;
+  expect_refusals(
+      {
+          // At the Brazilian lookup's sigma_cn (about 43 MPa) the table reaches 1.0 x that at most.
+          {"ucs_high", &Files::head, "sigma_u_MPa = 32", "sigma_u_MPa = 200", "targets.sigma_u",
+           "only from"},
+          {"ku_size", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
+           "20 x 40 mm"},
+          {"ku_kratio", &Files::ku, "2,0.2,0.5,0.5,2.5", "2,0.2,0.5,0.5,3", "tables.ku",
+           "column 'kratio' is 3"},
+          {"ku_missing", &Files::head, "ku = \"ku.csv\"", "ku = \"none.csv\"", "tables.ku",
+           "cannot read"},
+      },
+      ucs);
+  // tau_cs / sigma_cn of the base materials is free when sigma_u sets it (K_B's 2 is not asked).
+  Files f;
+  f.head = kHeadUcs;
+  f.materials =
+      replace(f.materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 40.0");
+  EXPECT_NO_THROW(read_calibration_input(make_calibration("shear_free", f)));
+}
+
 // The DEM replaced by the relations the tables hold, off by known factors: E = ke K_E(rho) E*,
 // sigma_t = kb sigma_cn K_B(rho, E* / sigma_cn) / (1 + rho), with K_E and K_B the test tables'
 // (ratio 2 for the rectangle, 3 for the disc), and a scatter between specimens.
 class TableModel : public cdem::test::PointModel {
  public:
-  TableModel(const CalibrationInput& input, double ke, double kb)
+  TableModel(const CalibrationInput& input, double ke, double kb, double ku = 1)
       : input_(input),
-        cell_(interpolate_cell(read_lookup_table(input.tables.kb_file, "K_B", true, "c", "k"),
+        cell_(interpolate_cell(read_lookup_table(input.tables.kb_file, kBrazilianTable, "c", "k"),
                                {3, 0.2, 30}, "c", "k")),
+        ucs_cell_(
+            interpolate_cell(read_lookup_table(input.tables.ku_file.empty()
+                                                   ? input.tables.kb_file.parent_path() / "ku.csv"
+                                                   : input.tables.ku_file,
+                                               kUniaxialStrengthTable, "c", "k"),
+                             {2, 0.2}, "c", "k")),
         ke_(ke),
-        kb_(kb) {}
+        kb_(kb),
+        ku_(ku) {}
   double other_specimens = 1;  // strength of the verification specimens against the first
   // When > 0, the calibration specimen's sigma_t jumps at this sigma_cn (MPa): 1.3 x the
   // tables' above, 0.7 x below (as one D 30 mm disc does between the regimes of E* / sigma_cn).
   double jump_MPa = 0;
+  // When > 0, the simulations from this one on (counted from 1) fail.
+  int fail_from = 0;
 
  protected:
   SimulationOutcome respond(const SimulationPoint& p) override {
     const double emod = p.values[0], sigma = p.values[1];
     const double x = std::clamp(emod * 1000 / sigma, 300.0, 3000.0);
     SimulationOutcome o;
-    o.ok = true;
+    o.ok = !(fail_from > 0 && points >= fail_from);
+    if (!o.ok) {
+      o.message = "unstable (the model's failure)";
+      return o;
+    }
     o.simulations = 2;
     // The calibration specimen is the tables' own; the others scatter about it by 2 %.
     const bool first = p.specimen_seed == input_.calibration_seed;
@@ -268,13 +361,18 @@ class TableModel : public cdem::test::PointModel {
     o.responses[static_cast<int>(CalibrationTarget::E)] = ke_ * 0.5 * emod * scatter;
     o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
         kb_ * bias * scatter * sigma * cell_.at(x) / 4;
+    // sigma_u = ku K_U(tau_cs / sigma_cn) sigma_cn on the rectangle's cell (ratio 2); K_B does
+    // not depend on tau_cs / sigma_cn here (the tables' assumption).
+    const double rho = std::clamp(p.values[2] / sigma, 0.25, 4.0);
+    o.responses[static_cast<int>(CalibrationTarget::SigmaU)] =
+        ku_ * scatter * sigma * ucs_cell_.at(rho);
     return o;
   }
 
  private:
   const CalibrationInput& input_;
-  CellCoefficient cell_;
-  double ke_, kb_;
+  CellCoefficient cell_, ucs_cell_;
+  double ke_, kb_, ku_;
 };
 
 TEST(CalibrateTables, OneRunWhenTheTablesAreExact) {
@@ -341,6 +439,84 @@ TEST(CalibrateTables, VerifiesTheLastRunWhenTheCalibrationSpecimenStillMisses) {
   EXPECT_TRUE(r.verifications[1].passed);
   EXPECT_TRUE(r.success()) << r.stop_reason;
   EXPECT_EQ(model.points, 2 + 5 + 5);
+}
+
+// sigma_u with sigma_t and E: sigma_cn from K_B, tau_cs from K_U at that sigma_cn.
+std::size_t index_of(const CalibrationInput& in, CalibrationTarget t) {
+  for (std::size_t i = 0; i < in.targets.size(); ++i)
+    if (in.targets[i].target == t) return i;
+  return in.targets.size();
+}
+
+TEST(CalibrateTables, UniaxialStrengthInOneRunWhenTheTablesAreExact) {
+  Files f;
+  f.head = kHeadUcs;
+  const auto in = read_calibration_input(make_calibration("ucs_exact", f));
+  TableModel model(in, 1, 1);
+  const auto r = calibrate(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
+  // tau_cs / sigma_cn is what K_U of the ratio-2 cell needs for 32 MPa at that sigma_cn.
+  const double k = 32 / r.calibrated[1];
+  ASSERT_GT(k, 0.5);
+  ASSERT_LT(k, 0.9);  // on the segment 0.5 -> 1 of the cell (K_U 0.5 to 0.9)
+  EXPECT_NEAR(r.calibrated[2] / r.calibrated[1], 0.5 * std::pow(2.0, (k - 0.5) / 0.4), 1e-9);
+  EXPECT_NE(r.lookup.find("sigma_u: uniaxial packing"), std::string::npos) << r.lookup;
+}
+
+TEST(CalibrateTables, UniaxialStrengthInOneCorrectionWhenTheTablesAreOff) {
+  // The material's K_U 10 % below the table's (and K_E, K_B off as above): the correction with the
+  // table's slope of K_U and its coupling to sigma_cn cuts every miss at least five-fold.
+  Files f;
+  f.head = kHeadUcs;
+  const auto in = read_calibration_input(make_calibration("ucs_off", f));
+  TableModel model(in, 1.08, 0.88, 0.9);
+  const auto r = calibrate(in, model);
+  ASSERT_GE(r.iterations.size(), 1u);
+  const std::size_t u = index_of(in, CalibrationTarget::SigmaU);
+  EXPECT_NEAR(r.iterations[0].errors[u], -0.1, 1e-9);
+  ASSERT_EQ(r.iterations.size(), 2u);
+  for (std::size_t i = 0; i < in.targets.size(); ++i)
+    EXPECT_LE(std::abs(r.iterations[1].errors[i]), std::abs(r.iterations[0].errors[i]) / 5)
+        << target_name(in.targets[i].target);
+  EXPECT_TRUE(r.success()) << r.stop_reason;
+}
+
+TEST(CalibrateTables, UniaxialStrengthAloneKeepsTheBaseShearRatio) {
+  // sigma_u and E, no sigma_t: tau_cs / sigma_cn stays the base materials' 80 / 40 = 2, where
+  // the ratio-2 cell has K_U 1.0, so sigma_cn = 32 / 1.0 = 32 MPa and tau_cs 64 MPa.
+  Files f;
+  f.head = replace(kHeadUcs, "sigma_t_MPa = 9\n", "");
+  const auto in = read_calibration_input(make_calibration("ucs_alone", f));
+  TableModel model(in, 1, 1);
+  const auto r = calibrate(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  EXPECT_NEAR(r.calibrated[1], 32, 1e-9);
+  EXPECT_NEAR(r.calibrated[2], 64, 1e-9);
+  // With sigma_u alone (the K_E table, made at 2, not asked), a base tau_cs / sigma_cn outside
+  // the K_U table's levels (10 > 4) is refused.
+  f.head = replace(f.head, "E_GPa = 18\n", "");
+  f.materials =
+      replace(f.materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 400.0");
+  expect_input_error(make_calibration("ucs_alone_rho", f), "materials.mortar.cb_shear_strength",
+                     "outside the K_U table's levels");
+}
+
+TEST(CalibrateTables, AFailedLastRunIsReportedWithAReason) {
+  // The correction's run fails: no verification, and the stop reason says why (it was empty
+  // when the iterations ran out on a failed run).
+  const auto in = read_calibration_input(make_calibration("last_failed"));
+  TableModel model(in, 1.08, 0.88);
+  model.fail_from = 2;
+  const auto r = calibrate(in, model);
+  EXPECT_FALSE(r.success());
+  EXPECT_TRUE(r.verifications.empty());
+  ASSERT_EQ(r.iterations.size(), 2u);
+  EXPECT_NE(r.stop_reason.find("not converged within 2 iterations (the last 1 failed)"),
+            std::string::npos)
+      << r.stop_reason;
 }
 
 }  // namespace
