@@ -72,7 +72,7 @@ TEST(ContactEnergy, PairAndWallSpringsStoreHalfKDeltaSquared) {
   w.add_disc(0, 3 * r - d_w - d_p, r, 2000);  // on top of the first, overlapping by d_p
   for (int b = 0; b < 2; ++b) w.set_prescribed(b, true);
   w.step();  // the force pass sees the overlaps; prescribed at rest, nothing moves
-  const double kn_wall = 2 * emod, kn_pair = 2 * r * emod / (2 * r);  // N/m
+  const double kn_wall = 2 * emod, kn_pair = 2 * r * emod / (2 * r);              // N/m
   const double expected = 0.5 * kn_wall * d_w * d_w + 0.5 * kn_pair * d_p * d_p;  // J/m
   EXPECT_NEAR(cdem::dem::contact_energy(w).linear_strain, expected, 1e-6 * expected);
   EXPECT_EQ(cdem::dem::contact_energy(w).bond_strain, 0.0);
