@@ -148,7 +148,7 @@ nlohmann::ordered_json summary_json(const dem::LabTestResult& r, const dem::LabT
   j["cracks"] = cracks;
   j["fragments"] = fragments_json(r.fragments);
   j["stop_reason"] = dem::stop_reason_name(r.stop_reason);
-  j["warnings"] = r.warnings;
+  j[dem::summary_field::kWarnings] = r.warnings;
   j["steps"] = r.steps;
   j["time_step_s"] = r.time_step;
   j["wall_time_s"] = r.wall_time;

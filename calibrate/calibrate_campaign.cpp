@@ -13,6 +13,7 @@
 #include "campaign/shortest_number.hpp"
 #include "core/input_error.hpp"
 #include "io/atomic_output.hpp"
+#include "lab/summary_fields.hpp"
 
 namespace cdem::calib {
 
@@ -187,7 +188,7 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
       // What the summary warns about its figures goes with them (a beam's G_F cut short at
       // max_deflection, say). Gathered last; a campaign re-gathers finished runs from their
       // summaries, so a calibration started before this field resumes without re-running.
-      c.gather.push_back("warnings");
+      c.gather.push_back(dem::summary_field::kWarnings);
       c.timeout_s = input_.timeout_s;
       for (std::size_t i = 0; i < points.size(); ++i) {
         if (points[i].specimen_seed != seed) continue;

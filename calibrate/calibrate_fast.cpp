@@ -11,6 +11,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "io/input_table.hpp"
+#include "lab/material_keys.hpp"
 
 namespace cdem::calib {
 
@@ -56,6 +57,16 @@ bool in_group(const FastGroup& g, ParameterRole role) {
 std::string class_of(const std::string& key) {  // "materials.mortar.emod_GPa" -> "mortar"
   const auto first = key.find('.');
   return key.substr(first + 1, key.find('.', first + 1) - first - 1);
+}
+
+// A mortar key of `role` to suggest in a message, in the unit the sample files write it in: the
+// linear part's modulus and stiffness ratio, a parallel bond's strengths (material key table).
+std::string example_key(ParameterRole role) {
+  const bool strength =
+      role == ParameterRole::TensileStrength || role == ParameterRole::ShearStrength;
+  const std::string key(dem::material_key_for(
+      strength ? dem::MaterialLaw::ParallelBond : dem::MaterialLaw::Linear, role));
+  return key + (role == ParameterRole::Modulus ? "_GPa" : strength ? "_MPa" : "");
 }
 
 std::string describe(const CalibrationInput& input, const FastGroup& g) {
@@ -131,14 +142,11 @@ void check_fast_parameters(const CalibrationInput& input) {
       std::string roles;
       for (const auto r : g.roles)
         roles += (roles.empty() ? "" : " or ") + std::string(role_name(r));
-      throw InputError(
-          file, "parameters",
-          std::string("the fast strategy moves target ") + target_name(g.target) + " with the " +
-              roles + " keys, and none is free; add one (e.g. materials.mortar." +
-              (g.roles[0] == ParameterRole::Modulus          ? "emod_GPa"
-               : g.roles[0] == ParameterRole::StiffnessRatio ? "kratio"
-                                                             : "pb_tensile_strength_MPa") +
-              ") or use strategy = \"paper\"");
+      throw InputError(file, "parameters",
+                       std::string("the fast strategy moves target ") + target_name(g.target) +
+                           " with the " + roles +
+                           " keys, and none is free; add one (e.g. materials.mortar." +
+                           example_key(g.roles[0]) + ") or use strategy = \"paper\"");
     }
     if (!(g.scale_lower <= g.scale_upper))
       throw InputError(file, "parameters",
@@ -161,19 +169,26 @@ std::vector<double> fast_start_scales(const CalibrationInput& input,
       return input.parameters[i].role == role && class_of(input.parameters[i].key) == "mortar";
     });
   };
+  // The mortar's law as its table names it (checked when the calibration input was read).
+  const std::optional<dem::MaterialLaw> mortar_law = dem::find_material_law(
+      mortar.string_or("law", std::string(dem::material_law_name(dem::MaterialLaw::Linear))));
+  // The tensile bond strength of a point- or parallel-bonded mortar (the laws the estimates
+  // above were measured with), MPa; NaN for other laws.
   const auto mortar_tensile_MPa = [&]() -> double {
-    for (const char* key : {"pb_tensile_strength", "cb_tensile_strength"})
-      if (mortar.has(key))
-        return mortar.quantity(key, Dimension::Stress, Range::positive()) / units::MPa;
-    return std::nan("");
+    if (mortar_law != dem::MaterialLaw::ParallelBond && mortar_law != dem::MaterialLaw::ContactBond)
+      return std::nan("");
+    const std::string key(dem::material_key_for(*mortar_law, ParameterRole::TensileStrength));
+    return mortar.quantity(key, Dimension::Stress, Range::positive()) / units::MPa;
   };
+  const std::string mortar_modulus(
+      dem::material_key_for(dem::MaterialLaw::Linear, ParameterRole::Modulus));
   std::vector<double> scales;
   for (const auto& g : groups) {
     double estimate = std::nan("");  // the base materials' response, estimated
     if (g.target == CalibrationTarget::E && mortar_free(g, ParameterRole::Modulus) &&
-        mortar.string_or("law", "linear") == "parallel_bond")
+        mortar_law == dem::MaterialLaw::ParallelBond)
       estimate = kEPerMortarModulus *
-                 mortar.quantity("emod", Dimension::Stress, Range::positive()) / units::GPa;
+                 mortar.quantity(mortar_modulus, Dimension::Stress, Range::positive()) / units::GPa;
     if (mortar_free(g, ParameterRole::TensileStrength)) {
       if (g.target == CalibrationTarget::SigmaU)
         estimate = kSigmaUPerMortarTensileStrength * mortar_tensile_MPa();

@@ -34,7 +34,7 @@ ContactEnergy contact_energy(const World& world) {
       const double kna = joints.normal_stiffness(joint), ksa = joints.shear_stiffness(joint);
       const double fn =
           joints.bonded[joint] ? -kna * joints.gap[joint] : std::max(-kna * joints.gap[joint], 0.0);
-      e.bond_strain += smooth_joint_strain_energy(fn, joints.fs[joint], kna, ksa);
+      e.bond_strain += linear_strain_energy(fn, joints.fs[joint], kna, ksa);  // springs kn A, ks A
       continue;
     }
     const double kn = law.normal_stiffness(d.r[i], d.r[j]);
@@ -42,7 +42,7 @@ ContactEnergy contact_energy(const World& world) {
     // The total normal force holds the parallel bond's tension with a minus sign.
     const double fn = pair.normal[k] + state.bond_normal[k];
     const double fs = state.shear_force[k];
-    e.linear_strain += 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
+    e.linear_strain += linear_strain_energy(fn, fs, kn, ks);
     if (state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel)) {
       const ParallelBondGeometry g =
           parallel_bond_geometry(world.settings().bonds[cls].parallel, d.r[i], d.r[j]);
@@ -54,7 +54,7 @@ ContactEnergy contact_energy(const World& world) {
   const double kn = wall_law.wall_normal_stiffness(), ks = wall_law.shear_stiffness(kn);
   for (std::size_t k = 0; k < world.wall_forces().normal.size(); ++k) {
     const double fn = world.wall_forces().normal[k], fs = list.wall_state.shear_force[k];
-    e.linear_strain += 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
+    e.linear_strain += linear_strain_energy(fn, fs, kn, ks);
   }
   e.friction = world.friction_dissipated();
   e.bond_breakage = world.bond_energy_released();

@@ -138,9 +138,4 @@ struct SmoothJointLaw {
   }
 };
 
-// Strain energy (J per m of thickness) of a joint with forces fn, fs (N).
-inline double smooth_joint_strain_energy(double fn, double fs, double kna, double ksa) {
-  return 0.5 * fn * fn / kna + 0.5 * fs * fs / ksa;
-}
-
 }  // namespace cdem::dem

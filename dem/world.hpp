@@ -110,9 +110,16 @@ class World {
     rebuild_pending_ = true;
   }
   // Holds a body's velocity at what set_body_velocity gives it (forces no longer change it) or
-  // frees it again. Its stiffness leaves (or joins) the automatic time step at the next
-  // neighbour rebuild, as before this method existed (results depend on when that happens).
-  void set_prescribed(int body, bool prescribed) { bodies_.prescribed[body] = prescribed; }
+  // frees it again. No pair changes either way; only the automatic time step, which is the
+  // minimum over free bodies, does. Freeing a body asks for a rebuild (and so a new step) at the
+  // next step: its stiffness may lower the critical step, and a step kept from before could
+  // exceed it. Prescribing one asks for nothing: the body leaves the minimum, so the step kept
+  // until the next rebuild is at most the new critical step (safe), and direct tension's
+  // results, whose grips are prescribed after genesis, keep their bits.
+  void set_prescribed(int body, bool prescribed) {
+    if (bodies_.prescribed[body] && !prescribed) rebuild_pending_ = true;
+    bodies_.prescribed[body] = prescribed;
+  }
   // External load on a body, added to every force pass (N per m of thickness).
   void set_applied_force(int body, double fx, double fy) {
     bodies_.fx_applied[body] = fx;

@@ -3,6 +3,7 @@
 // that reads it and the macro-property it mainly sets. The material table reader takes its
 // known keys from here, and calibration its parameter roles (which keys the fast strategy may
 // move for which target), so a key is never matched by its spelling in two places.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,6 +12,15 @@ namespace cdem::dem {
 
 // The law a key belongs to: every class reads the linear keys, a bonded class also its law's.
 enum class MaterialLaw { Linear, ContactBond, ParallelBond, FlatJoint };
+
+// The name a class's table gives its law (`law = "parallel_bond"`), indexed by MaterialLaw.
+inline constexpr std::string_view kMaterialLawNames[] = {"linear", "contact_bond", "parallel_bond",
+                                                         "flat_joint"};
+inline constexpr std::string_view material_law_name(MaterialLaw law) {
+  return kMaterialLawNames[static_cast<int>(law)];
+}
+// The law called `name` in a class's table, or nullopt for a name no law has.
+std::optional<MaterialLaw> find_material_law(std::string_view name);
 
 // What a key mainly sets (SPEC 8; docs/calibration.md "fast").
 enum class MaterialRole {
@@ -54,5 +64,10 @@ std::vector<std::string> material_keys_of(MaterialLaw law);
 
 // The entry of `name` (without a unit suffix), or nullptr for a key no table knows.
 const MaterialKey* find_material_key(std::string_view name);
+
+// The key that mainly sets `role` (not Other) in a class of law `law`: the law's own key, else
+// the linear part's ((ParallelBond, Modulus) -> "pb_emod", (ContactBond, Modulus) -> "emod",
+// (Linear, TensileStrength) -> ""). Empty when the class has no such key.
+std::string_view material_key_for(MaterialLaw law, MaterialRole role);
 
 }  // namespace cdem::dem

@@ -1,6 +1,7 @@
 #include "lab/material_table.hpp"
 
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <tuple>
@@ -13,22 +14,17 @@ namespace cdem::dem {
 
 namespace {
 
-const std::vector<std::string> kLaws{"linear", "contact_bond", "parallel_bond", "flat_joint"};
-
-// The keys a class of law `law` (one of kLaws) reads (lab/material_keys.hpp).
-std::vector<std::string> known_keys(const std::string& law) {
-  return material_keys_of(law == "contact_bond"    ? MaterialLaw::ContactBond
-                          : law == "parallel_bond" ? MaterialLaw::ParallelBond
-                          : law == "flat_joint"    ? MaterialLaw::FlatJoint
-                                                   : MaterialLaw::Linear);
-}
+// The law names a class's table may give (lab/material_keys.hpp).
+const std::vector<std::string> kLaws(std::begin(kMaterialLawNames), std::end(kMaterialLawNames));
 
 // One class table. `fallback` (the mortar's linear part) supplies defaults for the wall.
 void read_class(const InputTable& t, ContactClass cls, const LinearContact* fallback,
                 MaterialTable& out) {
   const bool wall = cls == ContactClass::Wall;
-  const std::string law = wall ? t.string_or("law", "linear", {"linear"}) : t.string("law", kLaws);
-  t.reject_unknown_keys(known_keys(law));
+  const std::string linear_name(material_law_name(MaterialLaw::Linear));
+  const MaterialLaw law = *find_material_law(wall ? t.string_or("law", linear_name, {linear_name})
+                                                  : t.string("law", kLaws));
+  t.reject_unknown_keys(material_keys_of(law));
   LinearContact linear;
   if (fallback) {
     linear.emod = t.quantity_or("emod", Dimension::Stress, fallback->emod, Range::positive());
@@ -43,13 +39,13 @@ void read_class(const InputTable& t, ContactClass cls, const LinearContact* fall
   out.linear[c] = linear;
   BondModel& bond = out.bonds[c];
   bond = BondModel{};
-  if (law == "contact_bond") {
+  if (law == MaterialLaw::ContactBond) {
     bond.kind = BondKind::Contact;
     bond.contact.normal_strength =
         t.quantity("cb_tensile_strength", Dimension::Stress, Range::positive());
     bond.contact.shear_strength =
         t.quantity("cb_shear_strength", Dimension::Stress, Range::positive());
-  } else if (law == "parallel_bond") {
+  } else if (law == MaterialLaw::ParallelBond) {
     bond.kind = BondKind::Parallel;
     ParallelBondParams& p = bond.parallel;
     p.modulus = t.quantity_or("pb_emod", Dimension::Stress, linear.emod, Range::positive());
@@ -60,7 +56,7 @@ void read_class(const InputTable& t, ContactClass cls, const LinearContact* fall
                        std::numbers::pi / 180.0;
     p.radius_multiplier = t.number_or("pb_radius_multiplier", 1.0, Range::positive());
     p.moment_factor = t.number_or("pb_moment_factor", 1.0, Range::closed(0, 1));
-  } else if (law == "flat_joint") {
+  } else if (law == MaterialLaw::FlatJoint) {
     // Deformability (E*, kn/ks) and residual friction are the class's emod, kratio, friction.
     bond.kind = BondKind::FlatJoint;
     FlatJointParams& p = bond.flat_joint;

@@ -10,5 +10,8 @@ inline constexpr const char* kPoissonRatio = "poisson_ratio";            // 1, u
 inline constexpr const char* kTensileStrength = "tensile_strength_MPa";  // MPa, tension tests
 // N/m, three-point bending: G_F (RILEM TC-50 FMC) in the summary's `bending` table.
 inline constexpr const char* kFractureEnergy = "bending.fracture_energy_N_per_m";
+// Array of strings: what the run warns about its figures (a G_F cut short, say); calibration
+// carries them with the figures it gathers.
+inline constexpr const char* kWarnings = "warnings";
 
 }  // namespace cdem::dem::summary_field

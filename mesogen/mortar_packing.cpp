@@ -131,41 +131,29 @@ std::vector<std::size_t> spatial_order(const std::vector<double>& x, const std::
   return order;
 }
 
-// Change of the contact-based mean stress per unit relative radius change if the discs did not
-// move (affine response): (1 / 2A) sum kn L^2 over the touching contacts (Pa). Isotropic
-// compression of a jammed packing is close to affine, so this is a fair estimate.
-double touching_stiffness(const dem::World& w, double area) {
-  const dem::Discs& d = w.discs();
-  const dem::LinearContact& law = w.settings().laws[0];
-  double sum = 0;
-  for (std::size_t k = 0; k < w.neighbors().keys.size(); ++k) {
-    if (w.pair_forces().overlap[k] <= 0) continue;
-    const std::int32_t i = w.neighbors().first[k], j = w.neighbors().second[k];
-    const double l = d.r[i] + d.r[j];
-    sum += law.normal_stiffness(d.r[i], d.r[j]) * l * l;
-  }
-  const double kw = w.settings().laws[3].wall_normal_stiffness();
-  for (std::size_t k = 0; k < w.neighbors().wall_keys.size(); ++k) {
-    if (w.wall_forces().overlap[k] <= 0) continue;
-    const double l = d.r[w.neighbors().wall_disc[k]];
-    sum += kw * l * l;
-  }
-  return sum / (2.0 * area);
-}
+// The contacts an affine stiffness counts: those touching, or every candidate pair (touching or
+// within the skin: the response once the near pairs close).
+enum class AffineContacts { Touching, Candidates };
 
-// The same over all candidate pairs (touching or within the skin): the response once the near
-// pairs close, used when re-compressing a packing that has few contacts.
-double candidate_stiffness(const dem::World& w, double area) {
+// Change of the contact-based mean stress per unit relative radius change if the discs did not
+// move (affine response): (1 / 2A) sum kn L^2 over the contacts `which` counts (Pa). Isotropic
+// compression of a jammed packing is close to affine, so this is a fair estimate; the candidate
+// sum serves when re-compressing a packing that has few contacts.
+double affine_stiffness(const dem::World& w, double area, AffineContacts which) {
+  const bool touching_only = which == AffineContacts::Touching;
   const dem::Discs& d = w.discs();
-  const dem::LinearContact& law = w.settings().laws[0];
+  const dem::LinearContact& law = w.settings().laws[static_cast<int>(dem::ContactClass::Mortar)];
   double sum = 0;
   for (std::size_t k = 0; k < w.neighbors().keys.size(); ++k) {
+    if (touching_only && w.pair_forces().overlap[k] <= 0) continue;
     const std::int32_t i = w.neighbors().first[k], j = w.neighbors().second[k];
     const double l = d.r[i] + d.r[j];
     sum += law.normal_stiffness(d.r[i], d.r[j]) * l * l;
   }
-  const double kw = w.settings().laws[3].wall_normal_stiffness();
+  const double kw =
+      w.settings().laws[static_cast<int>(dem::ContactClass::Wall)].wall_normal_stiffness();
   for (std::size_t k = 0; k < w.neighbors().wall_keys.size(); ++k) {
+    if (touching_only && w.wall_forces().overlap[k] <= 0) continue;
     const double l = d.r[w.neighbors().wall_disc[k]];
     sum += kw * l * l;
   }
@@ -287,7 +275,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
     if (!holding) holding = sigma <= c.sigma0 + band;
     if (!holding) {
       if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
-        stiffness = touching_stiffness(world, area);
+        stiffness = affine_stiffness(world, area, AffineContacts::Touching);
       const double fraction =
           rate_scale *
           (sigma > kFastDecompressionAbove * c.sigma0 ? kFastDecompression : kSlowDecompression);
@@ -315,8 +303,8 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
     hold_rate = 0;
     if (holding && std::abs(wall_sigma - c.sigma0) > band) {
       // Spread a fraction of the affine correction over the next interval.
-      const double k =
-          std::max(touching_stiffness(world, area), candidate_stiffness(world, area) / 10);
+      const double k = std::max(affine_stiffness(world, area, AffineContacts::Touching),
+                                affine_stiffness(world, area, AffineContacts::Candidates) / 10);
       hold_rate = kHoldGain * (c.sigma0 - wall_sigma) / k / static_cast<double>(kCheckEvery);
     }
   }

@@ -211,6 +211,24 @@ TEST(CalibrateInput, ReadsTheFlatJointSampleWithDirectTension) {
   }
 }
 
+// A target whose keys are all fixed is refused with an example key of the group's own role,
+// named from the material key table (lab/material_keys.hpp): sigma_u beside sigma_t moves the
+// shear strengths, so the example is a shear strength, not a tensile one.
+TEST(CalibrateFast, AMissingGroupSuggestsAKeyOfItsRole) {
+  auto in = read_calibration_input(std::filesystem::path(CDEM_SOURCE_DIR) /
+                                   "samples/c30_parallel_bond_calibrate.toml");
+  std::erase_if(in.parameters, [](const CalibrationParameter& p) {
+    return p.role == ParameterRole::ShearStrength;
+  });
+  try {
+    check_fast_parameters(in);
+    ADD_FAILURE() << "no error for sigma_u without a free shear strength";
+  } catch (const cdem::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("e.g. materials.mortar.pb_cohesion_MPa"), std::string::npos) << what;
+  }
+}
+
 // Every calibration file shipped in samples/ reads (its tests, generators and material start
 // values included).
 TEST(CalibrateInput, ReadsEverySampleCalibration) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/rng.hpp"
+#include "dem/contact_energy.hpp"
 #include "dem/measure.hpp"
 #include "dem/world.hpp"
 
@@ -56,6 +57,25 @@ DriftRun run_box(int side, long steps, double safety) {
     touching_before = touching;
   }
   return out;
+}
+
+// The linear springs store kn delta^2 / 2 (SPEC 4): a disc pressed into a wall by d_w and a disc
+// pair overlapping by d_p, all held still, no shear. kn = 2 t E* against a wall, 2 min(R) t E* /
+// (R1 + R2) between discs (t = 1 m).
+TEST(ContactEnergy, PairAndWallSpringsStoreHalfKDeltaSquared) {
+  const double emod = 16e9, r = 1e-3, d_w = 2e-6, d_p = 3e-6;  // Pa, m, m, m
+  WorldSettings s;
+  s.laws.fill(LinearContact{emod, 1.5, 0.5});
+  World w(s);
+  w.add_wall(-1, 0, 1, 0);  // the floor y = 0, discs above
+  w.add_disc(0, r - d_w, r, 2000);
+  w.add_disc(0, 3 * r - d_w - d_p, r, 2000);  // on top of the first, overlapping by d_p
+  for (int b = 0; b < 2; ++b) w.set_prescribed(b, true);
+  w.step();  // the force pass sees the overlaps; prescribed at rest, nothing moves
+  const double kn_wall = 2 * emod, kn_pair = 2 * r * emod / (2 * r);              // N/m
+  const double expected = 0.5 * kn_wall * d_w * d_w + 0.5 * kn_pair * d_p * d_p;  // J/m
+  EXPECT_NEAR(cdem::dem::contact_energy(w).linear_strain, expected, 1e-6 * expected);
+  EXPECT_EQ(cdem::dem::contact_energy(w).bond_strain, 0.0);
 }
 
 TEST(EnergyConservation, FrictionlessDiscsInABoxWithoutDamping) {

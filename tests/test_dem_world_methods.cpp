@@ -2,6 +2,9 @@
 // scaling, the fixed step, the neighbour skin or the servos through one call, with no
 // invalidate_neighbors() reminder, and the change is in force at the next step. The state is
 // read through const views only.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <type_traits>
 #include <utility>
 
@@ -117,6 +120,48 @@ TEST(WorldMethods, ServosAreAddedRetargetedAndRemovedByWall) {
   w.step();
   EXPECT_DOUBLE_EQ(w.walls().vy[top], -0.01);
   EXPECT_EQ(w.walls().vy[bottom], 0.0);
+}
+
+// The critical step of a lone disc of radius r (m) and density rho (kg/m3) with one contact of
+// normal stiffness kn (N/m, k_s = kn for kappa = 1) and the one-wall-contact floor kw (N/m): the
+// smaller of sqrt(m / max(kn, kw)) and sqrt(I / (k_s r^2)), I = m r^2 / 2 (SPEC 5; World's rule).
+double lone_disc_critical_step(double r, double rho, double kn, double kw) {
+  const double m = rho * std::numbers::pi * r * r;  // kg per m of thickness
+  return std::min(std::sqrt(m / std::max(kn, kw)), std::sqrt(0.5 * m * r * r / (kn * r * r)));
+}
+
+// set_prescribed: freeing a body puts its stiffness in the automatic step at the next step, with
+// no invalidate_neighbors(); prescribing one keeps the step until the next rebuild (the body
+// leaves the minimum, so the kept step is at most the new critical one).
+TEST(WorldMethods, FreeingAPrescribedBodyPutsItInTheStepAtTheNextStep) {
+  const double emod = 1e9, rho = 2500;  // Pa, kg/m3
+  WorldSettings s;
+  s.laws.fill(LinearContact{emod, 1.0, 0.5});
+  World w(s);
+  const double r_big = 4 * kR, r_small = kR;  // m
+  w.add_disc(0, 0, r_big, rho);
+  const int small = w.add_disc(r_big + r_small, 0, r_small, rho);  // touching, no force
+  const double kn = 2 * r_small * emod / (r_big + r_small);        // N/m, SPEC 4
+  const double kw = 2 * emod;                                      // N/m, disc-wall floor
+  w.set_prescribed(small, true);
+  w.step();
+  const double big_only = lone_disc_critical_step(r_big, rho, kn, kw);
+  EXPECT_NEAR(w.critical_time_step(), big_only, 1e-12 * big_only);
+  const long builds = w.neighbors().build_count;
+  w.set_prescribed(small, false);
+  w.step();
+  // The small disc is the stiffer oscillator: the step follows it at once.
+  const double both = lone_disc_critical_step(r_small, rho, kn, kw);
+  ASSERT_LT(both, big_only);
+  EXPECT_NEAR(w.critical_time_step(), both, 1e-12 * both);
+  EXPECT_NEAR(w.time_step(), s.time_step_safety * both, 1e-12 * both);
+  EXPECT_EQ(w.neighbors().build_count, builds + 1);
+  // Prescribing it again: no rebuild asked, the step stays below the new critical one.
+  w.set_prescribed(small, true);
+  w.step();
+  EXPECT_EQ(w.neighbors().build_count, builds + 1);
+  EXPECT_NEAR(w.critical_time_step(), both, 1e-12 * both);
+  EXPECT_LE(w.time_step(), s.time_step_safety * big_only);
 }
 
 }  // namespace

@@ -231,6 +231,28 @@ TEST(MaterialKeys, OneListForTheReaderAndTheCalibration) {
   for (const char* key : {"emod", "kratio", "friction", "fj_tensile_strength", "fj_cohesion"})
     EXPECT_NE(std::find(fj.begin(), fj.end(), key), fj.end()) << key;
   EXPECT_EQ(std::find(fj.begin(), fj.end(), "pb_cohesion"), fj.end());
+  // A class of each law has at most one key per role (else "the key of role R" is ambiguous).
+  for (const MaterialLaw law : {MaterialLaw::Linear, MaterialLaw::ContactBond,
+                                MaterialLaw::ParallelBond, MaterialLaw::FlatJoint})
+    for (const MaterialRole role : {MaterialRole::Modulus, MaterialRole::StiffnessRatio,
+                                    MaterialRole::TensileStrength, MaterialRole::ShearStrength}) {
+      int own = 0;
+      for (const MaterialKey& k : kMaterialKeys) own += k.law == law && k.role == role;
+      EXPECT_LE(own, 1) << material_law_name(law);
+    }
+  // The key of a role in a class of a law: the law's own, else the linear part's (SPEC 8).
+  EXPECT_EQ(material_key_for(MaterialLaw::ParallelBond, MaterialRole::Modulus), "pb_emod");
+  EXPECT_EQ(material_key_for(MaterialLaw::ContactBond, MaterialRole::Modulus), "emod");
+  EXPECT_EQ(material_key_for(MaterialLaw::ContactBond, MaterialRole::TensileStrength),
+            "cb_tensile_strength");
+  EXPECT_EQ(material_key_for(MaterialLaw::FlatJoint, MaterialRole::ShearStrength), "fj_cohesion");
+  EXPECT_EQ(material_key_for(MaterialLaw::Linear, MaterialRole::TensileStrength), "");
+  // The law names the reader accepts, and back.
+  for (const MaterialLaw law : {MaterialLaw::Linear, MaterialLaw::ContactBond,
+                                MaterialLaw::ParallelBond, MaterialLaw::FlatJoint})
+    EXPECT_EQ(find_material_law(material_law_name(law)), law);
+  EXPECT_EQ(material_law_name(MaterialLaw::ParallelBond), "parallel_bond");
+  EXPECT_FALSE(find_material_law("parallel"));
   // The roles SPEC 8 gives the keys, read from a calibration's dotted, unit-suffixed keys.
   using cdem::calib::parameter_role;
   EXPECT_EQ(parameter_role("materials.mortar.emod_GPa"), MaterialRole::Modulus);

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@
 #include "calibrate/calibrate_input.hpp"
 #include "campaign/campaign_run.hpp"
 #include "lab/lab_test.hpp"
+#include "lab/summary_fields.hpp"
 #include "lab_test_fixtures.hpp"
 #include "scratch_dir.hpp"
 
@@ -58,6 +60,11 @@ void expect_targets_of(cdem::calib::TestKind kind, const LabTestResult& r,
     ++checked;
   }
   EXPECT_EQ(checked, targets);
+  // The warnings calibration carries with the figures: an array of the result's own strings.
+  const nlohmann::json warnings =
+      cdem::calib::json_at_path(summary, cdem::dem::summary_field::kWarnings);
+  ASSERT_TRUE(warnings.is_array()) << "no warnings array in the " << summary["test"] << " summary";
+  EXPECT_EQ(warnings.get<std::vector<std::string>>(), r.warnings);
 }
 
 // Runs `type` on `specimen` and checks every target that test measures for calibration.
@@ -89,5 +96,6 @@ TEST(SummaryFields, TheFractureEnergyCalibrationReadsIsTheBendingSummarys) {
   r.type = cdem::dem::LabTestType::ThreePointBending;
   r.bending.fracture_energy = 37.25;  // N/m
   r.bending.fracture_energy_no_weight = 35.5;
+  r.warnings = {"G_F is a lower bound: the run stopped at max_deflection"};
   expect_targets_of(cdem::calib::TestKind::Bending, r, cdem::dem::LabTestInput{}, 1);
 }
