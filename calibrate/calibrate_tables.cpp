@@ -16,6 +16,7 @@
 #include "campaign/shortest_number.hpp"
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "lab/material_keys.hpp"
 
 namespace cdem::calib {
 
@@ -24,6 +25,19 @@ namespace {
 // Two conditions of a table (or a table and the base materials) are the same when they agree to
 // this relative difference: they are written by hand in the inputs (2.5, 0.5, 2), not computed.
 constexpr double kSameCondition = 1e-6;
+
+// The mortar keys the tables were made with: a contact-bonded class (lab/material_keys.hpp names
+// its law and the key of each role, so no key is spelled here).
+const std::string kContactBondLaw(dem::material_law_name(dem::MaterialLaw::ContactBond));
+const std::string kLinearLaw(dem::material_law_name(dem::MaterialLaw::Linear));
+const std::string kModulusKey(dem::material_key_for(dem::MaterialLaw::ContactBond,
+                                                    ParameterRole::Modulus));
+const std::string kRatioKey(dem::material_key_for(dem::MaterialLaw::ContactBond,
+                                                  ParameterRole::StiffnessRatio));
+const std::string kTensileKey(dem::material_key_for(dem::MaterialLaw::ContactBond,
+                                                    ParameterRole::TensileStrength));
+const std::string kShearKey(dem::material_key_for(dem::MaterialLaw::ContactBond,
+                                                  ParameterRole::ShearStrength));
 // The Brazilian sensitivity d ln sigma_t / d ln sigma_cn = 1 - slope is held in [0.5, 2]: a
 // table segment steeper than that is one specimen's noise rather than the material's trend.
 constexpr double kMinStrengthExponent = 0.5;
@@ -394,21 +408,21 @@ void check_conditions(const CalibrationInput& input, const LookupTable& table,
                                 .table("materials")
                                 .table("mortar");
   const std::string file = input.file.string();
-  const std::string law = mortar.string_or("law", "linear");
-  if (law != "contact_bond")
+  const std::string law = mortar.string_or("law", kLinearLaw);
+  if (law != kContactBondLaw)
     throw InputError(file, "materials.mortar.law",
                      "is \"" + law +
                          "\"; the tables strategy is for contact_bond models (its "
                          "tables were made with contact bonds)");
-  const double tension =
-      mortar.quantity("cb_tensile_strength", Dimension::Stress, Range::positive());
-  const double shear = mortar.quantity("cb_shear_strength", Dimension::Stress, Range::positive());
+  const double tension = mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
+  const double shear = mortar.quantity(kShearKey, Dimension::Stress, Range::positive());
   std::vector<std::tuple<std::string, std::string, double, double>> conditions{
-      {"kratio", "kratio", mortar.number_or("kratio", 0, Range::any()), table.condition("kratio")},
+      {kRatioKey, "kratio", mortar.number_or(kRatioKey, 0, Range::any()),
+       table.condition("kratio")},
       {"friction", "friction", mortar.number_or("friction", 0, Range::any()),
        table.condition("friction")}};
   if (table.conditions.count("shear_to_normal") && !shear_ratio_free)
-    conditions.emplace_back("cb_shear_strength", "tau_cs / sigma_cn", shear / tension,
+    conditions.emplace_back(kShearKey, "tau_cs / sigma_cn", shear / tension,
                             table.condition("shear_to_normal"));
   for (const auto& [name, words, value, made] : conditions)
     if (!same(value, made))
@@ -481,7 +495,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
   const std::size_t gu = group_of(plan, CalibrationTarget::SigmaU);
   // With sigma_t and sigma_u targets, tau_cs / sigma_cn is the K_U table's to set.
   const bool both_strengths = gt < plan.groups.size() && gu < plan.groups.size();
-  double emod_GPa = mortar.quantity("emod", Dimension::Stress, Range::positive()) / units::GPa;
+  double emod_GPa = mortar.quantity(kModulusKey, Dimension::Stress, Range::positive()) / units::GPa;
   if (ge < plan.groups.size()) {
     if (input.tables.ke_file.empty())
       throw InputError(file, "tables.ke",
@@ -494,7 +508,8 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
     const Packing packing = read_packing(test, file, "specimen.generator");
     const CellCoefficient k = interpolate_cell(ke, packing, file, "specimen.generator");
     emod_GPa = input.target_value(CalibrationTarget::E) / k.at(0);
-    plan.start_scales[ge] = start_scale(input, plan.groups[ge], "emod", emod_GPa, "E* = E / K_E");
+    plan.start_scales[ge] =
+        start_scale(input, plan.groups[ge], kModulusKey, emod_GPa, "E* = E / K_E");
     md << "- E: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
        << four(packing.r_min_mm) << " mm; K_E = " << four(k.at(0)) << " from " << k.cells << " of `"
        << ke.file.string() << "`; E* = E / K_E = " << four(emod_GPa) << " GPa\n";
@@ -520,8 +535,8 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
     const CellCoefficient k = interpolate_cell(kb, packing, file, "specimen.brazilian_generator");
     const double sigma_t = input.target_value(CalibrationTarget::SigmaT);
     const BrazilianLookup b = solve_brazilian(k, packing.r_ratio, sigma_t, emod_GPa, file);
-    plan.start_scales[gt] = start_scale(input, plan.groups[gt], "cb_tensile_strength",
-                                        b.sigma_cn_MPa, "sigma_cn from K_B");
+    plan.start_scales[gt] =
+        start_scale(input, plan.groups[gt], kTensileKey, b.sigma_cn_MPa, "sigma_cn from K_B");
     sigma_cn_MPa = b.sigma_cn_MPa;
     const double exponent = std::clamp(1 - b.slope, kMinStrengthExponent, kMaxStrengthExponent);
     const auto it = static_cast<Eigen::Index>(gt);
@@ -564,7 +579,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
     if (both_strengths) {
       // sigma_cn is the Brazilian lookup's; tau_cs / sigma_cn solves K_U = sigma_u / sigma_cn.
       const UniaxialLookup u = solve_uniaxial(k, sigma_cn_MPa, sigma_u, file);
-      plan.start_scales[gu] = start_scale(input, plan.groups[gu], "cb_shear_strength",
+      plan.start_scales[gu] = start_scale(input, plan.groups[gu], kShearKey,
                                           u.shear_to_normal * sigma_cn_MPa, "tau_cs from K_U");
       plan.sensitivities(iu, iu) = u.slope;
       plan.sensitivities(iu, static_cast<Eigen::Index>(gt)) = 1 - u.slope;
@@ -583,18 +598,18 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
       // tau_cs, one group) solves sigma_u = K_U sigma_cn.
       const InputTable base =
           InputTable::parse_string(input.materials, file).table("materials").table("mortar");
-      const double rho = base.quantity("cb_shear_strength", Dimension::Stress, Range::positive()) /
-                         base.quantity("cb_tensile_strength", Dimension::Stress, Range::positive());
+      const double rho = base.quantity(kShearKey, Dimension::Stress, Range::positive()) /
+                         base.quantity(kTensileKey, Dimension::Stress, Range::positive());
       if (rho < k.levels.front() * (1 - kSameCondition) ||
           rho > k.levels.back() * (1 + kSameCondition))
-        throw InputError(file, "materials.mortar.cb_shear_strength",
+        throw InputError(file, "materials.mortar." + kShearKey,
                          "tau_cs / sigma_cn of the base materials is " + shortest_number(rho) +
                              ", outside the K_U table's levels [" + four(k.levels.front()) + ", " +
                              four(k.levels.back()) + "] (" + ku.file.string() +
                              "); no extrapolation");
       const double K = k.at(rho);
-      plan.start_scales[gu] = start_scale(input, plan.groups[gu], "cb_tensile_strength",
-                                          sigma_u / K, "sigma_cn from K_U");
+      plan.start_scales[gu] =
+          start_scale(input, plan.groups[gu], kTensileKey, sigma_u / K, "sigma_cn from K_U");
       md << "; at the base materials' tau_cs / sigma_cn = " << four(rho) << ", K_U = " << four(K)
          << ", sigma_cn = " << four(sigma_u / K) << " MPa (tau_cs / sigma_cn kept)\n";
     }
