@@ -98,8 +98,8 @@ struct Probe {
     std::ofstream fk = open("cracks" + tag);
     fk << "x,y,mode,class,first,second\n";
     for (const Crack& c : w.cracks().cracks)
-      fk << c.x << ',' << c.y << ',' << int(c.mode) << ',' << int(c.contact_class) << ','
-         << c.first << ',' << c.second << '\n';
+      fk << c.x << ',' << c.y << ',' << int(c.mode) << ',' << int(c.contact_class) << ',' << c.first
+         << ',' << c.second << '\n';
   }
 };
 
