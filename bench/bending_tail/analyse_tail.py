@@ -92,7 +92,11 @@ def analyse(directory, k, notch_depth):
         fits[name] = rigid_fit(d["x0"][m], d["y0"][m], ux[m], uy[m])
     lx, ly = motion_at(fits["left"], d["x0"], d["y0"])
     rx, ry = motion_at(fits["right"], d["x0"], d["y0"])
-    group = (np.hypot(ux - rx, uy - ry) < np.hypot(ux - lx, uy - ly)).astype(int)  # 0 L, 1 R
+    # A clump's pebbles go together (a rigid body has no contact inside to cut): by the sum of
+    # their misfits.
+    prefer_right = np.hypot(ux - lx, uy - ly) - np.hypot(ux - rx, uy - ry)
+    body = d["body"].astype(int)
+    group = (np.bincount(body, prefer_right)[body] > 0).astype(int)  # 0 left, 1 right
     # The crack tip: the highest bond failure within 0.1 L of mid-span.
     near = np.abs(cracks["x"] - xmid) < 0.1 * length
     crack_tip = None
