@@ -23,6 +23,7 @@ Units: forces N/m (2D, t = 1 m), printed in kN/m; lengths m, printed in mm.
 import argparse
 import json
 import pathlib
+import warnings
 
 import numpy as np
 
@@ -52,6 +53,13 @@ def components(n, first, second):
     return np.array([find(a) for a in range(n)])
 
 
+def mm_range(values, origin):
+    """[min, max] of values (m) from origin, in mm; None when empty."""
+    if not len(values):
+        return None
+    return [float((values.min() - origin) * 1e3), float((values.max() - origin) * 1e3)]
+
+
 def rigid_fit(x0, y0, ux, uy):
     """Least-squares rigid motion u = t + theta (-(y - yc), x - xc) about the centroid."""
     xc, yc = x0.mean(), y0.mean()
@@ -72,12 +80,12 @@ def analyse(directory, k, notch_depth):
     cracks = read(directory / f"cracks_{k}.csv")
     n = len(d)
     first, second = c["first"].astype(int), c["second"].astype(int)
-    x0min, x0max = d["x0"].min() - d["r"][d["x0"].argmin()], d["x0"].max() + d["r"][d["x0"].argmax()]
+    x0min = d["x0"].min() - d["r"][d["x0"].argmin()]
+    x0max = d["x0"].max() + d["r"][d["x0"].argmax()]
     ytop0 = (d["y0"] + d["r"]).max()
     ybot0 = (d["y0"] - d["r"]).min()
     length, depth = x0max - x0min, ytop0 - ybot0
     xmid = x0min + 0.5 * length
-    r_mean = d["r"][d["clump"] == 0].mean()
 
     intact = c["bond"] > 0
     full = c["elements"].max()  # a flat joint's element count (every joint has the same)
@@ -88,7 +96,8 @@ def analyse(directory, k, notch_depth):
     # two motions agree, the split is arbitrary, but the net force across it is not (balance).
     ux, uy = d["x"] - d["x0"], d["y"] - d["y0"]
     fits = {}
-    for name, m in (("left", d["x0"] < xmid - 0.1 * length), ("right", d["x0"] > xmid + 0.1 * length)):
+    away = 0.1 * length
+    for name, m in (("left", d["x0"] < xmid - away), ("right", d["x0"] > xmid + away)):
         fits[name] = rigid_fit(d["x0"][m], d["y0"][m], ux[m], uy[m])
     lx, ly = motion_at(fits["left"], d["x0"], d["y0"])
     rx, ry = motion_at(fits["right"], d["x0"], d["y0"])
@@ -107,7 +116,8 @@ def analyse(directory, k, notch_depth):
     # pin's discs to the roller's.
     label = components(n, first[intact], second[intact])
     wall_disc, wall = w["disc"].astype(int), w["wall"].astype(int)
-    bonded_through = bool(np.intersect1d(label[wall_disc[wall == PIN]], label[wall_disc[wall == ROLLER]]).size)
+    pin_pieces, roller_pieces = label[wall_disc[wall == PIN]], label[wall_disc[wall == ROLLER]]
+    bonded_through = bool(np.intersect1d(pin_pieces, roller_pieces).size)
 
     # Contact point and frame of each pair: n from first to second, t = (-ny, nx).
     ex, ey = d["x"][second] - d["x"][first], d["y"][second] - d["y"][first]
@@ -144,17 +154,19 @@ def analyse(directory, k, notch_depth):
                 "sliding": int(np.sum(sliding[m])),
                 "partly_broken_joints": int(np.sum(intact[m] & (c["elements"][m] < full))),
                 "aggregate": int(np.sum(aggregate[m])),
-                "y_mm": [float((py[m].min() - ybot0) * 1e3), float((py[m].max() - ybot0) * 1e3)] if m.any() else None,
+                "y_mm": mm_range(py[m], ybot0),
             })
     # Contacts carrying most of the crossing force, for the picture of the load path.
     cross_force = np.hypot(c["fx"], c["fy"]) * cross
     order = np.argsort(-cross_force)[: min(8, int(cross.sum()))]
-    strongest = [{"y_mm": float((py[i] - ybot0) * 1e3), "x_mm": float((px[i] - x0min) * 1e3),
-                  "F_kN": float(cross_force[i] * 1e-3), "Fx_on_right_kN": float(sign[i] * c["fx"][i] * 1e-3),
-                  "Fy_on_right_kN": float(sign[i] * c["fy"][i] * 1e-3),
-                  "kind": "intact" if intact[i] else ("broken" if c["bonded0"][i] else "never bonded"),
-                  "class": int(c["class"][i]), "elements": int(c["elements"][i]),
-                  "sliding": bool(sliding[i])} for i in order]
+    strongest = [{
+        "y_mm": float((py[i] - ybot0) * 1e3), "x_mm": float((px[i] - x0min) * 1e3),
+        "F_kN": float(cross_force[i] * 1e-3),
+        "Fx_on_right_kN": float(sign[i] * c["fx"][i] * 1e-3),
+        "Fy_on_right_kN": float(sign[i] * c["fy"][i] * 1e-3),
+        "kind": "intact" if intact[i] else ("broken" if c["bonded0"][i] else "never bonded"),
+        "class": int(c["class"][i]), "elements": int(c["elements"][i]),
+        "sliding": bool(sliding[i])} for i in order]
 
     walls = {}
     for name, index in (("pin", PIN), ("roller", ROLLER), ("platen", PLATEN)):
@@ -165,18 +177,21 @@ def analyse(directory, k, notch_depth):
             "Fy_on_left_kN": float(w["fy"][m][g == 0].sum() * 1e-3),
             "Fy_on_right_kN": float(w["fy"][m][g == 1].sum() * 1e-3),
             "contacts": int(m.sum()),
-            "x_mm": [float((w["cx"][m].min() - x0min) * 1e3), float((w["cx"][m].max() - x0min) * 1e3)] if m.any() else None,
+            "x_mm": mm_range(w["cx"][m], x0min),
         }
-    on_right_walls = np.array([w["fx"][group[wall_disc] == 1].sum(), w["fy"][group[wall_disc] == 1].sum()])
+    right_wall = group[wall_disc] == 1
+    on_right_walls = np.array([w["fx"][right_wall].sum(), w["fy"][right_wall].sum()])
     on_right_contacts = np.array([np.sum(sign[cross] * c["fx"][cross]),
                                   np.sum(sign[cross] * c["fy"][cross])])
     opening = []
-    for label_y, y in (("notch tip", ybot0 + notch_depth), ("mid-ligament", ybot0 + 0.5 * (notch_depth + depth)),
-                       ("top face", ytop0)):
+    heights = (("notch tip", ybot0 + notch_depth),
+               ("mid-ligament", ybot0 + 0.5 * (notch_depth + depth)), ("top face", ytop0))
+    for label_y, y in heights:
         ulx, uly = motion_at(fits["left"], xmid, y)
         urx, ury = motion_at(fits["right"], xmid, y)
         opening.append({"at": label_y, "y_mm": float((y - ybot0) * 1e3),
-                        "opening_mm": float((urx - ulx) * 1e3), "slip_mm": float((ury - uly) * 1e3)})
+                        "opening_mm": float((urx - ulx) * 1e3),
+                        "slip_mm": float((ury - uly) * 1e3)})
     theta_l, theta_r = fits["left"][4], fits["right"][4]
     # Height over the bottom face where the opening (linear in y: d(opening)/dy = -(theta_r -
     # theta_l)) is zero: the hinge the halves turn about.
@@ -185,14 +200,19 @@ def analyse(directory, k, notch_depth):
     hinge = float(a / dtheta * 1e3) if dtheta != 0 else None
     rec = read(directory / f"record_{k}.csv")
     # A running probe's history may end in a half-written line: read the whole lines only.
-    hist = np.genfromtxt(directory / "history.csv", delimiter=",", names=True, invalid_raise=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        hist = np.genfromtxt(directory / "history.csv", delimiter=",", names=True,
+                             invalid_raise=False)
     peak = hist["load"][hist["step"] <= rec["step"][0]].max()
     return {
-        "deflection_mm": float(rec["deflection"][0] * 1e3), "load_kN": float(rec["load"][0] * 1e-3),
+        "deflection_mm": float(rec["deflection"][0] * 1e3),
+        "load_kN": float(rec["load"][0] * 1e-3),
         "load_over_peak_so_far": float(rec["load"][0] / peak),
         "beam_mm": [length * 1e3, depth * 1e3], "discs": n,
         "halves_discs": [int(np.sum(group == 0)), int(np.sum(group == 1))],
-        "crack_tip_mm": None if crack_tip is None else [(crack_tip[0] - x0min) * 1e3, (crack_tip[1] - ybot0) * 1e3],
+        "crack_tip_mm": None if crack_tip is None else [(crack_tip[0] - x0min) * 1e3,
+                                                        (crack_tip[1] - ybot0) * 1e3],
         "bonded_through": bonded_through,
         "cracks": len(cracks),
         "walls": walls,
@@ -239,7 +259,8 @@ TABLE_HEAD = ("| delta mm | P kN/m (/ P_max) | bonded through | crack tip y mm |
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = argparse.ArgumentParser(description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("directory", type=pathlib.Path)
     p.add_argument("notch_depth_mm", type=float)
     p.add_argument("k", type=int, nargs="?")

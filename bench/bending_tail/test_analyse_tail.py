@@ -48,7 +48,9 @@ def state(tmp_path_factory):
                 if across and ys[j] < HINGE[1]:
                     continue  # the open crack: broken and apart, not listed
                 fx, fy = force.get((i, j), (0.0, 0.0)) if across else (0.0, 0.0)
-                contacts.append((index[(i, j)], index[(i + di, j + dj)], 0, 3, 2, 1, 0.0, fx, fx, fy))
+                # class M, a flat joint (3) with both elements bonded, bonded at the start
+                contacts.append(
+                    (index[(i, j)], index[(i + di, j + dj)], 0, 3, 2, 1, 0.0, fx, fx, fy))
     write(d / "contacts_0.csv", "first,second,class,bond,elements,bonded0,overlap,normal,fx,fy",
           contacts)
     walls = [(index[(12, 0)], 0, 0.0, 500.0, 0.025, 0.0),
@@ -56,10 +58,12 @@ def state(tmp_path_factory):
              (index[(49, 25)], 2, 0.0, -1000.0, 0.099, 0.052)]
     write(d / "walls_0.csv", "disc,wall,fx,fy,cx,cy", walls)
     write(d / "cracks_0.csv", "x,y,mode,class,first,second",
-          [(0.1, y, 1, 0, index[(49, j)], index[(50, j)]) for j, y in enumerate(ys) if y < HINGE[1]])
+          [(0.1, y, 1, 0, index[(49, j)], index[(50, j)])
+           for j, y in enumerate(ys) if y < HINGE[1]])
     record = (1000, 2e-5, 1000.0, 1000.0, 1e-5)
     write(d / "record_0.csv", "step,deflection,load,supports,cmod", [record])
-    write(d / "history.csv", "step,deflection,load,supports,cmod", [(0, 0.0, 0.0, 0.0, 0.0), record])
+    write(d / "history.csv", "step,deflection,load,supports,cmod",
+          [(0, 0.0, 0.0, 0.0, 0.0), record])
     return analyse_tail.analyse(d, 0, 0.015)
 
 
