@@ -84,6 +84,9 @@ nlohmann::ordered_json bending_json(const dem::BendingResult& b, const dem::LabH
   j["self_weight_work_J_per_m"] = b.self_weight_work;
   j["fracture_energy_N_per_m"] = b.fracture_energy;
   j["fracture_energy_without_self_weight_N_per_m"] = b.fracture_energy_no_weight;
+  j["stored_energy_at_stop_J_per_m"] = b.stored_energy;
+  j["dissipated_work_J_per_m"] = b.dissipated_work;
+  j["dissipated_fracture_energy_N_per_m"] = b.dissipated_fracture_energy;
   if (b.characteristic_length > 0) j["characteristic_length_mm"] = b.characteristic_length * 1e3;
   return j;
 }

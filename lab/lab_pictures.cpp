@@ -159,12 +159,16 @@ std::vector<XyChart> bending_charts(const LabTestResult& r) {
                             1e3 * b.notch_depth));
   // G_F is measured when the run followed the tail down to the stop load; a run that ended at
   // max_deflection still carrying load leaves out the rest of the tail: a lower bound.
-  if (r.stop_reason == StopReason::PostPeakDrop)
+  if (r.stop_reason == StopReason::PostPeakDrop) {
     deflection.notes.push_back(
         text("G_F = (W0 + m g delta0) / (t (H - a0)) = %.1f N/m", b.fracture_energy));
-  else if (r.stop_reason == StopReason::MaxDeflection)
+  } else if (r.stop_reason == StopReason::MaxDeflection) {
     deflection.notes.push_back(text("G_F > %.1f N/m: ended at max_deflection at P = %.2f P_max",
                                     b.fracture_energy, b.final_load / b.peak_load));
+    // Part of W0 is then strain energy the loaded beam still stores, not fracture work.
+    deflection.notes.push_back(text("of W0, %.2f J/m stored; dissipated to the stop %.1f N/m",
+                                    b.stored_energy, b.dissipated_fracture_energy));
+  }
   if (r.stop_reason == StopReason::PostPeakDrop || r.stop_reason == StopReason::MaxDeflection) {
     deflection.notes.push_back(text("W0 = %.2f J/m under P - delta to delta0 = %.3f mm",
                                     b.work_of_fracture, 1e3 * b.final_deflection));

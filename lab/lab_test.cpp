@@ -595,6 +595,11 @@ BendingResult analyse_bending(const LabHistory& h, const Specimen& beam, const L
                                             b.final_deflection, ligament, kThickness);
   b.fracture_energy_no_weight =
       rilem_fracture_energy(b.work_of_fracture, 0, 0, ligament, kThickness);
+  b.stored_energy = h.strain_energy.back() - h.strain_energy.front();
+  b.dissipated_work = (h.boundary_work.back() - h.boundary_work.front()) - b.stored_energy -
+                      (h.kinetic_energy.back() - h.kinetic_energy.front());
+  b.dissipated_fracture_energy =
+      rilem_fracture_energy(b.dissipated_work, 0, 0, ligament, kThickness);
   if (c.young_modulus > 0 && c.tensile_strength > 0)
     b.characteristic_length =
         characteristic_length(c.young_modulus, b.fracture_energy, c.tensile_strength);
@@ -915,7 +920,10 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
         msg << "the beam still carried " << h.platen_force.back() / res.bending.peak_load
             << " x its peak load at max_deflection = " << res.bending.final_deflection * 1e3
             << " mm (stop_load_fraction " << c.stop.stop_fraction
-            << "): W0 and G_F leave out the work of the rest of the tail and are low";
+            << "): W0 and G_F leave out the work of the rest of the tail and are low, and "
+            << res.bending.stored_energy << " J/m of W0 = " << res.bending.work_of_fracture
+            << " J/m is strain energy still stored in the beam (work dissipated to the stop "
+            << res.bending.dissipated_fracture_energy << " N/m of ligament)";
         warn(res, hooks, msg.str());
       }
       break;

@@ -183,7 +183,14 @@ struct BendingResult {
   double self_weight_work = 0;           // J/m, m g delta0
   double fracture_energy = 0;            // N/m, RILEM G_F = (W0 + m g delta0) / (t (H - a0))
   double fracture_energy_no_weight = 0;  // N/m, W0 / (t (H - a0)): the DEM beam has no weight
-  double characteristic_length = 0;      // m, E G_F / f_t^2 (0 when E or f_t not given)
+  // The energy balance at the stop (ledger terms from the start of loading, J/m): the strain
+  // energy still stored in the beam (its change since the start) and the work dissipated, the
+  // platen's booked work less the stored and kinetic energy gained. A beam cut at
+  // max_deflection while it still carries load holds part of W0 as recoverable strain energy.
+  double stored_energy = 0;               // J/m, U(stop) - U(start)
+  double dissipated_work = 0;             // J/m, W - dU - dK (damping, friction, bond breakage)
+  double dissipated_fracture_energy = 0;  // N/m, dissipated_work / (t (H - a0))
+  double characteristic_length = 0;       // m, E G_F / f_t^2 (0 when E or f_t not given)
 };
 
 struct LabTestResult {

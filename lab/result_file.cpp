@@ -441,6 +441,10 @@ void write_run(H5::Group& where, const LabTestResult& r, const std::vector<Joint
       write_scalar_attr<double>(s, "final_deflection_m", b.final_deflection);
       write_scalar_attr<double>(s, "self_weight_work_J_per_m", b.self_weight_work);
       write_scalar_attr<double>(s, "fracture_energy_N_per_m", b.fracture_energy);
+      write_scalar_attr<double>(s, "stored_energy_at_stop_J_per_m", b.stored_energy);
+      write_scalar_attr<double>(s, "dissipated_work_J_per_m", b.dissipated_work);
+      write_scalar_attr<double>(s, "dissipated_fracture_energy_N_per_m",
+                                b.dissipated_fracture_energy);
       write_scalar_attr<double>(s, "characteristic_length_m", b.characteristic_length);
     }
     if (r.type == LabTestType::Biaxial) {

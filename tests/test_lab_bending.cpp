@@ -205,6 +205,16 @@ TEST(SmallBeam, LoadedToFailure) {
     EXPECT_NEAR(b.fracture_energy_no_weight, b.work_of_fracture / ligament, 1e-9);
     EXPECT_GT(b.fracture_energy, b.fracture_energy_no_weight);
   }
+  {
+    // Energy conservation: what the platen did and the beam does not store (strain, kinetic) was
+    // dissipated, by local damping (not recorded, never negative), slip and bond breakage (both
+    // booked at every step): so the dissipated work is at least their sum.
+    SCOPED_TRACE("the dissipated work closes the energy balance");
+    const double booked = h.friction_energy.back() + h.breakage_energy.back();
+    EXPECT_GT(booked, 0);
+    EXPECT_GE(b.dissipated_work, booked * (1 - 1e-9));
+    EXPECT_NEAR(b.dissipated_fracture_energy, b.dissipated_work / 28e-3, 1e-9);
+  }
 }
 
 // The same beam under CMOD control (0.5 mm/s of crack-mouth opening): the servo keeps the
