@@ -148,7 +148,7 @@ struct LabHistory {
   std::vector<double> confining_stress;  // Pa, central-region contact sigma_xx; biaxial: walls
   std::vector<double> platen_force;      // N (per m), mean of the two platens (grips)
   std::vector<double> kinetic_energy;    // J/m, physical masses
-  std::vector<double> strain_energy;     // J/m, linear springs + parallel bonds
+  std::vector<double> strain_energy;     // J/m, linear springs, bonds and joints (contact_energy)
   std::vector<double> friction_energy;   // J/m, dissipated by slip since the test began
   std::vector<double> breakage_energy;   // J/m, released by bond failures
   std::vector<double> boundary_work;     // J/m, done by the platens (grips) on the specimen
