@@ -303,8 +303,12 @@ UniaxialLookup solve_uniaxial(const CellCoefficient& ku, double sigma_cn_MPa, do
   const double wanted = sigma_u_MPa / sigma_cn_MPa;
   const auto& x = ku.levels;
   const auto& k = ku.coefficients;
+  // d ln K_U / d ln(tau_cs / sigma_cn) on segment i.
+  const auto slope_of = [&](std::size_t i) {
+    return std::log(k[i + 1] / k[i]) / std::log(x[i + 1] / x[i]);
+  };
   for (std::size_t i = 0; i + 1 < x.size(); ++i) {
-    const double slope = std::log(k[i + 1] / k[i]) / std::log(x[i + 1] / x[i]);
+    const double slope = slope_of(i);
     if (!(slope >= kMinShearExponent) || (k[i] - wanted) * (k[i + 1] - wanted) > 0) continue;
     // K_U is linear in ln(rho) on the segment: rho = x_i (x_{i+1} / x_i)^t.
     const double t = (wanted - k[i]) / (k[i + 1] - k[i]);
@@ -313,8 +317,7 @@ UniaxialLookup solve_uniaxial(const CellCoefficient& ku, double sigma_cn_MPa, do
   // What the rising segments reach: from the lowest level to the top of the last rising one.
   double top = k.front();
   for (std::size_t i = 0; i + 1 < x.size(); ++i)
-    if (std::log(k[i + 1] / k[i]) / std::log(x[i + 1] / x[i]) >= kMinShearExponent)
-      top = std::max(top, k[i + 1]);
+    if (slope_of(i) >= kMinShearExponent) top = std::max(top, k[i + 1]);
   throw InputError(
       calibration_file, "targets.sigma_u",
       "sigma_u = " + four(sigma_u_MPa) + " MPa needs K_U = sigma_u / sigma_cn = " + four(wanted) +
@@ -596,10 +599,8 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
     } else {
       // No sigma_t target: tau_cs / sigma_cn stays the base materials', and sigma_cn (with
       // tau_cs, one group) solves sigma_u = K_U sigma_cn.
-      const InputTable base =
-          InputTable::parse_string(input.materials, file).table("materials").table("mortar");
-      const double rho = base.quantity(kShearKey, Dimension::Stress, Range::positive()) /
-                         base.quantity(kTensileKey, Dimension::Stress, Range::positive());
+      const double rho = mortar.quantity(kShearKey, Dimension::Stress, Range::positive()) /
+                         mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
       if (rho < k.levels.front() * (1 - kSameCondition) ||
           rho > k.levels.back() * (1 + kSameCondition))
         throw InputError(file, "materials.mortar." + kShearKey,
