@@ -5,6 +5,11 @@
   validation.py vary MATERIALS OUT KEY=MPA..  copy MATERIALS to OUT with mortar keys set (MPa)
   validation.py tables RUN_DIR                results.{csv,md} and design.{csv,md} of a run dir
   validation.py montage OUT.png PNG...        the pictures side by side, 64 colours (Pillow)
+  validation.py summary OUT.md LABEL=DIR[+DIR]...
+                                              mean +- SD (CV) over seeds 1-5 of each model, one
+                                              column per LABEL; a model's runs may sit in several
+                                              run dirs (e.g. UCS in one, Brazilian with jaws in
+                                              another): the first dir holding a run is used
 
 Summaries are the JSON files `cdem run --summary` writes (docs/lab_tests.md); a quantity is
 reported over the seeds whose run finished, with n, mean, sample standard deviation and CV.
@@ -121,11 +126,19 @@ def field(summary, key):
     return None if summary is None else summary.get(key)
 
 
-def results_table(run_dir, seeds):
+def load_first(run_dirs, name):
+    for d in run_dirs:
+        summary = load(d / name)
+        if summary is not None:
+            return summary
+    return None
+
+
+def results_table(run_dirs, seeds):
     """One row per quantity: per-seed values, then n, mean, SD, CV over the seeds."""
-    ucs = {s: load(run_dir / f"ucs_s{s}.json") for s in seeds}
-    dt = {s: load(run_dir / f"tension_s{s}.json") for s in seeds}
-    br = {s: load(run_dir / f"brazilian_s{s}.json") for s in seeds}
+    ucs = {s: load_first(run_dirs, f"ucs_s{s}.json") for s in seeds}
+    dt = {s: load_first(run_dirs, f"tension_s{s}.json") for s in seeds}
+    br = {s: load_first(run_dirs, f"brazilian_s{s}.json") for s in seeds}
     rows = [
         ("UCS sigma_u (MPa)", 2, {s: field(ucs[s], "peak_stress_MPa") for s in seeds}),
         ("UCS E (GPa)", 2, {s: field(ucs[s], "young_modulus_GPa") for s in seeds}),
@@ -158,7 +171,7 @@ def results_table(run_dir, seeds):
 
 
 def write_results(run_dir, seeds):
-    rows = results_table(run_dir, seeds)
+    rows = results_table([run_dir], seeds)
     with open(run_dir / "results.csv.tmp", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["quantity"] + [f"seed_{s}" for s in seeds] + ["n", "mean", "sd", "cv"])
@@ -254,6 +267,72 @@ def write_design(run_dir):
     (run_dir / "design.md.tmp").replace(run_dir / "design.md")
 
 
+# Reference columns of the summary (inputs, not results): the published PFC2D model of SPEC 8
+# and fib Model Code 2010 mean values of a C30/37 concrete (docs/validation.md, "Reference
+# figures").
+REFERENCES = {
+    "UCS sigma_u (MPa)": ("32.23", "38"),
+    "UCS E (GPa)": ("28.37", "33.6"),
+    "UCS nu": ("0.197", "0.2"),
+    "direct tension sigma_t (MPa)": ("-", "2.9"),
+    "Brazilian sigma_t (MPa)": ("-", "about 2.9 (f_ct = 1.0 f_ct,sp)"),
+    "sigma_u / direct-tension sigma_t": ("-", "13"),
+}
+
+
+def cmd_summary(out, columns, seeds=(1, 2, 3, 4, 5)):
+    """One row per quantity, one column per model: mean +- SD (CV) over the seeds that ran, with
+    n when it is not the number of seeds. Crack counts: the mean of each mode and class."""
+    models = []
+    for c in columns:
+        label, sep, dirs = c.rpartition("=")  # a label may hold "=", a dir does not
+        if not sep or not dirs:
+            fail(f"summary: column '{c}' is not LABEL=DIR[+DIR...]")
+        run_dirs = [Path(d) for d in dirs.split("+")]
+        for d in run_dirs:
+            if not d.is_dir():
+                fail(f"summary: run dir '{d}' of column '{label}' does not exist")
+        models.append((label, results_table(run_dirs, list(seeds))))
+    md = ["| quantity | " + " | ".join(label for label, _ in models)
+          + " | published PFC2D | real C30/37 (fib MC2010) |",
+          "|---" * (len(models) + 3) + "|"]
+    names = [name for name, _, _ in models[0][1]]
+    digits = {name: d for name, d, _ in models[0][1]}
+    for name in names:
+        if " wall time " in name or " cracks " in name:
+            continue
+        cells = []
+        for _, rows in models:
+            per_seed = next(p for n, _, p in rows if n == name)
+            n, mean, sd, cv = stats(per_seed.values())
+            d = digits[name]
+            if n == 0:
+                cells.append("not run")
+            elif sd is None:
+                cells.append(f"{fmt(mean, d)} (n = 1)")
+            else:
+                cells.append(f"{fmt(mean, d)} ± {fmt(sd, d)} ({100 * cv:.1f} %)"
+                             + ("" if n == len(seeds) else f", n = {n}"))
+        pub, real = REFERENCES.get(name, ("-", "-"))
+        md.append(f"| {name} | " + " | ".join(cells) + f" | {pub} | {real} |")
+    for test in ("UCS", "direct tension", "Brazilian"):
+        cells = []
+        for _, rows in models:
+            means = []
+            for mode in ("tension", "shear"):
+                for cls in ("M", "ITZ", "A"):
+                    per_seed = next(p for n, _, p in rows
+                                    if n == f"{test} cracks {mode} {cls}")
+                    _, mean, _, _ = stats(per_seed.values())
+                    means.append("-" if mean is None else f"{mean:.0f}")
+            cells.append(" / ".join(means))
+        md.append(f"| {test} cracks, mean: tension M / ITZ / A / shear M / ITZ / A | "
+                  + " | ".join(cells) + " | - | - |")
+    tmp = Path(str(out) + ".tmp")
+    tmp.write_text("\n".join(md) + "\n")
+    tmp.replace(out)
+
+
 def cmd_montage(out, pictures):
     """Side by side at a common height, quantised to a 64-colour palette: a crack map is a few
     flat colours, so the palette keeps it readable at a fraction of the size (docs/ PNGs).
@@ -280,6 +359,8 @@ def main(argv):
         cmd_law(argv[1])
     elif len(argv) >= 3 and argv[0] == "vary":
         cmd_vary(argv[1], argv[2], argv[3:])
+    elif len(argv) >= 3 and argv[0] == "summary":
+        cmd_summary(argv[1], argv[2:])
     elif len(argv) >= 3 and argv[0] == "montage":
         cmd_montage(argv[1], argv[2:])
     elif len(argv) >= 2 and argv[0] == "tables":
