@@ -30,10 +30,11 @@ from collections import defaultdict
 
 import numpy as np
 
+import fit_sandstone_tables
 from fit_brazilian_kb import save_figure, write_atomic
-from fit_sandstone_tables import RATIO, R_MEAN, SIGMA_CN, TAU_CS, common, read_campaign, sd
+from fit_sandstone_tables import RATIO, R_MEAN, SIGMA_CN, common, read_campaign, sd
+from fit_uniaxial_ku import rho_of
 
-CONFIRMED = ("post_peak_drop", "split")
 COLUMNS = ["r_ratio", "r_min_mm", "shear_to_normal", "K_B", "runs", "runs_left_out",
            "K_B_seed_sd", "K_B_seed_cv", "factor", "factor_seed_sd", "shear_crack_share",
            "cracks_mean", "emod_per_sigma_cn", "sigma_cn_MPa", "emod_GPa", "kratio", "friction",
@@ -45,13 +46,8 @@ def fail(msg):
 
 
 def counted(runs):
-    ok = [r for r in runs if r["status"] == "ok" and r["stop_reason"] in CONFIRMED
-          and r["tensile_strength_MPa"]]
-    return ok, len(runs) - len(ok)
-
-
-def rho_of(run):
-    return round(float(run[TAU_CS]) / float(run[SIGMA_CN]), 9)
+    """The runs that end at a confirmed Brazilian failure, and how many are left out."""
+    return fit_sandstone_tables.counted(runs, "K_B", "tensile_strength_MPa")
 
 
 def read_ref(path, cond, levels):

@@ -602,15 +602,27 @@ TEST(CalibrateTables, UniaxialStrengthAloneKeepsTheBaseShearRatio) {
                      "outside the K_U table's levels");
 }
 
+// A calibration of `f` on the TableModel (off by ke, kb, ku) whose sigma_t also follows K_B
+// against tau_cs / sigma_cn of kb_tau.csv, whether the calibration reads that table or not.
+struct FollowingRun {
+  CalibrationInput in;
+  CalibrationResult r;
+};
+FollowingRun calibrate_following(const std::string& name, const Files& f, double ke = 1,
+                                 double kb = 1, double ku = 1) {
+  FollowingRun out{read_calibration_input(make_calibration(name, f)), {}};
+  TableModel model(out.in, ke, kb, ku);
+  model.follow_shear_ratio(out.in.tables.kb_file.parent_path() / "kb_tau.csv");
+  out.r = calibrate(out.in, model);
+  return out;
+}
+
 TEST(CalibrateTables, CoupledStrengthsInOneRunWhenTheTablesAreExact) {
   // A material whose Brazilian strength falls below tau_cs / sigma_cn 2 as kb_tau says. With
   // the kb_tau table the lookup solves sigma_t and sigma_u together: one run, every error 0.
   Files f;
   f.head = kHeadCoupled;
-  const auto in = read_calibration_input(make_calibration("coupled_exact", f));
-  TableModel model(in, 1, 1);
-  model.follow_shear_ratio(in.tables.kb_tau_file);
-  const auto r = calibrate(in, model);
+  const auto [in, r] = calibrate_following("coupled_exact", f);
   ASSERT_TRUE(r.success()) << r.stop_reason;
   ASSERT_EQ(r.iterations.size(), 1u);
   for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
@@ -624,13 +636,10 @@ TEST(CalibrateTables, CoupledStrengthsInOneRunWhenTheTablesAreExact) {
   // the rho that run had (K_B read at rho 2), far more than the tolerance.
   Files g;
   g.head = kHeadUcs;
-  const auto plain_in = read_calibration_input(make_calibration("coupled_plain", g));
-  TableModel plain(plain_in, 1, 1);
-  plain.follow_shear_ratio(plain_in.tables.kb_file.parent_path() / "kb_tau.csv");
-  const auto p = calibrate(plain_in, plain);
-  ASSERT_GE(p.iterations.size(), 1u);
-  const std::size_t t = index_of(plain_in, CalibrationTarget::SigmaT);
-  EXPECT_LT(p.iterations[0].errors[t], -0.05);
+  const auto plain = calibrate_following("coupled_plain", g);
+  ASSERT_GE(plain.r.iterations.size(), 1u);
+  const std::size_t t = index_of(plain.in, CalibrationTarget::SigmaT);
+  EXPECT_LT(plain.r.iterations[0].errors[t], -0.05);
 }
 
 TEST(CalibrateTables, CoupledStrengthsInOneCorrectionWhenTheTablesAreOff) {
@@ -639,10 +648,7 @@ TEST(CalibrateTables, CoupledStrengthsInOneCorrectionWhenTheTablesAreOff) {
   // lands sigma_t within 1 % (measured 0.35 %; without the coupling, phi set to 0, 1.9 %).
   Files f;
   f.head = kHeadCoupled;
-  const auto in = read_calibration_input(make_calibration("coupled_off", f));
-  TableModel model(in, 1.08, 0.88, 0.9);
-  model.follow_shear_ratio(in.tables.kb_tau_file);
-  const auto r = calibrate(in, model);
+  const auto [in, r] = calibrate_following("coupled_off", f, 1.08, 0.88, 0.9);
   ASSERT_EQ(r.iterations.size(), 2u);
   for (std::size_t i = 0; i < in.targets.size(); ++i)
     EXPECT_LE(std::abs(r.iterations[1].errors[i]), std::abs(r.iterations[0].errors[i]) / 5)
@@ -658,10 +664,7 @@ TEST(CalibrateTables, SigmaTAloneAtTheBaseShearRatioWithKbTau) {
   f.head = replace(kHead, "ke = \"ke.csv\"", "ke = \"ke.csv\"\nkb_tau = \"kb_tau.csv\"");
   f.materials =
       replace(f.materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 40.0");
-  const auto in = read_calibration_input(make_calibration("tau_alone", f));
-  TableModel model(in, 1, 1);
-  model.follow_shear_ratio(in.tables.kb_tau_file);
-  const auto r = calibrate(in, model);
+  const auto [in, r] = calibrate_following("tau_alone", f);
   ASSERT_TRUE(r.success()) << r.stop_reason;
   ASSERT_EQ(r.iterations.size(), 1u);
   for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
