@@ -131,19 +131,26 @@ def plot(table, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.4))
     for ratio in sorted({r["r_ratio"] for r in table}):
         pts = [r for r in table if r["r_ratio"] == ratio and r["K_B"] != ""]
-        ax.errorbar([r["shear_to_normal"] for r in pts], [r["K_B"] for r in pts],
+        rho = [r["shear_to_normal"] for r in pts]
+        ax.errorbar(rho, [r["K_B"] for r in pts],
                     yerr=[0 if np.isnan(r["K_B_seed_sd"]) else r["K_B_seed_sd"] for r in pts],
                     marker="o", capsize=3, label=f"R_max/R_min {ratio:g}")
-    ax.set_xscale("log")
-    ax.set_xlabel("tau_cs / sigma_cn")
-    ax.set_ylabel("K_B  (sigma_t = sigma_cn K_B / (1 + R_max/R_min))")
+        bx.errorbar(rho, [r["factor"] for r in pts],
+                    yerr=[0 if np.isnan(r["factor_seed_sd"]) else r["factor_seed_sd"] for r in pts],
+                    marker="o", capsize=3, label=f"R_max/R_min {ratio:g}")
     x = table[0]["emod_per_sigma_cn"]
+    ax.set_ylabel("K_B  (sigma_t = sigma_cn K_B / (1 + R_max/R_min))")
     ax.set_title(f"Brazilian, D 30 mm discs, E* / sigma_cn {x:g}")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend()
+    bx.set_ylabel("F = K_B / K_B(tau_cs / sigma_cn = 2)")
+    bx.set_title("against the K_B table's level (paired seed SD)")
+    for a in (ax, bx):
+        a.set_xscale("log")
+        a.set_xlabel("tau_cs / sigma_cn")
+        a.grid(alpha=0.3, which="both")
+        a.legend()
     fig.tight_layout()
     save_figure(fig, path, 110)
 

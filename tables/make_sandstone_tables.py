@@ -58,6 +58,8 @@ REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], 
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
 REDUCED_KU = dict(ratios=[4], shear=[0.25], seeds=[11])
+# ... and of the K_B table against tau_cs / sigma_cn: R_max / R_min 4 at 0.5 (about 10-20 s).
+REDUCED_KB_TAU = dict(ratios=[4], shear=[0.5], seeds=[11])
 
 KB_GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
              "wall_time_s"]
@@ -112,10 +114,14 @@ def main():
          "uniaxial_ke_base.toml", KE_GATHER, rows(lv["ratios"], lv["r_min"], lv["ke_check"]),
          lv["check_seeds"])]
     if a.reduced:
-        campaigns.append(
+        campaigns += [
             ("uniaxial_ku", "Uniaxial K_U (CI subset)", "uniaxial_ke_base.toml", KU_GATHER,
              rows(REDUCED_KU["ratios"], R_MIN_MM, KU_EMOD_PER_SIGMA, REDUCED_KU["shear"]),
-             REDUCED_KU["seeds"]))
+             REDUCED_KU["seeds"]),
+            ("brazilian_kb_tau", "Brazilian K_B against tau_cs / sigma_cn (CI subset)",
+             "brazilian_kb_x_base.toml", KB_TAU_GATHER,
+             rows(REDUCED_KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], REDUCED_KB_TAU["shear"]),
+             REDUCED_KB_TAU["seeds"])]
     else:
         campaigns += [
             ("uniaxial_ku", "Uniaxial K_U = sigma_u / sigma_cn against tau_cs / sigma_cn",
