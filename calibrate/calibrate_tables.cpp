@@ -309,17 +309,19 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
 
 namespace {
 
-// sigma_t(x) = (E* / x) K_B(x) / (1 + R_max / R_min) at E*, x = E* / sigma_cn.
-double brazilian_strength(const CellCoefficient& kb, double r_ratio, double emod_MPa, double x) {
-  return emod_MPa / x * kb.at(x) / (1 + r_ratio);
+// sigma_t(x) = (E* / x) K_B(x) F / (1 + R_max / R_min) at E*, x = E* / sigma_cn, F the factor
+// of tau_cs / sigma_cn (1 at the K_B table's own).
+double brazilian_strength(const CellCoefficient& kb, double r_ratio, double emod_MPa, double x,
+                          double factor) {
+  return emod_MPa / x * kb.at(x) * factor / (1 + r_ratio);
 }
 
 // solve_brazilian without the refusal: nothing when the table does not reach sigma_t at E*.
 std::optional<BrazilianLookup> find_brazilian(const CellCoefficient& kb, double r_ratio,
-                                              double sigma_t_MPa, double emod_GPa) {
+                                              double sigma_t_MPa, double emod_GPa, double factor) {
   const double emod_MPa = emod_GPa * 1e3;
   const auto miss = [&](double x) {
-    return brazilian_strength(kb, r_ratio, emod_MPa, x) - sigma_t_MPa;
+    return brazilian_strength(kb, r_ratio, emod_MPa, x, factor) - sigma_t_MPa;
   };
   const auto& x = kb.levels;
   for (std::size_t i = 0; i + 1 < x.size(); ++i) {
@@ -343,13 +345,14 @@ std::optional<BrazilianLookup> find_brazilian(const CellCoefficient& kb, double 
 }  // namespace
 
 BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, double sigma_t_MPa,
-                                double emod_GPa, const std::string& calibration_file) {
-  if (const auto found = find_brazilian(kb, r_ratio, sigma_t_MPa, emod_GPa)) return *found;
+                                double emod_GPa, const std::string& calibration_file,
+                                double factor) {
+  if (const auto found = find_brazilian(kb, r_ratio, sigma_t_MPa, emod_GPa, factor)) return *found;
   const auto& x = kb.levels;
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
   for (const double level : x) {
-    lo = std::min(lo, brazilian_strength(kb, r_ratio, emod_GPa * 1e3, level));
-    hi = std::max(hi, brazilian_strength(kb, r_ratio, emod_GPa * 1e3, level));
+    lo = std::min(lo, brazilian_strength(kb, r_ratio, emod_GPa * 1e3, level, factor));
+    hi = std::max(hi, brazilian_strength(kb, r_ratio, emod_GPa * 1e3, level, factor));
   }
   throw InputError(calibration_file, "targets.sigma_t",
                    "sigma_t = " + four(sigma_t_MPa) +
@@ -400,7 +403,7 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
   // sigma_u at rho: K_U(rho) times the sigma_cn that gives sigma_t at rho (K_B scaled by F(rho));
   // NaN where the K_B table does not reach sigma_t / F(rho).
   const auto reached = [&](double rho) {
-    const auto b = find_brazilian(kb, r_ratio, sigma_t_MPa / factor.at(rho), emod_GPa);
+    const auto b = find_brazilian(kb, r_ratio, sigma_t_MPa, emod_GPa, factor.at(rho));
     return b ? b->sigma_cn_MPa * ku.at(rho) : std::numeric_limits<double>::quiet_NaN();
   };
   double least = std::numeric_limits<double>::infinity(), most = 0;
@@ -427,7 +430,7 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
         CoupledLookup out;
         out.factor = factor.at(rho);
         out.factor_slope = factor.log_slope(rho);
-        out.brazilian = *find_brazilian(kb, r_ratio, sigma_t_MPa / out.factor, emod_GPa);
+        out.brazilian = *find_brazilian(kb, r_ratio, sigma_t_MPa, emod_GPa, out.factor);
         out.uniaxial = {rho, ku.at(rho), slope};
         return out;
       }
@@ -727,7 +730,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
   } else if (gt < plan.groups.size()) {
     // rho is the base materials' (sigma_t alone) or not known to K_B (no kb_tau: F = 1).
     if (with_kb_tau) shear_factor = factor.at(base_rho);
-    b = solve_brazilian(kb_cell, disc.r_ratio, sigma_t / shear_factor, emod_GPa, file);
+    b = solve_brazilian(kb_cell, disc.r_ratio, sigma_t, emod_GPa, file, shear_factor);
     if (both_strengths) u = solve_uniaxial(ku_cell, b.sigma_cn_MPa, sigma_u, file);
   }
 

@@ -102,8 +102,9 @@ struct CellCoefficient {
 CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packing,
                                  const std::string& calibration_file, const std::string& key);
 
-// sigma_cn for a Brazilian target at contact modulus E*: the root of sigma_cn K_B(E* / sigma_cn) /
-// (1 + R_max / R_min) = sigma_t within the table's E* / sigma_cn levels. Refused (InputError on
+// sigma_cn for a Brazilian target at contact modulus E*: the root of sigma_cn K_B(E* / sigma_cn)
+// factor / (1 + R_max / R_min) = sigma_t within the table's E* / sigma_cn levels (`factor`: F of
+// the tau_cs / sigma_cn the disc runs at, 1 at the K_B table's own). Refused (InputError on
 // `targets.sigma_t`, naming the strengths the table reaches at that E*) when there is none.
 struct BrazilianLookup {
   double sigma_cn_MPa = 0;
@@ -112,7 +113,8 @@ struct BrazilianLookup {
   double slope = 0;  // d ln K_B / d ln(E* / sigma_cn) on the segment of the solution
 };
 BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, double sigma_t_MPa,
-                                double emod_GPa, const std::string& calibration_file);
+                                double emod_GPa, const std::string& calibration_file,
+                                double factor = 1);
 
 // tau_cs / sigma_cn for a uniaxial target at sigma_cn: the smallest level rho at which K_U(rho) =
 // sigma_u / sigma_cn, on a segment of the table where K_U rises with rho by at least

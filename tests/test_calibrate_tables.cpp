@@ -676,6 +676,10 @@ TEST(CalibrateTables, SigmaTAloneAtTheBaseShearRatioWithKbTau) {
           {"tau_rho", &Files::materials, "cb_shear_strength_MPa = 40.0",
            "cb_shear_strength_MPa = 400.0", "materials.mortar.cb_shear_strength",
            "outside the K_B table's levels [0.5, 4] of tau_cs / sigma_cn"},
+          // At E* = 18 / 0.5 = 36 GPa the ratio-3 cell reaches 36000 / 3000 x 0.7 / 4 = 2.1 to
+          // 36000 / 300 x 1.2 / 4 = 36 MPa at rho 2, times F(1) = 0.875 at rho 1 (1.8375 to 31.5).
+          {"tau_target", &Files::head, "sigma_t_MPa = 9", "sigma_t_MPa = 90", "targets.sigma_t",
+           " to 31.5 MPa (E* / sigma_cn"},
           {"tau_missing", &Files::head, "kb_tau = \"kb_tau.csv\"", "kb_tau = \"none.csv\"",
            "tables.kb_tau", "cannot read"},
           {"tau_kratio", &Files::kb_tau, "2,0.2,1,0.5,2.5", "2,0.2,1,0.5,3", "tables.kb_tau",
