@@ -32,7 +32,8 @@ import numpy as np
 
 import fit_sandstone_tables
 from fit_brazilian_kb import save_figure, write_atomic
-from fit_sandstone_tables import RATIO, R_MEAN, SIGMA_CN, common, read_campaign, sd
+from fit_sandstone_tables import (RATIO, R_MEAN, SIGMA_CN, common, read_campaign, sd,
+                                  write_table)
 from fit_uniaxial_ku import rho_of
 
 COLUMNS = ["r_ratio", "r_min_mm", "shear_to_normal", "K_B", "runs", "runs_left_out",
@@ -185,13 +186,10 @@ def main():
         fail(f"{a.campaign}: runs at more than one E* / sigma_cn ({sorted(levels)}); the table "
              "holds one")
     table, ok = fit(cond, cells, read_ref(a.ref, cond, levels))
-    write_atomic(a.out, lambda f: (
-        f.write("# Brazilian K_B per packing cell and tau_cs / sigma_cn at one E* / sigma_cn, "
+    write_table(a.out, "Brazilian K_B per packing cell and tau_cs / sigma_cn at one E* / sigma_cn, "
                 "sigma_t = sigma_cn K_B / (1 + R_max/R_min), from tables/brazilian_kb_tau.toml "
-                "and the K_B table's runs at that level; made by tables/fit_kb_tau.py "
-                "(docs/lookup_tables.md)\n"),
-        csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore").writeheader(),
-        csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore").writerows(table)))
+                "and the K_B table's runs at that level", COLUMNS, table,
+                "tables/fit_kb_tau.py")
     if a.plot:
         plot(table, a.plot)
     if a.markdown:
