@@ -96,9 +96,10 @@ struct TablesSettings {
   std::filesystem::path kb_file;  // Brazilian K_B against R_max/R_min, R_min, E*/sigma_cn
   std::filesystem::path ke_file;  // K_E = E / E* against R_max/R_min, R_min
   std::filesystem::path ku_file;  // K_U = sigma_u / sigma_cn against R_max/R_min, R_min, tau/sigma
-  double tolerance = 0.05;        // relative error per target on the calibration specimen
-  int max_iterations = 2;         // runs on the calibration specimen: the lookup and a correction
-  int max_refinements = 1;        // corrections on the verification mean
+  std::filesystem::path kb_tau_file;  // K_B against R_max/R_min, R_min, tau/sigma (one E*/sigma)
+  double tolerance = 0.05;            // relative error per target on the calibration specimen
+  int max_iterations = 2;   // runs on the calibration specimen: the lookup and a correction
+  int max_refinements = 1;  // corrections on the verification mean
 };
 
 // One lab test of a calibration: the base test file named in [tests] and the specimens it runs on.

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -48,6 +49,10 @@ constexpr int kBisections = 100;
 // sigma_u is the tension-driven plateau's, and a proportional correction through tau_cs would
 // step by ten times the miss or more.
 constexpr double kMinShearExponent = 0.1;
+// Grid steps per rising K_U segment on which the coupled lookup brackets tau_cs / sigma_cn before
+// bisecting: the strengths are piecewise linear in ln rho between the levels, so a few dozen
+// steps find every crossing that is not a touch.
+constexpr int kCoupledScanSteps = 64;
 
 // Four significant digits, for the report's lookup lines.
 std::string four(double x) {
@@ -94,16 +99,29 @@ std::string describe_levels(const std::set<double>& levels) {
   return out + "]";
 }
 
+// The segment [levels[i - 1], levels[i]] (ascending levels, at least two) that holds `level`,
+// the first or last beyond the ends; returns i.
+std::size_t segment_end(const std::vector<double>& levels, double level) {
+  const auto hi = std::upper_bound(levels.begin(), levels.end(), level);
+  return std::clamp<std::size_t>(static_cast<std::size_t>(hi - levels.begin()), 1,
+                                 levels.size() - 1);
+}
+
 // Value at `level` of a cell whose coefficients are known at `levels` (ascending), piecewise
 // linear in the logarithm of the level; the one value of a table without levels.
 double piecewise_log_linear(const std::vector<double>& levels, const std::vector<double>& values,
                             double level) {
   if (levels.size() == 1) return values.front();
-  const auto hi = std::upper_bound(levels.begin(), levels.end(), level);
-  const std::size_t i =
-      std::clamp<std::size_t>(static_cast<std::size_t>(hi - levels.begin()), 1, levels.size() - 1);
+  const std::size_t i = segment_end(levels, level);
   const double t = std::log(level / levels[i - 1]) / std::log(levels[i] / levels[i - 1]);
   return values[i - 1] + t * (values[i] - values[i - 1]);
+}
+
+// d ln value / d ln level of the segment from level i to i + 1: the exponent of a power law
+// through its two ends (the tables' sensitivities are these).
+double segment_log_slope(const std::vector<double>& levels, const std::vector<double>& values,
+                         std::size_t i) {
+  return std::log(values[i + 1] / values[i]) / std::log(levels[i + 1] / levels[i]);
 }
 
 }  // namespace
@@ -118,6 +136,10 @@ const TableLayout kUniaxialStrengthTable{
     "shear_to_normal",
     "tau_cs / sigma_cn",
     {"kratio", "friction", "emod_per_sigma_cn", "width_mm", "height_mm"}};
+const TableLayout kBrazilianShearTable{"K_B",
+                                       "shear_to_normal",
+                                       "tau_cs / sigma_cn",
+                                       {"kratio", "friction", "emod_per_sigma_cn", "diameter_mm"}};
 
 LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayout& layout,
                               const std::string& calibration_file, const std::string& key) {
@@ -185,6 +207,27 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
 
 double CellCoefficient::at(double level) const {
   return piecewise_log_linear(levels, coefficients, level);
+}
+
+double CellCoefficient::log_slope(double level) const {
+  if (levels.size() == 1) return 0;
+  return segment_log_slope(levels, coefficients, segment_end(levels, level) - 1);
+}
+
+double ShearFactor::at(double rho) const {
+  return kb_tau.levels.empty() ? 1.0 : kb_tau.at(rho) / kb_tau.at(reference);
+}
+
+double ShearFactor::log_slope(double rho) const {
+  return kb_tau.levels.empty() ? 0.0 : kb_tau.log_slope(rho);
+}
+
+double ShearFactor::lowest() const {
+  return kb_tau.levels.empty() ? 0.0 : kb_tau.levels.front();
+}
+
+double ShearFactor::highest() const {
+  return kb_tau.levels.empty() ? std::numeric_limits<double>::infinity() : kb_tau.levels.back();
 }
 
 CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packing,
@@ -264,31 +307,52 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
   return out;
 }
 
-BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, double sigma_t_MPa,
-                                double emod_GPa, const std::string& calibration_file) {
-  // sigma_t(x) at E*: x = E* / sigma_cn, sigma_cn = E* / x.
+namespace {
+
+// sigma_t(x) = (E* / x) K_B(x) F / (1 + R_max / R_min) at E*, x = E* / sigma_cn, F the factor
+// of tau_cs / sigma_cn (1 at the K_B table's own).
+double brazilian_strength(const CellCoefficient& kb, double r_ratio, double emod_MPa, double x,
+                          double factor) {
+  return emod_MPa / x * kb.at(x) * factor / (1 + r_ratio);
+}
+
+// solve_brazilian without the refusal: nothing when the table does not reach sigma_t at E*.
+std::optional<BrazilianLookup> find_brazilian(const CellCoefficient& kb, double r_ratio,
+                                              double sigma_t_MPa, double emod_GPa, double factor) {
   const double emod_MPa = emod_GPa * 1e3;
-  const auto strength = [&](double x) { return emod_MPa / x * kb.at(x) / (1 + r_ratio); };
+  const auto miss = [&](double x) {
+    return brazilian_strength(kb, r_ratio, emod_MPa, x, factor) - sigma_t_MPa;
+  };
   const auto& x = kb.levels;
   for (std::size_t i = 0; i + 1 < x.size(); ++i) {
-    const double f0 = strength(x[i]) - sigma_t_MPa, f1 = strength(x[i + 1]) - sigma_t_MPa;
+    const double f0 = miss(x[i]), f1 = miss(x[i + 1]);
     if (f0 * f1 > 0) continue;
     double a = std::log(x[i]), b = std::log(x[i + 1]);
     for (int k = 0; k < kBisections; ++k) {
       const double m = 0.5 * (a + b);
-      ((strength(std::exp(m)) - sigma_t_MPa) * f0 > 0 ? a : b) = m;
+      (miss(std::exp(m)) * f0 > 0 ? a : b) = m;
     }
     BrazilianLookup out;
     out.emod_per_strength = std::exp(0.5 * (a + b));
     out.K_B = kb.at(out.emod_per_strength);
     out.sigma_cn_MPa = emod_MPa / out.emod_per_strength;
-    out.slope = std::log(kb.coefficients[i + 1] / kb.coefficients[i]) / std::log(x[i + 1] / x[i]);
+    out.slope = segment_log_slope(x, kb.coefficients, i);
     return out;
   }
+  return std::nullopt;
+}
+
+}  // namespace
+
+BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, double sigma_t_MPa,
+                                double emod_GPa, const std::string& calibration_file,
+                                double factor) {
+  if (const auto found = find_brazilian(kb, r_ratio, sigma_t_MPa, emod_GPa, factor)) return *found;
+  const auto& x = kb.levels;
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
   for (const double level : x) {
-    lo = std::min(lo, strength(level));
-    hi = std::max(hi, strength(level));
+    lo = std::min(lo, brazilian_strength(kb, r_ratio, emod_GPa * 1e3, level, factor));
+    hi = std::max(hi, brazilian_strength(kb, r_ratio, emod_GPa * 1e3, level, factor));
   }
   throw InputError(calibration_file, "targets.sigma_t",
                    "sigma_t = " + four(sigma_t_MPa) +
@@ -304,9 +368,7 @@ UniaxialLookup solve_uniaxial(const CellCoefficient& ku, double sigma_cn_MPa, do
   const auto& x = ku.levels;
   const auto& k = ku.coefficients;
   // d ln K_U / d ln(tau_cs / sigma_cn) on segment i.
-  const auto slope_of = [&](std::size_t i) {
-    return std::log(k[i + 1] / k[i]) / std::log(x[i + 1] / x[i]);
-  };
+  const auto slope_of = [&](std::size_t i) { return segment_log_slope(x, k, i); };
   for (std::size_t i = 0; i + 1 < x.size(); ++i) {
     const double slope = slope_of(i);
     if (!(slope >= kMinShearExponent) || (k[i] - wanted) * (k[i + 1] - wanted) > 0) continue;
@@ -330,9 +392,67 @@ UniaxialLookup solve_uniaxial(const CellCoefficient& ku, double sigma_cn_MPa, do
           "change the target or the sigma_t it is calibrated with");
 }
 
+CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor,
+                            const CellCoefficient& ku, double r_ratio, double sigma_t_MPa,
+                            double sigma_u_MPa, double emod_GPa,
+                            const std::string& calibration_file) {
+  const auto& x = ku.levels;
+  const auto& k = ku.coefficients;
+  const double lowest = std::max(x.front(), factor.lowest());
+  const double highest = std::min(x.back(), factor.highest());
+  // sigma_u at rho: K_U(rho) times the sigma_cn that gives sigma_t at rho (K_B scaled by F(rho));
+  // NaN where the K_B table does not reach sigma_t / F(rho).
+  const auto reached = [&](double rho) {
+    const auto b = find_brazilian(kb, r_ratio, sigma_t_MPa, emod_GPa, factor.at(rho));
+    return b ? b->sigma_cn_MPa * ku.at(rho) : std::numeric_limits<double>::quiet_NaN();
+  };
+  double least = std::numeric_limits<double>::infinity(), most = 0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double slope = segment_log_slope(x, k, i);
+    const double a = std::max(x[i], lowest), b = std::min(x[i + 1], highest);
+    if (!(slope >= kMinShearExponent) || !(a < b)) continue;
+    double r0 = a, f0 = reached(a) - sigma_u_MPa;
+    for (int j = 1; j <= kCoupledScanSteps; ++j) {
+      const double r1 = a * std::pow(b / a, static_cast<double>(j) / kCoupledScanSteps);
+      const double f1 = reached(r1) - sigma_u_MPa;
+      for (const double f : {f0, f1})
+        if (std::isfinite(f)) {
+          least = std::min(least, f + sigma_u_MPa);
+          most = std::max(most, f + sigma_u_MPa);
+        }
+      if (std::isfinite(f0) && std::isfinite(f1) && f0 * f1 <= 0) {
+        double lo = std::log(r0), hi = std::log(r1);
+        for (int n = 0; n < kBisections; ++n) {
+          const double m = 0.5 * (lo + hi);
+          ((reached(std::exp(m)) - sigma_u_MPa) * f0 > 0 ? lo : hi) = m;
+        }
+        const double rho = std::exp(0.5 * (lo + hi));
+        CoupledLookup out;
+        out.factor = factor.at(rho);
+        out.factor_slope = factor.log_slope(rho);
+        out.brazilian = *find_brazilian(kb, r_ratio, sigma_t_MPa, emod_GPa, out.factor);
+        out.uniaxial = {rho, ku.at(rho), slope};
+        return out;
+      }
+      r0 = r1;
+      f0 = f1;
+    }
+  }
+  throw InputError(calibration_file, "targets.sigma_u",
+                   "sigma_u = " + four(sigma_u_MPa) + " MPa with sigma_t = " + four(sigma_t_MPa) +
+                       " MPa at E* = " + four(emod_GPa) +
+                       " GPa: the K_B, K_B(tau_cs / sigma_cn) and K_U tables reach sigma_u " +
+                       (most > 0 ? "from " + four(least) + " to " + four(most) + " MPa"
+                                 : std::string("nowhere")) +
+                       " on this packing where tau_cs sets it (tau_cs / sigma_cn from " +
+                       four(lowest) + " to " + four(highest) +
+                       ", on the segments where K_U rises); no extrapolation: change the targets");
+}
+
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
                           CalibrationInput& input) {
-  t.reject_unknown_keys({"kb", "ke", "ku", "tolerance", "max_iterations", "max_refinements"});
+  t.reject_unknown_keys(
+      {"kb", "ke", "ku", "kb_tau", "tolerance", "max_iterations", "max_refinements"});
   const auto resolve = [&](const char* key) -> std::filesystem::path {
     if (!t.has(key)) return {};
     const std::filesystem::path p(t.string(key));
@@ -341,6 +461,7 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
   input.tables.kb_file = resolve("kb");
   input.tables.ke_file = resolve("ke");
   input.tables.ku_file = resolve("ku");
+  input.tables.kb_tau_file = resolve("kb_tau");
   input.tables.tolerance = t.number_or("tolerance", 0.05, Range::open(0, 0.5));
   input.tables.max_iterations = static_cast<int>(t.integer_or("max_iterations", 2, 1, 2));
   input.tables.max_refinements = static_cast<int>(t.integer_or("max_refinements", 1, 0, 10));
@@ -436,6 +557,20 @@ void check_conditions(const CalibrationInput& input, const LookupTable& table,
                            ": set it so, or make a table at that value (docs/lookup_tables.md)");
 }
 
+// A tau_cs / sigma_cn (`what`) within the levels of a cell of `table`; refused on `key`
+// otherwise (no extrapolation).
+void check_within_levels(double rho, const CellCoefficient& cell, const LookupTable& table,
+                         const std::string& calibration_file, const std::string& key,
+                         const std::string& what) {
+  if (rho < cell.levels.front() * (1 - kSameCondition) ||
+      rho > cell.levels.back() * (1 + kSameCondition))
+    throw InputError(calibration_file, key,
+                     what + " is " + shortest_number(rho) + ", outside the " + table.coefficient() +
+                         " table's levels [" + four(cell.levels.front()) + ", " +
+                         four(cell.levels.back()) + "] of " + table.layout.level_name + " (" +
+                         table.file.string() + "); no extrapolation");
+}
+
 // The group of the plan that aims at `target`, and the mortar key it must hold.
 std::size_t group_of(const ScaledPlan& plan, CalibrationTarget target) {
   for (std::size_t g = 0; g < plan.groups.size(); ++g)
@@ -496,8 +631,13 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
   const std::size_t ge = group_of(plan, CalibrationTarget::E);
   const std::size_t gt = group_of(plan, CalibrationTarget::SigmaT);
   const std::size_t gu = group_of(plan, CalibrationTarget::SigmaU);
-  // With sigma_t and sigma_u targets, tau_cs / sigma_cn is the K_U table's to set.
+  // With sigma_t and sigma_u targets, tau_cs / sigma_cn is the K_U table's to set; with a
+  // sigma_t target and a kb_tau table it may be any of that table's levels. Either way the K_E
+  // and K_B tables' own tau_cs / sigma_cn is not required of the base materials (K_E moves by
+  // 1.4-2.1 % from 0.25 to 2, docs/lookup_tables.md).
   const bool both_strengths = gt < plan.groups.size() && gu < plan.groups.size();
+  const bool with_kb_tau = gt < plan.groups.size() && !input.tables.kb_tau_file.empty();
+  const bool shear_ratio_free = both_strengths || with_kb_tau;
   double emod_GPa = mortar.quantity(kModulusKey, Dimension::Stress, Range::positive()) / units::GPa;
   if (ge < plan.groups.size()) {
     if (input.tables.ke_file.empty())
@@ -507,7 +647,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
     const CalibrationTest& test = *input.test(TestKind::Uniaxial);
     const LookupTable ke =
         read_lookup_table(input.tables.ke_file, kModulusTable, file, "tables.ke");
-    check_conditions(input, ke, "tables.ke", both_strengths);
+    check_conditions(input, ke, "tables.ke", shear_ratio_free);
     const Packing packing = read_packing(test, file, "specimen.generator");
     const CellCoefficient k = interpolate_cell(ke, packing, file, "specimen.generator");
     emod_GPa = input.target_value(CalibrationTarget::E) / k.at(0);
@@ -518,7 +658,17 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
        << ke.file.string() << "`; E* = E / K_E = " << four(emod_GPa) << " GPa\n";
     if (!k.note.empty()) md << "  - " << k.note << "\n";
   }
-  double sigma_cn_MPa = 0;  // set by the sigma_t lookup
+  // The Brazilian side: K_B's cell at the disc's packing and, with a kb_tau table, F(rho).
+  const double sigma_t =
+      gt < plan.groups.size() ? input.target_value(CalibrationTarget::SigmaT) : 0;
+  const double sigma_u =
+      gu < plan.groups.size() ? input.target_value(CalibrationTarget::SigmaU) : 0;
+  const double base_rho = mortar.quantity(kShearKey, Dimension::Stress, Range::positive()) /
+                          mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
+  std::optional<LookupTable> kb, ku, kb_tau;
+  Packing disc, rectangle;
+  CellCoefficient kb_cell, ku_cell;
+  ShearFactor factor;
   if (gt < plan.groups.size()) {
     if (input.test(TestKind::Tension)->name != "brazilian")
       throw InputError(file, "tests.direct_tension",
@@ -528,36 +678,25 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
       throw InputError(file, "tables.kb",
                        "missing: sigma_t is a target, and the tables strategy reads K_B from the "
                        "table named here, e.g. kb = \"tables/brazilian_kb_x_table.csv\"");
-    const LookupTable kb =
-        read_lookup_table(input.tables.kb_file, kBrazilianTable, file, "tables.kb");
-    check_conditions(input, kb, "tables.kb", both_strengths);
-    const Packing packing =
-        read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
-    check_size(kb, "D", {{"diameter_mm", packing.diameter_mm}}, file,
-               "specimen.brazilian_generator");
-    const CellCoefficient k = interpolate_cell(kb, packing, file, "specimen.brazilian_generator");
-    const double sigma_t = input.target_value(CalibrationTarget::SigmaT);
-    const BrazilianLookup b = solve_brazilian(k, packing.r_ratio, sigma_t, emod_GPa, file);
-    plan.start_scales[gt] =
-        start_scale(input, plan.groups[gt], kTensileKey, b.sigma_cn_MPa, "sigma_cn from K_B");
-    sigma_cn_MPa = b.sigma_cn_MPa;
-    const double exponent = std::clamp(1 - b.slope, kMinStrengthExponent, kMaxStrengthExponent);
-    const auto it = static_cast<Eigen::Index>(gt);
-    plan.sensitivities(it, it) = exponent;
-    if (ge < plan.groups.size()) plan.sensitivities(it, static_cast<Eigen::Index>(ge)) = b.slope;
-    md << "- sigma_t: Brazilian packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
-       << four(packing.r_min_mm) << " mm, D " << four(packing.diameter_mm) << " mm; K_B from "
-       << k.cells << " of `" << kb.file.string() << "`; at E* = " << four(emod_GPa)
-       << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength)
-       << ", K_B = " << four(b.K_B) << ", sigma_cn = " << four(b.sigma_cn_MPa)
-       << " MPa (K_B measured at tau_cs = " << four(kb.condition("shear_to_normal"))
-       << " sigma_cn)\n"
-       << "  - d ln K_B / d ln(E* / sigma_cn) = " << four(b.slope)
-       << " there: the correction uses d ln sigma_t / d ln sigma_cn = " << four(exponent)
-       << (ge < plan.groups.size() ? " and d ln sigma_t / d ln E* = " + four(b.slope)
-                                   : std::string())
-       << "\n";
-    if (!k.note.empty()) md << "  - " << k.note << "\n";
+    kb = read_lookup_table(input.tables.kb_file, kBrazilianTable, file, "tables.kb");
+    check_conditions(input, *kb, "tables.kb", shear_ratio_free);
+    disc = read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
+    check_size(*kb, "D", {{"diameter_mm", disc.diameter_mm}}, file, "specimen.brazilian_generator");
+    kb_cell = interpolate_cell(*kb, disc, file, "specimen.brazilian_generator");
+    if (with_kb_tau) {
+      kb_tau =
+          read_lookup_table(input.tables.kb_tau_file, kBrazilianShearTable, file, "tables.kb_tau");
+      check_conditions(input, *kb_tau, "tables.kb_tau", true);
+      check_size(*kb_tau, "D", {{"diameter_mm", disc.diameter_mm}}, file,
+                 "specimen.brazilian_generator");
+      factor.kb_tau = interpolate_cell(*kb_tau, disc, file, "specimen.brazilian_generator");
+      factor.reference = kb->condition("shear_to_normal");
+      check_within_levels(factor.reference, factor.kb_tau, *kb_tau, file, "tables.kb_tau",
+                          "the K_B table's tau_cs / sigma_cn (" + kb->file.string() + ")");
+      if (!both_strengths)
+        check_within_levels(base_rho, factor.kb_tau, *kb_tau, file, "materials.mortar." + kShearKey,
+                            "tau_cs / sigma_cn of the base materials");
+    }
   }
   if (gu < plan.groups.size()) {
     if (input.tables.ku_file.empty())
@@ -565,23 +704,79 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
                        "missing: sigma_u is a target, and the tables strategy reads K_U (sigma_u = "
                        "K_U sigma_cn) from the table named here, e.g. ku = "
                        "\"tables/uniaxial_ku_table.csv\"");
-    const LookupTable ku =
-        read_lookup_table(input.tables.ku_file, kUniaxialStrengthTable, file, "tables.ku");
-    check_conditions(input, ku, "tables.ku");
-    const Packing packing =
-        read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
-    check_size(ku, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}},
+    ku = read_lookup_table(input.tables.ku_file, kUniaxialStrengthTable, file, "tables.ku");
+    check_conditions(input, *ku, "tables.ku");
+    rectangle = read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
+    check_size(*ku, "W x H", {{"width_mm", rectangle.width_mm}, {"height_mm", rectangle.height_mm}},
                file, "specimen.generator");
-    const CellCoefficient k = interpolate_cell(ku, packing, file, "specimen.generator");
-    const double sigma_u = input.target_value(CalibrationTarget::SigmaU);
+    ku_cell = interpolate_cell(*ku, rectangle, file, "specimen.generator");
+    if (!both_strengths)
+      check_within_levels(base_rho, ku_cell, *ku, file, "materials.mortar." + kShearKey,
+                          "tau_cs / sigma_cn of the base materials");
+  }
+
+  // The lookup: (sigma_cn, rho) together when K_B depends on rho and a sigma_u target sets it;
+  // else sigma_cn from the Brazilian relation at the rho it runs at, then rho from K_U.
+  BrazilianLookup b;
+  UniaxialLookup u;
+  double shear_factor = 1, shear_factor_slope = 0;  // F(rho), d ln F / d ln rho
+  if (both_strengths && with_kb_tau) {
+    const CoupledLookup c =
+        solve_coupled(kb_cell, factor, ku_cell, disc.r_ratio, sigma_t, sigma_u, emod_GPa, file);
+    b = c.brazilian;
+    u = c.uniaxial;
+    shear_factor = c.factor;
+    shear_factor_slope = c.factor_slope;
+  } else if (gt < plan.groups.size()) {
+    // rho is the base materials' (sigma_t alone) or not known to K_B (no kb_tau: F = 1).
+    if (with_kb_tau) shear_factor = factor.at(base_rho);
+    b = solve_brazilian(kb_cell, disc.r_ratio, sigma_t, emod_GPa, file, shear_factor);
+    if (both_strengths) u = solve_uniaxial(ku_cell, b.sigma_cn_MPa, sigma_u, file);
+  }
+
+  if (gt < plan.groups.size()) {
+    plan.start_scales[gt] =
+        start_scale(input, plan.groups[gt], kTensileKey, b.sigma_cn_MPa, "sigma_cn from K_B");
+    // With both strengths the sigma_t group moves sigma_cn alone, so rho = tau_cs / sigma_cn
+    // falls as sigma_cn rises: d ln sigma_t / d ln sigma_cn = 1 - s - phi, d ln sigma_t / d ln
+    // tau_cs = phi (phi = d ln F / d ln rho). Alone it moves every strength, rho kept: 1 - s.
+    const double phi = both_strengths ? shear_factor_slope : 0;
+    const double exponent =
+        std::clamp(1 - b.slope - phi, kMinStrengthExponent, kMaxStrengthExponent);
+    const auto it = static_cast<Eigen::Index>(gt);
+    plan.sensitivities(it, it) = exponent;
+    if (ge < plan.groups.size()) plan.sensitivities(it, static_cast<Eigen::Index>(ge)) = b.slope;
+    if (both_strengths) plan.sensitivities(it, static_cast<Eigen::Index>(gu)) = phi;
+    md << "- sigma_t: Brazilian packing R_max/R_min " << four(disc.r_ratio) << ", R_min "
+       << four(disc.r_min_mm) << " mm, D " << four(disc.diameter_mm) << " mm; K_B from "
+       << kb_cell.cells << " of `" << kb->file.string() << "`; at E* = " << four(emod_GPa)
+       << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength)
+       << ", K_B = " << four(b.K_B)
+       << " (measured at tau_cs = " << four(kb->condition("shear_to_normal")) << " sigma_cn)";
+    if (with_kb_tau)
+      md << " x F(tau_cs / sigma_cn = " << four(both_strengths ? u.shear_to_normal : base_rho)
+         << ") = " << four(shear_factor) << " (K_B against tau_cs / sigma_cn from "
+         << factor.kb_tau.cells << " of `" << kb_tau->file.string()
+         << "`, measured at E* / sigma_cn = " << four(kb_tau->condition("emod_per_sigma_cn"))
+         << ")";
+    md << ", sigma_cn = " << four(b.sigma_cn_MPa) << " MPa\n"
+       << "  - d ln K_B / d ln(E* / sigma_cn) = " << four(b.slope);
+    if (both_strengths && with_kb_tau) md << ", d ln F / d ln(tau_cs / sigma_cn) = " << four(phi);
+    md << " there: the correction uses d ln sigma_t / d ln sigma_cn = " << four(exponent)
+       << (ge < plan.groups.size() ? ", d ln sigma_t / d ln E* = " + four(b.slope) : std::string())
+       << (both_strengths ? ", d ln sigma_t / d ln tau_cs = " + four(phi) : std::string()) << "\n";
+    if (!kb_cell.note.empty()) md << "  - " << kb_cell.note << "\n";
+    if (with_kb_tau && !factor.kb_tau.note.empty()) md << "  - " << factor.kb_tau.note << "\n";
+  }
+  if (gu < plan.groups.size()) {
     const auto iu = static_cast<Eigen::Index>(gu);
-    md << "- sigma_u: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
-       << four(packing.r_min_mm) << " mm, " << four(packing.width_mm) << " x "
-       << four(packing.height_mm) << " mm; K_U from " << k.cells << " of `" << ku.file.string()
-       << "` (measured at E* / sigma_cn = " << four(ku.condition("emod_per_sigma_cn")) << ")";
+    md << "- sigma_u: uniaxial packing R_max/R_min " << four(rectangle.r_ratio) << ", R_min "
+       << four(rectangle.r_min_mm) << " mm, " << four(rectangle.width_mm) << " x "
+       << four(rectangle.height_mm) << " mm; K_U from " << ku_cell.cells << " of `"
+       << ku->file.string()
+       << "` (measured at E* / sigma_cn = " << four(ku->condition("emod_per_sigma_cn")) << ")";
     if (both_strengths) {
-      // sigma_cn is the Brazilian lookup's; tau_cs / sigma_cn solves K_U = sigma_u / sigma_cn.
-      const UniaxialLookup u = solve_uniaxial(k, sigma_cn_MPa, sigma_u, file);
+      const double sigma_cn_MPa = b.sigma_cn_MPa;
       plan.start_scales[gu] = start_scale(input, plan.groups[gu], kShearKey,
                                           u.shear_to_normal * sigma_cn_MPa, "tau_cs from K_U");
       plan.sensitivities(iu, iu) = u.slope;
@@ -590,31 +785,27 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
          << " MPa (E* / sigma_cn = " << four(emod_GPa * 1e3 / sigma_cn_MPa)
          << ") the target needs K_U = " << four(u.K_U)
          << ", tau_cs / sigma_cn = " << four(u.shear_to_normal)
-         << ", tau_cs = " << four(u.shear_to_normal * sigma_cn_MPa) << " MPa\n"
+         << ", tau_cs = " << four(u.shear_to_normal * sigma_cn_MPa) << " MPa"
+         << (with_kb_tau ? " (solved together with sigma_t: K_B depends on tau_cs / sigma_cn)" : "")
+         << "\n"
          << "  - d ln K_U / d ln(tau_cs / sigma_cn) = " << four(u.slope)
          << " there: the correction uses d ln sigma_u / d ln tau_cs = " << four(u.slope)
          << " and d ln sigma_u / d ln sigma_cn = " << four(1 - u.slope)
-         << "; K_B is read at its own tau_cs / sigma_cn (docs/lookup_tables.md \"K_B against "
-            "tau_cs / sigma_cn\")\n";
+         << (with_kb_tau ? std::string()
+                         : "; K_B is read at its own tau_cs / sigma_cn (no kb_tau table; "
+                           "docs/lookup_tables.md \"K_B against tau_cs / sigma_cn\")")
+         << "\n";
     } else {
       // No sigma_t target: tau_cs / sigma_cn stays the base materials', and sigma_cn (with
       // tau_cs, one group) solves sigma_u = K_U sigma_cn.
-      const double rho = mortar.quantity(kShearKey, Dimension::Stress, Range::positive()) /
-                         mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
-      if (rho < k.levels.front() * (1 - kSameCondition) ||
-          rho > k.levels.back() * (1 + kSameCondition))
-        throw InputError(file, "materials.mortar." + kShearKey,
-                         "tau_cs / sigma_cn of the base materials is " + shortest_number(rho) +
-                             ", outside the K_U table's levels [" + four(k.levels.front()) + ", " +
-                             four(k.levels.back()) + "] (" + ku.file.string() +
-                             "); no extrapolation");
-      const double K = k.at(rho);
+      const double K = ku_cell.at(base_rho);
       plan.start_scales[gu] =
           start_scale(input, plan.groups[gu], kTensileKey, sigma_u / K, "sigma_cn from K_U");
-      md << "; at the base materials' tau_cs / sigma_cn = " << four(rho) << ", K_U = " << four(K)
-         << ", sigma_cn = " << four(sigma_u / K) << " MPa (tau_cs / sigma_cn kept)\n";
+      md << "; at the base materials' tau_cs / sigma_cn = " << four(base_rho)
+         << ", K_U = " << four(K) << ", sigma_cn = " << four(sigma_u / K)
+         << " MPa (tau_cs / sigma_cn kept)\n";
     }
-    if (!k.note.empty()) md << "  - " << k.note << "\n";
+    if (!ku_cell.note.empty()) md << "  - " << ku_cell.note << "\n";
   }
   if (lookup) *lookup = md.str();
   return plan;

@@ -12,8 +12,14 @@
 // E* follows from the E target; sigma_cn then solves the Brazilian relation at that E* (K_B
 // depends on E* / sigma_cn, so the equation is implicit); tau_cs / sigma_cn then solves the
 // uniaxial relation at that sigma_cn (with no sigma_t target, sigma_cn solves it at the base
-// materials' tau_cs / sigma_cn). A packing, or a target, outside what the tables hold is refused
-// (InputError, exit 2): there the coefficients were not measured.
+// materials' tau_cs / sigma_cn). With a K_B table against tau_cs / sigma_cn (`kb_tau`), K_B also
+// depends on rho = tau_cs / sigma_cn,
+//   K_B(E* / sigma_cn, rho) = K_B(E* / sigma_cn, rho_ref) F(rho),  F = K_B^tau(rho) /
+//   K_B^tau(rho_ref)
+// (rho_ref the K_B table's tau_cs / sigma_cn, F measured at one E* / sigma_cn: separable), and
+// the two strength relations are solved together for (sigma_cn, rho). A packing, or a target,
+// outside what the tables hold is refused (InputError, exit 2): there the coefficients were not
+// measured.
 #include <filesystem>
 #include <map>
 #include <string>
@@ -39,6 +45,8 @@ extern const TableLayout kModulusTable;
 // K_U = sigma_u / sigma_cn per cell and tau_cs / sigma_cn, on W x H rectangles, at one E* /
 // sigma_cn.
 extern const TableLayout kUniaxialStrengthTable;
+// K_B per cell and tau_cs / sigma_cn, on D discs, at one E* / sigma_cn.
+extern const TableLayout kBrazilianShearTable;
 
 // One row of a lookup table: a packing cell (R_max / R_min, R_min), the level of its second
 // dimension (E* / sigma_cn for K_B, tau_cs / sigma_cn for K_U; 0 without one), the coefficient.
@@ -88,12 +96,15 @@ struct CellCoefficient {
   std::string cells;                 // the cells used, in words
   std::string note;                  // R_min outside the levels: the nearest was used
   double at(double level) const;     // within [levels.front(), levels.back()]
+  // d ln K / d ln level on the segment `at` uses there (0 without the dimension).
+  double log_slope(double level) const;
 };
 CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packing,
                                  const std::string& calibration_file, const std::string& key);
 
-// sigma_cn for a Brazilian target at contact modulus E*: the root of sigma_cn K_B(E* / sigma_cn) /
-// (1 + R_max / R_min) = sigma_t within the table's E* / sigma_cn levels. Refused (InputError on
+// sigma_cn for a Brazilian target at contact modulus E*: the root of sigma_cn K_B(E* / sigma_cn)
+// factor / (1 + R_max / R_min) = sigma_t within the table's E* / sigma_cn levels (`factor`: F of
+// the tau_cs / sigma_cn the disc runs at, 1 at the K_B table's own). Refused (InputError on
 // `targets.sigma_t`, naming the strengths the table reaches at that E*) when there is none.
 struct BrazilianLookup {
   double sigma_cn_MPa = 0;
@@ -102,7 +113,8 @@ struct BrazilianLookup {
   double slope = 0;  // d ln K_B / d ln(E* / sigma_cn) on the segment of the solution
 };
 BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, double sigma_t_MPa,
-                                double emod_GPa, const std::string& calibration_file);
+                                double emod_GPa, const std::string& calibration_file,
+                                double factor = 1);
 
 // tau_cs / sigma_cn for a uniaxial target at sigma_cn: the smallest level rho at which K_U(rho) =
 // sigma_u / sigma_cn, on a segment of the table where K_U rises with rho by at least
@@ -116,6 +128,36 @@ struct UniaxialLookup {
 };
 UniaxialLookup solve_uniaxial(const CellCoefficient& ku, double sigma_cn_MPa, double sigma_u_MPa,
                               const std::string& calibration_file);
+
+// K_B's dependence on tau_cs / sigma_cn: F(rho) = K_B^tau(rho) / K_B^tau(rho_ref) of a cell of
+// the kb_tau table, rho_ref the K_B table's tau_cs / sigma_cn (a level of kb_tau).
+struct ShearFactor {
+  CellCoefficient kb_tau;  // empty levels: no kb_tau table, F = 1
+  double reference = 0;    // rho_ref
+  double at(double rho) const;
+  double log_slope(double rho) const;  // d ln F / d ln rho
+  double lowest() const;               // the rho range F is known over
+  double highest() const;
+};
+
+// sigma_t and sigma_u targets together at E*: (sigma_cn, rho) with
+//   sigma_cn K_B(E* / sigma_cn) F(rho) / (1 + R_max / R_min) = sigma_t,  sigma_cn K_U(rho) =
+//   sigma_u,
+// rho within the levels of K_U and F, on a segment where K_U rises by d ln K_U / d ln rho >= 0.1
+// (solve_uniaxial's rule); the smallest such rho. sigma_cn(rho) solves the first relation
+// (solve_brazilian), and rho is bracketed on a grid in ln rho and bisected. Refused
+// (InputError on `targets.sigma_u`, naming the range of sigma_u the tables reach with that
+// sigma_t) when there is none.
+struct CoupledLookup {
+  BrazilianLookup brazilian;  // at the solution's rho
+  UniaxialLookup uniaxial;
+  double factor = 1;        // F(rho)
+  double factor_slope = 0;  // d ln F / d ln rho there
+};
+CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor,
+                            const CellCoefficient& ku, double r_ratio, double sigma_t_MPa,
+                            double sigma_u_MPa, double emod_GPa,
+                            const std::string& calibration_file);
 
 // [tables] of the calibration file into input.tables (paths resolved against the file).
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,

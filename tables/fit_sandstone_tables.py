@@ -138,9 +138,10 @@ def fit_ke(cond, cells):
     return table, ok
 
 
-def write_table(path, title, columns, table):
+def write_table(path, title, columns, table, maker="tables/fit_sandstone_tables.py"):
+    """A lookup table as CSV with a comment line naming what it is and what made it."""
     def write(f):
-        f.write(f"# {title}; made by tables/fit_sandstone_tables.py (docs/lookup_tables.md)\n")
+        f.write(f"# {title}; made by {maker} (docs/lookup_tables.md)\n")
         w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         w.writeheader()
         w.writerows(table)

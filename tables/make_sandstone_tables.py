@@ -19,8 +19,9 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   the sandstone sits), seeds 11-13; the cracks by mode (tension, shear) say which bonds fail;
 - uniaxial_ku_check.toml: the same at E* / sigma_cn 1200 on R_max / R_min 2.7, seed 11: does
   K_U depend on E* / sigma_cn?
-- brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 4 (the K_B table holds
-  2) on R_max / R_min 3 at E* / sigma_cn 600, seeds 11-13: does K_B depend on tau_cs / sigma_cn?
+- brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 1.5, 4 (the K_B table
+  holds 2) on the K_B table's cells (R_max / R_min 1.5, 2, 3, 4) at E* / sigma_cn 600, seeds
+  11-13: K_B against tau_cs / sigma_cn, which a sigma_u target moves (fit_kb_tau.py);
 - uniaxial_nu.toml: nu (and K_E) against kn / ks (1, 1.5, 2.5, 4) on the K_U table's rectangles
   and cells at E* / sigma_cn 3000 (the elastic part: cheap), seeds 11-12;
 - direct_tension_kd.toml: direct tension of the same rectangles on R_max / R_min 2.7 at E* /
@@ -48,13 +49,17 @@ KU_RADIUS_RATIOS = [1.5, 2.7, 4]          # R_max / R_min of the uniaxial streng
 KU_EMOD_PER_SIGMA = [600]                 # E* / sigma_cn of the K_U runs
 KU_CHECK = dict(ratios=[2.7], levels=[1200], seeds=[11])
 SHEAR_TO_NORMAL_LEVELS = [0.25, 0.5, 1, 1.5, 2, 3, 4, 8]   # tau_cs / sigma_cn of the K_U runs
-KB_TAU = dict(ratios=[3], levels=[600], shear=[0.5, 1, 4], seeds=SEEDS)
+# The ratio-3 cell first, with its three first levels first: the runs of the first check (one
+# cell) keep their numbers, and the other cells of the K_B table follow.
+KB_TAU = dict(ratios=[3, 2, 4, 1.5], levels=[600], shear=[0.5, 1, 4, 1.5], seeds=SEEDS)
 NU_KRATIO = dict(ratios=KU_RADIUS_RATIOS, levels=[3000], kratio=[1, 1.5, 2.5, 4], seeds=[11, 12])
 KD = dict(ratios=[2.7], levels=[600], seeds=SEEDS)
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
 REDUCED_KU = dict(ratios=[4], shear=[0.25], seeds=[11])
+# ... and of the K_B table against tau_cs / sigma_cn: R_max / R_min 4 at 0.5 (about 10-20 s).
+REDUCED_KB_TAU = dict(ratios=[4], shear=[0.5], seeds=[11])
 
 KB_GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
              "wall_time_s"]
@@ -109,10 +114,14 @@ def main():
          "uniaxial_ke_base.toml", KE_GATHER, rows(lv["ratios"], lv["r_min"], lv["ke_check"]),
          lv["check_seeds"])]
     if a.reduced:
-        campaigns.append(
+        campaigns += [
             ("uniaxial_ku", "Uniaxial K_U (CI subset)", "uniaxial_ke_base.toml", KU_GATHER,
              rows(REDUCED_KU["ratios"], R_MIN_MM, KU_EMOD_PER_SIGMA, REDUCED_KU["shear"]),
-             REDUCED_KU["seeds"]))
+             REDUCED_KU["seeds"]),
+            ("brazilian_kb_tau", "Brazilian K_B against tau_cs / sigma_cn (CI subset)",
+             "brazilian_kb_x_base.toml", KB_TAU_GATHER,
+             rows(REDUCED_KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], REDUCED_KB_TAU["shear"]),
+             REDUCED_KB_TAU["seeds"])]
     else:
         campaigns += [
             ("uniaxial_ku", "Uniaxial K_U = sigma_u / sigma_cn against tau_cs / sigma_cn",
@@ -122,7 +131,7 @@ def main():
              "uniaxial_ke_base.toml", KU_GATHER,
              rows(KU_CHECK["ratios"], R_MIN_MM, KU_CHECK["levels"], SHEAR_TO_NORMAL_LEVELS),
              KU_CHECK["seeds"]),
-            ("brazilian_kb_tau", "Brazilian K_B at other tau_cs / sigma_cn (check)",
+            ("brazilian_kb_tau", "Brazilian K_B against tau_cs / sigma_cn",
              "brazilian_kb_x_base.toml", KB_TAU_GATHER,
              rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["shear"]),
              KB_TAU["seeds"]),

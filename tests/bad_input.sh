@@ -350,6 +350,13 @@ cp "$SRC/tables/uniaxial_ku_table.csv" tables_case/tables/
 texpect tables_ucs_outside targets.sigma_u \
   's/^E_GPa = 18/&\nsigma_u_MPa = 200/; s#^ke = .*#&\nku = "../tables/uniaxial_ku_table.csv"#'
 texpect tables_no_ku tables.ku 's/^E_GPa = 18/&\nsigma_u_MPa = 40/'
+# The K_B table against tau_cs / sigma_cn (kb_tau): missing, and a sigma_u that the three tables
+# solved together cannot reach with sigma_t 9.08 MPa.
+cp "$SRC/tables/brazilian_kb_tau_table.csv" tables_case/tables/
+texpect tables_kb_tau_missing tables.kb_tau \
+  's/^E_GPa = 18/&\nsigma_u_MPa = 45.4/; s#^ke = .*#&\nku = "../tables/uniaxial_ku_table.csv"\nkb_tau = "../tables/nowhere.csv"#'
+texpect tables_coupled_outside targets.sigma_u \
+  's/^E_GPa = 18/&\nsigma_u_MPa = 200/; s#^ke = .*#&\nku = "../tables/uniaxial_ku_table.csv"\nkb_tau = "../tables/brazilian_kb_tau_table.csv"#'
 
 echo "$passed passed, $failures failed"
 [ "$passed" -ge 40 ] || { echo "FAIL: fewer than 40 cases ran"; exit 1; }

@@ -3,11 +3,13 @@
 # (issue 17; docs/lookup_tables.md, docs/calibration.md "Tables strategy"):
 #  - the reduced design of tables/make_sandstone_tables.py --reduced (R_max / R_min 3 at R_min
 #    0.2 mm: K_B at E* / sigma_cn 600 and 3000, K_E at 3000, seed 11: three runs of the full
-#    tables' inputs; and one run of the K_U table, R_max / R_min 4 at tau_cs / sigma_cn 0.25)
+#    tables' inputs; one run of the K_U table, R_max / R_min 4 at tau_cs / sigma_cn 0.25; one of
+#    the K_B table against tau_cs / sigma_cn, R_max / R_min 4 at 0.5, fitted by fit_kb_tau.py
+#    against the shipped K_B runs at rho 2: the disc is weaker at 0.5, F < 1, as the table says)
 #    run by `cdem campaign` and fitted by tables/fit_sandstone_tables.py; each run's sigma_t, E
 #    and sigma_u equal, to the last digit, the same run in the shipped raw results
 #    (tables/brazilian_kb_x_results.csv, tables/uniaxial_ke_results.csv,
-#    tables/uniaxial_ku_results.csv): the shipped tables are
+#    tables/uniaxial_ku_results.csv, tables/brazilian_kb_tau_results.csv): the shipped tables are
 #    what their campaigns make; the fitted K_B falls as E* / sigma_cn rises (the jaws load more
 #    discs at low E* / sigma_cn: docs/lab_tests.md);
 #  - `cdem calibrate` with strategy "tables" on the shipped tables, a sigma_t target alone on the
@@ -27,6 +29,9 @@ cd "$work"
 "$CDEM" campaign brazilian_kb_x.toml -o kb -j 2 -q
 "$CDEM" campaign uniaxial_ke.toml -o ke -j 2 -q
 "$CDEM" campaign uniaxial_ku.toml -o ku -j 2 -q
+"$CDEM" campaign brazilian_kb_tau.toml -o kbt -j 2 -q
+(cd "$SRC/tables" && /usr/bin/python3 fit_kb_tau.py "$work/kbt" \
+  --ref "$SRC/tables/brazilian_kb_x_results.csv" -o "$work/kbt.csv") >/dev/null
 (cd "$SRC/tables" && /usr/bin/python3 fit_sandstone_tables.py --kb "$work/kb" --ke "$work/ke" \
   --kb-out "$work/kb.csv" --ke-out "$work/ke.csv") >/dev/null
 /usr/bin/python3 - "$SRC/tables" <<'PY'
@@ -37,7 +42,9 @@ keys = ("specimen.mortar.r_ratio", "specimen.mortar.r_mean_mm",
         "seed")
 for run_dir, shipped_file, field in (("kb", "brazilian_kb_x_results.csv", "tensile_strength_MPa"),
                                      ("ke", "uniaxial_ke_results.csv", "young_modulus_GPa"),
-                                     ("ku", "uniaxial_ku_results.csv", "peak_stress_MPa")):
+                                     ("ku", "uniaxial_ku_results.csv", "peak_stress_MPa"),
+                                     ("kbt", "brazilian_kb_tau_results.csv",
+                                      "tensile_strength_MPa")):
     shipped = {tuple(float(r[k]) for k in keys): r
                for r in csv.DictReader(open(f"{sys.argv[1]}/{shipped_file}"))}
     for r in csv.DictReader(open(f"{run_dir}/results.csv")):
@@ -50,6 +57,12 @@ kb.sort(key=lambda r: float(r["emod_per_sigma_cn"]))
 print("K_B at E*/sigma_cn " + ", ".join(f"{r['emod_per_sigma_cn']}: {r['K_B']}" for r in kb))
 if not (len(kb) == 2 and float(kb[0]["K_B"]) > float(kb[1]["K_B"]) > 0):
     print("FAIL: K_B does not fall with E* / sigma_cn"); ok = False
+kbt = {float(r["shear_to_normal"]): r
+       for r in csv.DictReader(l for l in open("kbt.csv") if not l.startswith("#"))}
+print("K_B against tau_cs / sigma_cn: " + ", ".join(f"{k:g}: {r['K_B']} (F {r['factor']})"
+                                                   for k, r in sorted(kbt.items())))
+if not (sorted(kbt) == [0.5, 2.0] and 0 < float(kbt[0.5]["factor"]) < 1 == float(kbt[2.0]["factor"])):
+    print("FAIL: K_B at tau_cs / sigma_cn 0.5 not below its value at 2"); ok = False
 sys.exit(0 if ok else 1)
 PY
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,34 @@ const std::string kKU =
     "4,0.2,2,1.2,2.5,0.5,600,20,40\n"
     "4,0.2,4,1.22,2.5,0.5,600,20,40\n";
 
+// K_B against tau_cs / sigma_cn at E* / sigma_cn 600 on the disc's two cells (ratio 3 = their
+// mean: 0.5, 0.7, 0.8, 0.8 at 0.5, 1, 2, 4), so F = K_B(rho) / K_B(2) = 0.625, 0.875, 1, 1: the
+// Brazilian strength of a disc falls below rho 2 (docs/lookup_tables.md).
+const std::string kKBTau =
+    "r_ratio,r_min_mm,shear_to_normal,K_B,kratio,friction,emod_per_sigma_cn,diameter_mm\n"
+    "2,0.2,0.5,0.35,2.5,0.5,600,30\n"
+    "2,0.2,1,0.5,2.5,0.5,600,30\n"
+    "2,0.2,2,0.6,2.5,0.5,600,30\n"
+    "2,0.2,4,0.6,2.5,0.5,600,30\n"
+    "4,0.2,0.5,0.65,2.5,0.5,600,30\n"
+    "4,0.2,1,0.9,2.5,0.5,600,30\n"
+    "4,0.2,2,1.0,2.5,0.5,600,30\n"
+    "4,0.2,4,1.0,2.5,0.5,600,30\n";
+
+// The same made on D 50 mm discs; and holding rho 0.5 and 1 only (not the K_B table's 2).
+std::string kb_tau_edited(const std::string& from, const std::string& to) {
+  std::string out;
+  std::istringstream in(kKBTau);
+  for (std::string line; std::getline(in, line);) {
+    if (from.empty() && (line.find(",2,") == 5 || line.find(",4,") == 5)) continue;
+    const auto at = from.empty() ? std::string::npos : line.rfind(from);
+    out += (at == std::string::npos ? line : line.substr(0, at) + to) + "\n";
+  }
+  return out;
+}
+const std::string kKBTauD50 = kb_tau_edited(",30", ",50");
+const std::string kKBTauLow = kb_tau_edited("", "");
+
 const std::string kMaterials =
     "[materials.mortar]\nlaw = \"contact_bond\"\nemod_GPa = 30.0\nkratio = 2.5\nfriction = 0.5\n"
     "cb_tensile_strength_MPa = 40.0\ncb_shear_strength_MPa = 80.0\n";
@@ -77,9 +106,13 @@ const std::string kParameters =
 const std::string kHeadUcs = replace(replace(kHead, "E_GPa = 18", "E_GPa = 18\nsigma_u_MPa = 32"),
                                      "ke = \"ke.csv\"", "ke = \"ke.csv\"\nku = \"ku.csv\"");
 
+// The three targets with the K_B table against tau_cs / sigma_cn: solved together.
+const std::string kHeadCoupled =
+    replace(kHeadUcs, "ku = \"ku.csv\"", "ku = \"ku.csv\"\nkb_tau = \"kb_tau.csv\"");
+
 struct Files {
-  std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, materials = kMaterials, disc = kDisc,
-              rectangle = kRectangle, parameters = kParameters;
+  std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, kb_tau = kKBTau, materials = kMaterials,
+              disc = kDisc, rectangle = kRectangle, parameters = kParameters;
 };
 
 // A calibration directory for the tables strategy: a uniaxial and a Brazilian test with the
@@ -95,6 +128,7 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
   write(dir / "kb.csv", f.kb);
   write(dir / "ke.csv", f.ke);
   write(dir / "ku.csv", f.ku);
+  write(dir / "kb_tau.csv", f.kb_tau);
   write(dir / "cal.toml", f.head +
                               "[tests]\nuniaxial = \"ucs.toml\"\nbrazilian = \"brazilian.toml\"\n"
                               "[specimen]\ngenerator = \"rectangle.toml\"\n"
@@ -220,6 +254,61 @@ TEST(TablesLookup, InvertsTheUniaxialRelation) {
   EXPECT_NEAR(solve_uniaxial(cell, 50, 15, "cal.toml").shear_to_normal, 0.25, 1e-12);
 }
 
+TEST(TablesLookup, SolvesTheTwoStrengthsTogether) {
+  // By hand: K_B flat at 0.6 (at tau_cs / sigma_cn 2); K_B against rho on two cells whose mean
+  // (the ratio-3 disc) is 0.3 at rho 1 and 0.6 at rho 2, so F(rho) = 0.5 + 0.5 t with t =
+  // log2(rho); K_U 0.8 at rho 1 and 1.0 at 2, so K_U = 0.8 + 0.2 t. The two relations are
+  //   sigma_t = sigma_cn 0.6 F / (1 + 3) = 0.15 sigma_cn (0.5 + 0.5 t),
+  //   sigma_u = sigma_cn (0.8 + 0.2 t),
+  // and sigma_u / sigma_t = (0.8 + 0.2 t) / (0.15 (0.5 + 0.5 t)) falls with t (one root): at t
+  // = 1/2 (rho = sqrt 2), sigma_cn = 40 MPa gives sigma_t = 4.5 MPa and sigma_u = 36 MPa.
+  const std::string flat =
+      "r_ratio,r_min_mm,emod_per_sigma_cn,K_B,kratio,friction,shear_to_normal,diameter_mm\n"
+      "2,0.2,100,0.6,2.5,0.5,2,30\n2,0.2,5000,0.6,2.5,0.5,2,30\n"
+      "4,0.2,100,0.6,2.5,0.5,2,30\n4,0.2,5000,0.6,2.5,0.5,2,30\n";
+  const std::string tau =
+      "r_ratio,r_min_mm,shear_to_normal,K_B,kratio,friction,emod_per_sigma_cn,diameter_mm\n"
+      "2,0.2,1,0.2,2.5,0.5,600,30\n2,0.2,2,0.4,2.5,0.5,600,30\n"
+      "4,0.2,1,0.4,2.5,0.5,600,30\n4,0.2,2,0.8,2.5,0.5,600,30\n";
+  const std::string ku =
+      "r_ratio,r_min_mm,shear_to_normal,K_U,kratio,friction,emod_per_sigma_cn,width_mm,height_mm\n"
+      "3,0.2,1,0.8,2.5,0.5,600,20,40\n3,0.2,2,1.0,2.5,0.5,600,20,40\n";
+  const Packing disc{3, 0.2, 30};
+  const auto kb = interpolate_cell(table("cflat", flat, kBrazilianTable), disc, "c", "k");
+  ShearFactor f;
+  f.kb_tau = interpolate_cell(table("ctau", tau, kBrazilianShearTable), disc, "c", "k");
+  f.reference = 2;
+  EXPECT_NEAR(f.at(std::sqrt(2.0)), 0.75, 1e-12);
+  const auto u_cell =
+      interpolate_cell(table("cku", ku, kUniaxialStrengthTable), {3, 0.2}, "c", "k");
+  const auto c = solve_coupled(kb, f, u_cell, 3, 4.5, 36, 30, "cal.toml");
+  EXPECT_NEAR(c.uniaxial.shear_to_normal, std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(c.brazilian.sigma_cn_MPa, 40, 1e-8);
+  EXPECT_NEAR(c.brazilian.emod_per_strength, 30000.0 / 40, 1e-6);
+  EXPECT_NEAR(c.brazilian.K_B, 0.6, 1e-12);  // the K_B table's, F apart
+  EXPECT_NEAR(c.factor, 0.75, 1e-9);
+  EXPECT_NEAR(c.factor_slope, 1, 1e-12);  // ln(0.6 / 0.3) / ln 2
+  EXPECT_NEAR(c.uniaxial.K_U, 0.9, 1e-9);
+  EXPECT_NEAR(c.uniaxial.slope, std::log(1.0 / 0.8) / std::log(2.0), 1e-12);
+  // What sigma_t = 4.5 MPa allows: t = 0 gives sigma_cn 60, sigma_u 48 MPa; t = 1 gives sigma_cn
+  // 30, sigma_u 30 MPa. Outside: refused, with that range.
+  for (const double target : {29.0, 49.0}) {
+    try {
+      solve_coupled(kb, f, u_cell, 3, 4.5, target, 30, "cal.toml");
+      ADD_FAILURE() << "sigma_u " << target << " accepted";
+    } catch (const cdem::InputError& e) {
+      EXPECT_EQ(e.key(), "targets.sigma_u");
+      EXPECT_NE(std::string(e.what()).find("from 30 to 48 MPa"), std::string::npos) << e.what();
+    }
+  }
+  // Without F (no kb_tau table: F = 1) the same call is the two lookups one after the other.
+  // sigma_cn = 4.5 x 4 / 0.6 = 30 MPa, and sigma_u 27 MPa needs K_U 0.9: rho = sqrt 2 again.
+  const auto plain = solve_coupled(kb, ShearFactor{}, u_cell, 3, 4.5, 27, 30, "cal.toml");
+  EXPECT_NEAR(plain.brazilian.sigma_cn_MPa, 30, 1e-8);
+  EXPECT_NEAR(plain.uniaxial.shear_to_normal, std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(solve_uniaxial(u_cell, 30, 27, "cal.toml").shear_to_normal, std::sqrt(2.0), 1e-12);
+}
+
 TEST(TablesLookup, RefusesACorruptTable) {
   const auto expect = [](const std::string& name, const std::string& text,
                          const std::string& words) {
@@ -334,6 +423,13 @@ class TableModel : public cdem::test::PointModel {
         ke_(ke),
         kb_(kb),
         ku_(ku) {}
+  // When set, sigma_t also follows K_B against tau_cs / sigma_cn: times F(rho) = K_B^tau(rho) /
+  // K_B^tau(2) of this table's disc cell (a disc weaker below rho 2, as measured).
+  void follow_shear_ratio(const std::filesystem::path& kb_tau) {
+    factor_.kb_tau = interpolate_cell(read_lookup_table(kb_tau, kBrazilianShearTable, "c", "k"),
+                                      {3, 0.2, 30}, "c", "k");
+    factor_.reference = 2;
+  }
   double other_specimens = 1;  // strength of the verification specimens against the first
   // When > 0, the calibration specimen's sigma_t jumps at this sigma_cn (MPa): 1.3 x the
   // tables' above, 0.7 x below (as one D 30 mm disc does between the regimes of E* / sigma_cn).
@@ -359,11 +455,12 @@ class TableModel : public cdem::test::PointModel {
     const double scatter =
         first ? 1 : 1 + 0.02 * std::sin(3.0 * static_cast<double>(p.specimen_seed));
     o.responses[static_cast<int>(CalibrationTarget::E)] = ke_ * 0.5 * emod * scatter;
-    o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
-        kb_ * bias * scatter * sigma * cell_.at(x) / 4;
-    // sigma_u = ku K_U(tau_cs / sigma_cn) sigma_cn on the rectangle's cell (ratio 2); K_B does
-    // not depend on tau_cs / sigma_cn here (the tables' assumption).
+    // sigma_u = ku K_U(tau_cs / sigma_cn) sigma_cn on the rectangle's cell (ratio 2); K_B
+    // depends on tau_cs / sigma_cn only after follow_shear_ratio.
     const double rho = std::clamp(p.values[2] / sigma, 0.25, 4.0);
+    const double shear = factor_.kb_tau.levels.empty() ? 1 : factor_.at(std::clamp(rho, 0.5, 4.0));
+    o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
+        kb_ * bias * scatter * sigma * cell_.at(x) * shear / 4;
     o.responses[static_cast<int>(CalibrationTarget::SigmaU)] =
         ku_ * scatter * sigma * ucs_cell_.at(rho);
     return o;
@@ -372,6 +469,7 @@ class TableModel : public cdem::test::PointModel {
  private:
   const CalibrationInput& input_;
   CellCoefficient cell_, ucs_cell_;
+  ShearFactor factor_;
   double ke_, kb_, ku_;
 };
 
@@ -502,6 +600,96 @@ TEST(CalibrateTables, UniaxialStrengthAloneKeepsTheBaseShearRatio) {
       replace(f.materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 400.0");
   expect_input_error(make_calibration("ucs_alone_rho", f), "materials.mortar.cb_shear_strength",
                      "outside the K_U table's levels");
+}
+
+// A calibration of `f` on the TableModel (off by ke, kb, ku) whose sigma_t also follows K_B
+// against tau_cs / sigma_cn of kb_tau.csv, whether the calibration reads that table or not.
+struct FollowingRun {
+  CalibrationInput in;
+  CalibrationResult r;
+};
+FollowingRun calibrate_following(const std::string& name, const Files& f, double ke = 1,
+                                 double kb = 1, double ku = 1) {
+  FollowingRun out{read_calibration_input(make_calibration(name, f)), {}};
+  TableModel model(out.in, ke, kb, ku);
+  model.follow_shear_ratio(out.in.tables.kb_file.parent_path() / "kb_tau.csv");
+  out.r = calibrate(out.in, model);
+  return out;
+}
+
+TEST(CalibrateTables, CoupledStrengthsInOneRunWhenTheTablesAreExact) {
+  // A material whose Brazilian strength falls below tau_cs / sigma_cn 2 as kb_tau says. With
+  // the kb_tau table the lookup solves sigma_t and sigma_u together: one run, every error 0.
+  Files f;
+  f.head = kHeadCoupled;
+  const auto [in, r] = calibrate_following("coupled_exact", f);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
+  // The solution lies below rho 2, where F < 1: sigma_t needs more sigma_cn than K_B alone says.
+  const double rho = r.calibrated[2] / r.calibrated[1];
+  EXPECT_LT(rho, 2);
+  EXPECT_NE(r.lookup.find("x F(tau_cs / sigma_cn"), std::string::npos) << r.lookup;
+  EXPECT_NE(r.lookup.find("solved together with sigma_t"), std::string::npos) << r.lookup;
+
+  // Without the kb_tau table the same material misses sigma_t at the first run by F(rho) - 1 of
+  // the rho that run had (K_B read at rho 2), far more than the tolerance.
+  Files g;
+  g.head = kHeadUcs;
+  const auto plain = calibrate_following("coupled_plain", g);
+  ASSERT_GE(plain.r.iterations.size(), 1u);
+  const std::size_t t = index_of(plain.in, CalibrationTarget::SigmaT);
+  EXPECT_LT(plain.r.iterations[0].errors[t], -0.05);
+}
+
+TEST(CalibrateTables, CoupledStrengthsInOneCorrectionWhenTheTablesAreOff) {
+  // K_E 8 % high, K_B 12 % low, K_U 10 % low, and K_B following tau_cs / sigma_cn: the coupled
+  // correction (d ln sigma_t / d ln tau_cs = d ln F / d ln rho) cuts every miss five-fold and
+  // lands sigma_t within 1 % (measured 0.35 %; without the coupling, phi set to 0, 1.9 %).
+  Files f;
+  f.head = kHeadCoupled;
+  const auto [in, r] = calibrate_following("coupled_off", f, 1.08, 0.88, 0.9);
+  ASSERT_EQ(r.iterations.size(), 2u);
+  for (std::size_t i = 0; i < in.targets.size(); ++i)
+    EXPECT_LE(std::abs(r.iterations[1].errors[i]), std::abs(r.iterations[0].errors[i]) / 5)
+        << target_name(in.targets[i].target);
+  EXPECT_LE(std::abs(r.iterations[1].errors[index_of(in, CalibrationTarget::SigmaT)]), 0.01);
+  EXPECT_TRUE(r.success()) << r.stop_reason;
+}
+
+TEST(CalibrateTables, SigmaTAloneAtTheBaseShearRatioWithKbTau) {
+  // sigma_t and E with a kb_tau table: the base tau_cs / sigma_cn (here 1, not the K_B table's
+  // 2) is kept and K_B is read times F(1) = 0.875; one run, exact.
+  Files f;
+  f.head = replace(kHead, "ke = \"ke.csv\"", "ke = \"ke.csv\"\nkb_tau = \"kb_tau.csv\"");
+  f.materials =
+      replace(f.materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 40.0");
+  const auto [in, r] = calibrate_following("tau_alone", f);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
+  EXPECT_NEAR(r.calibrated[2] / r.calibrated[1], 1, 1e-12);
+  EXPECT_NE(r.lookup.find("= 0.875"), std::string::npos) << r.lookup;
+  // Refusals of the kb_tau table and what it speaks for.
+  expect_refusals(
+      {
+          {"tau_rho", &Files::materials, "cb_shear_strength_MPa = 40.0",
+           "cb_shear_strength_MPa = 400.0", "materials.mortar.cb_shear_strength",
+           "outside the K_B table's levels [0.5, 4] of tau_cs / sigma_cn"},
+          // At E* = 18 / 0.5 = 36 GPa the ratio-3 cell reaches 36000 / 3000 x 0.7 / 4 = 2.1 to
+          // 36000 / 300 x 1.2 / 4 = 36 MPa at rho 2, times F(1) = 0.875 at rho 1 (1.8375 to 31.5).
+          {"tau_target", &Files::head, "sigma_t_MPa = 9", "sigma_t_MPa = 90", "targets.sigma_t",
+           " to 31.5 MPa (E* / sigma_cn"},
+          {"tau_missing", &Files::head, "kb_tau = \"kb_tau.csv\"", "kb_tau = \"none.csv\"",
+           "tables.kb_tau", "cannot read"},
+          {"tau_kratio", &Files::kb_tau, "2,0.2,1,0.5,2.5", "2,0.2,1,0.5,3", "tables.kb_tau",
+           "column 'kratio' is 3"},
+          {"tau_size", &Files::kb_tau, kKBTau, kKBTauD50, "specimen.brazilian_generator",
+           "D 50 mm"},
+          {"tau_reference", &Files::kb_tau, kKBTau, kKBTauLow, "tables.kb_tau",
+           "is 2, outside the K_B table's levels [0.5, 1] of tau_cs / sigma_cn"},
+      },
+      f);
 }
 
 TEST(CalibrateTables, AFailedLastRunIsReportedWithAReason) {
