@@ -22,7 +22,6 @@ using cdem::Specimen;
 using namespace cdem::dem;
 using cdem::test::expect_input_error;
 using cdem::test::lab_test_input;
-using cdem::test::packed_specimen;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kDegree = kPi / 180;  // rad
@@ -129,9 +128,8 @@ TEST(LoadingArc, ColumnLoadIsTheContactSpringsCompressionByHand) {
   EXPECT_TRUE(res.walls.size() == 0);  // no platen: the discs themselves load the disc
 }
 
-const Specimen& disc_specimen() {  // 20 mm diameter, as test_lab_tests.cpp's
-  static const Specimen s = packed_specimen({ContainerShape::Disc, 20e-3, 20e-3}, 8);
-  return s;
+const Specimen& disc_specimen() {  // 20 mm diameter
+  return cdem::test::small_disc_specimen();
 }
 
 // The 20 mm packed disc with a 15 degree arc: no load before the arcs move (the relaxed
