@@ -666,6 +666,24 @@ void warn_density_scaling(LabTestResult& res, const LabTestHooks& hooks, double 
   warn(res, hooks, msg.str());
 }
 
+// Loading arcs that drive fewer discs than this at a pole load the disc nearly at a point, as a
+// flat platen's first contact does (the validation's 15 degree arcs drive 4 to 11 discs on D
+// 50 mm discs of R_min 0.3 mm, docs/lab_tests.md "Loading arcs").
+constexpr std::size_t kFewArcDiscs = 3;
+
+void warn_few_arc_discs(LabTestResult& res, const LabTestHooks& hooks, const Loading& loading,
+                        const LabTestControls& c) {
+  const std::size_t bottom = loading.bottom_grip.size(), top = loading.top_grip.size();
+  if (std::min(bottom, top) >= kFewArcDiscs) return;
+  std::ostringstream msg;
+  msg << "the loading arcs of " << c.loading_arc * 180 / std::numbers::pi << " degrees drive "
+      << bottom << " disc(s) at the bottom and " << top << " at the top: fewer than "
+      << kFewArcDiscs
+      << " load the disc nearly at a point, as a flat platen's first contacts do "
+         "(docs/lab_tests.md \"Loading arcs\"); widen test.loading_arc_deg";
+  warn(res, hooks, msg.str());
+}
+
 // Relative density scaling (test.density_scaling_step_factor): the automatic step of the true
 // masses with the test's walls in place, times the factor, becomes the scaled step; every body's
 // inertia is then set for it at the next rebuild. Velocities are zero here (end of genesis), so
@@ -753,6 +771,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   }
   const Walls platens = make_platens(c, world.discs(), e);
   Loading loading = set_up_loading(world, cleaned, input, platens, e);
+  if (c.platens == BrazilianPlatens::LoadingArc) warn_few_arc_discs(res, hooks, loading, c);
   if (c.density_step_factor > 0) {
     scale_density_from_here(world, c.density_step_factor);
     warn_density_scaling(res, hooks, c.density_step_factor);

@@ -108,6 +108,11 @@ TEST(LoadingArc, ColumnLoadIsTheContactSpringsCompressionByHand) {
   hooks.warning = [](const std::string&) {};
   const LabTestResult res = run_lab_test(column, in, hooks);
   ASSERT_EQ(res.stop_reason, StopReason::StoppedByUser);
+  // One disc per arc: warned as a point load (and the caller's stop warned too).
+  ASSERT_EQ(res.warnings.size(), 2u);
+  EXPECT_NE(res.warnings[0].find("drive 1 disc(s) at the bottom and 1 at the top"),
+            std::string::npos)
+      << res.warnings[0];
   const LabHistory& h = res.history;
   ASSERT_EQ(h.size(), 30u);
   EXPECT_EQ(h.platen_force.front(), 0);
@@ -132,13 +137,14 @@ const Specimen& disc_specimen() {  // 20 mm diameter
   return cdem::test::small_disc_specimen();
 }
 
-// The 20 mm packed disc with a 15 degree arc: no load before the arcs move (the relaxed
-// specimen is at rest), a confirmed peak with at least 10 cracks, sigma_t = 2 P_max / (pi D t).
+// The 20 mm packed disc (R_mean 0.4 mm) with a 30 degree arc (a 15 degree one drives 2 discs at
+// the bottom, and is warned about): no load before the arcs move (the relaxed specimen is at
+// rest), a confirmed peak with at least 10 cracks, sigma_t = 2 P_max / (pi D t), no warning.
 TEST(LoadingArc, APackedDiscRunsToAConfirmedPeak) {
   const LabTestInput in =
       lab_test_input(scratch("packed"), disc_specimen(),
                      "[test]\ntype = \"brazilian\"\nplatens = \"loading_arc\"\n"
-                     "loading_arc_deg = 15\nhistory_interval = 20\nmax_steps = 400000\n");
+                     "loading_arc_deg = 30\nhistory_interval = 20\nmax_steps = 400000\n");
   const LabTestResult res = run_lab_test(disc_specimen(), in);
   EXPECT_TRUE(res.stop_reason == StopReason::PostPeakDrop || res.stop_reason == StopReason::Split);
   double p_max = 0;
@@ -147,6 +153,7 @@ TEST(LoadingArc, APackedDiscRunsToAConfirmedPeak) {
   EXPECT_LT(std::abs(res.history.platen_force.front()), 1e-3 * p_max);
   EXPECT_DOUBLE_EQ(res.tensile_strength, 2 * p_max / (kPi * 20e-3 * kThickness));
   EXPECT_GE(res.cracks.size(), 10u);
+  EXPECT_TRUE(res.warnings.empty()) << res.warnings.front();
 }
 
 TEST(LoadingArc, BadKeysAreInputErrorsNamingTheKey) {
