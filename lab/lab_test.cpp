@@ -667,8 +667,8 @@ void warn_density_scaling(LabTestResult& res, const LabTestHooks& hooks, double 
 }
 
 // Loading arcs that drive fewer discs than this at a pole load the disc nearly at a point, as a
-// flat platen's first contact does (the validation's 15 degree arcs drive 4 to 11 discs on D
-// 50 mm discs of R_min 0.3 mm, docs/lab_tests.md "Loading arcs").
+// flat platen's first contact does (the validation's 15 degree arcs drive about 4 to 11 discs
+// on D 50 mm discs of R_min 0.3 mm, docs/lab_tests.md "Loading arcs").
 constexpr std::size_t kFewArcDiscs = 3;
 
 void warn_few_arc_discs(LabTestResult& res, const LabTestHooks& hooks, const Loading& loading,
