@@ -8,14 +8,15 @@
 #   bash bench/validation.sh MATERIALS.toml [--out DIR] [--build DIR] [--preset P]
 #        [--seeds "1 2 3 4 5"] [--tests "ucs tension design brazilian"] [--design-seeds "1"]
 #        [--levels "10 30"] [--keys "KEY_SIGMA KEY_COHESION"] [--jobs N] [--specimens DIR]
-#        [--brazilian-stop-margin M] [--platens flat|curved_jaws]
+#        [--brazilian-stop-margin M] [--platens flat|curved_jaws|loading_arc]
 #
 # --preset: fast | balanced | accurate (default accurate; docs/speed_vs_error.md), written into
 # every test file. --brazilian-stop-margin: `stop_strain_margin` of the Brazilian runs (default
 # 1: stop only once the strain is twice that at the peak; with the test default 0.05, four of
 # five C30 discs stopped when the first discs under a flat platen broke, far below the split).
 # --platens: the Brazilian's `platens` (default flat; curved_jaws: ISRM jaws, docs/lab_tests.md,
-# with which the default stop margin 0.05 finds the split: --brazilian-stop-margin 0.05).
+# with which the default stop margin 0.05 finds the split: --brazilian-stop-margin 0.05;
+# loading_arc: the boundary discs of a 15 degree arc at each pole driven, docs/lab_tests.md).
 # --keys: the two [materials.mortar] keys of the design, in MPa; by default
 # detected from the mortar law (pb_tensile_strength_MPa and pb_cohesion_MPa for a parallel bond,
 # fj_tensile_strength_MPa and fj_cohesion_MPa for a flat joint). --jobs: runs at once (the
@@ -53,8 +54,8 @@ while [ $# -gt 0 ]; do
 done
 case "$preset" in fast|balanced|accurate) ;; *)
   echo "validation.sh: --preset '$preset' (allowed: fast, balanced, accurate)" >&2; exit 2 ;; esac
-case "$platens" in flat|curved_jaws) ;; *)
-  echo "validation.sh: --platens '$platens' (allowed: flat, curved_jaws)" >&2; exit 2 ;; esac
+case "$platens" in flat|curved_jaws|loading_arc) ;; *)
+  echo "validation.sh: --platens '$platens' (allowed: flat, curved_jaws, loading_arc)" >&2; exit 2 ;; esac
 cdem="$(cd "$build" && pwd)/bin/cdem"
 helper="$src/bench/validation.py"
 [ -x "$cdem" ] || { echo "validation.sh: no $cdem (build the cdem target)" >&2; exit 2; }

@@ -19,6 +19,7 @@
 #include "dem/strain_measure.hpp"
 #include "dem/world_from_specimen.hpp"
 #include "lab/biaxial_test.hpp"
+#include "lab/loading_arc.hpp"
 #include "lab/test_presets.hpp"
 
 namespace cdem::dem {
@@ -104,6 +105,7 @@ LabTestControls read_controls(const InputTable& t) {
                          "platen_overhang",
                          "platens",
                          "jaw_radius_ratio",
+                         "loading_arc_deg",
                          "threads",
                          "min_contacts",
                          "bond_gap_ratio",
@@ -185,11 +187,21 @@ LabTestControls read_controls(const InputTable& t) {
   c.platen_overhang = t.number_or("platen_overhang", c.platen_overhang, Range::closed(0, 10));
   if (t.has("platens")) {
     if (c.type != LabTestType::Brazilian) t.fail("platens", "only used by type = \"brazilian\"");
-    c.curved_jaws = t.string("platens", {"flat", "curved_jaws"}) == "curved_jaws";
+    const std::string platens = t.string("platens", {"flat", "curved_jaws", "loading_arc"});
+    c.platens = platens == "curved_jaws"   ? BrazilianPlatens::CurvedJaws
+                : platens == "loading_arc" ? BrazilianPlatens::LoadingArc
+                                           : BrazilianPlatens::Flat;
   }
-  if (t.has("jaw_radius_ratio") && !c.curved_jaws)
+  if (t.has("jaw_radius_ratio") && c.platens != BrazilianPlatens::CurvedJaws)
     t.fail("jaw_radius_ratio", "only used with platens = \"curved_jaws\"");
   c.jaw_radius_ratio = t.number_or("jaw_radius_ratio", c.jaw_radius_ratio, Range::closed(1.05, 10));
+  if (t.has("loading_arc_deg") && c.platens != BrazilianPlatens::LoadingArc)
+    t.fail("loading_arc_deg", "only used with platens = \"loading_arc\"");
+  // The whole arc 2 alpha, in degrees: ISRM's jaws load about 10 degrees at failure, the
+  // flattened Brazilian disc 20-30; beyond 60 the load is no longer a diametral line load.
+  constexpr double kDegree = std::numbers::pi / 180;  // rad
+  if (t.has("loading_arc_deg"))
+    c.loading_arc = t.number("loading_arc_deg", Range::closed(1, 60)) * kDegree;
   c.threads = static_cast<int>(t.integer_or("threads", c.threads, 1, 1024));
   c.genesis.min_contacts =
       static_cast<int>(t.integer_or("min_contacts", c.genesis.min_contacts, 0, 12));
@@ -356,11 +368,15 @@ void LabHistory::push_energies(const World& world, double boundary_work_so_far) 
 
 namespace {
 
-// How the specimen is loaded: two platens (walls), two grip bands (prescribed bodies), or (three-
-// point bending) two fixed supports under the beam (bottom_wall and right_support) and the
-// loading platen (top_wall) on it.
+// How the specimen is loaded: two platens (walls), two bands of prescribed bodies (the grips of
+// direct tension, or a Brazilian disc's loading arcs), or (three-point bending) two fixed
+// supports under the beam (bottom_wall and right_support) and the loading platen (top_wall) on
+// it.
 struct Loading {
-  bool grips = false;
+  bool grips = false;  // the ends are the bands bottom_grip and top_grip
+  // +1: the bands pull the specimen apart (direct tension), -1: they push it together (loading
+  // arcs), so that force and travel are positive in the sense of the test.
+  double band_sense = 1;
   bool bending = false;
   int bottom_wall = -1, top_wall = -1, right_support = -1;
   std::vector<std::int32_t> bottom_grip, top_grip;  // bodies
@@ -378,7 +394,7 @@ struct Loading {
     double top = 0, bottom = 0;
     for (const std::int32_t b : top_grip) top += w.bodies().fy[b];
     for (const std::int32_t b : bottom_grip) bottom += w.bodies().fy[b];
-    return 0.5 * (bottom - top);
+    return 0.5 * band_sense * (bottom - top);
   }
   // Sum of the supports' reactions on a beam (N per m), upward positive.
   double support_reaction(const World& w) const {
@@ -388,8 +404,8 @@ struct Loading {
   // the load point's deflection (the supports stand still).
   double travel(const World& w) const {
     if (!grips) return (top_y0 - bottom_y0) - (w.walls().ay[top_wall] - w.walls().ay[bottom_wall]);
-    return (w.bodies().y[top_grip.front()] - top_y0) -
-           (w.bodies().y[bottom_grip.front()] - bottom_y0);
+    return band_sense * ((w.bodies().y[top_grip.front()] - top_y0) -
+                         (w.bodies().y[bottom_grip.front()] - bottom_y0));
   }
   // Work done on the specimen by the loading ends over one step of length dt (J per m).
   double work(const World& w, double dt) const {
@@ -453,12 +469,14 @@ Walls make_jaws(const LabTestControls& c, const Discs& d, const Extent& e) {
 // The platens of a uniaxial or Brazilian test, as walls not yet in a world: bottom then top,
 // tangent to the outermost discs of the relaxed specimen (the mould faces were flat and every
 // boundary disc touched them, so a uniaxial specimen's ends are flat to within the relaxation),
-// wider than the specimen so a bulging specimen stays on them; or the curved jaws.
+// wider than the specimen so a bulging specimen stays on them; or the curved jaws
+// (none for grips, loading arcs and three-point bending).
 Walls make_platens(const LabTestControls& c, const Discs& d, const Extent& e) {
   Walls platens;
-  if (c.type == LabTestType::DirectTension || c.type == LabTestType::ThreePointBending)
+  if (c.type == LabTestType::DirectTension || c.type == LabTestType::ThreePointBending ||
+      c.platens == BrazilianPlatens::LoadingArc)
     return platens;
-  if (c.curved_jaws) return make_jaws(c, d, e);
+  if (c.platens == BrazilianPlatens::CurvedJaws) return make_jaws(c, d, e);
   const double y0 = e.ymin, y1 = e.ymax, x0 = e.xmin, x1 = e.xmax;
   const double over = c.platen_overhang * (x1 - x0);
   platens.add(x0 - over, y0, x1 + over, y0);
@@ -524,7 +542,8 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
   Loading l;
   const double v = c.platen_velocity;
   if (c.type == LabTestType::ThreePointBending) return set_up_bending(world, specimen, c);
-  if (c.type != LabTestType::DirectTension) {
+  const bool arcs = c.platens == BrazilianPlatens::LoadingArc;
+  if (c.type != LabTestType::DirectTension && !arcs) {
     l.bottom_wall = world.append_wall(platens, 0);
     l.top_wall = world.append_wall(platens, 1);
     // The platens' displacements are those of any of their points (they translate); the gauge
@@ -535,28 +554,49 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
     l.section = specimen.container.width;
     return l;
   }
-  // Grip bands: every body whose centroid lies within grip_fraction x H of an end moves with
-  // that end (a clump reaching into the band moves whole).
-  const double height = e.ymax - e.ymin;
   l.grips = true;
-  const double band = c.grip_fraction * height;
-  for (std::size_t b = 0; b < world.bodies().size(); ++b) {
-    const double y = world.bodies().y[b];
-    if (y <= e.ymin + band)
-      l.bottom_grip.push_back(static_cast<std::int32_t>(b));
-    else if (y >= e.ymax - band)
-      l.top_grip.push_back(static_cast<std::int32_t>(b));
+  const double height = e.ymax - e.ymin;
+  if (arcs) {
+    // The disc's circle is that of the relaxed specimen's extent; the strain refers to D as
+    // with platens.
+    const DiscCircle circle{0.5 * (e.xmin + e.xmax), 0.5 * (e.ymin + e.ymax),
+                            0.25 * ((e.xmax - e.xmin) + height)};
+    LoadingArcBodies a = loading_arc_bodies(world, circle, 0.5 * c.loading_arc);
+    l.bottom_grip = std::move(a.bottom);
+    l.top_grip = std::move(a.top);
+    l.band_sense = -1;
+    l.gauge_length = height;
+    if (l.bottom_grip.empty() || l.top_grip.empty()) {
+      std::ostringstream msg;
+      msg << "a loading arc of " << c.loading_arc * 180 / std::numbers::pi
+          << " degrees holds no boundary disc of the " << 2e3 * circle.radius
+          << " mm disc; widen it (allowed 1 to 60 degrees)";
+      throw InputError(input.file, "test.loading_arc_deg", msg.str());
+    }
+  } else {
+    // Grip bands: every body whose centroid lies within grip_fraction x H of an end moves with
+    // that end (a clump reaching into the band moves whole).
+    const double band = c.grip_fraction * height;
+    for (std::size_t b = 0; b < world.bodies().size(); ++b) {
+      const double y = world.bodies().y[b];
+      if (y <= e.ymin + band)
+        l.bottom_grip.push_back(static_cast<std::int32_t>(b));
+      else if (y >= e.ymax - band)
+        l.top_grip.push_back(static_cast<std::int32_t>(b));
+    }
+    if (l.bottom_grip.empty() || l.top_grip.empty())
+      throw InputError(input.file, "test.grip_fraction", "a grip band holds no disc; widen it");
+    l.gauge_length = height - 2 * band;
   }
-  if (l.bottom_grip.empty() || l.top_grip.empty())
-    throw InputError(input.file, "test.grip_fraction", "a grip band holds no disc; widen it");
-  for (const auto& [band_bodies, vy] : {std::pair{&l.bottom_grip, -v}, std::pair{&l.top_grip, v}})
+  const double v_top = l.band_sense * v;  // m/s, up for grips, down for loading arcs
+  for (const auto& [band_bodies, vy] :
+       {std::pair{&l.bottom_grip, -v_top}, std::pair{&l.top_grip, v_top}})
     for (const std::int32_t b : *band_bodies) {
       world.set_prescribed(b, true);
       world.set_body_velocity(b, 0, vy, 0);
     }
   l.bottom_y0 = world.bodies().y[l.bottom_grip.front()];
   l.top_y0 = world.bodies().y[l.top_grip.front()];
-  l.gauge_length = height - 2 * band;
   l.section = specimen.container.width;
   return l;
 }
@@ -623,6 +663,24 @@ void warn_density_scaling(LabTestResult& res, const LabTestHooks& hooks, double 
       << " x the true-mass step, beyond the measured range (docs/speed_vs_error.md, C30 UCS: "
          "4x gave sigma_u -0.7 +- 2.2 %, 8x +3.2 +- 1.1 %, 16x with 0.02 m/s platens "
          "+8.9 +- 3.1 %, E within 1.1 %); the error of this run is not known";
+  warn(res, hooks, msg.str());
+}
+
+// Loading arcs that drive fewer discs than this at a pole load the disc nearly at a point, as a
+// flat platen's first contact does (the validation's 15 degree arcs drive about 4 to 11 discs
+// on D 50 mm discs of R_min 0.3 mm, docs/lab_tests.md "Loading arcs").
+constexpr std::size_t kFewArcDiscs = 3;
+
+void warn_few_arc_discs(LabTestResult& res, const LabTestHooks& hooks, const Loading& loading,
+                        const LabTestControls& c) {
+  const std::size_t bottom = loading.bottom_grip.size(), top = loading.top_grip.size();
+  if (std::min(bottom, top) >= kFewArcDiscs) return;
+  std::ostringstream msg;
+  msg << "the loading arcs of " << c.loading_arc * 180 / std::numbers::pi << " degrees drive "
+      << bottom << " disc(s) at the bottom and " << top << " at the top: fewer than "
+      << kFewArcDiscs
+      << " load the disc nearly at a point, as a flat platen's first contacts do "
+         "(docs/lab_tests.md \"Loading arcs\"); widen test.loading_arc_deg";
   warn(res, hooks, msg.str());
 }
 
@@ -713,6 +771,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   }
   const Walls platens = make_platens(c, world.discs(), e);
   Loading loading = set_up_loading(world, cleaned, input, platens, e);
+  if (c.platens == BrazilianPlatens::LoadingArc) warn_few_arc_discs(res, hooks, loading, c);
   if (c.density_step_factor > 0) {
     scale_density_from_here(world, c.density_step_factor);
     warn_density_scaling(res, hooks, c.density_step_factor);

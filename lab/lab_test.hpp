@@ -1,10 +1,10 @@
 #pragma once
 // Lab tests on a bonded specimen (SPEC 6): uniaxial compression between rigid platens, the
-// Brazilian disc between flat platens, direct tension by grip bands of discs, and one biaxial
-// test (platens plus servo side walls at a confining stress; lab/biaxial_test.hpp runs the
-// series of confinements), the split Hopkinson pressure bar (lab/shpb_test.hpp), and the
-// notched-beam three-point bending test (two supports under the beam, a loading platen on top at
-// mid-span; lab/three_point_bending.hpp). The test file
+// Brazilian disc between flat platens, curved jaws or loading arcs, direct tension by grip bands of
+// discs, and one biaxial test (platens plus servo side walls at a confining stress;
+// lab/biaxial_test.hpp runs the series of confinements), the split Hopkinson pressure bar
+// (lab/shpb_test.hpp), and the notched-beam three-point bending test (two supports under the beam,
+// a loading platen on top at mid-span; lab/three_point_bending.hpp). The test file
 // (docs/lab_tests.md) names the specimen, the material table and the test controls; a run does the
 // material genesis (SPEC 3.6), loads the specimen until the stop rule confirms its peak
 // (lab/stop_rule.hpp), and returns the histories, the cracks and the lab figures.
@@ -36,6 +36,9 @@ enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial, Shpb, Thre
 // "uniaxial", "brazilian", "direct_tension", "biaxial", "shpb", "three_point_bending"
 const char* lab_test_name(LabTestType type);
 
+// How a Brazilian disc is loaded (test.platens).
+enum class BrazilianPlatens { Flat, CurvedJaws, LoadingArc };
+
 struct LabTestControls {
   LabTestType type = LabTestType::Uniaxial;
   std::vector<JointSet> joints;  // [[test.joints]]: smooth-joint sets (docs/smooth_joint.md)
@@ -56,11 +59,14 @@ struct LabTestControls {
   double grip_fraction = 0.05;    // direct tension: grip bands, fraction of the height per end
   double gauge_fraction = 0.5;    // central region of the lateral-strain fit, fraction of H
   double platen_overhang = 0.25;  // platens reach this fraction of the width beyond each side
-  // Brazilian: flat platens, or curved jaws (ISRM): arcs of radius jaw_radius_ratio x the disc's
-  // radius covering +- jaw_cover of the disc's boundary about each pole.
-  bool curved_jaws = false;
+  // Brazilian: flat platens; curved jaws (ISRM): arcs of radius jaw_radius_ratio x the disc's
+  // radius covering +- jaw_cover of the disc's boundary about each pole; or loading arcs: the
+  // boundary discs within +- loading_arc / 2 of each pole driven at the platen velocity
+  // (lab/loading_arc.hpp).
+  BrazilianPlatens platens = BrazilianPlatens::Flat;
   double jaw_radius_ratio = 1.5;
-  double jaw_cover = 0.5235987755982988;  // rad, 30 degrees
+  double jaw_cover = 0.5235987755982988;    // rad, 30 degrees
+  double loading_arc = 0.2617993877991494;  // rad, 2 alpha = 15 degrees
   int threads = 1;
   GenesisOptions genesis{};
   // Biaxial: the confinements of the series (Pa, >= 0; 0 = unconfined, no side walls), and the

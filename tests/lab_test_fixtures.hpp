@@ -44,6 +44,12 @@ inline const Specimen& small_rectangle_specimen() {
   return s;
 }
 
+// The 20 mm disc of the small Brazilian tests (packed once per process).
+inline const Specimen& small_disc_specimen() {
+  static const Specimen s = packed_specimen({ContainerShape::Disc, 20e-3, 20e-3}, 8);
+  return s;
+}
+
 // Expects `f` to throw an InputError whose message names `key` (and the file).
 template <class F>
 void expect_input_error(F&& f, const std::string& key) {

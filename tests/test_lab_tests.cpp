@@ -30,7 +30,6 @@ using namespace cdem::dem;
 using cdem::test::c30_materials;
 using cdem::test::expect_input_error;
 using cdem::test::lab_test_input;
-using cdem::test::packed_specimen;
 using cdem::test::scratch_dir;
 using cdem::test::write_text;
 
@@ -39,8 +38,7 @@ const Specimen& rectangle_specimen() {
 }
 
 const Specimen& disc_specimen() {  // 20 mm diameter
-  static const Specimen s = packed_specimen({ContainerShape::Disc, 20e-3, 20e-3}, 8);
-  return s;
+  return cdem::test::small_disc_specimen();
 }
 
 std::string materials() {

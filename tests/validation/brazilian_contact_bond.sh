@@ -7,9 +7,15 @@
 # mu 1.7, tau_cs 50 MPa; sigma_cn = 5, 15, 30 MPa. Per ratio: every run ends at a confirmed
 # post-peak drop or split with >= 10 cracks, and the fit through the origin has R2 > 0.99
 # (R2 = 1 - SS_res / SS_tot, SS_tot about the mean of sigma_t). About 5 min of CPU.
-# Usage: CDEM=path/to/cdem WORK=scratch/dir bash brazilian_contact_bond.sh
+# PLATENS (default flat) is the test's `platens`: flat, curved_jaws or loading_arc
+# (docs/lab_tests.md "Brazilian disc").
+# Usage: CDEM=path/to/cdem WORK=scratch/dir [PLATENS=loading_arc] bash brazilian_contact_bond.sh
 set -euo pipefail
 : "${CDEM:?set CDEM to the cdem binary}"
+PLATENS=${PLATENS:-flat}
+case "$PLATENS" in flat|curved_jaws|loading_arc) ;; *)
+  echo "brazilian_contact_bond.sh: PLATENS '$PLATENS' (allowed: flat, curved_jaws, loading_arc)" >&2
+  exit 2 ;; esac
 WORK=${WORK:-$(mktemp -d)}
 mkdir -p "$WORK"
 cd "$WORK"
@@ -52,6 +58,7 @@ friction = 1.0
 type = "brazilian"
 platen_velocity_m_s = 0.02
 max_steps = 2000000
+platens = "$PLATENS"
 TOML
     "$CDEM" run "t_r${ratio}_s$sigma_cn.toml" --summary "o_r${ratio}_s$sigma_cn.json" -q
   done
