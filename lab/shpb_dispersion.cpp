@@ -127,16 +127,18 @@ double PochhammerChree::wavenumber(double omega) const {
 
 std::vector<double> disperse(const std::vector<double>& wave, double dt, double distance,
                              const DispersiveBar& bar, const PochhammerChree& branch) {
-  if (!(dt > 0) || !(distance >= 0) || !(bar.wave_speed > 0) || !(bar.radius > 0))
-    throw std::invalid_argument("disperse: non-positive step, speed or radius, or distance < 0");
+  if (!(dt > 0) || !std::isfinite(distance) || !(bar.wave_speed > 0) || !(bar.radius > 0))
+    throw std::invalid_argument("disperse: non-positive step, speed or radius, or bad distance");
   if (distance == 0 || wave.empty()) return wave;
   const std::size_t n = wave.size();
-  const double travel = distance / bar.wave_speed;  // s, the experimenter's shift
+  const double travel = std::abs(distance) / bar.wave_speed;  // s, the experimenter's shift
   const auto pad = static_cast<std::size_t>(std::ceil(travel / kSlowestGroupVelocity / dt));
   std::size_t size = 1;
   while (size < n + pad) size <<= 1;
+  // Backwards (distance < 0) the content moves earlier: the padding goes in front.
+  const std::size_t offset = distance < 0 ? size - n : 0;
   std::vector<std::complex<double>> x(size);
-  std::copy(wave.begin(), wave.end(), x.begin());
+  std::copy(wave.begin(), wave.end(), x.begin() + static_cast<long>(offset));
   fft(x, -1);
   // Bin j: omega = 2 pi j / (size dt); the component travels as exp(i (omega t - k x)), so at
   // x and shifted back by x / c0 it gains the phase -(k - omega / c0) x. Negative frequencies
@@ -152,7 +154,7 @@ std::vector<double> disperse(const std::vector<double>& wave, double dt, double 
   }
   fft(x, +1);
   std::vector<double> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i] = x[i].real() / static_cast<double>(size);
+  for (std::size_t i = 0; i < n; ++i) out[i] = x[offset + i].real() / static_cast<double>(size);
   return out;
 }
 

@@ -49,7 +49,9 @@ struct DispersiveBar {
 // energy arrives later on average by the group delay (a foot of the Airy kind leads it by a few
 // microseconds over 1.5 m of steel). The output keeps the input's record: what arrives after
 // its end is dropped (the record is padded with zeros so nothing wraps around). A pure phase
-// change: the energy sum of wave^2 is kept while nothing is dropped. Distance 0: the input.
+// change: the energy sum of wave^2 is kept while nothing is dropped. Distance 0: the input; a
+// negative distance undoes a positive one (the wave as it was that far before the face: the
+// incident wave at its gauge).
 std::vector<double> disperse(const std::vector<double>& wave, double time_step, double distance,
                              const DispersiveBar& bar, const PochhammerChree& branch);
 
