@@ -200,7 +200,7 @@ shpb_case shpb_zero_duration "test.shpb.pulse_duration_us" "pulse_duration_us = 
 shpb_case shpb_after_echo "test.shpb.after_pulse_us.*\[0, 167" "after_pulse_us = 500"
 shpb_case shpb_ramp_rise_too_long "test.shpb.pulse_rise_us.*(0, 500" "pulse = \"ramp\"
 pulse_rise_us = 600"
-shpb_case shpb_rise_without_ramp "test.shpb.pulse_rise_us.*ramp" "pulse_rise_us = 100"
+shpb_case shpb_rise_without_ramp "test.shpb.pulse_rise.*only for pulse = .ramp" "pulse_rise_us = 100"
 shpb_case shpb_poisson_ratio "test.shpb.bar_poisson_ratio.*(0, 0.5)" "bar_poisson_ratio = 0.5"
 expect shpb_without_peak "test.shpb.pulse_peak" "specimen = \"corrupt.h5\"
 materials = \"materials.toml\"
