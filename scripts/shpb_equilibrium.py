@@ -58,12 +58,60 @@ def row(path, static):
     return "| " + " | ".join(cells) + " |"
 
 
+def plot(path, out):
+    """The face forces and R of one result file, per step and through real bars' gauges."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    with h5py.File(path, "r") as f:
+        a, faces = dict(f["shpb"].attrs), f["shpb/faces"]
+        t = faces["time"][:] * 1e6
+        forces = {k: faces[k][:] * 1e-3 for k in ("front_force", "back_force",
+                                                   "front_force_bar_gauges",
+                                                   "back_force_bar_gauges")}
+    peak, first = a["time_at_peak_s"] * 1e6, a["time_at_first_failure_s"] * 1e6
+    shown = (t > a["arrival_time_s"] * 1e6 + 50) & (t < peak + 50)
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
+    for key, style in (("front_force", "C0-"), ("back_force", "C1-")):
+        top.plot(t[shown], forces[key][shown], style, lw=0.4, label=key + " (per step)")
+        top.plot(t[shown], forces[key + "_bar_gauges"][shown], style[:2] + "--", lw=1.5,
+                 label=key + " (real bars' gauges)")
+    top.set_ylabel("face force (kN/m)")
+    top.legend(fontsize=7)
+
+    def ratio(front, back):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return 2 * (front - back) / (front + back)
+
+    bottom.plot(t[shown], ratio(forces["front_force"], forces["back_force"])[shown], "k-",
+                lw=0.4, label="R per step")
+    bottom.plot(t[shown], ratio(forces["front_force_bar_gauges"],
+                                forces["back_force_bar_gauges"])[shown], "C3-", lw=1.5,
+                label="R, real bars' gauges")
+    bottom.axhspan(-0.1, 0.1, color="0.9")
+    bottom.set_ylim(-0.5, 0.5)
+    bottom.set_ylabel("R = 2 (F1 - F2) / (F1 + F2)")
+    bottom.set_xlabel("time since the loading began (us)")
+    for ax in (top, bottom):
+        ax.axvline(first, color="C2", lw=0.8)
+        ax.axvline(peak, color="C3", lw=0.8)
+    bottom.legend(fontsize=7)
+    top.set_title(f"{path}: first failure {first:.0f} us (green), 3-wave peak {peak:.0f} us (red)",
+                  fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("files", nargs="+", help="SHPB result files (cdem run -o)")
     parser.add_argument("--static-MPa", type=float, default=37.9,
                         help="quasi-static strength for the DIF (MPa)")
+    parser.add_argument("--plot", metavar="PNG",
+                        help="also draw the forces and R of the first file into PNG")
     args = parser.parse_args()
+    if args.plot:
+        plot(args.files[0], args.plot)
     print("| file | pulse | pulse peak (MPa) | 3-wave peak (MPa) (us) | first failure peak (MPa) "
           "(us) | mean strain rate (1/s) | DIF peak / first failure | fib MC2010 DIF "
           "| max \\|R\\| to the peak: step / gauge length / bar gauges "
