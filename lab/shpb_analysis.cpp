@@ -151,26 +151,24 @@ ShpbAnalysis analyse_shpb(const ShpbWaves& w, const ShpbGeometry& g) {
   f.first_failure_stress = h.stress[first];
   f.time_at_first_failure = w.time[first];
 
-  // The equilibrium to the peak and to the first failure: per step, as gauges of the stated
-  // length read it, and as real bars' gauges read it.
-  const auto span = [&](const std::vector<double>& front, const std::vector<double>& back,
-                        std::size_t top) { return equilibrium_to(h.stress, front, back, top); };
-  const EquilibriumSpan to_peak = span(h.front_force, h.back_force, peak);
-  const EquilibriumSpan to_first = span(h.front_force, h.back_force, first);
-  f.equilibrium_worst = to_peak.worst;
-  f.equilibrium_mean = to_peak.mean;
-  f.equilibrium_worst_first_failure = to_first.worst;
-  f.equilibrium_mean_first_failure = to_first.mean;
-  f.equilibrium_worst_gauge = span(front_gauge, back_gauge, peak).worst;
-  f.equilibrium_worst_gauge_first_failure = span(front_gauge, back_gauge, first).worst;
-  if (g.bar_radius > 0) {
-    const EquilibriumSpan bar_peak = span(h.front_force_gauges, h.back_force_gauges, peak);
-    const EquilibriumSpan bar_first = span(h.front_force_gauges, h.back_force_gauges, first);
-    f.equilibrium_worst_bar = bar_peak.worst;
-    f.equilibrium_mean_bar = bar_peak.mean;
-    f.equilibrium_worst_bar_first_failure = bar_first.worst;
-    f.equilibrium_mean_bar_first_failure = bar_first.mean;
-  }
+  // The equilibrium to the peak and to the first failure (largest and mean |R|): per step, as
+  // gauges of the stated length read it, and as real bars' gauges read it.
+  const auto spans = [&](const std::vector<double>& front, const std::vector<double>& back,
+                         double& worst, double& mean, double& worst_first, double& mean_first) {
+    const EquilibriumSpan to_peak = equilibrium_to(h.stress, front, back, peak);
+    const EquilibriumSpan to_first = equilibrium_to(h.stress, front, back, first);
+    worst = to_peak.worst, mean = to_peak.mean;
+    worst_first = to_first.worst, mean_first = to_first.mean;
+  };
+  spans(h.front_force, h.back_force, f.equilibrium_worst, f.equilibrium_mean,
+        f.equilibrium_worst_first_failure, f.equilibrium_mean_first_failure);
+  double gauge_mean = 0, gauge_mean_first = 0;  // not reported (the bar gauges' mean is)
+  spans(front_gauge, back_gauge, f.equilibrium_worst_gauge, gauge_mean,
+        f.equilibrium_worst_gauge_first_failure, gauge_mean_first);
+  if (g.bar_radius > 0)
+    spans(h.front_force_gauges, h.back_force_gauges, f.equilibrium_worst_bar,
+          f.equilibrium_mean_bar, f.equilibrium_worst_bar_first_failure,
+          f.equilibrium_mean_bar_first_failure);
 
   f.incident_energy = wave_energy(w.incident, g, dt);
   f.reflected_energy = wave_energy(w.reflected, g, dt);
