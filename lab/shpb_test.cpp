@@ -195,6 +195,31 @@ constexpr double kWidthTolerance = 0.01;
 // coupling tests hold 1 % at 0.13).
 constexpr double kCouplingLimit = 0.3;
 
+// The largest |R| that counts as force equilibrium (issue 16: "within 10 %").
+constexpr double kEquilibriumLimit = 0.10;
+
+// The run's doubts about its own figures: a 3-wave peak that is not the failure of the intact
+// specimen, and faces out of equilibrium before the first failure as real bars' gauges read
+// them (docs/lab_tests.md "Pulse shaper and real bars' gauges").
+void warn_shpb_figures(LabTestResult& res, const LabTestHooks& hooks, const ShpbFigures& f) {
+  if (f.first_failure_stress < f.peak_stress) {
+    std::ostringstream msg;
+    msg << "the 3-wave peak (" << f.peak_stress * 1e-6 << " MPa at " << f.time_at_peak * 1e6
+        << " us) comes after a first failure at " << f.first_failure_stress * 1e-6 << " MPa ("
+        << f.time_at_first_failure * 1e6
+        << " us): it is a hump of the cracked specimen; the first failure peak is the strength "
+           "of the intact specimen";
+    warn(res, hooks, msg.str());
+  }
+  if (f.equilibrium_worst_bar_first_failure > kEquilibriumLimit) {
+    std::ostringstream msg;
+    msg << "the face forces differ by up to " << 100 * f.equilibrium_worst_bar_first_failure
+        << " % before the first failure even as real bars' gauges read them (more than "
+        << 100 * kEquilibriumLimit << " %): the 3-wave stress is not a specimen stress there";
+    warn(res, hooks, msg.str());
+  }
+}
+
 }  // namespace
 
 void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTestInput& input,
@@ -314,6 +339,7 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
     throw RunError(std::string("SHPB analysis: ") + err.what());
   }
   const ShpbFigures& f = out.analysis.figures;
+  warn_shpb_figures(res, hooks, f);
   res.peak_stress = f.peak_stress;
   res.peak_force = f.peak_stress * out.geometry.specimen_area;  // mean of the two faces, N/m
   // A disc between the bars splits as in a Brazilian test (the dynamic Brazilian test).
