@@ -20,7 +20,8 @@ nlohmann::ordered_json shpb_json(const dem::ShpbResult& r) {
   j["bar_wave_speed_m_s"] = o.bar.wave_speed();
   j["bar_cells"] = r.cells;
   j["bar_cell_size_mm"] = r.cell_size * 1e3;
-  j["pulse"] = o.pulse == dem::ShpbPulse::Rectangle ? "rectangle" : "half_sine";
+  j["pulse"] = dem::pulse_name(o.pulse);
+  if (o.pulse == dem::ShpbPulse::Ramp) j["pulse_rise_us"] = o.pulse_rise * 1e6;
   j["pulse_peak_MPa"] = o.pulse_peak * 1e-6;
   j["pulse_duration_us"] = o.pulse_duration * 1e6;
   j["arrival_time_us"] = r.arrival_time * 1e6;
@@ -45,6 +46,11 @@ nlohmann::ordered_json shpb_json(const dem::ShpbResult& r) {
   j["equilibrium_ratio_worst_to_first_failure"] = f.equilibrium_worst_first_failure;
   j["equilibrium_ratio_mean_to_first_failure"] = f.equilibrium_mean_first_failure;
   j["equilibrium_ratio_worst_to_first_failure_gauge"] = f.equilibrium_worst_gauge_first_failure;
+  j["bar_poisson_ratio"] = o.bar_poisson_ratio;
+  j["equilibrium_ratio_worst_pre_peak_bar_gauges"] = f.equilibrium_worst_bar;
+  j["equilibrium_ratio_mean_pre_peak_bar_gauges"] = f.equilibrium_mean_bar;
+  j["equilibrium_ratio_worst_to_first_failure_bar_gauges"] = f.equilibrium_worst_bar_first_failure;
+  j["equilibrium_ratio_mean_to_first_failure_bar_gauges"] = f.equilibrium_mean_bar_first_failure;
   j["incident_energy_J_per_m"] = f.incident_energy;
   j["reflected_energy_J_per_m"] = f.reflected_energy;
   j["transmitted_energy_J_per_m"] = f.transmitted_energy;

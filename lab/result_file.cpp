@@ -168,6 +168,13 @@ void write_shpb(H5::Group& where, const ShpbResult& r) {
            {"equilibrium_ratio_mean_to_first_failure", f.equilibrium_mean_first_failure},
            {"equilibrium_ratio_worst_to_first_failure_gauge",
             f.equilibrium_worst_gauge_first_failure},
+           {"bar_poisson_ratio", o.bar_poisson_ratio},
+           {"equilibrium_ratio_worst_bar_gauges", f.equilibrium_worst_bar},
+           {"equilibrium_ratio_mean_bar_gauges", f.equilibrium_mean_bar},
+           {"equilibrium_ratio_worst_to_first_failure_bar_gauges",
+            f.equilibrium_worst_bar_first_failure},
+           {"equilibrium_ratio_mean_to_first_failure_bar_gauges",
+            f.equilibrium_mean_bar_first_failure},
            {"incident_energy_J_per_m", f.incident_energy},
            {"reflected_energy_J_per_m", f.reflected_energy},
            {"transmitted_energy_J_per_m", f.transmitted_energy},
@@ -176,7 +183,8 @@ void write_shpb(H5::Group& where, const ShpbResult& r) {
            {"coupling_number", r.coupling_number},
            {"dynamic_tensile_strength_Pa", r.dynamic_tensile_strength}})
     write_scalar_attr<double>(g, name, value);
-  write_string_attr(g, "pulse", o.pulse == ShpbPulse::Rectangle ? "rectangle" : "half_sine");
+  write_string_attr(g, "pulse", pulse_name(o.pulse));
+  if (o.pulse == ShpbPulse::Ramp) write_scalar_attr<double>(g, "pulse_rise_s", o.pulse_rise);
   write_scalar_attr<long>(g, "bar_cells", r.cells);
 
   const ShpbWaves& w = r.waves;
@@ -196,6 +204,11 @@ void write_shpb(H5::Group& where, const ShpbResult& r) {
   write_array(fg, "strain_rate_reflected", h.strain_rate_reflected, "1/s",
               "one- and two-wave, -2 c0 eps_r / l_s");
   write_array(fg, "strain_reflected", h.strain_reflected, "1", "integral of the above");
+  write_array(fg, "front_force_bar_gauges", h.front_force_gauges, "N/m",
+              "E A (eps_i + eps_r) as gauges on real round bars read it (dispersed, averaged "
+              "over the gauge length)");
+  write_array(fg, "back_force_bar_gauges", h.back_force_gauges, "N/m",
+              "E A eps_t as gauges on real round bars read it");
 
   const ShpbGaugeRecords& k = r.gauges;
   H5::Group gg = hdf5::create_group(g, "gauges");

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "lab/lab_analysis.hpp"
+#include "lab/shpb_dispersion.hpp"
 
 namespace cdem::dem {
 
@@ -38,24 +39,40 @@ std::vector<double> centred_mean(const std::vector<double>& v, std::size_t width
 }
 
 struct EquilibriumSpan {
-  double worst = 0, mean = 0, worst_gauge = 0;
+  double worst = 0, mean = 0;
 };
 
-// |R| from the first record at half of stress[top] to record `top`, per step and of the forces
-// as the gauges read them.
-EquilibriumSpan equilibrium_to(const ShpbHistories& h, const std::vector<double>& front_gauge,
-                               const std::vector<double>& back_gauge, std::size_t top) {
+// |R| of the forces from the first record where stress reaches half of stress[top] to record
+// `top`: the largest and the mean.
+EquilibriumSpan equilibrium_to(const std::vector<double>& stress, const std::vector<double>& front,
+                               const std::vector<double>& back, std::size_t top) {
   EquilibriumSpan e;
   std::size_t half = 0;
-  while (half < top && h.stress[half] < 0.5 * h.stress[top]) ++half;
+  while (half < top && stress[half] < 0.5 * stress[top]) ++half;
   for (std::size_t k = half; k <= top; ++k) {
-    const double r = std::abs(equilibrium_ratio(h.front_force[k], h.back_force[k]));
+    const double r = std::abs(equilibrium_ratio(front[k], back[k]));
     e.worst = std::max(e.worst, r);
     e.mean += r / static_cast<double>(top - half + 1);
-    e.worst_gauge =
-        std::max(e.worst_gauge, std::abs(equilibrium_ratio(front_gauge[k], back_gauge[k])));
   }
   return e;
+}
+
+// The face forces as the gauges of real round bars read them (ShpbHistories).
+void gauge_forces(const ShpbWaves& w, const ShpbGeometry& g, std::size_t gauge_records,
+                  ShpbHistories& h) {
+  const PochhammerChree branch(g.bar_poisson_ratio);
+  const DispersiveBar bar{g.bar_wave_speed, g.bar_radius, g.bar_poisson_ratio};
+  const double ea = g.bar_young_modulus * g.bar_area;
+  const auto at_gauge = [&](const std::vector<double>& wave, double distance) {
+    return centred_mean(disperse(wave, w.time_step, distance, bar, branch), gauge_records);
+  };
+  const std::vector<double> incident = at_gauge(w.incident, -g.incident_gauge);
+  const std::vector<double> reflected = at_gauge(w.reflected, g.incident_gauge);
+  const std::vector<double> transmitted = at_gauge(w.transmitted, g.transmitted_gauge);
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    h.front_force_gauges.push_back(ea * (incident[k] + reflected[k]));
+    h.back_force_gauges.push_back(ea * transmitted[k]);
+  }
 }
 
 }  // namespace
@@ -117,10 +134,7 @@ ShpbAnalysis analyse_shpb(const ShpbWaves& w, const ShpbGeometry& g) {
   const auto gauge_records = static_cast<std::size_t>(std::lround(g.gauge_window / dt));
   const std::vector<double> front_gauge = centred_mean(h.front_force, gauge_records);
   const std::vector<double> back_gauge = centred_mean(h.back_force, gauge_records);
-  const EquilibriumSpan to_peak = equilibrium_to(h, front_gauge, back_gauge, peak);
-  f.equilibrium_worst = to_peak.worst;
-  f.equilibrium_mean = to_peak.mean;
-  f.equilibrium_worst_gauge = to_peak.worst_gauge;
+  if (g.bar_radius > 0) gauge_forces(w, g, gauge_records, h);
 
   std::size_t first = peak;
   double running = 0;
@@ -136,10 +150,25 @@ ShpbAnalysis analyse_shpb(const ShpbWaves& w, const ShpbGeometry& g) {
   }
   f.first_failure_stress = h.stress[first];
   f.time_at_first_failure = w.time[first];
-  const EquilibriumSpan to_first = equilibrium_to(h, front_gauge, back_gauge, first);
-  f.equilibrium_worst_first_failure = to_first.worst;
-  f.equilibrium_mean_first_failure = to_first.mean;
-  f.equilibrium_worst_gauge_first_failure = to_first.worst_gauge;
+
+  // The equilibrium to the peak and to the first failure (largest and mean |R|): per step, as
+  // gauges of the stated length read it, and as real bars' gauges read it.
+  const auto spans = [&](const std::vector<double>& front, const std::vector<double>& back,
+                         double& worst, double& mean, double& worst_first, double& mean_first) {
+    const EquilibriumSpan to_peak = equilibrium_to(h.stress, front, back, peak);
+    const EquilibriumSpan to_first = equilibrium_to(h.stress, front, back, first);
+    worst = to_peak.worst, mean = to_peak.mean;
+    worst_first = to_first.worst, mean_first = to_first.mean;
+  };
+  spans(h.front_force, h.back_force, f.equilibrium_worst, f.equilibrium_mean,
+        f.equilibrium_worst_first_failure, f.equilibrium_mean_first_failure);
+  double gauge_mean = 0, gauge_mean_first = 0;  // not reported (the bar gauges' mean is)
+  spans(front_gauge, back_gauge, f.equilibrium_worst_gauge, gauge_mean,
+        f.equilibrium_worst_gauge_first_failure, gauge_mean_first);
+  if (g.bar_radius > 0)
+    spans(h.front_force_gauges, h.back_force_gauges, f.equilibrium_worst_bar,
+          f.equilibrium_mean_bar, f.equilibrium_worst_bar_first_failure,
+          f.equilibrium_mean_bar_first_failure);
 
   f.incident_energy = wave_energy(w.incident, g, dt);
   f.reflected_energy = wave_energy(w.reflected, g, dt);

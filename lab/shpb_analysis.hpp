@@ -32,6 +32,12 @@ struct ShpbGeometry {
   // s, the time over which a gauge averages a passing wave: its length / c0 (a foil gauge reads
   // the strain averaged over its length). 0: point gauges, the waves as recorded.
   double gauge_window = 0;
+  // The bars as real round bars of this radius (m) and Poisson ratio, for the face forces as
+  // their gauges would read them (lab/shpb_dispersion.hpp): the waves dispersed over the
+  // gauges' distances from the faces (m). Radius 0: not computed.
+  double bar_radius = 0;
+  double bar_poisson_ratio = 0;
+  double incident_gauge = 0, transmitted_gauge = 0;
 };
 
 // The stress fall, as a fraction of the running maximum, that marks the first failure.
@@ -54,6 +60,12 @@ struct ShpbHistories {
   std::vector<double> stress_two_wave;        // Pa, front force / A_s
   std::vector<double> strain_rate_reflected;  // 1/s, -2 c0 eps_r / l_s
   std::vector<double> strain_reflected;       // 1
+  // N/m, the face forces as the gauges of real round bars read them (ShpbGeometry::bar_radius
+  // > 0; empty otherwise): E A (eps_i + eps_r) and E A eps_t with each wave taken where its
+  // gauge is (the incident wave before, the reflected and transmitted waves after their
+  // dispersion over the gauge distance), averaged over the gauge length and shifted to the
+  // face by distance / c0, as an experimenter computes them.
+  std::vector<double> front_force_gauges, back_force_gauges;
 };
 
 struct ShpbFigures {
@@ -90,6 +102,11 @@ struct ShpbFigures {
   double equilibrium_worst_first_failure = 0;
   double equilibrium_mean_first_failure = 0;
   double equilibrium_worst_gauge_first_failure = 0;
+  // |R| (largest, mean) of the forces as real bars' gauges read them (front_force_gauges,
+  // back_force_gauges), to the peak and to the first failure, each from 50 % of it; 0 when
+  // they are not computed.
+  double equilibrium_worst_bar = 0, equilibrium_mean_bar = 0;
+  double equilibrium_worst_bar_first_failure = 0, equilibrium_mean_bar_first_failure = 0;
   // J per m of thickness: W = A E c0 sum eps^2 dt over the record; absorbed = W_i - W_r - W_t.
   double incident_energy = 0, reflected_energy = 0, transmitted_energy = 0, absorbed_energy = 0;
 };

@@ -30,7 +30,12 @@ struct LabTestInput;
 struct LabTestHooks;
 struct LabTestResult;
 
-enum class ShpbPulse { HalfSine, Rectangle };
+// The incident pulse's shape: a half-sine; a rectangle (a striker bar's pulse); a ramp (the
+// trapezoid a pulse shaper makes of it: a linear rise, a plateau and a linear fall).
+enum class ShpbPulse { HalfSine, Rectangle, Ramp };
+
+// The name of a pulse shape, as the input and the outputs spell it.
+const char* pulse_name(ShpbPulse pulse);
 
 struct ShpbOptions {
   // Both bars (the published set-up: steel, 3.0 m, 50 mm wide).
@@ -44,13 +49,17 @@ struct ShpbOptions {
   ShpbPulse pulse = ShpbPulse::HalfSine;
   double pulse_peak = 0;         // Pa, compression, at the incident bar's far end
   double pulse_duration = 1e-3;  // s
+  double pulse_rise = 0.5e-3;    // s, a ramp's rise (and fall) time, <= duration / 2
+  // The bars' Poisson ratio, for the face forces as gauges on real round bars of diameter
+  // bar.width would read them (lab/shpb_dispersion.hpp); steel 0.29.
+  double bar_poisson_ratio = 0.29;
   // s, recorded beyond the incident pulse's passage at the specimen (its arrival L / c0 plus
   // its duration), so the transmitted pulse and the unloading are in the record; at most
   // 2 L / c0 - duration, when the bars' echoes from their far ends reach the faces.
   double after_pulse = 0.1667e-3;
 
-  // Pa, the pulse's stress at time t (s) since it began: sigma_0 sin(pi t / T) or sigma_0 on
-  // [0, T]; 0 outside.
+  // Pa, the pulse's stress at time t (s) since it began: sigma_0 sin(pi t / T), sigma_0 on
+  // [0, T], or the ramp sigma_0 min(1, t / t_r, (T - t) / t_r); 0 outside.
   double pulse_stress(double t) const;
 };
 

@@ -198,6 +198,10 @@ shpb_case shpb_gauge_too_long "test.shpb.gauge_length_mm.*\[0, 300\] mm" "gauge_
 shpb_case shpb_pulse_too_long "test.shpb.pulse_duration_us.*(0, 1167" "pulse_duration_us = 1500"
 shpb_case shpb_zero_duration "test.shpb.pulse_duration_us" "pulse_duration_us = 0"
 shpb_case shpb_after_echo "test.shpb.after_pulse_us.*\[0, 167" "after_pulse_us = 500"
+shpb_case shpb_ramp_rise_too_long "test.shpb.pulse_rise_us.*(0, 500" "pulse = \"ramp\"
+pulse_rise_us = 600"
+shpb_case shpb_rise_without_ramp "test.shpb.pulse_rise.*only for pulse = .ramp" "pulse_rise_us = 100"
+shpb_case shpb_poisson_ratio "test.shpb.bar_poisson_ratio.*(0, 0.5)" "bar_poisson_ratio = 0.5"
 expect shpb_without_peak "test.shpb.pulse_peak" "specimen = \"corrupt.h5\"
 materials = \"materials.toml\"
 [test]

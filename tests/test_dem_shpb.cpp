@@ -107,6 +107,59 @@ TEST(ShpbCoupling, StiffLayerTransmitsThePulse) {
   EXPECT_NEAR(largest_t, peak, 0.01 * peak);
 }
 
+// An elastic specimen of the bars' own impedance (issue 16): five columns of 20 discs
+// (R = 5 mm, columns 0.1 mm apart so they do not touch) between the faces. Each column is a
+// chain of masses m = rho pi R^2 t joined by springs k = E* (disc-disc, dem/linear_contact.hpp)
+// with half springs 2 E* to the faces: the lumped form of a rod 20 x 2R long whose impedance is
+// sqrt(k m) and whose transit is 20 sqrt(m / k). E* and rho are chosen for 5 sqrt(k m) =
+// rho_bar c0 A and sqrt(m / k) = 0.2 us; a 40 us half-sine then takes 4 us to cross it, and the
+// chain's cut-off 2 sqrt(k / m) is 127 times the pulse's pi / T, so at the pulse's frequencies
+// it is the matched rod: nothing reflects (eps_r = 0) and the transmitted wave is the incident
+// one delayed by 4 us. The specimen is long enough for a mismatch to show: columns of twice
+// the bars' impedance reflect 20 % of the peak (plane-wave limit 1/3). The small step
+// (time_step_safety 0.1) keeps the coupling number dt K / (rho c0 A) = 2 dt / 0.2 us at 0.06.
+// Measured: |eps_r| <= 0.30 % and |eps_t - the delayed pulse| <= 0.72 % of the peak, the latter
+// at the pulse's kinks (start and end of the half-sine), which the chain's dispersion rounds.
+TEST(ShpbCoupling, MatchedElasticSpecimenReflectsNothing) {
+  ShpbOptions o = short_bars();
+  o.pulse_duration = 40e-6;
+  const int rows = 20;
+  const double cell = 0.2e-6;                                     // s, sqrt(m / k)
+  const double impedance = o.bar.impedance() * o.bar.area() / 5;  // N s/m per m, per column
+  const double k = impedance / cell, m = impedance * cell;        // N/m per m, kg/m
+  const double radius = 0.005, density = m / (std::numbers::pi * radius * radius * kThickness);
+  WorldSettings s;
+  s.laws.fill(LinearContact{k, 1.0, 0.0});
+  s.local_damping = 0;
+  s.time_step_safety = 0.1;
+  s.energy_tracking = false;  // as stiff_layer: at rest and unloaded before the pulse
+  World world(s);
+  for (int col = 0; col < 5; ++col)
+    for (int row = 0; row < rows; ++row)
+      world.add_disc(-0.0202 + 0.0101 * col, radius + 2 * radius * row, radius, density);
+  const BarRun r = run_bars(world, Box{-0.0252, 0, 0.0252, 2 * radius * rows}, o);
+  EXPECT_LT(r.max_coupling, 0.2);
+  const ShpbWaves w = face_waves(r.records, r.bars);
+  const double peak = o.pulse_peak / o.bar.young_modulus;
+  const double arrival = static_cast<double>(r.bars.incident().cells()) * r.bars.time_step();
+  const double transit = rows * cell;  // s
+  double worst_r = 0, worst_t = 0, largest_t = 0;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const double expected = o.pulse_stress(w.time[k] - arrival - transit) / o.bar.young_modulus;
+    worst_r = std::max(worst_r, std::abs(w.reflected[k]));
+    worst_t = std::max(worst_t, std::abs(w.transmitted[k] - expected));
+    largest_t = std::max(largest_t, w.transmitted[k]);
+  }
+  // The gauge itself (mid-bar): its left-going wave is the reflection, whole steps later.
+  double worst_gauge_r = 0;
+  for (const double e : r.records.incident_left)
+    worst_gauge_r = std::max(worst_gauge_r, std::abs(e));
+  EXPECT_LT(worst_r, 0.01 * peak);
+  EXPECT_LT(worst_gauge_r, 0.01 * peak);
+  EXPECT_LT(worst_t, 0.01 * peak);
+  EXPECT_NEAR(largest_t, peak, 0.01 * peak);
+}
+
 // With nothing on the face the incident bar's end is free: the pulse returns whole, in tension.
 TEST(ShpbCoupling, FreeFaceReflectsAllInTension) {
   WorldSettings s;
@@ -224,9 +277,65 @@ TEST(ShpbAnalysis, FirstFailureAndGaugeAveragedEquilibrium) {
   EXPECT_NEAR(f.equilibrium_mean_first_failure, spike / 51, 1e-12);  // records 50-100
   EXPECT_NEAR(f.equilibrium_worst, spike, 1e-12);
   EXPECT_NEAR(f.equilibrium_worst_gauge, spread, 1e-9);
+  // Real bars' gauges at the faces (no travel, so no dispersion) read what the gauges of the
+  // stated length read.
+  g.bar_radius = 0.025;
+  g.bar_poisson_ratio = 0.29;
+  EXPECT_NEAR(analyse_shpb(w, g).figures.equilibrium_worst_bar_first_failure, spread, 1e-9);
+  g.bar_radius = 0;
   // Point gauges (window 0) read the per-step ratio.
   g.gauge_window = 0;
   EXPECT_NEAR(analyse_shpb(w, g).figures.equilibrium_worst_gauge_first_failure, spike, 1e-12);
+}
+
+// The forces as gauges on real round bars read them, against the long-wave closed form: equal
+// incident and transmitted waves (eps_r = 0, a specimen of the bars' impedance) of a Gaussian
+// pulse g (sigma = 50 us), gauges 1.5 m from the faces of steel bars 50 mm across. The
+// incident gauge reads the wave before its last 1.5 m, the transmitted one after its first:
+// g -/+ C g''' with C = nu^2 a^2 x / (4 c0^3) (lab/shpb_dispersion.hpp), so
+// R = 2 (F_front - F_back) / (F_front + F_back) = -2 C g''' / g, whose largest |R| from half the
+// peak to it is 4 C / sigma^3 (at one sigma before the peak), 4.65e-3 here (measured 4.69e-3);
+// per step R = 0.
+TEST(ShpbAnalysis, BarGaugesReadTheDispersedWaves) {
+  const double dt = 63e-9, sigma = 50e-6, centre = 400e-6, c0 = 5139, nu = 0.29, a = 0.025;
+  ShpbWaves w;
+  w.time_step = dt;
+  for (int k = 0; k < 16000; ++k) {
+    const double u = (k * dt - centre) / sigma;
+    w.time.push_back(k * dt);
+    w.incident.push_back(1e-4 * std::exp(-0.5 * u * u));
+    w.reflected.push_back(0);
+    w.transmitted.push_back(w.incident.back());
+  }
+  ShpbGeometry g{206e9, c0, 0.05, 0.05, 0.05};
+  g.bar_radius = a;
+  g.bar_poisson_ratio = nu;
+  g.incident_gauge = g.transmitted_gauge = 1.5;
+  const ShpbFigures f = analyse_shpb(w, g).figures;
+  const double expected = 4 * nu * nu * a * a * 1.5 / (4 * c0 * c0 * c0) / std::pow(sigma, 3);
+  EXPECT_NEAR(f.equilibrium_worst, 0, 1e-15);
+  EXPECT_NEAR(f.equilibrium_worst_bar, expected, 0.05 * expected);
+  // Gauges at the faces: the bar gauges read the waves as they are.
+  g.incident_gauge = g.transmitted_gauge = 0;
+  EXPECT_NEAR(analyse_shpb(w, g).figures.equilibrium_worst_bar, 0, 1e-15);
+}
+
+// A ramp (a pulse shaper's trapezoid): linear to the peak over pulse_rise, flat, linear down
+// over the last pulse_rise; the default rise is half the duration (a triangle).
+TEST(ShpbInput, RampPulse) {
+  const InputTable t = InputTable::parse_string(
+      "[test.shpb]\npulse_peak_MPa = 60\npulse = \"ramp\"\npulse_duration_us = 1000\n"
+      "pulse_rise_us = 200\n",
+      "ramp.toml");
+  const ShpbOptions o = read_shpb_options(t.table("test").table("shpb"));
+  EXPECT_EQ(o.pulse, ShpbPulse::Ramp);
+  EXPECT_NEAR(o.pulse_stress(50e-6), 15e6, 1e-3);
+  EXPECT_NEAR(o.pulse_stress(500e-6), 60e6, 1e-3);
+  EXPECT_NEAR(o.pulse_stress(950e-6), 15e6, 1e-3);
+  EXPECT_EQ(o.pulse_stress(1001e-6), 0.0);
+  const InputTable triangle = InputTable::parse_string(
+      "[test.shpb]\npulse_peak_MPa = 60\npulse = \"ramp\"\n", "triangle.toml");
+  EXPECT_NEAR(read_shpb_options(triangle.table("test").table("shpb")).pulse_rise, 500e-6, 1e-12);
 }
 
 // The message of a bad [test.shpb] table names the key.
@@ -262,6 +371,15 @@ TEST(ShpbInput, BadValuesNameTheirKey) {
   EXPECT_NE(error_of("pulse_peak_MPa = 100\ngauge_length_mm = 400\n").find("gauge_length"),
             std::string::npos);
   EXPECT_NE(error_of("pulse_peak_MPa = 100\ngauge_length_mm = -1\n").find("gauge_length"),
+            std::string::npos);
+  // A ramp rises in at most half its duration; pulse_rise is for ramps only; a Poisson ratio
+  // in (0, 0.5).
+  EXPECT_NE(
+      error_of("pulse_peak_MPa = 100\npulse = \"ramp\"\npulse_rise_us = 600\n").find("pulse_rise"),
+      std::string::npos);
+  EXPECT_NE(error_of("pulse_peak_MPa = 100\npulse_rise_us = 100\n").find("pulse_rise"),
+            std::string::npos);
+  EXPECT_NE(error_of("pulse_peak_MPa = 100\nbar_poisson_ratio = 0.5\n").find("bar_poisson_ratio"),
             std::string::npos);
   EXPECT_EQ(error_of("pulse_peak_MPa = 100\npulse_duration_us = 1000\n"), "");
 }

@@ -56,6 +56,18 @@ TEST(LabShpb, RunsUntilThePulseHasPassedTheSpecimen) {
   EXPECT_GT(s.coupling_number, 0);
 }
 
+// The run says when its 3-wave peak is not the first failure (a hump after it), and only then;
+// the forces as real bars' gauges read them are there, one per record.
+TEST(LabShpb, WarnsOfAPeakAfterTheFirstFailure) {
+  const LabTestResult& r = shpb_run();
+  const ShpbFigures& f = r.shpb.analysis.figures;
+  bool warned = false;
+  for (const std::string& w : r.warnings) warned |= w.find("after a first failure") != w.npos;
+  EXPECT_EQ(warned, f.first_failure_stress < f.peak_stress);
+  EXPECT_GT(f.equilibrium_worst_bar, 0);
+  EXPECT_EQ(r.shpb.analysis.histories.front_force_gauges.size(), r.shpb.waves.size());
+}
+
 TEST(LabShpb, IncidentWaveAtTheFaceIsThePulseDelayedByLOverC0) {
   const ShpbResult& s = shpb_run().shpb;
   const double peak = 100e6 / s.options.bar.young_modulus;
