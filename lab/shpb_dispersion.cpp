@@ -5,6 +5,7 @@
 #include <complex>
 #include <numbers>
 #include <stdexcept>
+#include <unsupported/Eigen/FFT>
 
 namespace cdem::dem {
 
@@ -58,27 +59,6 @@ double branch_root(double v_start, double K, double vl, double vs) {
     f_hi = f_lo;
   }
   throw std::logic_error("PochhammerChree: lost the first mode's branch");
-}
-
-// In-place radix-2 FFT of a power-of-two length; sign -1 forward, +1 inverse (unscaled).
-void fft(std::vector<std::complex<double>>& x, int sign) {
-  const std::size_t n = x.size();
-  for (std::size_t i = 1, j = 0; i < n; ++i) {
-    std::size_t bit = n >> 1;
-    for (; j & bit; bit >>= 1) j ^= bit;
-    j ^= bit;
-    if (i < j) std::swap(x[i], x[j]);
-  }
-  for (std::size_t len = 2; len <= n; len <<= 1) {
-    const double angle = sign * 2 * std::numbers::pi / static_cast<double>(len);
-    for (std::size_t start = 0; start < n; start += len)
-      for (std::size_t k = 0; k < len / 2; ++k) {
-        const std::complex<double> w = std::polar(1.0, angle * static_cast<double>(k));
-        const std::complex<double> u = x[start + k], t = w * x[start + k + len / 2];
-        x[start + k] = u + t;
-        x[start + k + len / 2] = u - t;
-      }
-  }
 }
 
 // The slowest group velocity of the first mode is above this fraction of c0 (about 0.5 c0 for
@@ -137,9 +117,11 @@ std::vector<double> disperse(const std::vector<double>& wave, double dt, double 
   while (size < n + pad) size <<= 1;
   // Backwards (distance < 0) the content moves earlier: the padding goes in front.
   const std::size_t offset = distance < 0 ? size - n : 0;
-  std::vector<std::complex<double>> x(size);
+  std::vector<std::complex<double>> x(size), spectrum;
   std::copy(wave.begin(), wave.end(), x.begin() + static_cast<long>(offset));
-  fft(x, -1);
+  // Eigen's FFT (kissfft backend, libeigen3-dev): fwd unscaled, inv scaled by 1 / size.
+  Eigen::FFT<double> fft;
+  fft.fwd(spectrum, x);
   // Bin j: omega = 2 pi j / (size dt); the component travels as exp(i (omega t - k x)), so at
   // x and shifted back by x / c0 it gains the phase -(k - omega / c0) x. Negative frequencies
   // take the conjugate, so the result stays real.
@@ -149,12 +131,12 @@ std::vector<double> disperse(const std::vector<double>& wave, double dt, double 
         2 * std::numbers::pi * static_cast<double>(j) / (static_cast<double>(size) * dt);  // rad/s
     const double k = branch.wavenumber(omega * radius / c0) / radius;                      // 1/m
     const std::complex<double> shift = std::polar(1.0, -(k - omega / c0) * distance);
-    x[j] *= shift;
-    if (j != size / 2) x[size - j] *= std::conj(shift);
+    spectrum[j] *= shift;
+    if (j != size / 2) spectrum[size - j] *= std::conj(shift);
   }
-  fft(x, +1);
+  fft.inv(x, spectrum);
   std::vector<double> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i] = x[offset + i].real() / static_cast<double>(size);
+  for (std::size_t i = 0; i < n; ++i) out[i] = x[offset + i].real();
   return out;
 }
 
