@@ -59,7 +59,7 @@ class DiscPairKernel {
     return g;
   }
 
-  DiscPairKernel(Discs& d, NeighborList& list, ContactForces& out, const ContactLaws& laws,
+  DiscPairKernel(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
                  const BondModels& bonds, double dt, double guard)
       : first_(list.first.data()),
         second_(list.second.data()),

@@ -228,7 +228,7 @@ py::dict world_state(const dem::World& world, const dem::LabHistory& h, std::siz
   const dem::Discs& d = world.discs();
   // Per disc and per bonded pair: intact bonds (a flat joint's bonded elements).
   std::vector<std::int32_t> intact(d.size(), 0), bond_first, bond_second, bond_intact;
-  const dem::NeighborList& list = world.neighbors();
+  const dem::ContactStore& list = world.contacts();
   for (std::size_t k = 0; k < list.keys.size(); ++k) {
     const int n = list.intact_bonds(k);
     if (n == 0) continue;
