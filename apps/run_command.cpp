@@ -16,13 +16,13 @@
 #include "apps/job_input_check.hpp"
 #include "apps/lab_specimen.hpp"
 #include "apps/progress_line.hpp"
-#include "apps/run_summary.hpp"
 #include "io/atomic_output.hpp"
 #include "io/output_paths.hpp"
 #include "lab/biaxial_test.hpp"
 #include "lab/lab_pictures.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/result_file.hpp"
+#include "lab/run_summary.hpp"
 
 namespace cdem::apps {
 
@@ -57,10 +57,10 @@ std::vector<NamedPath> run_inputs(const dem::LabTestInput& input) {
 nlohmann::ordered_json run_summary_fields(const dem::LabTestInput& input) {
   dem::LabTestResult r;
   r.type = input.controls.type;
-  if (r.type != dem::LabTestType::Biaxial) return summary_json(r, input);
+  if (r.type != dem::LabTestType::Biaxial) return to_json(dem::make_run_summary(r, input));
   dem::BiaxialSeries series;
   series.runs = {r};
-  return series_json(series, input);
+  return to_json(dem::make_series_summary(series, input));
 }
 
 Action add_run_command(CLI::App& app) {
@@ -154,7 +154,7 @@ Action add_run_command(CLI::App& app) {
           });
       progress.reset();
       if (result_file) result_file->commit(series);
-      const nlohmann::ordered_json summary = series_json(series, input);
+      const nlohmann::ordered_json summary = to_json(dem::make_series_summary(series, input));
       if (!o->summary.empty()) write_text_atomically(o->summary, summary.dump(2) + "\n");
       for (std::size_t k = 0; k < series.runs.size(); ++k) {
         const dem::LabTestResult& r = series.runs[k];
@@ -171,13 +171,13 @@ Action add_run_command(CLI::App& app) {
     const dem::LabTestResult result = dem::run_lab_test(specimen, input, make_hooks());
     progress.reset();
     if (result_file) result_file->commit(result);
-    if (!o->summary.empty())
-      write_text_atomically(o->summary, summary_json(result, input).dump(2) + "\n");
+    const nlohmann::ordered_json summary = to_json(dem::make_run_summary(result, input));
+    if (!o->summary.empty()) write_text_atomically(o->summary, summary.dump(2) + "\n");
     if (!plot.empty()) dem::draw_stress_strain_png(result, plot);
     if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result, crack_map);
     if (!o->fragment_map.empty()) dem::draw_fragment_map_png(result.fragments, o->fragment_map);
     transaction.commit();
-    if (!o->quiet) std::printf("%s\n", summary_json(result, input).dump(2).c_str());
+    if (!o->quiet) std::printf("%s\n", summary.dump(2).c_str());
   };
 }
 

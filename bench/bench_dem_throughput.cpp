@@ -24,7 +24,7 @@ double bytes(const V& v) {
 double solver_bytes(const cdem::dem::World& w) {
   const auto& b = w.bodies();
   const auto& d = w.discs();
-  const auto& n = w.neighbors();
+  const auto& n = w.contacts();
   double sum = 0;
   for (const auto* v :
        {&b.x,          &b.y,        &b.theta,    &b.vx,           &b.vy,
@@ -63,10 +63,10 @@ void BM_ReferenceSpecimenCycles(benchmark::State& state) {
   cdem::bench::time_cycles(state, w, kSteps);
   const double discs = static_cast<double>(w.discs().size());
   state.counters["discs"] = discs;
-  state.counters["candidate_pairs"] = static_cast<double>(w.neighbors().keys.size());
+  state.counters["candidate_pairs"] = static_cast<double>(w.contacts().keys.size());
   state.counters["touching"] = static_cast<double>(w.last_force_pass().touching);
   state.counters["intact_bonds"] = static_cast<double>(
-      std::count_if(w.neighbors().state.bond.begin(), w.neighbors().state.bond.end(),
+      std::count_if(w.contacts().state.bond.begin(), w.contacts().state.bond.end(),
                     [](std::uint8_t b) { return b != 0; }));
   state.counters["solver_bytes_per_disc"] = solver_bytes(w) / discs;
 }

@@ -14,7 +14,7 @@ inline void time_cycles(benchmark::State& state, dem::World& w, long steps) {
   for (auto _ : state) {
     for (long s = 0; s < steps; ++s) {
       w.step();
-      pair_updates += static_cast<long>(w.neighbors().keys.size() + w.neighbors().wall_keys.size());
+      pair_updates += static_cast<long>(w.contacts().keys.size() + w.contacts().wall_keys.size());
     }
     disc_steps += steps * static_cast<long>(w.discs().size());
   }

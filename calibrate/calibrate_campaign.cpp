@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "campaign/shortest_number.hpp"
 #include "core/input_error.hpp"
 #include "io/atomic_output.hpp"
+#include "lab/run_summary.hpp"
 #include "lab/summary_fields.hpp"
 
 namespace cdem::calib {
@@ -41,10 +43,18 @@ struct CampaignFile {
   double timeout_s = 0;
 };
 
+// A design row's run: its record (a run without a readable record is a failed one) and its
+// summary file (read when the run is ok).
+struct CampaignRow {
+  RunRecord record;
+  std::filesystem::path summary;
+};
+
 // Writes NAME.toml and NAME_base.toml in `dir` and runs the campaign into dir/NAME; returns one
-// record per design row (a run without a readable record is a failed one).
-std::vector<RunRecord> run_campaign_file(const std::filesystem::path& dir, const std::string& name,
-                                         const CampaignFile& c, int jobs, bool verbose) {
+// row per design row.
+std::vector<CampaignRow> run_campaign_file(const std::filesystem::path& dir,
+                                           const std::string& name, const CampaignFile& c, int jobs,
+                                           bool verbose) {
   std::filesystem::create_directories(dir);
   write_text_atomically(dir / (name + "_base.toml"), c.base_text);
   const auto list = [](const std::vector<std::string>& items) {
@@ -78,19 +88,19 @@ std::vector<RunRecord> run_campaign_file(const std::filesystem::path& dir, const
   run_campaign(options);
 
   const CampaignSpec spec = read_campaign_spec(file);
-  std::vector<RunRecord> records;
+  std::vector<CampaignRow> rows;
   for (const auto& task : plan_campaign(spec, *options.output_dir)) {
     std::string why;
+    CampaignRow& row = rows.emplace_back();
+    row.summary = task.dir / task.summary;
     if (auto record = completed_record(task, &why)) {
-      records.push_back(std::move(*record));
+      row.record = std::move(*record);
     } else {
-      RunRecord failed;
-      failed.id = task.id;
-      failed.message = "no record of the run: " + why;
-      records.push_back(std::move(failed));
+      row.record.id = task.id;
+      row.record.message = "no record of the run: " + why;
     }
   }
-  return records;
+  return rows;
 }
 
 std::string test_with_specimen(const std::string& test_text,
@@ -135,9 +145,9 @@ void CampaignSimulator::generate(std::size_t test, const std::vector<std::uint64
   c.timeout_s = input_.timeout_s;
   const std::string& name = input_.tests[test].name;
   const auto dir = output_dir_ / "specimens";
-  const auto records = run_campaign_file(dir, name, c, jobs_, verbose_);
+  const auto rows = run_campaign_file(dir, name, c, jobs_, verbose_);
   for (std::size_t i = 0; i < seeds.size(); ++i) {
-    const auto& r = records[i];
+    const auto& r = rows[i].record;
     if (r.status != RunStatus::Ok || r.outputs.empty() || r.outputs[0].empty())
       throw RunError("calibrate: the " + name + " specimen of seed " + std::to_string(seeds[i]) +
                      " could not be generated (" + (dir / name).string() + "): " + r.message);
@@ -169,7 +179,7 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
     CampaignFile file;
     std::vector<CalibrationTarget> measured;
     std::vector<std::size_t> rows;  // indices into points
-    std::vector<RunRecord> records;
+    std::vector<CampaignRow> runs;
   };
   std::vector<Batch> batches;
   for (std::size_t test = 0; test < input_.tests.size(); ++test) {
@@ -184,10 +194,11 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
       c.seed = seed;
       c.command = "run";
       c.args = {"{input}", "--summary", "{summary}", "--seed", "{seed}", "-q"};
+      // The campaign's results table shows the figures and warnings; calibration itself reads
+      // each run's summary through lab's reader (below). A campaign re-gathers finished runs
+      // from their summaries, so a calibration started before a gather field was added resumes
+      // without re-running.
       for (const auto target : b.measured) c.gather.push_back(target_summary_field(target));
-      // What the summary warns about its figures goes with them (a beam's G_F cut short at
-      // max_deflection, say). Gathered last; a campaign re-gathers finished runs from their
-      // summaries, so a calibration started before this field resumes without re-running.
       c.gather.push_back(dem::summary_field::kWarnings);
       c.timeout_s = input_.timeout_s;
       for (std::size_t i = 0; i < points.size(); ++i) {
@@ -212,8 +223,8 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
   const auto worker = [&] {
     for (std::size_t i = next++; i < batches.size(); i = next++) {
       try {
-        batches[i].records = run_campaign_file(output_dir_ / "stages" / stage, batches[i].name,
-                                               batches[i].file, jobs_each, verbose_);
+        batches[i].runs = run_campaign_file(output_dir_ / "stages" / stage, batches[i].name,
+                                            batches[i].file, jobs_each, verbose_);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
@@ -230,29 +241,33 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
   for (const auto& b : batches) {
     for (std::size_t r = 0; r < b.rows.size(); ++r) {
       auto& o = out[b.rows[r]];
-      const auto& record = b.records[r];
+      const auto& record = b.runs[r].record;
       ++o.simulations;
-      if (record.status != RunStatus::Ok) {
+      const auto fail = [&](const std::string& why) {
         o.ok = false;
-        o.message += (o.message.empty() ? "" : "; ") + b.name + " run " +
-                     std::to_string(record.id) + " " + to_string(record.status) + ": " +
-                     record.message;
+        o.message += (o.message.empty() ? "" : "; ") + why;
+      };
+      if (record.status != RunStatus::Ok) {
+        fail(b.name + " run " + std::to_string(record.id) + " " + to_string(record.status) + ": " +
+             record.message);
         continue;
       }
-      for (std::size_t g = 0; g < b.measured.size(); ++g) {
-        const auto& value = record.gathered.at(g);
-        if (!value.is_number()) {
-          o.ok = false;
-          o.message += (o.message.empty() ? "" : "; ") + b.name + ": the summary has no " +
-                       target_summary_field(b.measured[g]);
+      dem::RunSummary summary;
+      try {
+        summary = dem::read_run_summary(b.runs[r].summary);
+      } catch (const InputError& e) {
+        fail(b.name + ": " + e.what());
+        continue;
+      }
+      for (const auto target : b.measured) {
+        const std::optional<double> value = target_figure(summary, target);
+        if (!value || std::isnan(*value)) {
+          fail(b.name + ": the summary has no " + target_summary_field(target));
           continue;
         }
-        o.responses[static_cast<std::size_t>(b.measured[g])] = value.get<double>();
+        o.responses[static_cast<std::size_t>(target)] = *value;
       }
-      const auto& warnings = record.gathered.at(b.measured.size());  // gathered last
-      if (warnings.is_array())
-        for (const auto& w : warnings)
-          if (w.is_string()) o.warnings.push_back(b.name + ": " + w.get<std::string>());
+      for (const auto& w : summary.warnings) o.warnings.push_back(b.name + ": " + w);
     }
   }
   return out;

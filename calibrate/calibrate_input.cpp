@@ -17,28 +17,51 @@
 #include "core/units.hpp"
 #include "io/input_table.hpp"
 #include "lab/material_table.hpp"
+#include "lab/run_summary.hpp"
 #include "lab/summary_fields.hpp"
 
 namespace cdem::calib {
 
 namespace {
 
+// The figure `Field` of the optional part `Part` of a run summary; nullopt when the run's test
+// has no such part.
+template <auto Part, auto Field>
+std::optional<double> part_figure(const dem::RunSummary& s) {
+  const auto& part = s.*Part;
+  return part ? std::optional<double>((*part).*Field) : std::nullopt;
+}
+
+std::optional<double> peak_stress(const dem::RunSummary& s) {
+  return s.peak_stress_MPa;
+}
+
 // Target -> the test kind that measures it -> the summary field it is read from -> its unit.
 struct TargetInfo {
   const char* name;
   const char* unit;
   const char* summary_field;  // of `cdem run --summary` (lab/summary_fields.hpp)
+  // The same figure in the summary as lab's reader gives it (lab/run_summary.hpp).
+  std::optional<double> (*figure)(const dem::RunSummary&);
   TestKind test;
   bool fitted_in_log;  // the paper strategy's surface is on ln(response)
 };
 
 // Indexed by CalibrationTarget.
 constexpr TargetInfo kTargets[kCalibrationTargetCount] = {
-    {"sigma_u", "MPa", dem::summary_field::kPeakStress, TestKind::Uniaxial, false},
-    {"E", "GPa", dem::summary_field::kYoungModulus, TestKind::Uniaxial, false},
-    {"nu", "", dem::summary_field::kPoissonRatio, TestKind::Uniaxial, false},
-    {"sigma_t", "MPa", dem::summary_field::kTensileStrength, TestKind::Tension, false},
-    {"G_F", "N/m", dem::summary_field::kFractureEnergy, TestKind::Bending, true},
+    {"sigma_u", "MPa", dem::summary_field::kPeakStress, peak_stress, TestKind::Uniaxial, false},
+    {"E", "GPa", dem::summary_field::kYoungModulus,
+     part_figure<&dem::RunSummary::uniaxial, &dem::UniaxialSummary::young_modulus_GPa>,
+     TestKind::Uniaxial, false},
+    {"nu", "", dem::summary_field::kPoissonRatio,
+     part_figure<&dem::RunSummary::uniaxial, &dem::UniaxialSummary::poisson_ratio>,
+     TestKind::Uniaxial, false},
+    {"sigma_t", "MPa", dem::summary_field::kTensileStrength,
+     part_figure<&dem::RunSummary::tension, &dem::TensionSummary::tensile_strength_MPa>,
+     TestKind::Tension, false},
+    {"G_F", "N/m", dem::summary_field::kFractureEnergy,
+     part_figure<&dem::RunSummary::bending, &dem::BendingSummary::fracture_energy_N_per_m>,
+     TestKind::Bending, true},
 };
 
 const TargetInfo& info(CalibrationTarget target) {
@@ -75,6 +98,9 @@ std::string target_with_unit(CalibrationTarget target) {
 }
 const char* target_summary_field(CalibrationTarget target) {
   return info(target).summary_field;
+}
+std::optional<double> target_figure(const dem::RunSummary& summary, CalibrationTarget target) {
+  return info(target).figure(summary);
 }
 
 TestKind target_test_kind(CalibrationTarget target) {

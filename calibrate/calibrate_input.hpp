@@ -12,6 +12,10 @@
 #include "doe/inversion.hpp"
 #include "lab/material_keys.hpp"
 
+namespace cdem::dem {
+struct RunSummary;
+}
+
 namespace cdem::calib {
 
 // The macro-properties a calibration can aim at, in the units they are reported in.
@@ -36,8 +40,12 @@ const char* target_name(CalibrationTarget target);  // "sigma_u", "E", "nu", "si
 const char* target_unit(CalibrationTarget target);  // "MPa", "GPa", "", "MPa", "N/m"
 // "sigma_u (MPa)", "nu": the name with its unit, for tables and axes.
 std::string target_with_unit(CalibrationTarget target);
-// The field of `cdem run --summary` that measures the target.
+// The field of `cdem run --summary` that measures the target (a campaign gathers it into its
+// results table).
 const char* target_summary_field(CalibrationTarget target);
+// The target's figure in a run summary read by lab's reader; nullopt when the summary's test does
+// not measure it (NaN when the run measured nothing).
+std::optional<double> target_figure(const dem::RunSummary& summary, CalibrationTarget target);
 // The kind of lab test that measures the target.
 TestKind target_test_kind(CalibrationTarget target);
 // True when the paper strategy fits the target's response surface on its logarithm: G_F, which

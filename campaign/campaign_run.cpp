@@ -2,12 +2,13 @@
 
 #include <signal.h>
 #include <cstring>
-#include <fstream>
 
 #include "campaign/campaign_input.hpp"
 #include "campaign/campaign_process.hpp"
 #include "campaign/shortest_number.hpp"
+#include "core/input_error.hpp"
 #include "io/atomic_output.hpp"
+#include "io/json_file.hpp"
 
 namespace cdem::calib {
 
@@ -31,12 +32,14 @@ RunStatus status_from_string(const std::string& s) {
   return RunStatus::Failed;
 }
 
+// A summary or record file's JSON (io's reader, as lab's summary reader uses); nullopt when it
+// cannot be read or is not JSON.
 std::optional<nlohmann::json> read_json(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  auto j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return std::nullopt;
-  return j;
+  try {
+    return read_json_file(file);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
 }
 
 // Output paths relative to the campaign output, empty for files the job did not write.

@@ -12,15 +12,15 @@ InstalledBonds install_bonds(World& world, const BondInstallation& options) {
     throw std::invalid_argument("bond installation: gap_ratio must be finite and >= 0");
   world.refresh_neighbors();
   const Discs& d = world.discs();
-  NeighborList& list = world.neighbors_;
+  ContactStore& list = world.contacts_;
   double rmax = 0;
   for (std::size_t i = 0; i < d.size(); ++i)
     if (d.active[i]) rmax = std::max(rmax, d.r[i]);
-  if (options.gap_ratio * rmax >= list.skin)
-    throw std::invalid_argument("bond installation: gap tolerance " +
-                                std::to_string(options.gap_ratio * rmax) +
-                                " m reaches the neighbour skin " + std::to_string(list.skin) +
-                                " m; lower gap_ratio or raise WorldSettings::skin");
+  if (options.gap_ratio * rmax >= world.neighbors().skin)
+    throw std::invalid_argument(
+        "bond installation: gap tolerance " + std::to_string(options.gap_ratio * rmax) +
+        " m reaches the neighbour skin " + std::to_string(world.neighbors().skin) +
+        " m; lower gap_ratio or raise WorldSettings::skin");
   ContactStates& state = list.state;
   InstalledBonds installed;
   for (std::size_t k = 0; k < list.keys.size(); ++k) {
@@ -53,7 +53,7 @@ InstalledBonds install_bonds(World& world, const BondInstallation& options) {
 
 std::array<long, kContactClassCount> intact_bond_count(const World& world) {
   std::array<long, kContactClassCount> count{};
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   for (std::size_t k = 0; k < list.keys.size(); ++k)
     count[list.contact_class[k]] += list.intact_bonds(k);
   return count;

@@ -8,7 +8,7 @@ namespace cdem::dem {
 
 std::array<long, kContactClassCount> contact_census(const World& world, double gap_tolerance) {
   std::array<long, kContactClassCount> count{};
-  const NeighborList& nl = world.neighbors();
+  const ContactStore& nl = world.contacts();
   const Discs& d = world.discs();
   for (std::size_t k = 0; k < nl.keys.size(); ++k) {
     const auto i = nl.first[k], j = nl.second[k];

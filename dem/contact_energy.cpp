@@ -7,7 +7,7 @@ namespace cdem::dem {
 ContactEnergy contact_energy(const World& world) {
   ContactEnergy e;
   const Discs& d = world.discs();
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   const ContactStates& state = list.state;
   const ContactForces& pair = world.pair_forces();
   for (std::size_t k = 0; k < pair.normal.size(); ++k) {

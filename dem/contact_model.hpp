@@ -6,7 +6,7 @@
 // and takes its E*, kn/ks and mu as deformability and residual friction). Disc-wall contacts
 // (class W) are linear only. A smooth joint (dem/smooth_joint.hpp) is not a class's model: it is
 // installed on the pairs that cross a user's joint line (dem/smooth_joint_install.hpp) and
-// carries its own properties (NeighborList::smooth_joints).
+// carries its own properties (ContactStore::smooth_joints).
 #include <algorithm>
 #include <array>
 #include <cstdint>

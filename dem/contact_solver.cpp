@@ -12,7 +12,7 @@ namespace {
 // Evaluates all disc-disc pairs and adds them onto the discs (whose accumulators must be zero),
 // block by block, each pair's result still in registers. Returns the first pair tripping the
 // guard, or -1.
-long disc_disc_pass(Discs& d, NeighborList& list, ContactForces& out, const ContactLaws& laws,
+long disc_disc_pass(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
                     const BondModels& bonds, double dt, double guard, ForcePassResult& result) {
   const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard);
   const std::size_t count = list.keys.size();
@@ -31,7 +31,7 @@ double wall_slip_velocity(const Discs& d, const Walls& walls, std::int32_t i, st
 
 }  // namespace
 
-long disc_wall_forces(const Discs& d, const Walls& walls, NeighborList& list, ContactForces& out,
+long disc_wall_forces(const Discs& d, const Walls& walls, ContactStore& list, ContactForces& out,
                       const LinearContact& law, double dt, double guard, double& slip_work,
                       double* slip_by_pair) {
   ContactStates& state = list.wall_state;
@@ -105,7 +105,7 @@ long disc_wall_forces(const Discs& d, const Walls& walls, NeighborList& list, Co
 }
 
 void prepare_force_results(ContactForces& pair, ContactForces& wall_pair,
-                           const NeighborList& list) {
+                           const ContactStore& list) {
   const auto resize = [](ContactForces& f, std::size_t n, bool walls) {
     if (f.normal.size() == n) return;
     for (auto* v : {&f.normal, &f.overlap, &f.fx, &f.fy, &f.bond_energy_released}) v->resize(n);
@@ -122,7 +122,7 @@ void prepare_force_results(ContactForces& pair, ContactForces& wall_pair,
   resize(wall_pair, list.wall_keys.size(), true);
 }
 
-void add_wall_pairs(Discs& discs, const NeighborList& list, const ContactForces& wall_pair,
+void add_wall_pairs(Discs& discs, const ContactStore& list, const ContactForces& wall_pair,
                     std::size_t begin, std::size_t end) {
   for (std::size_t k = begin; k < end; ++k) {
     if (!wall_pair_loaded(wall_pair, k)) continue;
@@ -133,7 +133,7 @@ void add_wall_pairs(Discs& discs, const NeighborList& list, const ContactForces&
   }
 }
 
-void wall_totals(Walls& walls, const NeighborList& list, const ContactForces& wall_pair,
+void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wall_pair,
                  const Discs& discs, ForcePassResult& result) {
   for (std::size_t w = 0; w < walls.size(); ++w)
     walls.fx[w] = walls.fy[w] = walls.sxx[w] = walls.sxy[w] = walls.syx[w] = walls.syy[w] = 0;
@@ -152,7 +152,7 @@ void wall_totals(Walls& walls, const NeighborList& list, const ContactForces& wa
   }
 }
 
-ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, NeighborList& list,
+ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore& list,
                                        ContactForces& pair, ContactForces& wall_pair,
                                        const ContactLaws& laws, const BondModels& bonds, double dt,
                                        double max_overlap_ratio) {

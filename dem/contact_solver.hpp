@@ -72,7 +72,7 @@ using ContactLaws = std::array<LinearContact, kContactClassCount>;
 // reach their strength) and fills forces, discs.fx/fy/moment and the wall force sums.
 // `laws` are the linear parts by class, `bonds` the bond laws by class (a pair's bond kind is
 // its own state, set at installation). `max_overlap_ratio` is the instability-guard threshold.
-ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, NeighborList& list,
+ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore& list,
                                        ContactForces& pair, ContactForces& wall_pair,
                                        const ContactLaws& laws, const BondModels& bonds, double dt,
                                        double max_overlap_ratio);
@@ -80,12 +80,12 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, NeighborList&
 // Pieces of the pass shared with the multi-thread cycle.
 
 // Sizes the per-pair results to the neighbour list.
-void prepare_force_results(ContactForces& pair, ContactForces& wall_pair, const NeighborList& list);
+void prepare_force_results(ContactForces& pair, ContactForces& wall_pair, const ContactStore& list);
 // Evaluates every disc-wall pair into `wall_pair` (the wall is the first body, the disc the
 // second; n points from the closest point of the segment or arc to the disc centre) and updates
 // their shear state. Slip work is added to `slip_work` in pair order, or, with `slip_by_pair`,
 // stored per pair instead. Returns the first pair tripping the guard, or -1.
-long disc_wall_forces(const Discs& discs, const Walls& walls, NeighborList& list,
+long disc_wall_forces(const Discs& discs, const Walls& walls, ContactStore& list,
                       ContactForces& wall_pair, const LinearContact& law, double dt, double guard,
                       double& slip_work, double* slip_by_pair);
 // False for a disc-wall pair that puts nothing on its disc (apart): the sums skip it.
@@ -93,11 +93,11 @@ inline bool wall_pair_loaded(const ContactForces& wall_pair, std::size_t k) {
   return wall_pair.normal[k] != 0 || wall_pair.fx[k] != 0 || wall_pair.fy[k] != 0;
 }
 // Adds the loaded disc-wall pairs [begin, end) onto their discs, in pair order.
-void add_wall_pairs(Discs& discs, const NeighborList& list, const ContactForces& wall_pair,
+void add_wall_pairs(Discs& discs, const ContactStore& list, const ContactForces& wall_pair,
                     std::size_t begin, std::size_t end);
 // The walls' force and stress sums (walls.fx ... syy) and the disc-wall part of the virial and
 // of the touching count, in wall-pair order.
-void wall_totals(Walls& walls, const NeighborList& list, const ContactForces& wall_pair,
+void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wall_pair,
                  const Discs& discs, ForcePassResult& result);
 
 }  // namespace cdem::dem

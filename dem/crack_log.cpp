@@ -12,7 +12,7 @@ long CrackLog::count(BondFailure mode, ContactClass cls) const {
   return n;
 }
 
-void CrackLog::record(const ContactForces& pair, const NeighborList& list, const Discs& discs,
+void CrackLog::record(const ContactForces& pair, const ContactStore& list, const Discs& discs,
                       const BondModels& bonds, double time) {
   for (const std::int32_t k : pair.broken) {
     const std::int32_t i = list.first[k], j = list.second[k];

@@ -53,7 +53,7 @@ struct CrackLog {
   long count(BondFailure mode, ContactClass cls) const;
   // Appends the bonds that broke in the last force pass (`pair.broken`, ascending pair index).
   // Positions are read from the discs, which must not have moved since that pass.
-  void record(const ContactForces& pair, const NeighborList& list, const Discs& discs,
+  void record(const ContactForces& pair, const ContactStore& list, const Discs& discs,
               const BondModels& bonds, double time);
 };
 

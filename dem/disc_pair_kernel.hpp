@@ -59,7 +59,7 @@ class DiscPairKernel {
     return g;
   }
 
-  DiscPairKernel(Discs& d, NeighborList& list, ContactForces& out, const ContactLaws& laws,
+  DiscPairKernel(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
                  const BondModels& bonds, double dt, double guard)
       : first_(list.first.data()),
         second_(list.second.data()),
@@ -101,7 +101,7 @@ class DiscPairKernel {
     for (int c = 0; c < kContactClassCount; ++c) {
       tan_friction_angle_[c] = std::tan(bonds[c].parallel.friction_angle);
       tan_joint_friction_angle_[c] = std::tan(bonds[c].flat_joint.friction_angle);
-      shear_per_normal_stiffness_[c] = 1.0 / laws[c].kappa;
+      shear_per_normal_stiffness_[c] = laws[c].shear_per_normal_stiffness();
     }
   }
 

@@ -35,7 +35,7 @@ Fragments find_fragments(const World& world, double clump_density,
                          const std::vector<double>& sieve) {
   const Bodies& bodies = world.bodies();
   const Discs& discs = world.discs();
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   BodySets sets(bodies.size());
   for (std::size_t k = 0; k < list.keys.size(); ++k)
     if (list.intact_bonds(k) > 0)

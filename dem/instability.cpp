@@ -19,7 +19,7 @@ constexpr double kStiffnessContrast = 100.0;
 
 // Candidate pair k of the world, with its current bond.
 ContactStiffness pair_stiffness(const World& w, std::size_t k) {
-  const NeighborList& list = w.neighbors();
+  const ContactStore& list = w.contacts();
   const std::uint8_t cls = list.contact_class[k];
   const auto kind = static_cast<BondKind>(list.state.bond[k]);
   if (kind == BondKind::SmoothJoint)
@@ -37,7 +37,7 @@ struct BodyStiffness {
 
 BodyStiffness body_stiffness(const World& w, long body) {
   const Discs& d = w.discs();
-  const NeighborList& list = w.neighbors();
+  const ContactStore& list = w.contacts();
   BodyStiffness s;
   const auto add = [&](std::int32_t disc, const ContactStiffness& c) {
     const double arm = std::hypot(d.offset_x[disc], d.offset_y[disc]) + d.r[disc];
@@ -89,7 +89,7 @@ StiffnessRange disc_stiffness_range(const World& w, long disc) {
     r.kn_max = std::max(r.kn_max, kn);
     ++r.contacts;
   };
-  const NeighborList& list = w.neighbors();
+  const ContactStore& list = w.contacts();
   for (std::size_t k = 0; k < list.keys.size(); ++k)
     if (list.first[k] == disc || list.second[k] == disc) add(pair_stiffness(w, k).normal);
   const double kn_wall =

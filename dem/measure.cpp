@@ -14,7 +14,7 @@ namespace {
 // A disc-disc pair carries force when it touches or holds an intact bond (a bonded pair may be
 // in tension across a small gap).
 bool carries_force(const World& w, std::size_t k) {
-  return w.pair_forces().overlap[k] > 0 || w.neighbors().state.bond[k] != 0;
+  return w.pair_forces().overlap[k] > 0 || w.contacts().state.bond[k] != 0;
 }
 
 // Calls visit(contact point, branch vector, force on the second body) for every touching
@@ -23,7 +23,7 @@ bool carries_force(const World& w, std::size_t k) {
 template <class Visit>
 void for_each_contact(const World& w, Visit&& visit) {
   const Discs& d = w.discs();
-  const NeighborList& nl = w.neighbors();
+  const ContactStore& nl = w.contacts();
   for (std::size_t k = 0; k < w.pair_forces().normal.size(); ++k) {
     if (!carries_force(w, k)) continue;
     const std::int32_t i = nl.first[k], j = nl.second[k];
@@ -87,8 +87,8 @@ OverlapStatistics overlap_statistics(const World& world) {
   for (std::size_t k = 0; k < world.pair_forces().overlap.size(); ++k) {
     const double ov = world.pair_forces().overlap[k];
     if (ov <= 0) continue;
-    const double rmin = std::min(world.discs().r[world.neighbors().first[k]],
-                                 world.discs().r[world.neighbors().second[k]]);
+    const double rmin = std::min(world.discs().r[world.contacts().first[k]],
+                                 world.discs().r[world.contacts().second[k]]);
     ++o.contacts;
     sum += ov;
     sum_ratio += ov / rmin;
@@ -114,11 +114,11 @@ long floating_disc_count(const World& world, int min_contacts) {
   std::vector<int> count(world.discs().size(), 0);
   for (std::size_t k = 0; k < world.pair_forces().overlap.size(); ++k) {
     if (!carries_force(world, k)) continue;
-    ++count[world.neighbors().first[k]];
-    ++count[world.neighbors().second[k]];
+    ++count[world.contacts().first[k]];
+    ++count[world.contacts().second[k]];
   }
   for (std::size_t k = 0; k < world.wall_forces().overlap.size(); ++k)
-    if (world.wall_forces().overlap[k] > 0) ++count[world.neighbors().wall_disc[k]];
+    if (world.wall_forces().overlap[k] > 0) ++count[world.contacts().wall_disc[k]];
   long floating = 0;
   for (std::size_t i = 0; i < world.discs().size(); ++i)
     if (world.discs().active[i] && count[i] < min_contacts) ++floating;

@@ -1,60 +1,12 @@
 #include "dem/neighbor_list.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 
-#include "dem/contact_model.hpp"
 #include "dem/linear_contact.hpp"
 
 namespace cdem::dem {
-
-namespace {
-
-// The new list is the union of the candidates and the old pairs that hold an intact bond (a
-// bonded pair is never dropped, whatever its gap). Keys present in the old list carry their
-// state; new keys start from zero state. Both inputs are sorted, so the union is too.
-void merge_state(const std::vector<std::uint64_t>& old_keys, const ContactStates& old_state,
-                 const std::vector<std::uint64_t>& candidates, std::vector<std::uint64_t>& out_keys,
-                 ContactStates& out_state) {
-  const auto kept = [&](std::size_t o) { return old_state.bond[o] != 0; };
-  std::size_t count = candidates.size();
-  for (std::size_t o = 0, c = 0; o < old_keys.size(); ++o) {
-    while (c < candidates.size() && candidates[c] < old_keys[o]) ++c;
-    if (kept(o) && (c == candidates.size() || candidates[c] != old_keys[o])) ++count;
-  }
-  out_keys.resize(count);
-  out_state.resize(count);
-  std::size_t o = 0, c = 0, n = 0;
-  while (c < candidates.size() || o < old_keys.size()) {
-    const bool take_old =
-        c == candidates.size() || (o < old_keys.size() && old_keys[o] <= candidates[c]);
-    if (take_old) {
-      const bool shared = c < candidates.size() && old_keys[o] == candidates[c];
-      if (shared || kept(o)) {
-        out_keys[n] = old_keys[o];
-        out_state.copy_from(n++, old_state, o);
-      }
-      if (shared) ++c;
-      ++o;
-    } else {
-      out_keys[n++] = candidates[c++];
-    }
-  }
-}
-
-void split_keys(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& a,
-                std::vector<std::int32_t>& b) {
-  a.resize(keys.size());
-  b.resize(keys.size());
-  for (std::size_t k = 0; k < keys.size(); ++k) {
-    a[k] = static_cast<std::int32_t>(keys[k] >> 32);
-    b[k] = static_cast<std::int32_t>(keys[k] & 0xffffffffu);
-  }
-}
-
-}  // namespace
 
 namespace {
 
@@ -144,13 +96,13 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
 
   // Disc-disc: for each disc i (ascending) the partners j > i of the 3x3 block, sorted, so the
   // concatenation is sorted without a global sort.
-  new_keys_.clear();
+  pair_keys_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (disc_cell_[i] < 0) continue;
     const int cx = disc_cell_[i] % nx_, cy = disc_cell_[i] / nx_;
     const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + skin;
     const std::int32_t bi = discs.body[i];
-    const std::size_t start = new_keys_.size();
+    const std::size_t start = pair_keys_.size();
     for (int gy = std::max(cy - 1, 0); gy <= std::min(cy + 1, ny_ - 1); ++gy) {
       for (int gx = std::max(cx - 1, 0); gx <= std::min(cx + 1, nx_ - 1); ++gx) {
         const int c = gy * nx_ + gx;
@@ -159,24 +111,16 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
           if (static_cast<std::size_t>(j) <= i || discs.body[j] == bi) continue;
           const double dx = discs.x[j] - xi, dy = discs.y[j] - yi, reach = ri + discs.r[j];
           if (dx * dx + dy * dy < reach * reach)
-            new_keys_.push_back(
+            pair_keys_.push_back(
                 pair_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)));
         }
       }
     }
-    std::sort(new_keys_.begin() + static_cast<std::ptrdiff_t>(start), new_keys_.end());
+    std::sort(pair_keys_.begin() + static_cast<std::ptrdiff_t>(start), pair_keys_.end());
   }
-  merge_state(keys, state, new_keys_, merged_keys_, new_state_);
-  std::swap(keys, merged_keys_);
-  std::swap(state, new_state_);
-  split_keys(keys, first, second);
-  contact_class.resize(keys.size());
-  for (std::size_t k = 0; k < keys.size(); ++k)
-    contact_class[k] = static_cast<std::uint8_t>(disc_pair_class(
-        static_cast<int>(discs.material[first[k]]), static_cast<int>(discs.material[second[k]])));
 
   // Disc-wall: the cells under each wall's box widened by the contact range.
-  new_keys_.clear();
+  wall_keys_.clear();
   double rmax = 0;
   for (std::size_t i = 0; i < n; ++i)
     if (discs.active[i]) rmax = std::max(rmax, discs.r[i]);
@@ -203,17 +147,13 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
           closest_on_wall(walls, w, discs.x[d], discs.y[d], px, py);
           const double dx = discs.x[d] - px, dy = discs.y[d] - py, range = discs.r[d] + skin;
           if (dx * dx + dy * dy < range * range)
-            new_keys_.push_back(
+            wall_keys_.push_back(
                 pair_key(static_cast<std::uint32_t>(d), static_cast<std::uint32_t>(w)));
         }
       }
     }
   }
-  std::sort(new_keys_.begin(), new_keys_.end());
-  merge_state(wall_keys, wall_state, new_keys_, merged_keys_, new_state_);
-  std::swap(wall_keys, merged_keys_);
-  std::swap(wall_state, new_state_);
-  split_keys(wall_keys, wall_disc, wall_index);
+  std::sort(wall_keys_.begin(), wall_keys_.end());
 
   x0_ = discs.x;
   y0_ = discs.y;
@@ -221,18 +161,6 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
   wall_ax0_ = walls.ax;
   wall_ay0_ = walls.ay;
   ++build_count;
-}
-
-int NeighborList::intact_bonds(std::size_t k) const {
-  const auto joint = static_cast<std::size_t>(state.joint[k]);
-  switch (static_cast<BondKind>(state.bond[k])) {
-    case BondKind::FlatJoint:
-      return std::popcount(flat_joints.bonded[joint]);
-    case BondKind::SmoothJoint:
-      return smooth_joints.bonded[joint];
-    default:
-      return state.bond[k] != 0;
-  }
 }
 
 }  // namespace cdem::dem

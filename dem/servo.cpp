@@ -44,7 +44,7 @@ double servo_wall_stress(const World& world, const WallServo& s) {
 
 long wall_contact_count(const World& world, int wall) {
   long count = 0;
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   for (std::size_t k = 0; k < list.wall_keys.size(); ++k)
     count += list.wall_index[k] == wall && world.wall_forces().overlap[k] > 0;
   return count;

@@ -17,7 +17,7 @@ double orientation(double ax, double ay, double bx, double by, double px, double
 // Force (N) pair k carries now, on its second disc: normal (compression positive) along the
 // centre line and shear along t, the linear part plus the bond's.
 void pair_force(const World& world, std::size_t k, double& normal, double& shear) {
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   const ContactStates& state = list.state;
   const Discs& d = world.discs();
   const std::int32_t i = list.first[k], j = list.second[k];
@@ -69,7 +69,7 @@ InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>&
   if (sets.empty()) return installed;
   world.refresh_neighbors();
   const Discs& d = world.discs();
-  NeighborList& list = world.neighbors_;
+  ContactStore& list = world.contacts_;
   ContactStates& state = list.state;
   SmoothJointStates& joints = list.smooth_joints;
   double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
@@ -135,7 +135,7 @@ InstalledJoints install_smooth_joints(World& world, const std::vector<JointSet>&
 
 long intact_smooth_joints(const World& world) {
   long n = 0;
-  for (const std::uint8_t b : world.neighbors().smooth_joints.bonded) n += b;
+  for (const std::uint8_t b : world.contacts().smooth_joints.bonded) n += b;
   return n;
 }
 

@@ -50,7 +50,7 @@ struct InstalledJoints {
   std::vector<long> open;
   // Per set, its lines as installed (m; each long enough to cross the specimen's box).
   std::vector<std::vector<JointLine>> lines;
-  // Per joint (index of its entry in NeighborList::smooth_joints): 1 a joint contact (counted in
+  // Per joint (index of its entry in ContactStore::smooth_joints): 1 a joint contact (counted in
   // `contacts`), 0 an open one (counted in `open`).
   std::vector<std::uint8_t> touching;
 };

@@ -7,10 +7,10 @@
 
 namespace cdem::dem {
 
-void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const NeighborList& list,
+void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const ContactStore& list,
                          int threads) {
   const std::size_t n = discs.size(), count = list.keys.size(), walls = list.wall_keys.size();
-  if (planned_build_ == list.build_count && planned_pairs_ == count && planned_discs_ == n &&
+  if (planned_build_ == list.merge_count && planned_pairs_ == count && planned_discs_ == n &&
       planned_walls_ == walls && planned_threads_ == threads)
     return;
   first_start_.assign(n + 1, 0);
@@ -79,7 +79,7 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Neighbo
   sums_.resize(count);
   virial_.resize(count);
   wall_slip_.resize(walls);
-  planned_build_ = list.build_count;
+  planned_build_ = list.merge_count;
   planned_pairs_ = count;
   planned_discs_ = n;
   planned_walls_ = walls;
@@ -114,7 +114,7 @@ void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_
   }
 }
 
-ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, NeighborList& list,
+ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, ContactStore& list,
                                  ContactForces& pair, ContactForces& wall_pair,
                                  const ThreadedStepSettings& s) {
   using Geometry = DiscPairKernel::Geometry;

@@ -52,7 +52,7 @@ struct ThreadedStepSettings {
 
 class ThreadedCycle {
  public:
-  ThreadedStep step(Bodies& bodies, Discs& discs, Walls& walls, NeighborList& list,
+  ThreadedStep step(Bodies& bodies, Discs& discs, Walls& walls, ContactStore& list,
                     ContactForces& pair, ContactForces& wall_pair, const ThreadedStepSettings& s);
 
  private:
@@ -75,7 +75,7 @@ class ThreadedCycle {
   // Cuts the discs into `threads` ranges and finds the shared discs (rebuilt when the list or
   // the team is): per-disc lists of the pairs (where each disc is the second disc, where the
   // first) and of its disc-wall pairs.
-  void plan(const Bodies& bodies, const Discs& discs, const NeighborList& list, int threads);
+  void plan(const Bodies& bodies, const Discs& discs, const ContactStore& list, int threads);
   // Sums, in pair order, the pairs of the shared discs of [begin, end).
   void sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const;
 

@@ -169,6 +169,7 @@ void World::rebuild() {
     }
   }
   neighbors_.build(discs_, walls_);
+  contacts_.merge(neighbors_.pair_candidates(), neighbors_.wall_candidates(), discs_);
   moved_bound_ = 0;
   update_time_step();
   rebuild_pending_ = false;
@@ -186,13 +187,13 @@ void World::update_time_step() {
                      discs_.offset_y[d] * discs_.offset_y[d]) +
            discs_.r[d];
   };
-  for (std::size_t k = 0; k < neighbors_.keys.size(); ++k) {
-    const std::int32_t i = neighbors_.first[k], j = neighbors_.second[k];
-    const std::uint8_t cls = neighbors_.contact_class[k];
-    const auto kind = static_cast<BondKind>(neighbors_.state.bond[k]);
+  for (std::size_t k = 0; k < contacts_.keys.size(); ++k) {
+    const std::int32_t i = contacts_.first[k], j = contacts_.second[k];
+    const std::uint8_t cls = contacts_.contact_class[k];
+    const auto kind = static_cast<BondKind>(contacts_.state.bond[k]);
     const ContactStiffness c =
         kind == BondKind::SmoothJoint
-            ? smooth_joint_stiffness(neighbors_.smooth_joints, neighbors_.state.joint[k])
+            ? smooth_joint_stiffness(contacts_.smooth_joints, contacts_.state.joint[k])
             : pair_stiffness(settings_.laws[cls], settings_.bonds[cls], kind, discs_.r[i],
                              discs_.r[j]);
     const double kt = std::max(c.normal, c.shear);
@@ -205,8 +206,8 @@ void World::update_time_step() {
   const ContactStiffness wall =
       wall_stiffness(settings_.laws[static_cast<int>(ContactClass::Wall)]);
   const double kn_wall = wall.normal, ks_wall = wall.shear;
-  for (std::size_t k = 0; k < neighbors_.wall_keys.size(); ++k) {
-    const std::int32_t i = neighbors_.wall_disc[k];
+  for (std::size_t k = 0; k < contacts_.wall_keys.size(); ++k) {
+    const std::int32_t i = contacts_.wall_disc[k];
     const double a = arm(i);
     stiffness_[discs_.body[i]] += std::max(kn_wall, ks_wall);
     rot_stiffness_[discs_.body[i]] += ks_wall * a * a;
@@ -308,11 +309,11 @@ void World::step() {
     ts.alpha = settings_.local_damping;
     ts.book_energy = book;
     ts.threads = settings_.threads;
-    threaded = threaded_.step(bodies_, discs_, walls_, neighbors_, pair_forces_, wall_forces_, ts);
+    threaded = threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts);
     last_pass_ = threaded.pass;
   } else {
     last_pass_ =
-        compute_contact_forces(discs_, walls_, neighbors_, pair_forces_, wall_forces_,
+        compute_contact_forces(discs_, walls_, contacts_, pair_forces_, wall_forces_,
                                settings_.laws, settings_.bonds, dt_, settings_.max_overlap_ratio);
   }
   if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0) {
@@ -320,22 +321,22 @@ void World::step() {
     long disc;
     if (last_pass_.bad_pair >= 0) {
       const long k = last_pass_.bad_pair;
-      disc = neighbors_.first[k];
-      const std::int32_t j = neighbors_.second[k];
+      disc = contacts_.first[k];
+      const std::int32_t j = contacts_.second[k];
       what << "overlaps disc " << j << " by " << pair_forces_.overlap[k] << " m, more than "
            << settings_.max_overlap_ratio << " x the smaller radius "
            << std::min(discs_.r[disc], discs_.r[j]) << " m";
     } else {
       const long k = last_pass_.bad_wall_pair;
-      disc = neighbors_.wall_disc[k];
-      what << "overlaps wall " << neighbors_.wall_index[k] << " by " << wall_forces_.overlap[k]
+      disc = contacts_.wall_disc[k];
+      what << "overlaps wall " << contacts_.wall_index[k] << " by " << wall_forces_.overlap[k]
            << " m, more than " << settings_.max_overlap_ratio << " x its radius " << discs_.r[disc]
            << " m";
     }
     fail(what.str(), disc);
   }
   if (last_pass_.bonds_broken)
-    cracks_.record(pair_forces_, neighbors_, discs_, settings_.bonds, time_);
+    cracks_.record(pair_forces_, contacts_, discs_, settings_.bonds, time_);
   friction_dissipated_ += last_pass_.slip_work;
   bond_energy_released_ += last_pass_.bond_energy_released;
   if (!servos_.empty()) update_wall_servos(*this);

@@ -199,7 +199,8 @@ class World {
   const Bodies& bodies() const { return bodies_; }
   const Discs& discs() const { return discs_; }
   const Walls& walls() const { return walls_; }
-  const NeighborList& neighbors() const { return neighbors_; }
+  const NeighborList& neighbors() const { return neighbors_; }  // the broad phase
+  const ContactStore& contacts() const { return contacts_; }    // contacts and their state
   const ContactForces& pair_forces() const { return pair_forces_; }
   const ContactForces& wall_forces() const { return wall_forces_; }
   const CrackLog& cracks() const { return cracks_; }  // every bond failure, in order
@@ -227,7 +228,8 @@ class World {
   Bodies bodies_;
   Discs discs_;
   Walls walls_;
-  NeighborList neighbors_;
+  NeighborList neighbors_;  // reports the candidate pairs
+  ContactStore contacts_;   // owns them and their state, merged by key at each rebuild
   ContactForces pair_forces_, wall_forces_;
   CrackLog cracks_;  // every bond failure, in the order they happened
   WallServos servos_;

@@ -7,7 +7,7 @@
 namespace cdem::dem {
 
 JointStates joint_states(const World& world, const std::vector<Crack>& cracks, double time0) {
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   const SmoothJointStates& joints = list.smooth_joints;
   const std::size_t n = joints.size();
   JointStates s;

@@ -12,7 +12,7 @@
 namespace cdem::dem {
 
 // The state of every smooth joint of a world, in the order of its entries
-// (NeighborList::smooth_joints, so index e is the joint InstalledJoints::touching[e] describes).
+// (ContactStore::smooth_joints, so index e is the joint InstalledJoints::touching[e] describes).
 struct JointStates {
   std::vector<std::int32_t> first, second;  // the two world discs (first < second)
   std::vector<std::int32_t> set;            // its [[test.joints]] set, 0 ..

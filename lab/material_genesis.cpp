@@ -72,7 +72,7 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
   std::vector<std::int32_t> world_disc_of;
   World world = world_from_specimen(specimen, settings, &world_disc_of);
   world.refresh_neighbors();
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   const Discs& d = world.discs();
 
   // The contact pairs (gap within the bond tolerance), found once; removal only deletes pairs.

@@ -318,14 +318,14 @@ void ResultFile::snapshot(const World& world, long step, double time) {
   }
   snapshot_bonds(root, g, world, time);
   bond_count_.assign(d.size(), 0);
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   for (std::size_t k = 0; k < list.keys.size(); ++k)
     if (list.intact_bonds(k) > 0) {
       ++bond_count_[list.first[k]];
       ++bond_count_[list.second[k]];
     }
   write_array(g, "bonds", bond_count_, "", "intact bonds of the disc");
-  const std::size_t joints = world.neighbors().smooth_joints.size();
+  const std::size_t joints = world.contacts().smooth_joints.size();
   if (joints > 0) snapshot_joints(root, g, world, time, index == 0);
   snapshots_.push_back({group_, index, step, time, d.size(), bond_keys_.size(), joints});
 }
@@ -334,7 +334,7 @@ void ResultFile::snapshot(const World& world, long step, double time) {
 // network (their pairs, class and law in `root`); every snapshot stores each one's intact
 // bonds (flat joint: bonded elements; 0 = broken) and its latest failure from the crack log.
 void ResultFile::snapshot_bonds(H5::Group& root, H5::Group& g, const World& world, double time) {
-  const NeighborList& list = world.neighbors();
+  const ContactStore& list = world.contacts();
   const auto& cracks = world.cracks().cracks;
   if (bond_group_ != group_) {
     bond_group_ = group_;

@@ -138,7 +138,7 @@ void ShpbGaugeRecords::reserve(std::size_t n) {
 
 double ShpbBars::coupling_number(const World& world) const {
   // Before the first force pass of the neighbour list there are no contact forces to count.
-  if (world.wall_forces().overlap.size() != world.neighbors().wall_keys.size()) return 0;
+  if (world.wall_forces().overlap.size() != world.contacts().wall_keys.size()) return 0;
   const double kn =
       world.settings().laws[static_cast<int>(ContactClass::Wall)].wall_normal_stiffness();
   const long contacts = std::max(wall_contact_count(world, incident_face_),

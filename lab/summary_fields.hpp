@@ -1,6 +1,6 @@
 #pragma once
 // The names of the fields of the run summary (`cdem run --summary`, docs/lab_tests.md "Summary")
-// that other programs read by name: apps/run_summary.cpp writes them, calibrate/ gathers them
+// that other programs read by name: lab/run_summary.cpp writes them, calibrate/ gathers them
 // through campaigns. One spelling, so a renamed field changes both sides or neither.
 namespace cdem::dem::summary_field {
 

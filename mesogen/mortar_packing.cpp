@@ -144,17 +144,17 @@ double affine_stiffness(const dem::World& w, double area, AffineContacts which) 
   const dem::Discs& d = w.discs();
   const dem::LinearContact& law = w.settings().laws[static_cast<int>(dem::ContactClass::Mortar)];
   double sum = 0;
-  for (std::size_t k = 0; k < w.neighbors().keys.size(); ++k) {
+  for (std::size_t k = 0; k < w.contacts().keys.size(); ++k) {
     if (touching_only && w.pair_forces().overlap[k] <= 0) continue;
-    const std::int32_t i = w.neighbors().first[k], j = w.neighbors().second[k];
+    const std::int32_t i = w.contacts().first[k], j = w.contacts().second[k];
     const double l = d.r[i] + d.r[j];
     sum += law.normal_stiffness(d.r[i], d.r[j]) * l * l;
   }
   const double kw =
       w.settings().laws[static_cast<int>(dem::ContactClass::Wall)].wall_normal_stiffness();
-  for (std::size_t k = 0; k < w.neighbors().wall_keys.size(); ++k) {
+  for (std::size_t k = 0; k < w.contacts().wall_keys.size(); ++k) {
     if (touching_only && w.wall_forces().overlap[k] <= 0) continue;
-    const double l = d.r[w.neighbors().wall_disc[k]];
+    const double l = d.r[w.contacts().wall_disc[k]];
     sum += kw * l * l;
   }
   return sum / (2.0 * area);

@@ -20,7 +20,6 @@
 #include <toml++/toml.h>
 
 #include "apps/lab_specimen.hpp"
-#include "apps/run_summary.hpp"
 #include "core/input_error.hpp"
 #include "core/version.hpp"
 #include "io/atomic_output.hpp"
@@ -29,6 +28,7 @@
 #include "lab/biaxial_test.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/result_file.hpp"
+#include "lab/run_summary.hpp"
 #include "mesogen/generate.hpp"
 
 namespace py = pybind11;
@@ -228,7 +228,7 @@ py::dict world_state(const dem::World& world, const dem::LabHistory& h, std::siz
   const dem::Discs& d = world.discs();
   // Per disc and per bonded pair: intact bonds (a flat joint's bonded elements).
   std::vector<std::int32_t> intact(d.size(), 0), bond_first, bond_second, bond_intact;
-  const dem::NeighborList& list = world.neighbors();
+  const dem::ContactStore& list = world.contacts();
   for (std::size_t k = 0; k < list.keys.size(); ++k) {
     const int n = list.intact_bonds(k);
     if (n == 0) continue;
@@ -309,7 +309,7 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
       return make_hooks(k);
     });
     if (result_file) result_file->commit(series);
-    summary = apps::series_json(series, input).dump(2);
+    summary = to_json(dem::make_series_summary(series, input)).dump(2);
     for (const dem::LabTestResult& r : series.runs) {
       histories.append(history_arrays(r.history));
       cracks.append(crack_arrays(r.cracks));
@@ -318,7 +318,7 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
   } else {
     const dem::LabTestResult result = dem::run_lab_test(specimen, input, make_hooks(0));
     if (result_file) result_file->commit(result);
-    summary = apps::summary_json(result, input).dump(2);
+    summary = to_json(dem::make_run_summary(result, input)).dump(2);
     histories.append(history_arrays(result.history));
     cracks.append(crack_arrays(result.cracks));
     joint_lists.append(joint_arrays(result));

@@ -94,7 +94,7 @@ WorldHashes hash_world(const World& w) {
   v.add(w.walls().vy);
   s.add(w.bodies().omega);
   s.add(w.discs().omega);
-  const NeighborList& n = w.neighbors();
+  const ContactStore& n = w.contacts();
   sh.add(n.keys);
   sh.add(n.state.shear_force);
   sh.add(n.wall_keys);

@@ -59,7 +59,7 @@ Expected expected(const ParallelBondParams& p) {
 }
 
 bool bonded(const World& w) {
-  return w.neighbors().state.bond.at(0) != 0;
+  return w.contacts().state.bond.at(0) != 0;
 }
 
 // Velocity of disc 1 along the current tangent t = (-ny, nx) of the pair (an orbit about
@@ -199,7 +199,7 @@ TEST(ParallelBondWorld, ShearFailureAtTauBIncludingFrictionAngle) {
   for (int n = 0; n < close_steps; ++n) w.step();
   const double delta_c = close_steps * v_close * kDt;
   const double sigma = -e.kbn * delta_c;
-  EXPECT_NEAR(w.neighbors().state.bond_normal[0] / e.ab, sigma, 1e-9 * std::abs(sigma));
+  EXPECT_NEAR(w.contacts().state.bond_normal[0] / e.ab, sigma, 1e-9 * std::abs(sigma));
   const double tau_b = p.cohesion - sigma * std::tan(p.friction_angle);
   const double speed = 0.01;
   const double per_step = e.kbs * speed * kDt;  // Pa per step
@@ -251,7 +251,7 @@ TEST(ParallelBondWorld, AfterFailureLinearWithFriction) {
   }
   const double slid = 500 * speed * kDt;
   EXPECT_NEAR(w.friction_dissipated() - friction_before, mu * fn * slid, 1e-5 * mu * fn * slid);
-  const double shear = std::abs(w.neighbors().state.shear_force[0]);
+  const double shear = std::abs(w.contacts().state.shear_force[0]);
   const double fn_now = kn * (kL - std::hypot(w.bodies().x[1], w.bodies().y[1]));
   EXPECT_NEAR(shear, mu * fn_now, 1e-6 * fn);
   EXPECT_GT(w.friction_dissipated(), 0);
@@ -313,14 +313,14 @@ TEST(ContactBondWorld, NoSlipWhileBondedThenBreaksAtTauCsA) {
     w.step();
     ASSERT_EQ(bonded(w), n < fail_step) << "step " << n;
     if (n < fail_step) {
-      ASSERT_NEAR(std::abs(w.neighbors().state.shear_force[0]), n * per_step, 1e-6 * n * per_step);
+      ASSERT_NEAR(std::abs(w.contacts().state.shear_force[0]), n * per_step, 1e-6 * n * per_step);
       ASSERT_EQ(w.friction_dissipated(), 0);  // no slip while bonded
     }
   }
   ASSERT_EQ(w.cracks().size(), 1u);
   EXPECT_EQ(w.cracks().cracks[0].mode, cdem::dem::BondFailure::Shear);
   // Broken, at zero normal force: the friction limit mu Fn = 0 leaves no shear force.
-  EXPECT_EQ(w.neighbors().state.shear_force[0], 0);
+  EXPECT_EQ(w.contacts().state.shear_force[0], 0);
 }
 
 }  // namespace

@@ -138,16 +138,16 @@ TEST(BondInstallation, BondsExactlyWithinToleranceWithTheirClass) {
     const auto i = static_cast<std::uint32_t>(map[a]), j = static_cast<std::uint32_t>(map[b]);
     return pair_key(std::min(i, j), std::max(i, j));
   };
-  const auto& keys = w.neighbors().keys;
+  const auto& keys = w.contacts().keys;
   for (const auto& [a, b] : {std::pair{8, 9}, std::pair{10, 5}}) {
     const auto it = std::find(keys.begin(), keys.end(), key(a, b));
     ASSERT_NE(it, keys.end()) << a << "-" << b << " should be a candidate";
-    EXPECT_EQ(w.neighbors().state.bond[static_cast<std::size_t>(it - keys.begin())], 0);
+    EXPECT_EQ(w.contacts().state.bond[static_cast<std::size_t>(it - keys.begin())], 0);
   }
   EXPECT_EQ(std::find(keys.begin(), keys.end(), key(6, 11)), keys.end());
 
   std::set<std::uint64_t> bonded;
-  const NeighborList& nl = w.neighbors();
+  const ContactStore& nl = w.contacts();
   for (std::size_t k = 0; k < nl.keys.size(); ++k) {
     if (!nl.state.bond[k]) continue;
     bonded.insert(nl.keys[k]);
@@ -189,9 +189,9 @@ TEST(BondInstallation, BondedPairSurvivesRebuildsBeyondTheSkin) {
   w.set_body_velocity(1, 0, 0, 0);
   w.step();
   EXPECT_GT(w.neighbors().build_count, builds + 1);
-  ASSERT_EQ(w.neighbors().keys.size(), 1u);
-  EXPECT_EQ(w.neighbors().keys[0], pair_key(0, 1));
-  EXPECT_EQ(w.neighbors().state.bond[0], static_cast<std::uint8_t>(BondKind::Parallel));
+  ASSERT_EQ(w.contacts().keys.size(), 1u);
+  EXPECT_EQ(w.contacts().keys[0], pair_key(0, 1));
+  EXPECT_EQ(w.contacts().state.bond[0], static_cast<std::uint8_t>(BondKind::Parallel));
   // The bond still pulls with kbn Ab delta.
   const double kbn_ab = 16e9 / (2 * kRm) * 2 * kRm;
   const double delta = w.bodies().x[1] - x0;

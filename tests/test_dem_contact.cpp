@@ -61,6 +61,22 @@ TEST(LinearContactLaw, StiffnessFollowsSpecFormulas) {
   EXPECT_DOUBLE_EQ(cdem::dem::coulomb_limit(3.0, 0.5, 8.0), 3.0);
 }
 
+// The kernel's spelling of ks, kn x (1 / kappa), and the time step's, kn / kappa, are one
+// stiffness: each is correctly rounded step by step, so they stay within 3 units of roundoff
+// (2^-53 relative) of the exact kn / kappa and so within 6 of each other; for a power-of-two
+// kappa both are exact scalings and agree bit for bit.
+TEST(LinearContactLaw, TheTwoSpellingsOfTheShearStiffnessAgreeToRoundoff) {
+  const double u = std::ldexp(1.0, -53);
+  for (const double kappa : {1.45, 1.0 / 0.7, 2.0, 4.0}) {
+    const LinearContact law{kE, kappa, 0.5};
+    for (double kn = 1e7; kn < 1e11; kn *= 1.0173) {
+      const double kernel = kn * law.shear_per_normal_stiffness();
+      EXPECT_LE(std::abs(kernel - law.shear_stiffness(kn)), 6 * u * law.shear_stiffness(kn));
+      if (kappa == 2.0 || kappa == 4.0) EXPECT_EQ(kernel, law.shear_stiffness(kn));
+    }
+  }
+}
+
 TEST(DiscDiscImpact, ContactTimeAndRestitution) {
   const double r1 = 1e-3, r2 = 0.6e-3;
   const double m1 = kRho * pi * r1 * r1, m2 = kRho * pi * r2 * r2;

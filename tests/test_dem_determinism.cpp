@@ -40,8 +40,8 @@ void expect_same_bits(const World& one, const World& two) {
   EXPECT_EQ(one.discs().x, two.discs().x);
   EXPECT_EQ(one.discs().y, two.discs().y);
   EXPECT_EQ(one.bodies().omega, two.bodies().omega);
-  EXPECT_EQ(one.neighbors().keys, two.neighbors().keys);
-  EXPECT_EQ(one.neighbors().state.shear_force, two.neighbors().state.shear_force);
+  EXPECT_EQ(one.contacts().keys, two.contacts().keys);
+  EXPECT_EQ(one.contacts().state.shear_force, two.contacts().state.shear_force);
   EXPECT_EQ(one.walls().fx, two.walls().fx);
   EXPECT_EQ(one.energy().damping, two.energy().damping);
   EXPECT_EQ(one.friction_dissipated(), two.friction_dissipated());

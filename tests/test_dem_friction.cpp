@@ -64,7 +64,7 @@ TEST(Friction, ShearForceRotatesWithTheContactPlane) {
   while (w.bodies().fy[1] < 0.3 * kMu * fn) w.step();
   w.set_body_velocity(1, 0, 0, 0);
   w.step();
-  const double fs0 = w.neighbors().state.shear_force[0];
+  const double fs0 = w.contacts().state.shear_force[0];
   ASSERT_GT(fs0, 0);
 
   // Rigid rotation of the pair about its midpoint by a quarter turn: no relative motion at the
@@ -94,7 +94,7 @@ TEST(Friction, ShearForceRotatesWithTheContactPlane) {
   const double sx = fx - fn_now * nx, sy = fy - fn_now * ny;
   EXPECT_NEAR(sx, -fs0 * ny, 1e-9 * fs0);
   EXPECT_NEAR(sy, fs0 * nx, 1e-9 * fs0);
-  EXPECT_NEAR(w.neighbors().state.shear_force[0], fs0, 1e-9 * fs0);
+  EXPECT_NEAR(w.contacts().state.shear_force[0], fs0, 1e-9 * fs0);
 }
 
 TEST(Friction, WallShearSlipsAtMuFn) {

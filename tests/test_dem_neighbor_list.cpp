@@ -29,14 +29,14 @@ TEST(NeighborList, CandidatesAreSortedUniqueAndComplete) {
   for (int k = 0; k < 400; ++k)
     w.add_disc(rng.uniform(0, 0.02), rng.uniform(0, 0.02), rng.uniform(2e-4, 5e-4), 2000);
   w.step();
-  const auto& nl = w.neighbors();
+  const auto& nl = w.contacts();
   ASSERT_TRUE(std::is_sorted(nl.keys.begin(), nl.keys.end()));
   ASSERT_TRUE(std::adjacent_find(nl.keys.begin(), nl.keys.end()) == nl.keys.end());
   // Brute force: every pair within the skin is a candidate, and nothing else.
   std::size_t expected = 0;
   for (std::size_t i = 0; i < w.discs().size(); ++i)
     for (std::size_t j = i + 1; j < w.discs().size(); ++j) {
-      const double reach = w.discs().r[i] + w.discs().r[j] + nl.skin;
+      const double reach = w.discs().r[i] + w.discs().r[j] + w.neighbors().skin;
       if (std::hypot(w.discs().x[j] - w.discs().x[i], w.discs().y[j] - w.discs().y[i]) < reach) {
         ++expected;
         EXPECT_TRUE(std::binary_search(nl.keys.begin(), nl.keys.end(), cdem::dem::pair_key(i, j)));
@@ -53,9 +53,9 @@ TEST(NeighborList, SkipsPebblesOfOneClumpAndInactiveDiscs) {
               {1, 0, 1});
   w.add_disc(-1.25e-3, 0, 0.4e-3, 2000);
   w.step();
-  ASSERT_EQ(w.neighbors().keys.size(), 1u);
-  EXPECT_EQ(w.neighbors().first[0], 0);
-  EXPECT_EQ(w.neighbors().second[0], 3);
+  ASSERT_EQ(w.contacts().keys.size(), 1u);
+  EXPECT_EQ(w.contacts().first[0], 0);
+  EXPECT_EQ(w.contacts().second[0], 3);
 }
 
 TEST(NeighborList, ShearStateSurvivesRebuilds) {
@@ -71,7 +71,7 @@ TEST(NeighborList, ShearStateSurvivesRebuilds) {
   for (int n = 0; n < 200; ++n) w.step();
   w.set_body_velocity(1, 0, 0, 0);
   w.step();
-  const double fs = w.neighbors().state.shear_force[0];
+  const double fs = w.contacts().state.shear_force[0];
   ASSERT_GT(fs, 0);
   const long builds = w.neighbors().build_count;
 
@@ -85,8 +85,8 @@ TEST(NeighborList, ShearStateSurvivesRebuilds) {
   w.invalidate_neighbors();
   w.step();
   EXPECT_GT(w.neighbors().build_count, builds + 1);
-  ASSERT_EQ(w.neighbors().keys[0], cdem::dem::pair_key(0, 1));
-  EXPECT_EQ(w.neighbors().state.shear_force[0], fs);
+  ASSERT_EQ(w.contacts().keys[0], cdem::dem::pair_key(0, 1));
+  EXPECT_EQ(w.contacts().state.shear_force[0], fs);
   EXPECT_NEAR(w.bodies().fy[1], fs, 1e-12 * fs);
 }
 
@@ -121,7 +121,7 @@ TEST(NeighborList, NoTouchingPairIsMissedBetweenRebuilds) {
         if (d.body[i] == d.body[j]) continue;
         if (std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) >= d.r[i] + d.r[j]) continue;
         ++checked;
-        ASSERT_TRUE(std::binary_search(w.neighbors().keys.begin(), w.neighbors().keys.end(),
+        ASSERT_TRUE(std::binary_search(w.contacts().keys.begin(), w.contacts().keys.end(),
                                        cdem::dem::pair_key(i, j)))
             << "step " << n << " pair " << i << ' ' << j;
       }
@@ -139,10 +139,10 @@ TEST(NeighborList, OpeningContactForgetsItsShear) {
   w.set_prescribed(1, true);
   w.set_body_velocity(1, 0, 0, 2.0);
   for (int n = 0; n < 100; ++n) w.step();
-  ASSERT_GT(w.neighbors().state.shear_force[0], 0);
+  ASSERT_GT(w.contacts().state.shear_force[0], 0);
   w.set_body_velocity(1, 0.02, 0, 0);  // pull apart by 2e-9 m per step
   for (int n = 0; n < 1000; ++n) w.step();
-  EXPECT_EQ(w.neighbors().state.shear_force[0], 0.0);
+  EXPECT_EQ(w.contacts().state.shear_force[0], 0.0);
 }
 
 }  // namespace

@@ -125,7 +125,7 @@ TEST(SmoothJoint, TensileFailureAtSigmaCTimesA) {
   EXPECT_EQ(joint_normal_force(w), 0.0);  // open and unbonded: no force
   EXPECT_EQ(joint_shear_force(w), 0.0);
   EXPECT_EQ(intact_smooth_joints(w), 0);
-  EXPECT_EQ(w.neighbors().intact_bonds(0), 0);
+  EXPECT_EQ(w.contacts().intact_bonds(0), 0);
 }
 
 // A bonded joint of zero strength does not break at zero force (installed on a pair apart within
@@ -240,7 +240,7 @@ TEST(SmoothJoint, ElasticLoadUnloadReturnsItsEnergy) {
   EXPECT_EQ(w.friction_dissipated(), 0.0);
 }
 
-// The joint's state lives in NeighborList::smooth_joints, referred to by index: a rebuild of the
+// The joint's state lives in ContactStore::smooth_joints, referred to by index: a rebuild of the
 // neighbour list (here the one adding a disc asks for) keeps it, and the joint goes on from where
 // it was.
 TEST(SmoothJoint, StateSurvivesANeighbourRebuild) {
@@ -257,13 +257,13 @@ TEST(SmoothJoint, StateSurvivesANeighbourRebuild) {
   for (int n = 0; n < 20; ++n) w.step();
   EXPECT_GT(w.neighbors().build_count, builds);
   EXPECT_NEAR(joint_normal_force(w), 2 * fn, 1e-9 * fn);
-  EXPECT_EQ(w.neighbors().smooth_joints.size(), 1u);
+  EXPECT_EQ(w.contacts().smooth_joints.size(), 1u);
 }
 
 TEST(SmoothJoint, TimeStepSeesTheJointStiffness) {
   const SmoothJointParams p = joint_params();
   World w = joint_pair(p);
-  const ContactStiffness k = smooth_joint_stiffness(w.neighbors().smooth_joints, 0);
+  const ContactStiffness k = smooth_joint_stiffness(w.contacts().smooth_joints, 0);
   const double kna = p.normal_stiffness * kArea, ksa = p.shear_stiffness * kArea;
   EXPECT_DOUBLE_EQ(k.normal, std::max(kna, ksa));
   EXPECT_DOUBLE_EQ(k.shear, std::max(kna, ksa));

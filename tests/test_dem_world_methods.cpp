@@ -23,6 +23,7 @@ static_assert(std::is_same_v<decltype(std::declval<World&>().bodies()), const Bo
 static_assert(std::is_same_v<decltype(std::declval<World&>().discs()), const Discs&>);
 static_assert(std::is_same_v<decltype(std::declval<World&>().walls()), const Walls&>);
 static_assert(std::is_same_v<decltype(std::declval<World&>().neighbors()), const NeighborList&>);
+static_assert(std::is_same_v<decltype(std::declval<World&>().contacts()), const ContactStore&>);
 static_assert(std::is_same_v<decltype(std::declval<World&>().settings()), const WorldSettings&>);
 
 constexpr double kR = 1e-3;  // m, disc radius
@@ -98,11 +99,11 @@ TEST(WorldMethods, NeighbourSkinDecidesWhichPairIsACandidateFromTheNextStep) {
   w.set_neighbor_skin(0.4 * kR);
   w.step();
   EXPECT_EQ(w.neighbors().skin, 0.4 * kR);
-  EXPECT_EQ(w.neighbors().keys.size(), 0u);
+  EXPECT_EQ(w.contacts().keys.size(), 0u);
   w.set_neighbor_skin(0.6 * kR);
   w.step();
   EXPECT_EQ(w.neighbors().skin, 0.6 * kR);
-  EXPECT_EQ(w.neighbors().keys.size(), 1u);
+  EXPECT_EQ(w.contacts().keys.size(), 1u);
 }
 
 TEST(WorldMethods, ServosAreAddedRetargetedAndRemovedByWall) {

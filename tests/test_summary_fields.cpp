@@ -2,8 +2,8 @@
 // the summaries real runs write, hold numbers, and hold the figure their target names: a uniaxial
 // test for sigma_u, E and nu; a Brazilian and a direct tension test for sigma_t (a calibration
 // names one of the two); three-point bending for G_F. Each value is read as a campaign gathers it
-// (json_at_path on the JSON text `cdem run --summary` writes), so a renamed field fails here, not
-// silently in calibration.
+// (json_at_path on the JSON text `cdem run --summary` writes) and as calibration reads it (lab's
+// summary reader, target_figure), so a renamed field fails here, not silently in calibration.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,10 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/run_summary.hpp"
 #include "calibrate/calibrate_input.hpp"
 #include "campaign/campaign_run.hpp"
 #include "lab/lab_test.hpp"
+#include "lab/run_summary.hpp"
 #include "lab/summary_fields.hpp"
 #include "lab_test_fixtures.hpp"
 #include "scratch_dir.hpp"
@@ -46,7 +46,9 @@ double expected(CalibrationTarget t, const LabTestResult& r) {
 // Checks every target a test of `kind` measures for calibration in the summary of `r`.
 void expect_targets_of(cdem::calib::TestKind kind, const LabTestResult& r,
                        const cdem::dem::LabTestInput& in, int targets) {
-  const nlohmann::json summary = nlohmann::json::parse(cdem::apps::summary_json(r, in).dump(2));
+  const nlohmann::json summary =
+      nlohmann::json::parse(to_json(cdem::dem::make_run_summary(r, in)).dump(2));
+  const cdem::dem::RunSummary read = cdem::dem::run_summary_from_json(summary, "summary.json");
   int checked = 0;
   for (int k = 0; k < cdem::calib::kCalibrationTargetCount; ++k) {
     const auto t = static_cast<CalibrationTarget>(k);
@@ -57,6 +59,7 @@ void expect_targets_of(cdem::calib::TestKind kind, const LabTestResult& r,
         << field << " is not a number in the " << summary["test"] << " summary";
     EXPECT_GT(value.get<double>(), 0) << field;
     EXPECT_EQ(value.get<double>(), expected(t, r)) << field;
+    EXPECT_EQ(cdem::calib::target_figure(read, t), expected(t, r)) << field;
     ++checked;
   }
   EXPECT_EQ(checked, targets);

@@ -46,7 +46,7 @@ struct Probe {
   void start(const World& w) {
     x0 = w.discs().x;
     y0 = w.discs().y;
-    const NeighborList& nl = w.neighbors();
+    const ContactStore& nl = w.contacts();
     for (std::size_t k = 0; k < nl.keys.size(); ++k)
       if (nl.state.bond[k] != 0) bonded0.insert(nl.keys[k]);
   }
@@ -74,7 +74,7 @@ struct Probe {
     for (std::size_t i = 0; i < d.x.size(); ++i)
       fd << i << ',' << d.x[i] << ',' << d.y[i] << ',' << x0[i] << ',' << y0[i] << ',' << d.r[i]
          << ',' << d.body[i] << ',' << int(w.bodies().is_clump[d.body[i]]) << '\n';
-    const NeighborList& nl = w.neighbors();
+    const ContactStore& nl = w.contacts();
     const ContactForces& pf = w.pair_forces();
     std::ofstream fc = open("contacts" + tag);
     fc << "first,second,class,bond,elements,bonded0,overlap,normal,fx,fy\n";

@@ -1,0 +1,97 @@
+#pragma once
+// The contact store: every candidate contact (disc-disc and disc-wall) and the state it carries
+// from step to step (shear force, bond state, joints). The broad phase (dem/neighbor_list.hpp)
+// only reports candidate pairs; the store owns the state and merges it by key when the broad
+// phase reports a new set (Box2D v3's split of broad phase and contact manager): a pair present
+// before and after keeps its state, a new pair starts from zero state, and a pair with an intact
+// bond stays whatever its gap.
+#include <cstdint>
+#include <vector>
+
+#include "dem/discs.hpp"
+#include "dem/flat_joint_states.hpp"
+#include "dem/smooth_joint_states.hpp"
+
+namespace cdem::dem {
+
+// Persistent per-contact state, structure of arrays (sign conventions of
+// dem/parallel_bond.hpp: n from the first disc to the second, t = (-ny, nx)).
+struct ContactStates {
+  std::vector<double> shear_force;  // N, linear part, component along the tangent t
+  std::vector<std::uint8_t> bond;   // BondKind of the intact bond; 0 = none or broken
+  // Parallel bond: normal force (N, tension positive), shear force on the second disc along t
+  // (N), moment on the second disc (N m).
+  std::vector<double> bond_normal, bond_shear, bond_moment;
+  // Contact bond: gap at installation (m, >= 0); the bonded linear part is at zero normal
+  // force at this gap, Fn = kn (overlap + bond_gap).
+  std::vector<double> bond_gap;
+  // Flat joint: index of the interface's entry in ContactStore::flat_joints; smooth joint: of
+  // its entry in ContactStore::smooth_joints.
+  std::vector<std::int32_t> joint;
+
+  void resize(std::size_t n) {
+    shear_force.assign(n, 0.0);
+    bond.assign(n, 0);
+    bond_normal.assign(n, 0.0);
+    bond_shear.assign(n, 0.0);
+    bond_moment.assign(n, 0.0);
+    bond_gap.assign(n, 0.0);
+    joint.assign(n, -1);
+  }
+  void copy_from(std::size_t to, const ContactStates& from, std::size_t from_index) {
+    shear_force[to] = from.shear_force[from_index];
+    bond[to] = from.bond[from_index];
+    bond_normal[to] = from.bond_normal[from_index];
+    bond_shear[to] = from.bond_shear[from_index];
+    bond_moment[to] = from.bond_moment[from_index];
+    bond_gap[to] = from.bond_gap[from_index];
+    joint[to] = from.joint[from_index];
+  }
+  // Removes the bond of pair k (after a failure): the contact is plain linear from then on.
+  void break_bond(std::size_t k) {
+    bond[k] = 0;
+    bond_normal[k] = bond_shear[k] = bond_moment[k] = bond_gap[k] = 0;
+    joint[k] = -1;
+  }
+  std::size_t size() const { return shear_force.size(); }
+};
+
+inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+class ContactStore {
+ public:
+  // Disc-disc contacts: keys (i << 32 | j, i < j) sorted ascending, with the two indices, the
+  // contact class and the persistent state aligned with them.
+  std::vector<std::uint64_t> keys;
+  std::vector<std::int32_t> first, second;
+  std::vector<std::uint8_t> contact_class;  // ContactClass of the pair (from the materials)
+  ContactStates state;
+  // Disc-wall contacts: keys (disc << 32 | wall) sorted ascending.
+  std::vector<std::uint64_t> wall_keys;
+  std::vector<std::int32_t> wall_disc, wall_index;
+  ContactStates wall_state;
+  // The flat joints' interfaces, referred to by state.joint (entries outlive their pairs).
+  FlatJointStates flat_joints;
+  // The smooth joints, referred to by state.joint (entries outlive their pairs).
+  SmoothJointStates smooth_joints;
+  long merge_count = 0;  // merges so far: the lists' layout changes only at a merge
+
+  // Intact bonds of disc-disc pair k: 0 or 1 (a smooth joint: 1 while bonded), or a flat
+  // joint's bonded elements.
+  int intact_bonds(std::size_t k) const;
+
+  // Takes the broad phase's candidates (sorted keys: disc-disc i << 32 | j with i < j, and
+  // disc << 32 | wall): the contacts become the candidates plus the old disc-disc pairs and
+  // disc-wall contacts with an intact bond, each keeping its state; the pairs' classes follow
+  // from the discs' materials. Allocates only when the lists grow.
+  void merge(const std::vector<std::uint64_t>& pair_candidates,
+             const std::vector<std::uint64_t>& wall_candidates, const Discs& discs);
+
+ private:
+  std::vector<std::uint64_t> merged_keys_;
+  ContactStates merged_state_;
+};
+
+}  // namespace cdem::dem
