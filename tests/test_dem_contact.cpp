@@ -72,7 +72,9 @@ TEST(LinearContactLaw, TheTwoSpellingsOfTheShearStiffnessAgreeToRoundoff) {
     for (double kn = 1e7; kn < 1e11; kn *= 1.0173) {
       const double kernel = kn * law.shear_per_normal_stiffness();
       EXPECT_LE(std::abs(kernel - law.shear_stiffness(kn)), 6 * u * law.shear_stiffness(kn));
-      if (kappa == 2.0 || kappa == 4.0) EXPECT_EQ(kernel, law.shear_stiffness(kn));
+      if (kappa == 2.0 || kappa == 4.0) {
+        EXPECT_EQ(kernel, law.shear_stiffness(kn));
+      }
     }
   }
 }
