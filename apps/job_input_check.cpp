@@ -58,8 +58,8 @@ void check_campaign_run(const calib::CampaignSpec& spec, const calib::RunTask& t
         refuse_gather(spec, path, command);
     }
   } else if (command == "run") {
-    const dem::LabTestInput input =
-        dem::read_lab_test(InputTable::parse_string(task.input_text, label), task.dir);
+    const lab::LabTestInput input =
+        lab::read_lab_test(InputTable::parse_string(task.input_text, label), task.dir);
     check_inline_generator(input);
     const nlohmann::ordered_json schema = run_summary_fields(input);
     for (const auto& path : spec.gather)

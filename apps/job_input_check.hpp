@@ -22,6 +22,6 @@ void check_generator_text(const std::string& text, const std::string& label);
 // The summary `cdem run` writes for `input`, with every field present (values meaningless): the
 // schema a campaign's gather paths are checked against. Defined beside the summary itself, in
 // run_command.cpp.
-nlohmann::ordered_json run_summary_fields(const dem::LabTestInput& input);
+nlohmann::ordered_json run_summary_fields(const lab::LabTestInput& input);
 
 }  // namespace cdem::apps

@@ -36,7 +36,7 @@ std::thread thread_without_cleanup_signals(Body body) {
 
 }  // namespace
 
-ProgressLine::ProgressLine(dem::LabTestType type, const dem::RunEnd& end)
+ProgressLine::ProgressLine(lab::LabTestType type, const lab::RunEnd& end)
     : type_(type), end_(end), ticker_(thread_without_cleanup_signals([this] { tick(); })) {}
 
 ProgressLine::~ProgressLine() {
@@ -49,7 +49,7 @@ ProgressLine::~ProgressLine() {
   std::fputc('\n', stderr);
 }
 
-void ProgressLine::update(const dem::LabHistory& h, double peak, long max_steps) {
+void ProgressLine::update(const lab::LabHistory& h, double peak, long max_steps) {
   const Clock::time_point now = Clock::now();
   const std::size_t n = h.size();
   if (n == 0) return;
@@ -60,7 +60,7 @@ void ProgressLine::update(const dem::LabHistory& h, double peak, long max_steps)
   // The stress the stop rule follows: the deviator of a biaxial test.
   std::vector<double> followed;
   const std::vector<double>* stress = &h.axial_stress;
-  if (type_ == dem::LabTestType::Biaxial) {
+  if (type_ == lab::LabTestType::Biaxial) {
     followed.resize(n);
     for (std::size_t i = 0; i < n; ++i) followed[i] = h.axial_stress[i] - h.confining_stress[i];
     stress = &followed;
@@ -79,9 +79,9 @@ void ProgressLine::update(const dem::LabHistory& h, double peak, long max_steps)
                   "step %ld  strain %.3e  stress %.3f MPa (peak %.3f)  bonds broken %ld",
                   h.step.back(), h.axial_strain.back(), 1e-6 * stress->back(), 1e-6 * peak,
                   h.bonds_broken.back());
-  dem::RunEnd end = end_;
+  lab::RunEnd end = end_;
   end.max_steps = max_steps;
-  const dem::RunOutlook outlook = dem::run_outlook(h.step, h.axial_strain, *stress, peak, end);
+  const lab::RunOutlook outlook = lab::run_outlook(h.step, h.axial_strain, *stress, peak, end);
   std::lock_guard lock(mutex_);
   if (!loading_) {
     loading_ = true;

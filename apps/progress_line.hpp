@@ -17,7 +17,7 @@ namespace cdem::apps {
 
 class ProgressLine {
  public:
-  ProgressLine(dem::LabTestType type, const dem::RunEnd& end);
+  ProgressLine(lab::LabTestType type, const lab::RunEnd& end);
   ~ProgressLine();
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
@@ -25,7 +25,7 @@ class ProgressLine {
   // At every history record of the loading (LabTestHooks::progress).
   // Throttled: a record within kUpdateInterval of the last one taken is skipped, so the work
   // (linear in the records so far) stays a small share of a long run.
-  void update(const dem::LabHistory& h, double peak, long max_steps);
+  void update(const lab::LabHistory& h, double peak, long max_steps);
   // A warning printed on a line of its own above the progress line (LabTestHooks::warning).
   void warning(const std::string& message);
 
@@ -34,8 +34,8 @@ class ProgressLine {
   void tick();
   std::string line(Clock::time_point now) const;  // under mutex_
 
-  dem::LabTestType type_;
-  dem::RunEnd end_;
+  lab::LabTestType type_;
+  lab::RunEnd end_;
   Clock::time_point start_ = Clock::now();
   // The loading's first record (the rate of steps per second counts from it) and the latest.
   Clock::time_point first_at_{}, last_at_{};
@@ -46,7 +46,7 @@ class ProgressLine {
   bool loading_ = false;  // a record has arrived
   std::string state_;     // what the latest record says, without the times
   long step_ = 0;
-  dem::RunOutlook outlook_;
+  lab::RunOutlook outlook_;
   std::thread ticker_;
 };
 

@@ -41,7 +41,7 @@ std::string numbered(const std::string& png, std::size_t k) {
 }
 
 // The files a run reads: the test file, its specimen file and its material file.
-std::vector<NamedPath> run_inputs(const dem::LabTestInput& input) {
+std::vector<NamedPath> run_inputs(const lab::LabTestInput& input) {
   std::vector<NamedPath> inputs{{"test", input.file}};
   if (input.specimen_generator.empty()) inputs.push_back({"specimen", input.specimen_path});
   const std::filesystem::path test = input.file;
@@ -54,13 +54,13 @@ std::vector<NamedPath> run_inputs(const dem::LabTestInput& input) {
 
 }  // namespace
 
-nlohmann::ordered_json run_summary_fields(const dem::LabTestInput& input) {
-  dem::LabTestResult r;
+nlohmann::ordered_json run_summary_fields(const lab::LabTestInput& input) {
+  lab::LabTestResult r;
   r.type = input.controls.type;
-  if (r.type != dem::LabTestType::Biaxial) return to_json(dem::make_run_summary(r, input));
-  dem::BiaxialSeries series;
+  if (r.type != lab::LabTestType::Biaxial) return to_json(lab::make_run_summary(r, input));
+  lab::BiaxialSeries series;
   series.runs = {r};
-  return to_json(dem::make_series_summary(series, input));
+  return to_json(lab::make_series_summary(series, input));
 }
 
 Action add_run_command(CLI::App& app) {
@@ -87,7 +87,7 @@ Action add_run_command(CLI::App& app) {
   r->add_flag("-q,--quiet", o->quiet, "No progress line");
   return [o, r, seed] {
     if (!r->parsed()) return;
-    dem::LabTestInput input = dem::read_lab_test(std::filesystem::path(o->test));
+    lab::LabTestInput input = lab::read_lab_test(std::filesystem::path(o->test));
     if (seed->count()) input.seed = o->seed;
 
     std::string plot = o->plot, crack_map = o->crack_map;
@@ -95,12 +95,12 @@ Action add_run_command(CLI::App& app) {
       if (plot.empty()) plot = beside(o->output, "_stress_strain.png").string();
       if (crack_map.empty()) crack_map = beside(o->output, "_cracks.png").string();
     }
-    const bool biaxial = input.controls.type == dem::LabTestType::Biaxial;
+    const bool biaxial = input.controls.type == lab::LabTestType::Biaxial;
     const std::size_t runs = biaxial ? input.controls.confining_stresses.size() : 1;
     std::vector<NamedPath> outputs;
     if (!o->output.empty()) {
-      // With the XDMF files dem::ResultFile writes beside the result when it holds snapshots.
-      outputs = dem::ResultFile::outputs("-o", o->output);
+      // With the XDMF files lab::ResultFile writes beside the result when it holds snapshots.
+      outputs = lab::ResultFile::outputs("-o", o->output);
     }
     if (!o->summary.empty()) outputs.push_back({"--summary", o->summary});
     for (std::size_t k = 0; k < runs; ++k) {
@@ -113,26 +113,26 @@ Action add_run_command(CLI::App& app) {
     }
     OutputTransaction transaction(check_output_files(run_inputs(input), outputs));
     const Specimen specimen = lab_test_specimen(input, !o->quiet);
-    dem::check_specimen_for_test(specimen, input);
+    lab::check_specimen_for_test(specimen, input);
 
-    std::optional<dem::ResultFile> result_file;
+    std::optional<lab::ResultFile> result_file;
     if (!o->output.empty()) result_file.emplace(o->output, input);
     std::optional<ProgressLine> progress;
     const auto make_hooks = [&] {
-      dem::LabTestHooks hooks;
+      lab::LabTestHooks hooks;
       if (!o->quiet && ::isatty(STDERR_FILENO)) {
-        const dem::LabTestControls& c = input.controls;
-        const dem::StopRuleOptions stop = dem::loading_stop_options(c, specimen.container);
-        const bool shpb = c.type == dem::LabTestType::Shpb;
+        const lab::LabTestControls& c = input.controls;
+        const lab::StopRuleOptions stop = lab::loading_stop_options(c, specimen.container);
+        const bool shpb = c.type == lab::LabTestType::Shpb;
         // A CMOD servo moves the platen back and forth: its strain gives no bound. A Brazilian
         // disc usually ends at its split, when the load falls below split.fraction x the peak.
         const double end_fraction = stop.split.enabled
                                         ? std::max(stop.stop_fraction, stop.split.fraction)
                                         : stop.stop_fraction;
         progress.emplace(
-            c.type, dem::RunEnd{shpb ? 0 : end_fraction,
+            c.type, lab::RunEnd{shpb ? 0 : end_fraction,
                                 shpb || c.cmod_control ? 0 : stop.max_strain, c.max_steps, shpb});
-        hooks.progress = [&progress](const dem::LabHistory& h, double peak, long max_steps) {
+        hooks.progress = [&progress](const lab::LabHistory& h, double peak, long max_steps) {
           progress->update(h, peak, max_steps);
         };
         hooks.warning = [&progress](const std::string& message) { progress->warning(message); };
@@ -145,8 +145,8 @@ Action add_run_command(CLI::App& app) {
     };
 
     if (biaxial) {
-      const dem::BiaxialSeries series =
-          dem::run_biaxial_series(specimen, input, [&](std::size_t k) {
+      const lab::BiaxialSeries series =
+          lab::run_biaxial_series(specimen, input, [&](std::size_t k) {
             progress.reset();
             if (result_file)
               result_file->begin_confinement(k, input.controls.confining_stresses[k]);
@@ -154,28 +154,28 @@ Action add_run_command(CLI::App& app) {
           });
       progress.reset();
       if (result_file) result_file->commit(series);
-      const nlohmann::ordered_json summary = to_json(dem::make_series_summary(series, input));
+      const nlohmann::ordered_json summary = to_json(lab::make_series_summary(series, input));
       if (!o->summary.empty()) write_text_atomically(o->summary, summary.dump(2) + "\n");
       for (std::size_t k = 0; k < series.runs.size(); ++k) {
-        const dem::LabTestResult& r = series.runs[k];
-        if (!plot.empty()) dem::draw_stress_strain_png(r, numbered(plot, k));
-        if (!crack_map.empty()) dem::draw_crack_map_png(specimen, r, numbered(crack_map, k));
+        const lab::LabTestResult& r = series.runs[k];
+        if (!plot.empty()) lab::draw_stress_strain_png(r, numbered(plot, k));
+        if (!crack_map.empty()) lab::draw_crack_map_png(specimen, r, numbered(crack_map, k));
         if (!o->fragment_map.empty())
-          dem::draw_fragment_map_png(r.fragments, numbered(o->fragment_map, k));
+          lab::draw_fragment_map_png(r.fragments, numbered(o->fragment_map, k));
       }
       transaction.commit();
       if (!o->quiet) std::printf("%s\n", summary.dump(2).c_str());
       return;
     }
 
-    const dem::LabTestResult result = dem::run_lab_test(specimen, input, make_hooks());
+    const lab::LabTestResult result = lab::run_lab_test(specimen, input, make_hooks());
     progress.reset();
     if (result_file) result_file->commit(result);
-    const nlohmann::ordered_json summary = to_json(dem::make_run_summary(result, input));
+    const nlohmann::ordered_json summary = to_json(lab::make_run_summary(result, input));
     if (!o->summary.empty()) write_text_atomically(o->summary, summary.dump(2) + "\n");
-    if (!plot.empty()) dem::draw_stress_strain_png(result, plot);
-    if (!crack_map.empty()) dem::draw_crack_map_png(specimen, result, crack_map);
-    if (!o->fragment_map.empty()) dem::draw_fragment_map_png(result.fragments, o->fragment_map);
+    if (!plot.empty()) lab::draw_stress_strain_png(result, plot);
+    if (!crack_map.empty()) lab::draw_crack_map_png(specimen, result, crack_map);
+    if (!o->fragment_map.empty()) lab::draw_fragment_map_png(result.fragments, o->fragment_map);
     transaction.commit();
     if (!o->quiet) std::printf("%s\n", summary.dump(2).c_str());
   };

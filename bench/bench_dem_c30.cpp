@@ -43,7 +43,7 @@ fs::path specimen_path() {
 
 struct C30World {
   cdem::dem::World world;
-  cdem::dem::GenesisReport genesis;
+  cdem::lab::GenesisReport genesis;
 };
 
 const char* const kMaterials[] = {"samples/c30_materials.toml",
@@ -53,6 +53,7 @@ const char* const kMaterials[] = {"samples/c30_materials.toml",
 // process and law and copied per run.
 C30World build_c30_world(int law) {
   using namespace cdem::dem;
+  using namespace cdem::lab;
   const cdem::Specimen specimen = cdem::read_specimen(specimen_path());
   WorldSettings settings;
   read_material_table(fs::path(CDEM_SOURCE_DIR) / kMaterials[law]).apply(settings);

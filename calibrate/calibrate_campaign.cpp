@@ -199,7 +199,7 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
       // from their summaries, so a calibration started before a gather field was added resumes
       // without re-running.
       for (const auto target : b.measured) c.gather.push_back(target_summary_field(target));
-      c.gather.push_back(dem::summary_field::kWarnings);
+      c.gather.push_back(lab::summary_field::kWarnings);
       c.timeout_s = input_.timeout_s;
       for (std::size_t i = 0; i < points.size(); ++i) {
         if (points[i].specimen_seed != seed) continue;
@@ -252,9 +252,9 @@ std::vector<SimulationOutcome> CampaignSimulator::run(const std::string& stage,
              record.message);
         continue;
       }
-      dem::RunSummary summary;
+      lab::RunSummary summary;
       try {
-        summary = dem::read_run_summary(b.runs[r].summary);
+        summary = lab::read_run_summary(b.runs[r].summary);
       } catch (const InputError& e) {
         fail(b.name + ": " + e.what());
         continue;

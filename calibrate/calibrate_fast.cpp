@@ -64,8 +64,8 @@ std::string class_of(const std::string& key) {  // "materials.mortar.emod_GPa" -
 std::string example_key(ParameterRole role) {
   const bool strength =
       role == ParameterRole::TensileStrength || role == ParameterRole::ShearStrength;
-  const std::string key(dem::material_key_for(
-      strength ? dem::MaterialLaw::ParallelBond : dem::MaterialLaw::Linear, role));
+  const std::string key(lab::material_key_for(
+      strength ? lab::MaterialLaw::ParallelBond : lab::MaterialLaw::Linear, role));
   return key + (role == ParameterRole::Modulus ? "_GPa" : strength ? "_MPa" : "");
 }
 
@@ -170,23 +170,23 @@ std::vector<double> fast_start_scales(const CalibrationInput& input,
     });
   };
   // The mortar's law as its table names it (checked when the calibration input was read).
-  const std::optional<dem::MaterialLaw> mortar_law = dem::find_material_law(
-      mortar.string_or("law", std::string(dem::material_law_name(dem::MaterialLaw::Linear))));
+  const std::optional<lab::MaterialLaw> mortar_law = lab::find_material_law(
+      mortar.string_or("law", std::string(lab::material_law_name(lab::MaterialLaw::Linear))));
   // The tensile bond strength of a point- or parallel-bonded mortar (the laws the estimates
   // above were measured with), MPa; NaN for other laws.
   const auto mortar_tensile_MPa = [&]() -> double {
-    if (mortar_law != dem::MaterialLaw::ParallelBond && mortar_law != dem::MaterialLaw::ContactBond)
+    if (mortar_law != lab::MaterialLaw::ParallelBond && mortar_law != lab::MaterialLaw::ContactBond)
       return std::nan("");
-    const std::string key(dem::material_key_for(*mortar_law, ParameterRole::TensileStrength));
+    const std::string key(lab::material_key_for(*mortar_law, ParameterRole::TensileStrength));
     return mortar.quantity(key, Dimension::Stress, Range::positive()) / units::MPa;
   };
   const std::string mortar_modulus(
-      dem::material_key_for(dem::MaterialLaw::Linear, ParameterRole::Modulus));
+      lab::material_key_for(lab::MaterialLaw::Linear, ParameterRole::Modulus));
   std::vector<double> scales;
   for (const auto& g : groups) {
     double estimate = std::nan("");  // the base materials' response, estimated
     if (g.target == CalibrationTarget::E && mortar_free(g, ParameterRole::Modulus) &&
-        mortar_law == dem::MaterialLaw::ParallelBond)
+        mortar_law == lab::MaterialLaw::ParallelBond)
       estimate = kEPerMortarModulus *
                  mortar.quantity(mortar_modulus, Dimension::Stress, Range::positive()) / units::GPa;
     if (mortar_free(g, ParameterRole::TensileStrength)) {

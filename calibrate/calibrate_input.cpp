@@ -27,12 +27,12 @@ namespace {
 // The figure `Field` of the optional part `Part` of a run summary; nullopt when the run's test
 // has no such part.
 template <auto Part, auto Field>
-std::optional<double> part_figure(const dem::RunSummary& s) {
+std::optional<double> part_figure(const lab::RunSummary& s) {
   const auto& part = s.*Part;
   return part ? std::optional<double>((*part).*Field) : std::nullopt;
 }
 
-std::optional<double> peak_stress(const dem::RunSummary& s) {
+std::optional<double> peak_stress(const lab::RunSummary& s) {
   return s.peak_stress_MPa;
 }
 
@@ -42,25 +42,25 @@ struct TargetInfo {
   const char* unit;
   const char* summary_field;  // of `cdem run --summary` (lab/summary_fields.hpp)
   // The same figure in the summary as lab's reader gives it (lab/run_summary.hpp).
-  std::optional<double> (*figure)(const dem::RunSummary&);
+  std::optional<double> (*figure)(const lab::RunSummary&);
   TestKind test;
   bool fitted_in_log;  // the paper strategy's surface is on ln(response)
 };
 
 // Indexed by CalibrationTarget.
 constexpr TargetInfo kTargets[kCalibrationTargetCount] = {
-    {"sigma_u", "MPa", dem::summary_field::kPeakStress, peak_stress, TestKind::Uniaxial, false},
-    {"E", "GPa", dem::summary_field::kYoungModulus,
-     part_figure<&dem::RunSummary::uniaxial, &dem::UniaxialSummary::young_modulus_GPa>,
+    {"sigma_u", "MPa", lab::summary_field::kPeakStress, peak_stress, TestKind::Uniaxial, false},
+    {"E", "GPa", lab::summary_field::kYoungModulus,
+     part_figure<&lab::RunSummary::uniaxial, &lab::UniaxialSummary::young_modulus_GPa>,
      TestKind::Uniaxial, false},
-    {"nu", "", dem::summary_field::kPoissonRatio,
-     part_figure<&dem::RunSummary::uniaxial, &dem::UniaxialSummary::poisson_ratio>,
+    {"nu", "", lab::summary_field::kPoissonRatio,
+     part_figure<&lab::RunSummary::uniaxial, &lab::UniaxialSummary::poisson_ratio>,
      TestKind::Uniaxial, false},
-    {"sigma_t", "MPa", dem::summary_field::kTensileStrength,
-     part_figure<&dem::RunSummary::tension, &dem::TensionSummary::tensile_strength_MPa>,
+    {"sigma_t", "MPa", lab::summary_field::kTensileStrength,
+     part_figure<&lab::RunSummary::tension, &lab::TensionSummary::tensile_strength_MPa>,
      TestKind::Tension, false},
-    {"G_F", "N/m", dem::summary_field::kFractureEnergy,
-     part_figure<&dem::RunSummary::bending, &dem::BendingSummary::fracture_energy_N_per_m>,
+    {"G_F", "N/m", lab::summary_field::kFractureEnergy,
+     part_figure<&lab::RunSummary::bending, &lab::BendingSummary::fracture_energy_N_per_m>,
      TestKind::Bending, true},
 };
 
@@ -99,7 +99,7 @@ std::string target_with_unit(CalibrationTarget target) {
 const char* target_summary_field(CalibrationTarget target) {
   return info(target).summary_field;
 }
-std::optional<double> target_figure(const dem::RunSummary& summary, CalibrationTarget target) {
+std::optional<double> target_figure(const lab::RunSummary& summary, CalibrationTarget target) {
   return info(target).figure(summary);
 }
 
@@ -129,7 +129,7 @@ const char* role_name(ParameterRole role) {
 ParameterRole parameter_role(const std::string& dotted_key) {
   const std::string_view name =
       key_without_unit(std::string_view(dotted_key).substr(dotted_key.rfind('.') + 1));
-  const dem::MaterialKey* key = dem::find_material_key(name);
+  const lab::MaterialKey* key = lab::find_material_key(name);
   return key ? key->role : ParameterRole::Other;
 }
 
@@ -238,7 +238,7 @@ std::vector<std::string> split(const std::string& key) {
 std::string material_table_problem(const std::string& text, const std::string& label) {
   if (text.empty()) return "no such class table";
   try {
-    dem::read_material_table(InputTable::parse_string(text, label));
+    lab::read_material_table(InputTable::parse_string(text, label));
   } catch (const InputError& e) {
     return e.what();
   }

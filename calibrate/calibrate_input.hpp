@@ -12,9 +12,9 @@
 #include "doe/inversion.hpp"
 #include "lab/material_keys.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
 struct RunSummary;
-}
+}  // namespace cdem::lab
 
 namespace cdem::calib {
 
@@ -45,7 +45,7 @@ std::string target_with_unit(CalibrationTarget target);
 const char* target_summary_field(CalibrationTarget target);
 // The target's figure in a run summary read by lab's reader; nullopt when the summary's test does
 // not measure it (NaN when the run measured nothing).
-std::optional<double> target_figure(const dem::RunSummary& summary, CalibrationTarget target);
+std::optional<double> target_figure(const lab::RunSummary& summary, CalibrationTarget target);
 // The kind of lab test that measures the target.
 TestKind target_test_kind(CalibrationTarget target);
 // True when the paper strategy fits the target's response surface on its logarithm: G_F, which
@@ -60,7 +60,7 @@ struct TargetValue {
 
 // What a material key does to the macro-response, which is what the fast strategy moves it for:
 // the role the material key table gives it (lab/material_keys.hpp).
-using ParameterRole = dem::MaterialRole;
+using ParameterRole = lab::MaterialRole;
 const char* role_name(ParameterRole role);
 // The role of a material key from its last part, units stripped ("emod_GPa" -> Modulus);
 // Other for a key the material table does not know.

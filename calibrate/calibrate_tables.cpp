@@ -29,15 +29,15 @@ constexpr double kSameCondition = 1e-6;
 
 // The mortar keys the tables were made with: a contact-bonded class (lab/material_keys.hpp names
 // its law and the key of each role, so no key is spelled here).
-const std::string kContactBondLaw(dem::material_law_name(dem::MaterialLaw::ContactBond));
-const std::string kLinearLaw(dem::material_law_name(dem::MaterialLaw::Linear));
-const std::string kModulusKey(dem::material_key_for(dem::MaterialLaw::ContactBond,
+const std::string kContactBondLaw(lab::material_law_name(lab::MaterialLaw::ContactBond));
+const std::string kLinearLaw(lab::material_law_name(lab::MaterialLaw::Linear));
+const std::string kModulusKey(lab::material_key_for(lab::MaterialLaw::ContactBond,
                                                     ParameterRole::Modulus));
-const std::string kRatioKey(dem::material_key_for(dem::MaterialLaw::ContactBond,
+const std::string kRatioKey(lab::material_key_for(lab::MaterialLaw::ContactBond,
                                                   ParameterRole::StiffnessRatio));
-const std::string kTensileKey(dem::material_key_for(dem::MaterialLaw::ContactBond,
+const std::string kTensileKey(lab::material_key_for(lab::MaterialLaw::ContactBond,
                                                     ParameterRole::TensileStrength));
-const std::string kShearKey(dem::material_key_for(dem::MaterialLaw::ContactBond,
+const std::string kShearKey(lab::material_key_for(lab::MaterialLaw::ContactBond,
                                                   ParameterRole::ShearStrength));
 // The Brazilian sensitivity d ln sigma_t / d ln sigma_cn = 1 - slope is held in [0.5, 2]: a
 // table segment steeper than that is one specimen's noise rather than the material's trend.

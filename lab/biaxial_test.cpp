@@ -8,7 +8,9 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 std::vector<double> read_confining_stresses(const InputTable& t) {
   struct Unit {
@@ -88,4 +90,4 @@ BiaxialSeries run_biaxial_series(const Specimen& specimen, const LabTestInput& i
   return series;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

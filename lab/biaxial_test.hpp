@@ -10,7 +10,9 @@
 #include "io/input_table.hpp"
 #include "lab/lab_test.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 // `confining_stresses_MPa` (or _kPa, _Pa) of a [test] table, in Pa: two or more values, each
 // >= 0 (0 = unconfined), at least two distinct. Throws InputError naming the key.
@@ -34,4 +36,4 @@ struct BiaxialSeries {
 BiaxialSeries run_biaxial_series(const Specimen& specimen, const LabTestInput& input,
                                  const std::function<LabTestHooks(std::size_t)>& hooks_for = {});
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <utility>
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 JointStates joint_states(const World& world, const std::vector<Crack>& cracks, double time0) {
   const ContactStore& list = world.contacts();
@@ -108,4 +110,4 @@ void clip_joint_lines(InstalledJoints& installed, double xmin, double ymin, doub
   }
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

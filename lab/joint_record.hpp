@@ -9,7 +9,9 @@
 #include "dem/smooth_joint_install.hpp"
 #include "dem/world.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 // The state of every smooth joint of a world, in the order of its entries
 // (ContactStore::smooth_joints, so index e is the joint InstalledJoints::touching[e] describes).
@@ -44,4 +46,4 @@ void joint_line_table(const InstalledJoints& installed, std::vector<double>& end
 void clip_joint_lines(InstalledJoints& installed, double xmin, double ymin, double xmax,
                       double ymax);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

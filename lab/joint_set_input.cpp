@@ -5,7 +5,9 @@
 
 #include "core/units.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 namespace {
 
@@ -85,4 +87,4 @@ InstalledJoints install_test_joints(World& world, const std::vector<JointSet>& s
   return installed;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

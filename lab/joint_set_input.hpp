@@ -9,7 +9,9 @@
 #include "dem/smooth_joint_install.hpp"
 #include "io/input_table.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 // Reads `joints` of the [test] table `test` (none: an empty list).
 std::vector<JointSet> read_joint_sets(const InputTable& test);
@@ -20,4 +22,4 @@ std::vector<JointSet> read_joint_sets(const InputTable& test);
 InstalledJoints install_test_joints(World& world, const std::vector<JointSet>& sets,
                                     double gap_ratio, const std::string& file);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -7,7 +7,7 @@
 
 #include <Eigen/Dense>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 UcsResult analyse_ucs(const std::vector<double>& eps, const std::vector<double>& sig,
                       const std::vector<double>& lat, double window) {
@@ -90,4 +90,4 @@ MohrCoulomb fit_mohr_coulomb(const std::vector<double>& s3, const std::vector<do
   return mc;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 struct UcsResult {
   double peak_stress = 0;  // Pa, sigma_u
@@ -47,4 +47,4 @@ struct MohrCoulomb {
 // fewer than two distinct confinements or a slope below 1 (no friction angle exists).
 MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma3, const std::vector<double>& sigma1);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

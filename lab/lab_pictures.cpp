@@ -12,7 +12,9 @@
 #include "io/png_drawing.hpp"
 #include "io/xy_chart.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 namespace {
 
@@ -445,4 +447,4 @@ void draw_fragment_map_png(const Fragments& f, const std::filesystem::path& png,
   l.finish(png);
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

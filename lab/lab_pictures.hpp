@@ -18,7 +18,9 @@
 #include "io/xy_chart.hpp"
 #include "lab/lab_test.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 // The stress-strain chart of a run (not three-point bending): strains in units of 1e-3,
 // stresses in MPa; marks, band and notes from the run's analysis (res.ucs, peak, strength).
@@ -41,4 +43,4 @@ void draw_crack_map_png(const Specimen& specimen, const LabTestResult& res,
 void draw_fragment_map_png(const Fragments& fragments, const std::filesystem::path& png,
                            int pixels_long_side = 1200);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

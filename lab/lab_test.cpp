@@ -22,7 +22,9 @@
 #include "lab/loading_arc.hpp"
 #include "lab/test_presets.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 const char* lab_test_name(LabTestType type) {
   switch (type) {
@@ -992,4 +994,4 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   return res;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

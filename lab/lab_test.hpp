@@ -30,7 +30,9 @@
 #include "lab/stop_rule.hpp"
 #include "lab/three_point_bending.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 enum class LabTestType { Uniaxial, Brazilian, DirectTension, Biaxial, Shpb, ThreePointBending };
 // "uniaxial", "brazilian", "direct_tension", "biaxial", "shpb", "three_point_bending"
@@ -262,4 +264,4 @@ void tally_cracks(LabTestResult& res, const CrackLog& log, double time0);
 LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
                            const LabTestHooks& hooks = {});
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

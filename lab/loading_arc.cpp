@@ -2,7 +2,9 @@
 
 #include <cmath>
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 LoadingArcBodies loading_arc_bodies(const World& world, const DiscCircle& circle,
                                     double half_angle) {
@@ -28,4 +30,4 @@ LoadingArcBodies loading_arc_bodies(const World& world, const DiscCircle& circle
   return arcs;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

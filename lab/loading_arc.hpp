@@ -10,7 +10,9 @@
 
 #include "dem/world.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 // The disc specimen's circle: centre and radius, m.
 struct DiscCircle {
@@ -31,4 +33,4 @@ struct LoadingArcBodies {
 LoadingArcBodies loading_arc_bodies(const World& world, const DiscCircle& circle,
                                     double half_angle);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

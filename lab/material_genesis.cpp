@@ -11,7 +11,9 @@
 #include "dem/measure.hpp"
 #include "dem/world_from_specimen.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 namespace {
 
@@ -172,4 +174,4 @@ void install_test_bonds(World& world, const GenesisOptions& options, GenesisRepo
   world.clear_cracks();
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -10,7 +10,9 @@
 #include "dem/bond_installation.hpp"
 #include "dem/world.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 struct GenesisOptions {
   // A mortar disc with fewer disc-disc contacts than this is floating. A contact is a pair
@@ -73,4 +75,4 @@ Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& se
 // options.max_broken_fraction of a class's bonds.
 void install_test_bonds(World& world, const GenesisOptions& options, GenesisReport& report);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

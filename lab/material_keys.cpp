@@ -2,7 +2,7 @@
 
 #include <iterator>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 std::vector<std::string> material_keys_of(MaterialLaw law) {
   std::vector<std::string> keys;
@@ -30,4 +30,4 @@ std::string_view material_key_for(MaterialLaw law, MaterialRole role) {
   return {};
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

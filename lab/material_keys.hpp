@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 // The law a key belongs to: every class reads the linear keys, a bonded class also its law's.
 enum class MaterialLaw { Linear, ContactBond, ParallelBond, FlatJoint };
@@ -70,4 +70,4 @@ const MaterialKey* find_material_key(std::string_view name);
 // (Linear, TensileStrength) -> ""). Empty when the class has no such key.
 std::string_view material_key_for(MaterialLaw law, MaterialRole role);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

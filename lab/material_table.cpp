@@ -10,7 +10,9 @@
 #include "core/input_error.hpp"
 #include "lab/material_keys.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 namespace {
 
@@ -115,4 +117,4 @@ void require_classes(const MaterialTable& table, std::size_t clumps, const std::
                            "leave it out)");
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -13,7 +13,9 @@
 #include "dem/world.hpp"
 #include "io/input_table.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 struct MaterialTable {
   ContactLaws linear{};  // linear part by ContactClass
@@ -42,4 +44,4 @@ MaterialTable read_material_table(const std::filesystem::path& file);
 // `specimen` names the specimen in the message.
 void require_classes(const MaterialTable& table, std::size_t clumps, const std::string& specimen);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -10,7 +10,9 @@
 #include "core/version.hpp"
 #include "io/hdf5_write.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 namespace {
 
@@ -699,4 +701,4 @@ std::string ResultFile::xdmf_joints(const std::string& h5) const {
   return j.str();
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

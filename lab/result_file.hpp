@@ -21,7 +21,9 @@ class H5File;
 class Group;
 }  // namespace H5
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 class ResultFile {
  public:
@@ -86,4 +88,4 @@ class ResultFile {
   std::string xdmf_joints(const std::string& h5) const;
 };
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 RunOutlook run_outlook(const std::vector<long>& step, const std::vector<double>& strain,
                        const std::vector<double>& stress, double peak, const RunEnd& end) {
@@ -35,4 +35,4 @@ RunOutlook run_outlook(const std::vector<long>& step, const std::vector<double>&
   return out;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -4,7 +4,7 @@
 // steps into seconds with the steps per second it has observed.
 #include <vector>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 // What ends the run, as the stop rule sees it.
 struct RunEnd {
@@ -34,4 +34,4 @@ struct RunOutlook {
 RunOutlook run_outlook(const std::vector<long>& step, const std::vector<double>& strain,
                        const std::vector<double>& stress, double peak, const RunEnd& end);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -8,7 +8,9 @@
 #include "io/json_file.hpp"
 #include "lab/summary_fields.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 namespace {
 
@@ -613,4 +615,4 @@ SeriesSummary read_series_summary(const std::filesystem::path& file) {
   return series_summary_from_json(read_json_file(file), file.string());
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

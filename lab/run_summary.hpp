@@ -18,7 +18,9 @@
 #include "lab/biaxial_test.hpp"
 #include "lab/lab_test.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 // The classes of disc-disc contacts, M, ITZ and A: the ContactClasses before Wall.
 inline constexpr std::size_t kDiscClassCount = static_cast<std::size_t>(ContactClass::Wall);
@@ -183,4 +185,4 @@ SeriesSummary series_summary_from_json(const nlohmann::json& j, const std::strin
 RunSummary read_run_summary(const std::filesystem::path& file);
 SeriesSummary read_series_summary(const std::filesystem::path& file);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -7,7 +7,7 @@
 #include "lab/lab_analysis.hpp"
 #include "lab/shpb_dispersion.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 namespace {
 
@@ -177,4 +177,4 @@ ShpbAnalysis analyse_shpb(const ShpbWaves& w, const ShpbGeometry& g) {
   return out;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

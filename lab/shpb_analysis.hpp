@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 // The three waves at the faces, one value per bar step (the lattice's step, so the time shift
 // from a gauge to a face is a whole number of steps and exact).
@@ -120,4 +120,4 @@ struct ShpbAnalysis {
 // never load the specimen (no positive three-wave stress).
 ShpbAnalysis analyse_shpb(const ShpbWaves& waves, const ShpbGeometry& geometry);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

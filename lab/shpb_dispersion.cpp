@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <unsupported/Eigen/FFT>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 namespace {
 
@@ -140,4 +140,4 @@ std::vector<double> disperse(const std::vector<double>& wave, double dt, double 
   return out;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

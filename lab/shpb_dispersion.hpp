@@ -10,7 +10,7 @@
 // back by x / c0, so the analysis can compute what a real bar's gauges would show.
 #include <vector>
 
-namespace cdem::dem {
+namespace cdem::lab {
 
 // The first longitudinal (Pochhammer-Chree L(0,1)) mode of a free, round, isotropic elastic
 // bar, tabulated in the dimensionless wavenumber k a. The frequency equation (Pochhammer 1876;
@@ -55,4 +55,4 @@ struct DispersiveBar {
 std::vector<double> disperse(const std::vector<double>& wave, double time_step, double distance,
                              const DispersiveBar& bar, const PochhammerChree& branch);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -16,7 +16,9 @@
 #include "lab/lab_analysis.hpp"
 #include "lab/lab_test.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 const char* pulse_name(ShpbPulse pulse) {
   switch (pulse) {
@@ -349,4 +351,4 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
   tally_cracks(res, world.cracks(), time0);
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -22,9 +22,14 @@
 #include "lab/shpb_analysis.hpp"
 
 namespace cdem::dem {
-
 class World;
 struct Walls;
+}  // namespace cdem::dem
+
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
+
 struct LabTestControls;
 struct LabTestInput;
 struct LabTestHooks;
@@ -156,4 +161,4 @@ struct ShpbResult {
 void run_shpb_test(World& world, const Box& extent, bool disc_specimen, const LabTestInput& input,
                    const LabTestHooks& hooks, LabTestResult& res);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

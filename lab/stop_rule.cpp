@@ -6,7 +6,9 @@
 
 #include "lab/lab_analysis.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 const char* stop_reason_name(StopReason reason) {
   switch (reason) {
@@ -141,4 +143,4 @@ std::string PeakStopRule::missing_conditions(double strain, double stress) const
   return out.str();
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

@@ -24,7 +24,9 @@
 
 #include "dem/crack_log.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 constexpr int kDamageBands = 10;  // bands across the width and across the height
 
@@ -112,4 +114,4 @@ class PeakStopRule {
   std::array<bool, kDamageBands> x_band_{}, y_band_{};  // bands that hold a crack of the loading
 };
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

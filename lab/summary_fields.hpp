@@ -2,7 +2,7 @@
 // The names of the fields of the run summary (`cdem run --summary`, docs/lab_tests.md "Summary")
 // that other programs read by name: lab/run_summary.cpp writes them, calibrate/ gathers them
 // through campaigns. One spelling, so a renamed field changes both sides or neither.
-namespace cdem::dem::summary_field {
+namespace cdem::lab::summary_field {
 
 inline constexpr const char* kPeakStress = "peak_stress_MPa";            // MPa, compression +
 inline constexpr const char* kYoungModulus = "young_modulus_GPa";        // GPa, uniaxial
@@ -14,4 +14,4 @@ inline constexpr const char* kFractureEnergy = "bending.fracture_energy_N_per_m"
 // carries them with the figures it gathers.
 inline constexpr const char* kWarnings = "warnings";
 
-}  // namespace cdem::dem::summary_field
+}  // namespace cdem::lab::summary_field

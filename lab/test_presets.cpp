@@ -1,6 +1,8 @@
 #include "lab/test_presets.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 const std::vector<TestPreset>& test_presets() {
   // Chosen from the measured front of the full-size C30 UCS sweep (docs/speed_vs_error.md, which
@@ -38,4 +40,4 @@ void apply_test_preset(const InputTable& test, LabTestControls& controls) {
   }
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

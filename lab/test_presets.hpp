@@ -10,7 +10,9 @@
 #include "io/input_table.hpp"
 #include "lab/lab_test.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 struct TestPreset {
   std::string name;
@@ -31,4 +33,4 @@ std::vector<std::string> test_preset_names();
 // unknown name throws InputError naming the file, `test.preset` and the allowed values.
 void apply_test_preset(const InputTable& test, LabTestControls& controls);
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

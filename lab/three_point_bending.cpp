@@ -8,7 +8,9 @@
 #include "core/input_error.hpp"
 #include "dem/world.hpp"
 
-namespace cdem::dem {
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 double flexural_strength(double peak_load, double span, double depth, double thickness) {
   return 3 * peak_load * span / (2 * thickness * depth * depth);
@@ -73,4 +75,4 @@ double CmodGauge::opening(const World& world) const {
   return mean_x(world, right_) - mean_x(world, left_) - gap0_;
 }
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

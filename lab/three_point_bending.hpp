@@ -10,8 +10,12 @@
 #include "core/specimen.hpp"
 
 namespace cdem::dem {
-
 class World;
+}  // namespace cdem::dem
+
+namespace cdem::lab {
+
+using namespace cdem::dem;  // the engine the lab layer drives
 
 // g of the RILEM self-weight term, m/s^2.
 constexpr double kStandardGravity = 9.81;
@@ -76,4 +80,4 @@ struct CmodServo {
   double platen_velocity(double cmod, double time, double dt) const;
 };
 
-}  // namespace cdem::dem
+}  // namespace cdem::lab

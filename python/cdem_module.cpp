@@ -100,13 +100,13 @@ PySpecimen generate(const std::optional<std::string>& text, const std::optional<
 // stands in for it while the file is read (read_lab_test needs one), then the object replaces it.
 // `joints` (TOML text of [[test.joints]] tables, from run_test's `joints` argument) is read after
 // the test's own text, so its sets follow the test's and it is recorded with the input.
-dem::LabTestInput read_test(const std::optional<std::string>& text,
+lab::LabTestInput read_test(const std::optional<std::string>& text,
                             const std::optional<std::string>& path, const std::string& label,
                             const std::string& base_dir, const PySpecimen* specimen,
                             const std::optional<std::string>& joints) {
   if (!specimen && !joints) {
-    if (path) return dem::read_lab_test(std::filesystem::path(*path));
-    return dem::read_lab_test(InputTable::parse_string(*text, label), base_dir);
+    if (path) return lab::read_lab_test(std::filesystem::path(*path));
+    return lab::read_lab_test(InputTable::parse_string(*text, label), base_dir);
   }
   std::string source = text ? *text : std::string();
   std::filesystem::path dir = base_dir;
@@ -119,7 +119,7 @@ dem::LabTestInput read_test(const std::optional<std::string>& text,
     name = *path;
   }
   if (joints) source += "\n" + *joints;
-  if (!specimen) return dem::read_lab_test(InputTable::parse_string(source, name), dir);
+  if (!specimen) return lab::read_lab_test(InputTable::parse_string(source, name), dir);
   InputTable::parse_string(source, name);  // syntax errors with the CLI's message
   toml::table root = toml::parse(source);
   if (root.contains("specimen"))
@@ -128,8 +128,8 @@ dem::LabTestInput read_test(const std::optional<std::string>& text,
   root.insert("specimen", toml::table{});
   std::ostringstream with_specimen;
   with_specimen << root << "\n";
-  dem::LabTestInput input =
-      dem::read_lab_test(InputTable::parse_string(with_specimen.str(), name), dir);
+  lab::LabTestInput input =
+      lab::read_lab_test(InputTable::parse_string(with_specimen.str(), name), dir);
   input.specimen_generator.clear();
   input.specimen_path = specimen->source;
   return input;
@@ -137,7 +137,7 @@ dem::LabTestInput read_test(const std::optional<std::string>& text,
 
 // The files a run reads (outputs must not replace them): the test file, the specimen file and
 // the material file when named.
-std::vector<NamedPath> run_inputs(const dem::LabTestInput& input, bool test_is_file,
+std::vector<NamedPath> run_inputs(const lab::LabTestInput& input, bool test_is_file,
                                   bool specimen_is_file, const std::filesystem::path& base_dir) {
   std::vector<NamedPath> inputs;
   if (test_is_file) inputs.push_back({"test", input.file});
@@ -149,7 +149,7 @@ std::vector<NamedPath> run_inputs(const dem::LabTestInput& input, bool test_is_f
   return inputs;
 }
 
-py::dict history_arrays(const dem::LabHistory& h) {
+py::dict history_arrays(const lab::LabHistory& h) {
   py::dict d;
   d["step"] = copy(h.step);
   d["time"] = copy(h.time);
@@ -198,8 +198,8 @@ py::dict crack_arrays(const std::vector<dem::Crack>& cracks) {
 
 // The smooth joints of a run with the result file's names and codes (docs/result_file.md,
 // /joints): per joint its pair, set and state at the end; the lines of the sets.
-py::dict joint_arrays(const dem::LabTestResult& r) {
-  const dem::JointStates& s = r.joint_states;
+py::dict joint_arrays(const lab::LabTestResult& r) {
+  const lab::JointStates& s = r.joint_states;
   py::dict d;
   d["first"] = copy(s.first);
   d["second"] = copy(s.second);
@@ -216,7 +216,7 @@ py::dict joint_arrays(const dem::LabTestResult& r) {
   d["shear_force"] = copy(s.shear_force);
   std::vector<double> lines;
   std::vector<std::int32_t> line_set;
-  dem::joint_line_table(r.joints, lines, line_set);
+  lab::joint_line_table(r.joints, lines, line_set);
   py::array_t<double> xy = copy(lines);
   d["lines"] = xy.attr("reshape")(-1, 4);
   d["line_set"] = copy(line_set);
@@ -224,7 +224,7 @@ py::dict joint_arrays(const dem::LabTestResult& r) {
 }
 
 // The state a callback sees: copies (the engine's arrays die with the run), read-only.
-py::dict world_state(const dem::World& world, const dem::LabHistory& h, std::size_t confinement) {
+py::dict world_state(const dem::World& world, const lab::LabHistory& h, std::size_t confinement) {
   const dem::Discs& d = world.discs();
   // Per disc and per bonded pair: intact bonds (a flat joint's bonded elements).
   std::vector<std::int32_t> intact(d.size(), 0), bond_first, bond_second, bond_intact;
@@ -264,11 +264,11 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
                   const std::optional<std::string>& output,
                   const std::optional<std::string>& summary_path, bool verbose,
                   const std::optional<std::string>& joints) {
-  dem::LabTestInput input = read_test(text, path, label, base_dir, specimen_object, joints);
+  lab::LabTestInput input = read_test(text, path, label, base_dir, specimen_object, joints);
   if (seed) input.seed = *seed;
-  const bool biaxial = input.controls.type == dem::LabTestType::Biaxial;
+  const bool biaxial = input.controls.type == lab::LabTestType::Biaxial;
   std::vector<NamedPath> outputs;
-  if (output) outputs = dem::ResultFile::outputs("output", *output);
+  if (output) outputs = lab::ResultFile::outputs("output", *output);
   if (summary_path) outputs.push_back({"summary", *summary_path});
   const std::filesystem::path dir =
       path ? std::filesystem::path(*path).parent_path() : std::filesystem::path(base_dir);
@@ -277,12 +277,12 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
       check_output_files(run_inputs(input, path.has_value(), specimen_is_file, dir), outputs));
   const Specimen specimen =
       specimen_object ? specimen_object->specimen : apps::lab_test_specimen(input, verbose);
-  dem::check_specimen_for_test(specimen, input);
+  lab::check_specimen_for_test(specimen, input);
 
-  std::optional<dem::ResultFile> result_file;
+  std::optional<lab::ResultFile> result_file;
   if (output) result_file.emplace(*output, input);
   const auto make_hooks = [&](std::size_t confinement) {
-    dem::LabTestHooks hooks;
+    lab::LabTestHooks hooks;
     if (result_file)
       hooks.snapshot = [&result_file](const dem::World& w, long step, double time) {
         result_file->snapshot(w, step, time);
@@ -291,7 +291,7 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
     // the callback once `every` loading steps have passed since its last call.
     auto next_call = std::make_shared<long>(every);
     hooks.should_stop = [&callback, every, next_call, confinement](const dem::World& w,
-                                                                   const dem::LabHistory& h) {
+                                                                   const lab::LabHistory& h) {
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
       if (!callback || h.step.back() < *next_call) return false;
       *next_call = h.step.back() + every;
@@ -304,21 +304,21 @@ py::dict run_test(const std::optional<std::string>& text, const std::optional<st
   py::list histories, cracks, joint_lists;
   std::string summary;
   if (biaxial) {
-    const dem::BiaxialSeries series = dem::run_biaxial_series(specimen, input, [&](std::size_t k) {
+    const lab::BiaxialSeries series = lab::run_biaxial_series(specimen, input, [&](std::size_t k) {
       if (result_file) result_file->begin_confinement(k, input.controls.confining_stresses[k]);
       return make_hooks(k);
     });
     if (result_file) result_file->commit(series);
-    summary = to_json(dem::make_series_summary(series, input)).dump(2);
-    for (const dem::LabTestResult& r : series.runs) {
+    summary = to_json(lab::make_series_summary(series, input)).dump(2);
+    for (const lab::LabTestResult& r : series.runs) {
       histories.append(history_arrays(r.history));
       cracks.append(crack_arrays(r.cracks));
       joint_lists.append(joint_arrays(r));
     }
   } else {
-    const dem::LabTestResult result = dem::run_lab_test(specimen, input, make_hooks(0));
+    const lab::LabTestResult result = lab::run_lab_test(specimen, input, make_hooks(0));
     if (result_file) result_file->commit(result);
-    summary = to_json(dem::make_run_summary(result, input)).dump(2);
+    summary = to_json(lab::make_run_summary(result, input)).dump(2);
     histories.append(history_arrays(result.history));
     cracks.append(crack_arrays(result.cracks));
     joint_lists.append(joint_arrays(result));

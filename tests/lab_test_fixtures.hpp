@@ -79,13 +79,13 @@ inline void write_text(const std::filesystem::path& file, const std::string& tex
 }
 
 // Writes the specimen and a test file into `dir` and reads the test back.
-inline dem::LabTestInput lab_test_input(const std::filesystem::path& dir, const Specimen& s,
+inline lab::LabTestInput lab_test_input(const std::filesystem::path& dir, const Specimen& s,
                                         const std::string& test_table,
                                         const std::string& materials_text = c30_materials()) {
   write_specimen(s, dir / "specimen.h5");
   write_text(dir / "test.toml",
              "seed = 3\nspecimen = \"specimen.h5\"\n" + materials_text + "\n" + test_table);
-  return dem::read_lab_test(dir / "test.toml");
+  return lab::read_lab_test(dir / "test.toml");
 }
 
 }  // namespace cdem::test

@@ -41,6 +41,7 @@ namespace {
 
 using namespace cdem;
 using namespace cdem::dem;
+using namespace cdem::lab;
 
 // FNV-1a (64 bit) over the bit patterns of a state's numbers, each array preceded by its length.
 class StateHash {

@@ -814,7 +814,7 @@ TEST(CalibrateReport, WritesAMaterialFileTheMaterialTableReads) {
   AnalyticModel model(in);
   const auto out = write_calibration(in, calibrate_fast(in, model), file.parent_path() / "out");
   ASSERT_EQ(out.materials.filename(), "calibrated_materials.toml");
-  const auto table = cdem::dem::read_material_table(out.materials);
+  const auto table = cdem::lab::read_material_table(out.materials);
   const auto& x = out.result.calibrated;
   const auto mortar = static_cast<std::size_t>(cdem::dem::ContactClass::Mortar);
   EXPECT_NEAR(table.linear[mortar].emod, x[0] * 1e9, 1e-3);

@@ -6,7 +6,7 @@
 
 #include "lab/lab_analysis.hpp"
 
-using namespace cdem::dem;
+using namespace cdem::lab;
 
 TEST(UcsAnalysis, RecoversModulusAndPoissonOfAKnownCurve) {
   // Linear to 70 % of peak with E = 28 GPa and nu = 0.2, then a parabolic cap, then softening.

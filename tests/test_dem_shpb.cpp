@@ -13,6 +13,8 @@
 #include "lab/shpb_test.hpp"
 
 namespace cdem::dem {
+
+using namespace cdem::lab;
 namespace {
 
 // Steel bars 1 m long, 50 mm wide; a 100 us half-sine of 100 MPa (2 L / c0 = 389 us holds it).

@@ -7,6 +7,8 @@
 
 using namespace cdem::dem;
 
+using namespace cdem::lab;
+
 namespace {
 
 constexpr double kSize = 0.05;  // m, width and height of the synthetic specimen

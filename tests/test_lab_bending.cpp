@@ -39,13 +39,13 @@ TEST(BendingFormulas, TriangleCurveGivesItsAreaAndTheSelfWeightTerm) {
   // P rises to 1000 N/m at 0.1 mm and falls to 0 at 1 mm: W0 = 1000 x 1e-3 / 2 = 0.5 J/m.
   std::vector<double> delta, load;
   piecewise_linear({0, 0.1e-3, 1e-3}, {0, 1000, 0}, 50, delta, load);
-  const double w0 = dem::work_under_curve(delta, load);
+  const double w0 = lab::work_under_curve(delta, load);
   EXPECT_NEAR(w0, 0.5, 1e-12);
   // Self-weight by hand: m = 50 kg/m between the supports, g = 9.81, delta0 = 1 mm gives
   // m g delta0 = 0.4905 J/m; ligament 70 mm, t = 1 m: G_F = (0.5 + 0.4905) / 0.07 N/m.
-  EXPECT_NEAR(dem::rilem_fracture_energy(w0, 50, 1e-3, 0.07, 1.0), 0.9905 / 0.07, 1e-9);
+  EXPECT_NEAR(lab::rilem_fracture_energy(w0, 50, 1e-3, 0.07, 1.0), 0.9905 / 0.07, 1e-9);
   // A beam 0.1 m thick holds a tenth of the work and the mass: the same G_F.
-  EXPECT_NEAR(dem::rilem_fracture_energy(0.05, 5, 1e-3, 0.07, 0.1), 0.9905 / 0.07, 1e-9);
+  EXPECT_NEAR(lab::rilem_fracture_energy(0.05, 5, 1e-3, 0.07, 0.1), 0.9905 / 0.07, 1e-9);
 }
 
 TEST(BendingFormulas, BilinearSofteningGivesItsArea) {
@@ -54,19 +54,19 @@ TEST(BendingFormulas, BilinearSofteningGivesItsArea) {
   // 0.13, 600 x 1.05e-3 / 2 = 0.315: W0 = 0.495 J/m.
   std::vector<double> delta, load;
   piecewise_linear({0, 0.05e-3, 0.15e-3, 1.2e-3}, {0, 2000, 600, 0}, 37, delta, load);
-  EXPECT_NEAR(dem::work_under_curve(delta, load), 0.495, 1e-12);
+  EXPECT_NEAR(lab::work_under_curve(delta, load), 0.495, 1e-12);
   // Without the self-weight term, over a 50 mm ligament: 9.9 N/m.
-  EXPECT_NEAR(dem::rilem_fracture_energy(0.495, 0, 1.2e-3, 0.05, 1.0), 9.9, 1e-9);
-  EXPECT_THROW(dem::work_under_curve(delta, {1.0}), std::invalid_argument);
+  EXPECT_NEAR(lab::rilem_fracture_energy(0.495, 0, 1.2e-3, 0.05, 1.0), 9.9, 1e-9);
+  EXPECT_THROW(lab::work_under_curve(delta, {1.0}), std::invalid_argument);
 }
 
 TEST(BendingFormulas, FlexuralStrengthAndCharacteristicLength) {
   // 3 P S / (2 t H^2): 60 kN/m over 300 mm on a 100 mm deep beam = 2.7 MPa; on the 70 mm
   // ligament 2.7 / 0.49 MPa.
-  EXPECT_NEAR(dem::flexural_strength(60e3, 0.3, 0.1, 1.0), 2.7e6, 1e-6);
-  EXPECT_NEAR(dem::flexural_strength(60e3, 0.3, 0.07, 1.0), 2.7e6 / 0.49, 1e-6);
+  EXPECT_NEAR(lab::flexural_strength(60e3, 0.3, 0.1, 1.0), 2.7e6, 1e-6);
+  EXPECT_NEAR(lab::flexural_strength(60e3, 0.3, 0.07, 1.0), 2.7e6 / 0.49, 1e-6);
   // Hillerborg: 30 GPa x 100 N/m / (3 MPa)^2 = 0.3333 m.
-  EXPECT_NEAR(dem::characteristic_length(30e9, 100, 3e6), 1.0 / 3.0, 1e-12);
+  EXPECT_NEAR(lab::characteristic_length(30e9, 100, 3e6), 1.0 / 3.0, 1e-12);
 }
 
 // A notched beam of the generator: L x H mm, notch a0 x w mm, aggregates 2-4 mm, mortar
@@ -145,26 +145,26 @@ TEST(BeamSpecimen, NotchRoundTripsThroughTheSpecimenFile) {
 // only (R_mean 1 mm), the C30 parallel-bond laws of the fixtures, the platen at 0.5 mm/s (twice
 // the default for the fast preset, to keep the test short: 135,000 steps, 12 s of CPU). One test
 // (CTest runs each test in its own process, so a shared fixture would run the beam per test).
-dem::LabTestResult run_small_beam(const std::string& name, const std::string& control_keys) {
+lab::LabTestResult run_small_beam(const std::string& name, const std::string& control_keys) {
   const fs::path dir = test::scratch_dir("lab_bending", name);
   const Specimen beam = generate(dir, beam_generator(160, 40, 12, 2, false, 1.0));
-  const dem::LabTestInput input = test::lab_test_input(
+  const lab::LabTestInput input = test::lab_test_input(
       dir, beam,
       "[test]\ntype = \"three_point_bending\"\npreset = \"fast\"\nspan_mm = 120\n"
       "history_interval = 500\n" +
           control_keys);
-  return dem::run_lab_test(beam, input);
+  return lab::run_lab_test(beam, input);
 }
 
 TEST(SmallBeam, LoadedToFailure) {
-  const dem::LabTestResult result = run_small_beam("small_beam", "platen_velocity_m_s = 0.0005\n");
-  const dem::BendingResult& b = result.bending;
-  const dem::LabHistory& h = result.history;
+  const lab::LabTestResult result = run_small_beam("small_beam", "platen_velocity_m_s = 0.0005\n");
+  const lab::BendingResult& b = result.bending;
+  const lab::LabHistory& h = result.history;
   {
     SCOPED_TRACE("the load falls below the stop fraction after the peak");
-    EXPECT_EQ(result.stop_reason, dem::StopReason::PostPeakDrop);
+    EXPECT_EQ(result.stop_reason, lab::StopReason::PostPeakDrop);
     EXPECT_GT(b.peak_load, 0);
-    EXPECT_LT(b.final_load, dem::kDefaultStopLoadFraction * b.peak_load);
+    EXPECT_LT(b.final_load, lab::kDefaultStopLoadFraction * b.peak_load);
     EXPECT_GT(b.final_deflection, 1.2 * b.deflection_at_peak);
     // The crack mouth opens: open at the peak, wider at the end.
     EXPECT_GT(b.cmod_at_peak, 0);
@@ -222,13 +222,13 @@ TEST(SmallBeam, LoadedToFailure) {
 // follows its ramp with the lag of a proportional servo (rate x dt / relaxation).
 TEST(SmallBeam, CmodControlHoldsTheSofteningBranch) {
   const double rate = 0.5e-3;  // m/s
-  const dem::LabTestResult result =
+  const lab::LabTestResult result =
       run_small_beam("small_beam_cmod", "control = \"cmod\"\ncmod_rate_m_s = 0.0005\n");
-  const dem::BendingResult& b = result.bending;
-  const dem::LabHistory& h = result.history;
-  EXPECT_EQ(result.stop_reason, dem::StopReason::PostPeakDrop);
-  EXPECT_LT(b.final_load, dem::kDefaultStopLoadFraction * b.peak_load);
-  const double lag = rate * result.time_step / dem::CmodServo{}.relaxation;  // m
+  const lab::BendingResult& b = result.bending;
+  const lab::LabHistory& h = result.history;
+  EXPECT_EQ(result.stop_reason, lab::StopReason::PostPeakDrop);
+  EXPECT_LT(b.final_load, lab::kDefaultStopLoadFraction * b.peak_load);
+  const double lag = rate * result.time_step / lab::CmodServo{}.relaxation;  // m
   std::size_t post_peak = 0, balanced = 0;
   for (std::size_t k = 1; k < h.size(); ++k) {
     // The platen never leaves the beam (displacement control's snap-backs would need it to).

@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 using cdem::ContainerShape;
 using cdem::Specimen;
 using namespace cdem::dem;
+using namespace cdem::lab;
 using cdem::test::expect_input_error;
 using cdem::test::lab_test_input;
 using cdem::test::packed_specimen;

@@ -25,6 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace cdem::dem;
+using namespace cdem::lab;
 using cdem::test::scratch_dir;
 
 template <class T>

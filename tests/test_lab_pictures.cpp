@@ -14,6 +14,7 @@
 
 using namespace cdem;
 using namespace cdem::dem;
+using namespace cdem::lab;
 
 namespace {
 

@@ -25,6 +25,7 @@ using cdem::Container;
 using cdem::ContainerShape;
 using cdem::Specimen;
 using namespace cdem::dem;
+using namespace cdem::lab;
 using cdem::test::c30_materials;
 using cdem::test::lab_test_input;
 using cdem::test::packed_specimen;

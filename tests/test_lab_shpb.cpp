@@ -17,6 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace cdem::dem;
+using namespace cdem::lab;
 
 // Steel bars 0.3 m long, 10 mm wide (the specimen's width); a 40 us half-sine of 100 MPa
 // (2 L / c0 = 117 us holds it), gauges 0.1 m from the faces.

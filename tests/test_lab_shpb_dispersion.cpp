@@ -10,6 +10,8 @@
 #include "lab/shpb_dispersion.hpp"
 
 namespace cdem::dem {
+
+using namespace cdem::lab;
 namespace {
 
 constexpr double kSteelPoisson = 0.29;

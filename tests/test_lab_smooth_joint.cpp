@@ -19,6 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace cdem::dem;
+using namespace cdem::lab;
 using cdem::test::expect_input_error;
 using cdem::test::lab_test_input;
 using cdem::test::scratch_dir;

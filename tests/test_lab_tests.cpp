@@ -27,6 +27,7 @@ using cdem::ContainerShape;
 using cdem::InputError;
 using cdem::Specimen;
 using namespace cdem::dem;
+using namespace cdem::lab;
 using cdem::test::c30_materials;
 using cdem::test::expect_input_error;
 using cdem::test::lab_test_input;

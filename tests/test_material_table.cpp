@@ -15,6 +15,8 @@
 namespace {
 
 using namespace cdem::dem;
+
+using namespace cdem::lab;
 using cdem::InputError;
 using cdem::InputTable;
 

@@ -3,7 +3,7 @@
 
 #include "lab/run_progress.hpp"
 
-using namespace cdem::dem;
+using namespace cdem::lab;
 
 namespace {
 

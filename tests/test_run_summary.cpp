@@ -18,10 +18,10 @@
 namespace {
 
 namespace fs = std::filesystem;
-using cdem::dem::LabTestResult;
-using cdem::dem::LabTestType;
-using cdem::dem::RunSummary;
-using cdem::dem::SeriesSummary;
+using cdem::lab::LabTestResult;
+using cdem::lab::LabTestType;
+using cdem::lab::RunSummary;
+using cdem::lab::SeriesSummary;
 
 // Writes `json` as `cdem run --summary` does (dump(2) and a newline) and returns the file.
 fs::path write_summary(const fs::path& dir, const std::string& name, const std::string& text) {
@@ -33,7 +33,7 @@ fs::path write_summary(const fs::path& dir, const std::string& name, const std::
 // Expects reading `file` to throw an InputError whose message names the file and `field`.
 void expect_summary_error(const fs::path& file, const std::string& field) {
   try {
-    cdem::dem::read_run_summary(file);
+    cdem::lab::read_run_summary(file);
     FAIL() << "no InputError for " << field;
   } catch (const cdem::InputError& e) {
     const std::string what = e.what();
@@ -45,7 +45,7 @@ void expect_summary_error(const fs::path& file, const std::string& field) {
 // Write -> file -> read: the summary read equals the one written, and writes the same text.
 void expect_round_trip(const RunSummary& s, const fs::path& dir, const std::string& name) {
   const std::string text = to_json(s).dump(2) + "\n";
-  const RunSummary back = cdem::dem::read_run_summary(write_summary(dir, name, text));
+  const RunSummary back = cdem::lab::read_run_summary(write_summary(dir, name, text));
   EXPECT_EQ(back, s) << name;
   EXPECT_EQ(to_json(back).dump(2) + "\n", text) << name;
 }
@@ -57,7 +57,7 @@ const RunSummary& real_uniaxial_summary() {
     const cdem::Specimen& specimen = cdem::test::small_rectangle_specimen();
     const auto in = cdem::test::lab_test_input(
         dir, specimen, "[test]\ntype = \"uniaxial\"\nhistory_interval = 20\nmax_steps = 400000\n");
-    return cdem::dem::make_run_summary(cdem::dem::run_lab_test(specimen, in), in);
+    return cdem::lab::make_run_summary(cdem::lab::run_lab_test(specimen, in), in);
   }();
   return s;
 }
@@ -105,28 +105,28 @@ TEST(RunSummary, ARealSummaryReadsBackFieldForField) {
 
 TEST(RunSummary, EveryOptionalPartReadsBack) {
   const auto dir = cdem::test::scratch_dir("test_run_summary", "parts");
-  cdem::dem::LabTestInput in;
+  cdem::lab::LabTestInput in;
   in.specimen_path = "specimen.h5";
   in.seed = 42;
   for (const LabTestType t :
        {LabTestType::Uniaxial, LabTestType::Brazilian, LabTestType::DirectTension,
         LabTestType::Biaxial, LabTestType::Shpb, LabTestType::ThreePointBending}) {
-    const RunSummary s = cdem::dem::make_run_summary(made_result(t), in);
+    const RunSummary s = cdem::lab::make_run_summary(made_result(t), in);
     EXPECT_EQ(s.smooth_joints.size(), 2u);
-    expect_round_trip(s, dir, std::string(cdem::dem::lab_test_name(t)) + ".json");
+    expect_round_trip(s, dir, std::string(cdem::lab::lab_test_name(t)) + ".json");
   }
   in.controls.cmod_control = true;  // the bending table's other control
-  expect_round_trip(cdem::dem::make_run_summary(made_result(LabTestType::ThreePointBending), in),
+  expect_round_trip(cdem::lab::make_run_summary(made_result(LabTestType::ThreePointBending), in),
                     dir, "bending_cmod.json");
   // The biaxial series: the envelope and two confinements.
-  cdem::dem::BiaxialSeries series;
+  cdem::lab::BiaxialSeries series;
   series.runs = {made_result(LabTestType::Biaxial), made_result(LabTestType::Biaxial)};
   series.runs[1].confining_stress = 2e6 / 3;
   series.envelope.cohesion = 5e6 / 3;
-  const SeriesSummary ss = cdem::dem::make_series_summary(series, in);
+  const SeriesSummary ss = cdem::lab::make_series_summary(series, in);
   const std::string text = to_json(ss).dump(2) + "\n";
   const fs::path file = write_summary(dir, "series.json", text);
-  const SeriesSummary back = cdem::dem::read_series_summary(file);
+  const SeriesSummary back = cdem::lab::read_series_summary(file);
   EXPECT_EQ(back, ss);
   EXPECT_EQ(back.confinements.at(1).biaxial->sigma3_MPa, 2.0 / 3);
   EXPECT_EQ(to_json(back).dump(2) + "\n", text);
@@ -135,8 +135,8 @@ TEST(RunSummary, EveryOptionalPartReadsBack) {
 }
 
 TEST(RunSummary, TheFiguresAreInTheUnitsTheirNamesCarry) {
-  cdem::dem::LabTestInput in;
-  const RunSummary u = cdem::dem::make_run_summary(made_result(LabTestType::Uniaxial), in);
+  cdem::lab::LabTestInput in;
+  const RunSummary u = cdem::lab::make_run_summary(made_result(LabTestType::Uniaxial), in);
   EXPECT_EQ(u.peak_stress_MPa, 32.23e6 / 3 * 1e-6);
   EXPECT_EQ(u.uniaxial->young_modulus_GPa, 28.37e9 / 3 * 1e-9);
   EXPECT_EQ(u.cracks.total, 21);  // 1 + ... + 6
@@ -146,7 +146,7 @@ TEST(RunSummary, TheFiguresAreInTheUnitsTheirNamesCarry) {
   EXPECT_EQ(j["genesis"]["bonds"].dump(), R"({"M":10,"ITZ":20,"A":30})");
   EXPECT_EQ(u.genesis.floating_area_fraction, 1.0 / 3);
   EXPECT_FALSE(u.tension.has_value());
-  const RunSummary b = cdem::dem::make_run_summary(made_result(LabTestType::ThreePointBending), in);
+  const RunSummary b = cdem::lab::make_run_summary(made_result(LabTestType::ThreePointBending), in);
   EXPECT_EQ(b.bending->characteristic_length_mm, 0.31 / 3 * 1e3);
   EXPECT_FALSE(b.uniaxial.has_value());
 }
@@ -181,6 +181,6 @@ TEST(RunSummary, ANullNumberReadsAsNaN) {
   const auto dir = cdem::test::scratch_dir("test_run_summary", "null");
   nlohmann::ordered_json j = to_json(real_uniaxial_summary());
   j["poisson_ratio"] = nullptr;  // what the writer makes of a NaN
-  const RunSummary s = cdem::dem::read_run_summary(write_summary(dir, "nan.json", j.dump(2)));
+  const RunSummary s = cdem::lab::read_run_summary(write_summary(dir, "nan.json", j.dump(2)));
   EXPECT_TRUE(std::isnan(s.uniaxial->poisson_ratio));
 }

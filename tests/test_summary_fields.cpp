@@ -23,7 +23,7 @@
 namespace {
 
 using cdem::calib::CalibrationTarget;
-using cdem::dem::LabTestResult;
+using cdem::lab::LabTestResult;
 
 // The figure a target measures, in the unit calibration states it in (target_unit), from the
 // result's own fields (SI).
@@ -45,10 +45,10 @@ double expected(CalibrationTarget t, const LabTestResult& r) {
 
 // Checks every target a test of `kind` measures for calibration in the summary of `r`.
 void expect_targets_of(cdem::calib::TestKind kind, const LabTestResult& r,
-                       const cdem::dem::LabTestInput& in, int targets) {
+                       const cdem::lab::LabTestInput& in, int targets) {
   const nlohmann::json summary =
-      nlohmann::json::parse(to_json(cdem::dem::make_run_summary(r, in)).dump(2));
-  const cdem::dem::RunSummary read = cdem::dem::run_summary_from_json(summary, "summary.json");
+      nlohmann::json::parse(to_json(cdem::lab::make_run_summary(r, in)).dump(2));
+  const cdem::lab::RunSummary read = cdem::lab::run_summary_from_json(summary, "summary.json");
   int checked = 0;
   for (int k = 0; k < cdem::calib::kCalibrationTargetCount; ++k) {
     const auto t = static_cast<CalibrationTarget>(k);
@@ -65,7 +65,7 @@ void expect_targets_of(cdem::calib::TestKind kind, const LabTestResult& r,
   EXPECT_EQ(checked, targets);
   // The warnings calibration carries with the figures: an array of the result's own strings.
   const nlohmann::json warnings =
-      cdem::calib::json_at_path(summary, cdem::dem::summary_field::kWarnings);
+      cdem::calib::json_at_path(summary, cdem::lab::summary_field::kWarnings);
   ASSERT_TRUE(warnings.is_array()) << "no warnings array in the " << summary["test"] << " summary";
   EXPECT_EQ(warnings.get<std::vector<std::string>>(), r.warnings);
 }
@@ -74,10 +74,10 @@ void expect_targets_of(cdem::calib::TestKind kind, const LabTestResult& r,
 void expect_targets_in_summary(const std::string& type, const cdem::Specimen& specimen) {
   SCOPED_TRACE(type);
   const auto dir = cdem::test::scratch_dir("test_summary_fields", type);
-  const cdem::dem::LabTestInput in = cdem::test::lab_test_input(
+  const cdem::lab::LabTestInput in = cdem::test::lab_test_input(
       dir, specimen,
       "[test]\ntype = \"" + type + "\"\nhistory_interval = 20\nmax_steps = 400000\n");
-  const LabTestResult r = cdem::dem::run_lab_test(specimen, in);
+  const LabTestResult r = cdem::lab::run_lab_test(specimen, in);
   const bool tension = type != "uniaxial";
   expect_targets_of(tension ? cdem::calib::TestKind::Tension : cdem::calib::TestKind::Uniaxial, r,
                     in, tension ? 1 : 3);
@@ -96,9 +96,9 @@ TEST(SummaryFields, EveryFieldCalibrationReadsIsInARealSummary) {
 // failure takes minutes; tests/test_lab_bending.cpp runs one and checks the figure itself).
 TEST(SummaryFields, TheFractureEnergyCalibrationReadsIsTheBendingSummarys) {
   LabTestResult r;
-  r.type = cdem::dem::LabTestType::ThreePointBending;
+  r.type = cdem::lab::LabTestType::ThreePointBending;
   r.bending.fracture_energy = 37.25;  // N/m
   r.bending.fracture_energy_no_weight = 35.5;
   r.warnings = {"G_F is a lower bound: the run stopped at max_deflection"};
-  expect_targets_of(cdem::calib::TestKind::Bending, r, cdem::dem::LabTestInput{}, 1);
+  expect_targets_of(cdem::calib::TestKind::Bending, r, cdem::lab::LabTestInput{}, 1);
 }

@@ -15,6 +15,8 @@ namespace {
 
 using namespace cdem::dem;
 
+using namespace cdem::lab;
+
 const char* kMaterials = R"(
 [materials.mortar]
 law = "parallel_bond"

@@ -35,6 +35,7 @@ namespace {
 
 using namespace cdem;
 using namespace cdem::dem;
+using namespace cdem::lab;
 
 struct Probe {
   std::filesystem::path dir;

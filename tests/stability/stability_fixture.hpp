@@ -130,7 +130,7 @@ inline std::string materials_toml(const Laws& laws) {
 struct CaseRun {
   bool completed = false;
   std::string error;  // RunError text when the run stopped
-  dem::LabTestResult result;
+  lab::LabTestResult result;
   double worst_energy_error = 0;  // largest |balance| / energy over the samples
   long energy_samples = 0;
   fs::path result_file;
@@ -139,7 +139,7 @@ struct CaseRun {
 
 // One lab test: `test_keys` is the body of the [test] table. The world's energy balance
 // (dem/energy.hpp: input = stored + dissipated, damping included) is sampled at every snapshot;
-// snapshots and results go to the result file through dem::ResultFile, committed only when the
+// snapshots and results go to the result file through lab::ResultFile, committed only when the
 // run completes. A line for docs/stability.md is printed either way.
 inline CaseRun run_case(const std::string& name, const fs::path& specimen_file, const Laws& laws,
                         const std::string& test_keys) {
@@ -149,14 +149,14 @@ inline CaseRun run_case(const std::string& name, const fs::path& specimen_file, 
   std::ofstream(dir / "test.toml") << "seed = 1\nspecimen = \"" << specimen_file.string() << "\"\n"
                                    << materials_toml(laws) << "\n[test]\n"
                                    << test_keys;
-  const dem::LabTestInput input = dem::read_lab_test(dir / "test.toml");
+  const lab::LabTestInput input = lab::read_lab_test(dir / "test.toml");
   const Specimen specimen = read_specimen(specimen_file);
   CaseRun run;
   run.result_file = dir / "result.h5";
   const auto start = std::chrono::steady_clock::now();
   {
-    dem::ResultFile file(run.result_file, input);
-    dem::LabTestHooks hooks;
+    lab::ResultFile file(run.result_file, input);
+    lab::LabTestHooks hooks;
     hooks.snapshot = [&](const dem::World& world, long step, double time) {
       file.snapshot(world, step, time);
       if (world.energy().reference_pending) return;  // restarted at the next energy check
@@ -165,7 +165,7 @@ inline CaseRun run_case(const std::string& name, const fs::path& specimen_file, 
       ++run.energy_samples;
     };
     try {
-      run.result = dem::run_lab_test(specimen, input, hooks);
+      run.result = lab::run_lab_test(specimen, input, hooks);
       file.commit(run.result);
       run.completed = true;
     } catch (const RunError& e) {
@@ -173,7 +173,7 @@ inline CaseRun run_case(const std::string& name, const fs::path& specimen_file, 
     }
   }
   run.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const dem::LabTestResult& r = run.result;
+  const lab::LabTestResult& r = run.result;
   if (run.completed)
     std::printf(
         "[stability] %s: completed, discs %ld, relaxation cracks %ld, steps %ld, dt %.3g s, peak "
@@ -261,7 +261,7 @@ inline void expect_sensible_ucs(const CaseRun& run, double peak_bound, double nu
                                 double nu_max = 0.5) {
   expect_completed_and_finite(run, peak_bound);
   if (!run.completed) return;
-  const dem::UcsResult& u = run.result.ucs;
+  const lab::UcsResult& u = run.result.ucs;
   EXPECT_TRUE(std::isfinite(u.young_modulus) && u.young_modulus > 0) << u.young_modulus;
   EXPECT_TRUE(std::isfinite(u.poisson_ratio)) << u.poisson_ratio;
   EXPECT_GT(u.poisson_ratio, nu_min);

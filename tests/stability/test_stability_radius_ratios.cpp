@@ -56,7 +56,7 @@ TEST_P(RadiusRatios, PackJammedAndRunTheUniaxialTestToItsStop) {
       100 * floating_area, g.removal_passes);
   expect_sensible_ucs(run, kMortarPeakBound);
   EXPECT_LT(floating_area, kJammedFloatingArea);
-  EXPECT_EQ(run.result.stop_reason, cdem::dem::StopReason::PostPeakDrop);
+  EXPECT_EQ(run.result.stop_reason, cdem::lab::StopReason::PostPeakDrop);
 }
 
 INSTANTIATE_TEST_SUITE_P(MonodisperseTo20, RadiusRatios,

@@ -11,6 +11,7 @@ namespace {
 
 using namespace cdem::stability;
 namespace dem = cdem::dem;
+namespace lab = cdem::lab;
 
 fs::path mortar() {
   return mortar_specimen("mortar_10x20", 10, 20, 0.4, 2.5, 7);
@@ -38,7 +39,7 @@ TEST(TimeStep, SafetyAboveOneIsAnInputError) {
       << "specimen = \"" << mortar().string() << "\"\n"
       << materials_toml(Laws{}) << "[test]\ntype = \"uniaxial\"\ntime_step_safety = 1.2\n";
   try {
-    dem::read_lab_test(dir / "test.toml");
+    lab::read_lab_test(dir / "test.toml");
     FAIL() << "time_step_safety = 1.2 accepted";
   } catch (const cdem::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("time_step_safety"), std::string::npos) << e.what();
@@ -60,11 +61,11 @@ FixedStepRun run_fixed_step(double factor, long steps) {
   dem::WorldSettings settings;
   const cdem::InputTable table =
       cdem::InputTable::parse_string(materials_toml(Laws{}), "materials.toml");
-  dem::read_material_table(table).apply(settings);
-  dem::GenesisReport report;
-  const cdem::Specimen cleaned = dem::remove_floating_discs(specimen, settings, {}, report);
+  lab::read_material_table(table).apply(settings);
+  lab::GenesisReport report;
+  const cdem::Specimen cleaned = lab::remove_floating_discs(specimen, settings, {}, report);
   dem::World world = dem::world_from_specimen(cleaned, settings);
-  dem::install_test_bonds(world, {}, report);
+  lab::install_test_bonds(world, {}, report);
   double ymin = 1, ymax = -1;
   for (std::size_t i = 0; i < world.discs().size(); ++i) {
     ymin = std::min(ymin, world.discs().y[i] - world.discs().r[i]);
