@@ -26,7 +26,8 @@
 # Runs to the end of the tail (the G_F of a complete P-delta curve, docs/lab_tests.md "Complete
 # curves"): STOP_FRACTION=0.001 with MAX_DEFLECTION_D (the bound as a fraction of D, default
 # 0.001) and MAX_STEPS (default the sample's) large enough, into their own OUT_DIR; then
-# bench/bending_tail/complete_curve.py reads them.
+# bench/bending_tail/complete_curve.py reads them. R_MEAN_MM sets the mortar's mean radius (the
+# calibrated 1.0 mm by default; another resolution is an uncalibrated material, a sensitivity).
 # The body is one block, read whole before it runs: editing the script does not change a call
 # already running (bash otherwise reads a script as it goes).
 {
@@ -56,6 +57,7 @@ for run in $runs; do
   set_key "$name.specimen.toml" width_mm "$(mm "4 * $d")"
   set_key "$name.specimen.toml" height_mm "$(mm "$d")"
   set_key "$name.specimen.toml" notch_depth_mm "$(mm "0.3 * $d")"
+  [ -z "${R_MEAN_MM:-}" ] || set_key "$name.specimen.toml" r_mean_mm "$R_MEAN_MM"
   cp "$src/samples/three_point_bending.toml" "$name.test.toml"
   set_key "$name.test.toml" seed "$seed"
   set_key "$name.test.toml" specimen "\"$name.specimen.h5\""
