@@ -15,7 +15,10 @@ not checked) and reports, at that cut and at the run's end:
   the strain energy stored then beyond the first record's, and the work dissipated
   (boundary work less the strain and kinetic energy gained), per ligament area.
 At the end it also checks its W0 and G_F against the run's summary (a check of this script).
-    python3 bench/bending_tail/complete_curve.py OUT_DIR...   (reads OUT_DIR/D*_s*.json, .h5)
+    python3 bench/bending_tail/complete_curve.py DIR...
+DIR: a run directory of size_effect.sh (its D*_s*.json and .h5), or an OUT_DIR of
+bench/bending_tail/tail_probe (history.csv, beam.csv; figures.csv once it has finished), read
+while it runs too: its end is then its last record so far.
 """
 import glob
 import json
@@ -30,6 +33,7 @@ STRAIN_MARGIN = 0.05  # the stop rule's: the drop counts at >= 1.05 x the peak's
 GRAVITY = 9.81  # m/s^2, as lab/three_point_bending.hpp
 THICKNESS = 1.0  # m, the 2D beam
 FIB_GF = 73 * 38 ** 0.18  # N/m, fib Model Code 2010 for f_cm = 38 MPa (C30)
+HISTORY_KEYS = ("deflection", "platen_force", "strain_energy", "kinetic_energy", "boundary_work")
 
 
 def work_to(deflection, load, end):
@@ -66,38 +70,89 @@ def state(h, i, ligament, mass):
                 gf_diss=dissipated / area)
 
 
+def check(full, ref, where):
+    """The history's figures at its last record against the run's own (same trapezoids)."""
+    for key, value in ref.items():
+        if abs(full[key] - value) > 1e-6 * max(1.0, abs(value)):
+            raise SystemExit(f"complete_curve.py: {where}: {key} {full[key]} from the history, "
+                             f"{value} in the run's figures")
+
+
+def figures(h, ligament, mass):
+    """The cut and end states of a history (dict of lists, SI)."""
+    end = len(h["deflection"]) - 1
+    i = cut_record(h["deflection"], h["platen_force"])
+    return (state(h, i, ligament, mass) if i is not None and i < end else None,
+            state(h, end, ligament, mass))
+
+
 def analyse(h5_path, summary):
+    """A cdem run: its result file's history and its summary."""
     b = summary["bending"]
     with h5py.File(h5_path, "r") as f:
-        h = {k: list(f["history"][k][:]) for k in ("deflection", "platen_force",
-                                                    "strain_energy", "kinetic_energy",
-                                                    "boundary_work")}
-    ligament = (b["depth_mm"] - b["notch_depth_mm"]) * 1e-3
-    mass = b["mass_between_supports_kg_per_m"]
-    end = len(h["deflection"]) - 1
-    full = state(h, end, ligament, mass)
-    for key, ref in (("w0", b["work_of_fracture_J_per_m"]), ("gf", b["fracture_energy_N_per_m"]),
-                     ("gf_diss", b["dissipated_fracture_energy_N_per_m"])):
-        if abs(full[key] - ref) > 1e-6 * max(1.0, abs(ref)):
-            raise SystemExit(f"complete_curve.py: {h5_path}: {key} {full[key]} from the history, "
-                             f"{ref} in the summary")
-    i = cut_record(h["deflection"], h["platen_force"])
-    cut = state(h, i, ligament, mass) if i is not None and i < end else None
-    return dict(p_max=b["peak_load_kN_per_m"], d_peak=b["deflection_at_peak_mm"], full=full,
-                cut=cut, stop=summary["stop_reason"], pieces=summary["fragments"]["count"],
-                steps=summary["steps"])
+        h = {k: list(f["history"][k][:]) for k in HISTORY_KEYS}
+    cut, full = figures(h, (b["depth_mm"] - b["notch_depth_mm"]) * 1e-3,
+                        b["mass_between_supports_kg_per_m"])
+    check(full, {"w0": b["work_of_fracture_J_per_m"], "gf": b["fracture_energy_N_per_m"],
+                 "gf_diss": b["dissipated_fracture_energy_N_per_m"]}, h5_path)
+    return dict(p_max=b["peak_load_kN_per_m"], full=full, cut=cut, stop=summary["stop_reason"],
+                pieces=summary["fragments"]["count"])
+
+
+def read_csv(path):
+    """A CSV of tail_probe as columns (floats where they parse); whole lines only (a running
+    probe may be writing the last one)."""
+    with open(path) as f:
+        lines = f.read().split("\n")
+    names = lines[0].split(",")
+    cols = {n: [] for n in names}
+    for line in lines[1:]:
+        cells = line.split(",")
+        if len(cells) != len(names):
+            continue
+        for n, c in zip(names, cells):
+            try:
+                cols[n].append(float(c))
+            except ValueError:
+                cols[n].append(c)
+    return cols
+
+
+def analyse_probe(directory):
+    """A bench/bending_tail/tail_probe run, finished or not: its history.csv, beam.csv and, when
+    it has finished, figures.csv (the stop reason and the run's figures, checked). A run not
+    finished ends at its last record so far: 'running'."""
+    hc = read_csv(os.path.join(directory, "history.csv"))
+    h = dict(deflection=hc["deflection"], platen_force=hc["load"],
+             strain_energy=hc["strain_energy"], kinetic_energy=hc["kinetic_energy"],
+             boundary_work=hc["boundary_work"])
+    beam = read_csv(os.path.join(directory, "beam.csv"))
+    ligament = beam["depth"][0] - beam["notch_depth"][0]
+    cut, full = figures(h, ligament, beam["mass_between_supports"][0])
+    stop = "running"
+    fig_path = os.path.join(directory, "figures.csv")
+    if os.path.exists(fig_path):
+        fig = read_csv(fig_path)
+        stop = fig["stop_reason"][0]
+        check(full, {"w0": fig["work_of_fracture"][0], "gf": fig["fracture_energy"][0],
+                     "gf_diss": fig["dissipated_fracture_energy"][0]}, directory)
+    return dict(p_max=max(h["platen_force"]) * 1e-3, full=full, cut=cut, stop=stop, pieces="-")
 
 
 def main(dirs):
     rows = []
     for out in dirs:
+        if os.path.exists(os.path.join(out, "history.csv")):
+            rows.append((os.path.basename(os.path.normpath(out)), analyse_probe(out)))
+            continue
         for path in sorted(glob.glob(os.path.join(out, "D*_s*.json"))):
             if path.endswith(".specimen.json"):
                 continue
             rows.append((os.path.basename(path)[:-5],
                          analyse(path[:-5] + ".h5", json.load(open(path)))))
     if not rows:
-        sys.exit(f"complete_curve.py: no run summaries D*_s*.json in {' '.join(dirs)}")
+        sys.exit(f"complete_curve.py: no run summaries D*_s*.json and no tail_probe history in "
+                 f"{' '.join(dirs)}")
     print(f"| run | P_max kN/m | cut ({CUT_FRACTION} P_max): delta mm | G_F (no m g d0) N/m "
           "| dissipated N/m | stored J/m | end: stop | delta mm | P/P_max | pieces "
           "| G_F (no m g d0) N/m | dissipated N/m | stored J/m | fib gap closed |")

@@ -105,3 +105,43 @@ def test_main_prints_a_row(tmp_path, capsys):
     cc.main([str(tmp_path)])
     out = capsys.readouterr().out
     assert "| D050_s1 | 10.00 | 0.0240 |" in out
+
+
+def write_probe(tmp_path, finished, half_line=False):
+    """The same history as tail_probe writes it; figures.csv when `finished`."""
+    h = history()
+    rows = ["step,deflection,load,supports,cmod,strain_energy,kinetic_energy,boundary_work"]
+    for i in range(RECORDS):
+        rows.append(f"{500 * i},{h['deflection'][i]!r},{h['platen_force'][i]!r},0,0,"
+                    f"{h['strain_energy'][i]!r},{h['kinetic_energy'][i]!r},"
+                    f"{h['boundary_work'][i]!r}")
+    text = "\n".join(rows) + "\n" + ("61000,0.00006" if half_line else "")
+    (tmp_path / "history.csv").write_text(text)
+    (tmp_path / "beam.csv").write_text(
+        f"span,depth,notch_depth,length,mass_between_supports\n0.15,0.05,0.015,0.2,{MASS}\n")
+    if finished:
+        (tmp_path / "figures.csv").write_text(
+            "peak_load,deflection_at_peak,final_deflection,final_load,work_of_fracture,"
+            "fracture_energy,fracture_energy_no_weight,stored_energy,"
+            "dissipated_fracture_energy,stop_reason\n"
+            f"10000,1e-05,6e-05,0,{W0_END},{rilem(W0_END, 0.060e-3)},{W0_END / LIGAMENT},0,"
+            f"{(0.180 - 1e-4) / LIGAMENT},post_peak_drop\n")
+
+
+def test_a_probe_directory_reads_as_a_run(tmp_path):
+    write_probe(tmp_path, finished=True)
+    r = cc.analyse_probe(str(tmp_path))
+    assert r["stop"] == "post_peak_drop"
+    assert r["p_max"] == pytest.approx(10.0)
+    assert r["cut"]["w0"] == pytest.approx(W0_CUT, rel=1e-9)
+    assert r["full"]["w0"] == pytest.approx(W0_END, rel=1e-9)
+    assert r["full"]["gf"] == pytest.approx(rilem(W0_END, 0.060e-3), rel=1e-9)
+
+
+def test_a_running_probe_ends_at_its_last_whole_line(tmp_path):
+    # No figures.csv yet, and a half-written last line: the run so far, to record 60.
+    write_probe(tmp_path, finished=False, half_line=True)
+    r = cc.analyse_probe(str(tmp_path))
+    assert r["stop"] == "running"
+    assert r["full"]["delta_mm"] == pytest.approx(0.060)
+    assert r["full"]["w0"] == pytest.approx(W0_END, rel=1e-9)
