@@ -9,7 +9,8 @@ are the same, record for record. This script finds in the history the record whe
 sample's rule would have stopped (the load below CUT_FRACTION x the running peak for
 CONFIRM_RECORDS records in a row, at a deflection at least 1.05 x the peak's: lab/stop_rule.cpp;
 its crack condition, cracks across half the ligament, holds long before in these beams and is
-not checked) and reports, at that cut and at the run's end:
+not checked) and reports, at that cut, where the load is gone (below GONE_FRACTION x P_max from
+there to the last record) and at the run's end:
   W0 (J/m): trapezoids under P-delta from the first record (as lab/lab_test.cpp);
   G_F (N/m): (W0 + m g delta0) / (t (H - a0)), RILEM TC-50 FMC, and without the m g delta0 term;
   the strain energy stored then beyond the first record's, and the work dissipated
@@ -29,6 +30,9 @@ import h5py
 
 CUT_FRACTION = 0.05  # samples/three_point_bending.toml: stop_load_fraction
 CONFIRM_RECORDS = 5  # the stop rule's default stop_confirm_records
+# The load "gone" (the halves joined at most by a hinge of a bond or two, docs/lab_tests.md
+# "Complete curves"): below this fraction of the peak from a record to the run's last one.
+GONE_FRACTION = 0.01
 STRAIN_MARGIN = 0.05  # the stop rule's: the drop counts at >= 1.05 x the peak's deflection
 GRAVITY = 9.81  # m/s^2, as lab/three_point_bending.hpp
 THICKNESS = 1.0  # m, the 2D beam
@@ -57,6 +61,16 @@ def cut_record(deflection, load, fraction=CUT_FRACTION, confirm=CONFIRM_RECORDS)
     return None
 
 
+def gone_record(load, fraction=GONE_FRACTION):
+    """The first record from which the load stays below fraction x its peak to the last record
+    (None if the last record is not below it)."""
+    peak = max(load)
+    i = len(load)
+    while i > 0 and load[i - 1] < fraction * peak:
+        i -= 1
+    return i if i < len(load) else None
+
+
 def state(h, i, ligament, mass):
     """The figures of a run cut at record i (SI in, mm, J/m and N/m out)."""
     d, p = h["deflection"], h["platen_force"]
@@ -79,10 +93,13 @@ def check(full, ref, where):
 
 
 def figures(h, ligament, mass):
-    """The cut and end states of a history (dict of lists, SI)."""
+    """The cut, load-gone and end states of a history (dict of lists, SI); None where the
+    history has no such record."""
     end = len(h["deflection"]) - 1
     i = cut_record(h["deflection"], h["platen_force"])
+    g = gone_record(h["platen_force"])
     return (state(h, i, ligament, mass) if i is not None and i < end else None,
+            state(h, g, ligament, mass) if g is not None else None,
             state(h, end, ligament, mass))
 
 
@@ -91,12 +108,12 @@ def analyse(h5_path, summary):
     b = summary["bending"]
     with h5py.File(h5_path, "r") as f:
         h = {k: list(f["history"][k][:]) for k in HISTORY_KEYS}
-    cut, full = figures(h, (b["depth_mm"] - b["notch_depth_mm"]) * 1e-3,
-                        b["mass_between_supports_kg_per_m"])
+    cut, gone, full = figures(h, (b["depth_mm"] - b["notch_depth_mm"]) * 1e-3,
+                              b["mass_between_supports_kg_per_m"])
     check(full, {"w0": b["work_of_fracture_J_per_m"], "gf": b["fracture_energy_N_per_m"],
                  "gf_diss": b["dissipated_fracture_energy_N_per_m"]}, h5_path)
-    return dict(p_max=b["peak_load_kN_per_m"], full=full, cut=cut, stop=summary["stop_reason"],
-                pieces=summary["fragments"]["count"])
+    return dict(p_max=b["peak_load_kN_per_m"], full=full, cut=cut, gone=gone,
+                stop=summary["stop_reason"], pieces=summary["fragments"]["count"])
 
 
 def read_csv(path):
@@ -128,7 +145,7 @@ def analyse_probe(directory):
              boundary_work=hc["boundary_work"])
     beam = read_csv(os.path.join(directory, "beam.csv"))
     ligament = beam["depth"][0] - beam["notch_depth"][0]
-    cut, full = figures(h, ligament, beam["mass_between_supports"][0])
+    cut, gone, full = figures(h, ligament, beam["mass_between_supports"][0])
     stop = "running"
     fig_path = os.path.join(directory, "figures.csv")
     if os.path.exists(fig_path):
@@ -136,7 +153,8 @@ def analyse_probe(directory):
         stop = fig["stop_reason"][0]
         check(full, {"w0": fig["work_of_fracture"][0], "gf": fig["fracture_energy"][0],
                      "gf_diss": fig["dissipated_fracture_energy"][0]}, directory)
-    return dict(p_max=max(h["platen_force"]) * 1e-3, full=full, cut=cut, stop=stop, pieces="-")
+    return dict(p_max=max(h["platen_force"]) * 1e-3, full=full, cut=cut, gone=gone, stop=stop,
+                pieces="-")
 
 
 def main(dirs):
@@ -153,20 +171,24 @@ def main(dirs):
     if not rows:
         sys.exit(f"complete_curve.py: no run summaries D*_s*.json and no tail_probe history in "
                  f"{' '.join(dirs)}")
-    print(f"| run | P_max kN/m | cut ({CUT_FRACTION} P_max): delta mm | G_F (no m g d0) N/m "
-          "| dissipated N/m | stored J/m | end: stop | delta mm | P/P_max | pieces "
-          "| G_F (no m g d0) N/m | dissipated N/m | stored J/m | fib gap closed |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print(f"| run | P_max kN/m | cut (P < {CUT_FRACTION} P_max): delta mm | G_F (no m g d0) N/m "
+          f"| dissipated N/m | load gone (P < {GONE_FRACTION} P_max to the end): delta mm "
+          "| G_F (no m g d0) N/m | dissipated N/m | end: stop | delta mm | P/P_max | pieces "
+          "| G_F (no m g d0) N/m | dissipated N/m | stored J/m | fib gap closed, cut to gone |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, r in rows:
-        c, e = r["cut"], r["full"]
-        cut = (f"{c['delta_mm']:.4f} | {c['gf']:.2f} ({c['gf_nw']:.2f}) | {c['gf_diss']:.2f} "
-               f"| {c['stored']:.3f}" if c else "- | - | - | -")
-        closed = (f"{(e['gf'] - c['gf']) / (FIB_GF - c['gf']):.1%}" if c else "-")
-        print(f"| {name} | {r['p_max']:.2f} | {cut} | {r['stop']} | {e['delta_mm']:.4f} "
-              f"| {e['p_frac']:.3f} | {r['pieces']} | {e['gf']:.2f} ({e['gf_nw']:.2f}) "
-              f"| {e['gf_diss']:.2f} | {e['stored']:.3f} | {closed} |")
+        c, g, e = r["cut"], r["gone"], r["full"]
+
+        def cells(x):
+            return (f"{x['delta_mm']:.4f} | {x['gf']:.2f} ({x['gf_nw']:.2f}) | {x['gf_diss']:.2f}"
+                    if x else "- | - | -")
+        closed = (f"{(g['gf'] - c['gf']) / (FIB_GF - c['gf']):.1%}" if c and g else "-")
+        print(f"| {name} | {r['p_max']:.2f} | {cells(c)} | {cells(g)} | {r['stop']} "
+              f"| {e['delta_mm']:.4f} | {e['p_frac']:.3f} | {r['pieces']} "
+              f"| {e['gf']:.2f} ({e['gf_nw']:.2f}) | {e['gf_diss']:.2f} | {e['stored']:.3f} "
+              f"| {closed} |")
     print(f"\nfib Model Code 2010: G_F = 73 f_cm^0.18 = {FIB_GF:.1f} N/m (f_cm 38 MPa); "
-          "'fib gap closed' = (G_F end - G_F cut) / (fib - G_F cut), RILEM G_F with m g delta0")
+          "'fib gap closed' = (G_F gone - G_F cut) / (fib - G_F cut), RILEM G_F with m g delta0")
 
 
 if __name__ == "__main__":
