@@ -9,8 +9,8 @@ are the same, record for record. This script finds in the history the record whe
 sample's rule would have stopped (the load below CUT_FRACTION x the running peak for
 CONFIRM_RECORDS records in a row, at a deflection at least 1.05 x the peak's: lab/stop_rule.cpp;
 its crack condition, cracks across half the ligament, holds long before in these beams and is
-not checked) and reports, at that cut, where the load is gone (below GONE_FRACTION x P_max from
-there to the last record) and at the run's end:
+not checked) and reports, at that cut, where the load is gone (the same rule at GONE_FRACTION)
+and at the run's end:
   W0 (J/m): trapezoids under P-delta from the first record (as lab/lab_test.cpp);
   G_F (N/m): (W0 + m g delta0) / (t (H - a0)), RILEM TC-50 FMC, and without the m g delta0 term;
   the strain energy stored then beyond the first record's, and the work dissipated
@@ -31,7 +31,7 @@ import h5py
 CUT_FRACTION = 0.05  # samples/three_point_bending.toml: stop_load_fraction
 CONFIRM_RECORDS = 5  # the stop rule's default stop_confirm_records
 # The load "gone" (the halves joined at most by a hinge of a bond or two, docs/lab_tests.md
-# "Complete curves"): below this fraction of the peak from a record to the run's last one.
+# "Complete curves"): where the stop rule with this stop_load_fraction would have stopped.
 GONE_FRACTION = 0.01
 STRAIN_MARGIN = 0.05  # the stop rule's: the drop counts at >= 1.05 x the peak's deflection
 GRAVITY = 9.81  # m/s^2, as lab/three_point_bending.hpp
@@ -61,16 +61,6 @@ def cut_record(deflection, load, fraction=CUT_FRACTION, confirm=CONFIRM_RECORDS)
     return None
 
 
-def gone_record(load, fraction=GONE_FRACTION):
-    """The first record from which the load stays below fraction x its peak to the last record
-    (None if the last record is not below it)."""
-    peak = max(load)
-    i = len(load)
-    while i > 0 and load[i - 1] < fraction * peak:
-        i -= 1
-    return i if i < len(load) else None
-
-
 def state(h, i, ligament, mass):
     """The figures of a run cut at record i (SI in, mm, J/m and N/m out)."""
     d, p = h["deflection"], h["platen_force"]
@@ -97,9 +87,9 @@ def figures(h, ligament, mass):
     history has no such record."""
     end = len(h["deflection"]) - 1
     i = cut_record(h["deflection"], h["platen_force"])
-    g = gone_record(h["platen_force"])
+    g = cut_record(h["deflection"], h["platen_force"], fraction=GONE_FRACTION)
     return (state(h, i, ligament, mass) if i is not None and i < end else None,
-            state(h, g, ligament, mass) if g is not None else None,
+            state(h, g, ligament, mass) if g is not None and g < end else None,
             state(h, end, ligament, mass))
 
 
@@ -172,7 +162,7 @@ def main(dirs):
         sys.exit(f"complete_curve.py: no run summaries D*_s*.json and no tail_probe history in "
                  f"{' '.join(dirs)}")
     print(f"| run | P_max kN/m | cut (P < {CUT_FRACTION} P_max): delta mm | G_F (no m g d0) N/m "
-          f"| dissipated N/m | load gone (P < {GONE_FRACTION} P_max to the end): delta mm "
+          f"| dissipated N/m | load gone (P < {GONE_FRACTION} P_max): delta mm "
           "| G_F (no m g d0) N/m | dissipated N/m | end: stop | delta mm | P/P_max | pieces "
           "| G_F (no m g d0) N/m | dissipated N/m | stored J/m | fib gap closed, cut to gone |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
