@@ -168,6 +168,14 @@ def main(sources):
     print(f"Bazant fit over {len(runs)} runs: B f_t = {bft:.3f} MPa, D0 = {d0:.1f} mm, "
           f"R^2 = {r2:.3f}")
     print("brittleness D/D0: " + ", ".join(f"{d:g} mm: {d / d0:.2f}" for d in depths))
+    # The regression over runs weights a depth by its number of runs, and 1/sigma^2 of a weak
+    # run by more than a strong one's (convex): the line through each depth's mean sigma_N
+    # weights the depths alike.
+    means = [sum(r["sigma"] for r in runs if r["d"] == d) / sum(1 for r in runs if r["d"] == d)
+             for d in depths]
+    mb, md, mr2 = bazant_fit(depths, means)
+    print(f"Bazant fit to the {len(depths)} depths' mean sigma_N: B f_t = {mb:.3f} MPa, "
+          f"D0 = {md:.1f} mm, R^2 = {mr2:.3f}")
     b_lo, b_hi, d_lo, d_hi, flat, no_law = bootstrap(runs)
     print(f"bootstrap ({BOOTSTRAP_DRAWS} draws of each depth's runs, seed {BOOTSTRAP_SEED}), "
           f"5-95 %: B f_t {b_lo:.3f}-{b_hi:.3f} MPa, D0 {d_lo:.1f}-{d_hi:.1f} mm; "

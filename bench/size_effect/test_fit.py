@@ -80,6 +80,20 @@ def test_main_reads_summaries(tmp_path, capsys):
     assert "B f_t = 3.200 MPa, D0 = 75.0 mm" in out
 
 
+def test_the_means_fit_weights_the_depths_alike(tmp_path, capsys):
+    # Three runs at 50 mm (1.0, 1.2, 0.8 x the law, mean on it) and one at 100 and 200 mm on the
+    # law: the line through the depth means is the law's; the regression over the five runs is
+    # not (1/sigma^2 of the weak 50 mm run outweighs the strong one's).
+    for seed, f in ((1, 1.0), (2, 1.2), (3, 0.8)):
+        write_summary(tmp_path, 50, seed, f * law(3.2, 75, 50))
+    for d in (100, 200):
+        write_summary(tmp_path, d, 1, law(3.2, 75, d))
+    fit.main([str(tmp_path)])
+    out = capsys.readouterr().out
+    assert "mean sigma_N: B f_t = 3.200 MPa, D0 = 75.0 mm, R^2 = 1.000" in out
+    assert "Bazant fit over 5 runs: B f_t = 3.200 MPa" not in out
+
+
 def test_a_summary_replaces_its_csv_row_and_is_compared(tmp_path):
     # D 50 seed 1 in both: the summary's sigma is used; it agrees with the row to the row's 3
     # decimals. D 100 seed 1 in both, 0.01 MPa off: used from the summary, flagged. D 200 seed 1
