@@ -3,7 +3,13 @@
 // only reads the world at history records, so the run's numbers are the command's) and, when
 // the load-point deflection first reaches each of the given values, writes the state a
 // load-path analysis needs (bench/bending_tail/analyse_tail.py):
-//   OUT/history.csv          every record: step, deflection (m), P (N/m), supports (N/m), CMOD (m)
+//   OUT/history.csv          every record: step, deflection (m), P (N/m), supports (N/m), CMOD
+//                            (m), strain and kinetic energy, the platen's work (J/m); flushed
+//                            at every record, so a run still going (or stopped) can be read;
+//                            the last record (the stop's) is added when the run ends
+//   OUT/beam.csv             at the first record: S, H, a0, L (m), the mass between the
+//                            supports (kg/m, as the summary's: every body's mass x S / L)
+//   OUT/figures.csv          at the end: the run's RILEM and energy figures (SI), stop reason
 //   OUT/discs_K.csv          per disc: position now and at the first record (m), radius (m),
 //                            body, 1 if the body is an aggregate clump
 //   OUT/contacts_K.csv       per disc-disc pair in contact or bonded: discs, class (0 M, 1 ITZ,
@@ -60,9 +66,22 @@ struct Probe {
 
   // Writes the history record `i` of h (header and one row, or the row alone).
   static void record(std::ofstream& f, const LabHistory& h, std::size_t i, bool header) {
-    if (header) f << "step,deflection,load,supports,cmod\n";
+    if (header)
+      f << "step,deflection,load,supports,cmod,strain_energy,kinetic_energy,boundary_work\n";
     f << h.step[i] << ',' << h.deflection[i] << ',' << h.platen_force[i] << ','
-      << h.support_reaction[i] << ',' << h.cmod[i] << '\n';
+      << h.support_reaction[i] << ',' << h.cmod[i] << ',' << h.strain_energy[i] << ','
+      << h.kinetic_energy[i] << ',' << h.boundary_work[i] << '\n';
+  }
+
+  // The beam's geometry (m) and its mass between the supports (kg/m), as analyse_bending
+  // computes it.
+  void beam(const World& w, const Container& mould, double span) const {
+    double mass = 0;  // kg/m
+    for (const double m : w.bodies().mass) mass += m;
+    std::ofstream f = open("beam.csv");
+    f << "span,depth,notch_depth,length,mass_between_supports\n"
+      << span << ',' << mould.height << ',' << mould.notch_depth << ',' << mould.width << ','
+      << mass * span / mould.width << '\n';
   }
 
   void dump(const World& w, const LabHistory& h, std::size_t k) const {
@@ -124,16 +143,34 @@ int main(int argc, char** argv) {
     for (int a = 3; a < argc; ++a) probe.targets.push_back(std::stod(argv[a]) * 1e-3);
     std::sort(probe.targets.begin(), probe.targets.end());
     std::ofstream hist = probe.open("history.csv");
+    std::size_t written = 0;  // history records in history.csv
     LabTestHooks hooks;
     hooks.should_stop = [&](const World& w, const LabHistory& h) {
-      if (h.size() == 1) probe.start(w);
+      if (h.size() == 1) {
+        probe.start(w);
+        probe.beam(w, specimen.container, input.controls.span);
+      }
       Probe::record(hist, h, h.size() - 1, h.size() == 1);
+      hist.flush();
+      written = h.size();
       for (; probe.next < probe.targets.size() && h.deflection.back() >= probe.targets[probe.next];
            ++probe.next)
         probe.dump(w, h, probe.next);
       return false;
     };
     const LabTestResult r = run_lab_test(specimen, input, hooks);
+    // The hook is not called at the record that stops the run: add it (and any other unwritten).
+    for (std::size_t i = written; i < r.history.size(); ++i)
+      Probe::record(hist, r.history, i, i == 0);
+    const BendingResult& b = r.bending;
+    std::ofstream fig = probe.open("figures.csv");
+    fig << "peak_load,deflection_at_peak,final_deflection,final_load,work_of_fracture,"
+           "fracture_energy,fracture_energy_no_weight,stored_energy,dissipated_fracture_energy,"
+           "stop_reason\n"
+        << b.peak_load << ',' << b.deflection_at_peak << ',' << b.final_deflection << ','
+        << b.final_load << ',' << b.work_of_fracture << ',' << b.fracture_energy << ','
+        << b.fracture_energy_no_weight << ',' << b.stored_energy << ','
+        << b.dissipated_fracture_energy << ',' << stop_reason_name(r.stop_reason) << '\n';
     std::printf("P_max %.4f kN/m at %.5f mm, W0 %.5f J/m, G_F %.3f N/m, stop at %.5f mm\n",
                 r.bending.peak_load * 1e-3, r.bending.deflection_at_peak * 1e3,
                 r.bending.work_of_fracture, r.bending.fracture_energy,

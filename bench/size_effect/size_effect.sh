@@ -23,6 +23,14 @@
 # G_F of these runs miss the tail and are not reported. A beam that climbs again after a first
 # drop can stop near STOP_FRACTION before its largest peak: rerun such a run with
 # STOP_FRACTION=0.2 into another OUT_DIR and compare the peaks (docs/lab_tests.md).
+# Runs to the end of the tail (the G_F of a complete P-delta curve, docs/lab_tests.md "Complete
+# curves"): STOP_FRACTION=0.001 with MAX_DEFLECTION_D (the bound as a fraction of D, default
+# 0.001) and MAX_STEPS (default the sample's) large enough, into their own OUT_DIR; then
+# bench/bending_tail/complete_curve.py reads them. R_MEAN_MM sets the mortar's mean radius (the
+# calibrated 1.0 mm by default; another resolution is an uncalibrated material, a sensitivity).
+# The body is one block, read whole before it runs: editing the script does not change a call
+# already running (bash otherwise reads a script as it goes).
+{
 set -euo pipefail
 src="$(cd "$(dirname "$0")/../.." && pwd)"
 build="$(cd "${1:-build}" && pwd)"
@@ -30,6 +38,7 @@ mkdir -p "${2:-out/size_effect}"
 out="$(cd "${2:-out/size_effect}" && pwd)"
 runs="${3:-50:1 50:2 100:1 100:2 200:1}"
 stop_fraction="${STOP_FRACTION:-0.5}"
+max_deflection_d="${MAX_DEFLECTION_D:-0.001}"
 cdem="$build/bin/cdem"
 cd "$out"
 mm() { python3 -c "print(f'{$1:g}')"; }  # a length in mm from D (the factors are exact in %g)
@@ -48,13 +57,15 @@ for run in $runs; do
   set_key "$name.specimen.toml" width_mm "$(mm "4 * $d")"
   set_key "$name.specimen.toml" height_mm "$(mm "$d")"
   set_key "$name.specimen.toml" notch_depth_mm "$(mm "0.3 * $d")"
+  [ -z "${R_MEAN_MM:-}" ] || set_key "$name.specimen.toml" r_mean_mm "$R_MEAN_MM"
   cp "$src/samples/three_point_bending.toml" "$name.test.toml"
   set_key "$name.test.toml" seed "$seed"
   set_key "$name.test.toml" specimen "\"$name.specimen.h5\""
   set_key "$name.test.toml" materials '"materials.toml"'
   set_key "$name.test.toml" span_mm "$(mm "3 * $d")"
   set_key "$name.test.toml" stop_load_fraction "$stop_fraction"
-  set_key "$name.test.toml" max_deflection_mm "$(mm "0.001 * $d")"
+  set_key "$name.test.toml" max_deflection_mm "$(mm "$max_deflection_d * $d")"
+  [ -z "${MAX_STEPS:-}" ] || set_key "$name.test.toml" max_steps "$MAX_STEPS"
   if [ ! -f "$name.specimen.h5" ]; then
     /usr/bin/time -f "%e s wall, %U s CPU" -o "$name.generate.time" \
       "$cdem" generate "$name.specimen.toml" -o "$name.specimen.h5" --seed "$seed" \
@@ -67,3 +78,5 @@ for run in $runs; do
   echo "$name: generate $(cat "$name.generate.time" 2>/dev/null || echo '(kept)'), run $(cat "$name.run.time" 2>/dev/null || echo '(kept)')"
 done
 python3 "$src/bench/size_effect/fit.py" "$out"
+exit
+}
