@@ -11,8 +11,7 @@ using namespace cdem::dem;  // the engine the lab layer drives
 
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180;  // rad
-constexpr double kGPaPerM = 1e9;                    // Pa/m
+constexpr double kGPaPerM = 1e9;  // Pa/m
 
 // The stiffness keys carry their unit, GPa per m of displacement, in the name.
 constexpr const char* kNormalStiffness = "sj_normal_stiffness_GPa_m";
@@ -28,9 +27,11 @@ SmoothJointParams read_properties(const InputTable& t) {
   p.tensile_strength =
       t.quantity_or("sj_tensile_strength", Dimension::Stress, 0.0, Range::non_negative());
   p.cohesion = t.quantity_or("sj_cohesion", Dimension::Stress, 0.0, Range::non_negative());
-  p.friction_angle = t.number_or("sj_friction_angle_deg", 0.0, Range::right_open(0, 90)) * kDegree;
+  p.friction_angle =
+      t.number_or("sj_friction_angle_deg", 0.0, Range::right_open(0, 90)) * units::degree;
   p.friction = t.number_or("sj_friction", 0.0, Range::closed(0, 10));
-  p.dilation_angle = t.number_or("sj_dilation_angle_deg", 0.0, Range::right_open(0, 90)) * kDegree;
+  p.dilation_angle =
+      t.number_or("sj_dilation_angle_deg", 0.0, Range::right_open(0, 90)) * units::degree;
   p.radius_multiplier = t.number_or("sj_radius_multiplier", 1.0, Range::left_open(0, 10));
   p.bonded = t.boolean_or("sj_bonded", true);
   return p;
@@ -54,7 +55,7 @@ std::vector<JointSet> read_joint_sets(const InputTable& test) {
              "points_mm = [[x1, y1], [x2, y2]] (one segment)");
     set.family = family;
     if (family) {
-      set.dip = t.number("dip_deg", Range::right_open(0, 180)) * kDegree;
+      set.dip = t.number("dip_deg", Range::right_open(0, 180)) * units::degree;
       set.spacing = t.quantity("spacing", Dimension::Length, Range::positive());
       set.offset = t.quantity_or("offset", Dimension::Length, 0.0, Range::any());
     } else {

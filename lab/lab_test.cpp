@@ -1,4 +1,5 @@
 #include "lab/lab_test.hpp"
+#include "core/units.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -201,9 +202,8 @@ LabTestControls read_controls(const InputTable& t) {
     t.fail("loading_arc_deg", "only used with platens = \"loading_arc\"");
   // The whole arc 2 alpha, in degrees: ISRM's jaws load about 10 degrees at failure, the
   // flattened Brazilian disc 20-30; beyond 60 the load is no longer a diametral line load.
-  constexpr double kDegree = std::numbers::pi / 180;  // rad
   if (t.has("loading_arc_deg"))
-    c.loading_arc = t.number("loading_arc_deg", Range::closed(1, 60)) * kDegree;
+    c.loading_arc = t.number("loading_arc_deg", Range::closed(1, 60)) * units::degree;
   c.threads = static_cast<int>(t.integer_or("threads", c.threads, 1, 1024));
   c.genesis.min_contacts =
       static_cast<int>(t.integer_or("min_contacts", c.genesis.min_contacts, 0, 12));
@@ -570,7 +570,7 @@ Loading set_up_loading(World& world, const Specimen& specimen, const LabTestInpu
     l.gauge_length = height;
     if (l.bottom_grip.empty() || l.top_grip.empty()) {
       std::ostringstream msg;
-      msg << "a loading arc of " << c.loading_arc * 180 / std::numbers::pi
+      msg << "a loading arc of " << c.loading_arc / units::degree
           << " degrees holds no boundary disc of the " << 2e3 * circle.radius
           << " mm disc; widen it (allowed 1 to 60 degrees)";
       throw InputError(input.file, "test.loading_arc_deg", msg.str());
@@ -678,9 +678,8 @@ void warn_few_arc_discs(LabTestResult& res, const LabTestHooks& hooks, const Loa
   const std::size_t bottom = loading.bottom_grip.size(), top = loading.top_grip.size();
   if (std::min(bottom, top) >= kFewArcDiscs) return;
   std::ostringstream msg;
-  msg << "the loading arcs of " << c.loading_arc * 180 / std::numbers::pi << " degrees drive "
-      << bottom << " disc(s) at the bottom and " << top << " at the top: fewer than "
-      << kFewArcDiscs
+  msg << "the loading arcs of " << c.loading_arc / units::degree << " degrees drive " << bottom
+      << " disc(s) at the bottom and " << top << " at the top: fewer than " << kFewArcDiscs
       << " load the disc nearly at a point, as a flat platen's first contacts do "
          "(docs/lab_tests.md \"Loading arcs\"); widen test.loading_arc_deg";
   warn(res, hooks, msg.str());

@@ -1,4 +1,5 @@
 #include "lab/result_file.hpp"
+#include "core/units.hpp"
 
 #include <H5Cpp.h>
 
@@ -37,8 +38,6 @@ std::string confinement_group(std::size_t k) {
 // run, under `where`.
 void write_run(H5::Group& where, const LabTestResult& r, const std::vector<JointSet>& sets);
 
-constexpr double kDegree = std::numbers::pi / 180;  // rad
-
 // The smooth joints of a run, group "joints" of `where`: the sets as given, their lines as
 // installed (cut to the specimen), every joint's pair and its state at the end.
 void write_joints(H5::Group& where, const std::vector<JointSet>& sets,
@@ -52,7 +51,7 @@ void write_joints(H5::Group& where, const std::vector<JointSet>& sets,
   for (std::size_t k = 0; k < n; ++k) {
     const JointSet& j = sets[k];
     family[k] = j.family ? 1 : 0;
-    dip[k] = j.family ? j.dip / kDegree : 0;
+    dip[k] = j.family ? j.dip / units::degree : 0;
     spacing[k] = j.family ? j.spacing : 0;
     offset[k] = j.family ? j.offset : 0;
     for (double v : {j.segment.ax, j.segment.ay, j.segment.bx, j.segment.by})
@@ -62,9 +61,9 @@ void write_joints(H5::Group& where, const std::vector<JointSet>& sets,
     ks[k] = p.shear_stiffness;
     tensile[k] = p.tensile_strength;
     cohesion[k] = p.cohesion;
-    phi[k] = p.friction_angle / kDegree;
+    phi[k] = p.friction_angle / units::degree;
     mu[k] = p.friction;
-    psi[k] = p.dilation_angle / kDegree;
+    psi[k] = p.dilation_angle / units::degree;
     lambda[k] = p.radius_multiplier;
     bonded_sets[k] = p.bonded ? 1 : 0;
     contacts[k] = installed.contacts[k];
