@@ -132,8 +132,12 @@ class DiscPairKernel {
   }
 
   PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
-    within_guard = g.overlap <= guard_ * std::min(g.ri, g.rj);
     const auto kind = static_cast<BondKind>(bond_[k]);
+    // A smooth joint's discs may overlap without limit: its force comes from the joint's own gap,
+    // not from the overlap, and its discs slide along the joint through each other (Itasca's
+    // model; docs/smooth_joint.md "Discs sliding past each other"). Only the other pairs' overlap
+    // is a sign of instability.
+    within_guard = kind == BondKind::SmoothJoint || g.overlap <= guard_ * std::min(g.ri, g.rj);
     const PairForce f = kind == BondKind::None       ? linear(k, g)
                         : kind == BondKind::Parallel ? parallel_bonded(k, g)
                                                      : bonded(k, g);

@@ -42,15 +42,17 @@ SmoothJointParams joint_params() {
   return p;
 }
 
-// Two prescribed discs (linear mortar contact, no bond) with the joint installed between them.
-World joint_pair(const SmoothJointParams& p) {
+// Two prescribed discs (linear mortar contact, no bond) with the joint installed between them:
+// a line of dip `dip` (rad) through their contact point.
+World joint_pair(const SmoothJointParams& p, double dip = kDip) {
   auto [w, bonds] = cdem::test::bonded_pair(BondModel{}, {kR1, kR2, 16e9, 1.45, 0.5, kGap, kDt});
   EXPECT_EQ(bonds, 0);
   JointSet set;
   set.params = p;
   set.family = false;
-  const double cx = kR1 + 0.5 * kGap;  // the contact point
-  set.segment = {cx - 2e-3 * kTx, -2e-3 * kTy, cx + 2e-3 * kTx, 2e-3 * kTy};
+  const double cx = kR1 + 0.5 * kGap;                    // the contact point
+  const double tx = -std::cos(dip), ty = std::sin(dip);  // the line's direction
+  set.segment = {cx - 2e-3 * tx, -2e-3 * ty, cx + 2e-3 * tx, 2e-3 * ty};
   const InstalledJoints installed = install_smooth_joints(w, {set}, 2 * kGap / kR1 + 1e-9);
   EXPECT_EQ(installed.contacts, std::vector<long>{1});
   EXPECT_DOUBLE_EQ(installed.area[0], kArea);
@@ -220,6 +222,56 @@ TEST(SmoothJoint, SlipWithDilationClosesTheEnergyLedger) {
   // Exact per pass up to rounding: the trapezoid work of the mean force equals the springs'
   // change plus the mean-force slip work.
   EXPECT_NEAR(work, strain + friction, 1e-6 * work);
+}
+
+// Two discs slide along a broken joint right past each other (Itasca: "particles that have been
+// assigned a smooth-joint contact may overlap", so that they slide along the joint). The joint
+// of dip 10 degrees is nearly parallel to the discs' centre line, so sliding along it takes
+// their centres within (R1 + R2) sin 10 deg = 0.17 mm of each other: an overlap of 0.83 mm,
+// twice the smaller radius, far beyond the instability guard's 1 x the smaller radius, which
+// must not stop the run. All along, and after the discs have parted, the joint is what the
+// manual's small-strain mode describes: never deleted, unbonded, compressed at the same normal
+// force (no dilation) and sliding at mu Fn, and the energy ledger closes.
+TEST(SmoothJoint, DiscsSlidePastEachOtherAlongABrokenJoint) {
+  SmoothJointParams p = joint_params();
+  p.dilation_angle = 0;
+  const double dip = 10 * std::numbers::pi / 180;
+  World w = joint_pair(p, dip);
+  const double nx = std::sin(dip), ny = std::cos(dip), tx = -ny, ty = nx;
+  const auto normal_force = [&] { return w.bodies().fx[1] * nx + w.bodies().fy[1] * ny; };
+  const auto shear_force = [&] { return w.bodies().fx[1] * tx + w.bodies().fy[1] * ty; };
+  // Compress to sigma, then shear until the bond breaks.
+  const double sigma = 4e6, closure = sigma / p.normal_stiffness;  // Pa, m
+  double work = drive(w, -closure / (100 * kDt) * nx, -closure / (100 * kDt) * ny, 100);
+  ASSERT_NEAR(normal_force(), sigma * kArea, 1e-9 * sigma * kArea);
+  const double v = 1.0;  // m/s along tj: disc 1 moves left (and up a little), across disc 0
+  while (w.cracks().size() == 0 && w.step_count() < 10000) work += drive(w, v * tx, v * ty, 1);
+  ASSERT_EQ(w.cracks().size(), 1u);
+  EXPECT_EQ(w.cracks().cracks[0].mode, BondFailure::Shear);
+  // 2.5 mm of slide: disc 1's centre passes disc 0's at 0.17 mm and ends 2.5 - 1.0 cos 10 deg =
+  // 1.52 mm beyond it, apart (the radii sum to 1 mm).
+  const double r_min = std::min(kR1, kR2);
+  double deepest = 0;
+  const int passes = static_cast<int>(2.5e-3 / (v * kDt));
+  for (int n = 0; n < passes; ++n) {
+    work += drive(w, v * tx, v * ty, 1);  // throws if the guard stops the run
+    const double dx = w.bodies().x[1] - w.bodies().x[0], dy = w.bodies().y[1] - w.bodies().y[0];
+    deepest = std::max(deepest, kR1 + kR2 - std::hypot(dx, dy));
+  }
+  EXPECT_GT(deepest, 2 * r_min - 1e-6);  // about 0.83 mm
+  EXPECT_GT(deepest, w.settings().max_overlap_ratio * r_min);
+  const double dx = w.bodies().x[1] - w.bodies().x[0], dy = w.bodies().y[1] - w.bodies().y[0];
+  EXPECT_GT(std::hypot(dx, dy), kR1 + kR2 + 0.4e-3);  // apart now
+  // Small strain: the pair keeps its joint, unbonded, at the normal force it had and sliding.
+  ASSERT_EQ(w.contacts().keys.size(), 1u);
+  EXPECT_EQ(static_cast<BondKind>(w.contacts().state.bond[0]), BondKind::SmoothJoint);
+  EXPECT_EQ(intact_smooth_joints(w), 0);
+  EXPECT_NEAR(normal_force(), sigma * kArea, 1e-6 * sigma * kArea);
+  EXPECT_NEAR(shear_force(), -p.friction * sigma * kArea, 1e-6 * sigma * kArea);  // resists
+  EXPECT_EQ(w.cracks().size(), 1u);
+  // The work put in is the joint's strain energy, the bond's release and the friction.
+  const double strain = contact_energy(w).bond_strain;
+  EXPECT_NEAR(work, strain + w.bond_energy_released() + w.friction_dissipated(), 1e-6 * work);
 }
 
 TEST(SmoothJoint, ElasticLoadUnloadReturnsItsEnergy) {
