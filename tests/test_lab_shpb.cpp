@@ -135,6 +135,26 @@ TEST(LabShpb, DiscSpecimenGetsADynamicTensileStrength) {
               1e-9 * r.shpb.dynamic_tensile_strength);
 }
 
+// A bedded specimen: smooth joints of dip 30 degrees every 3 mm, weak and slippery, under a
+// pulse long and strong enough to break them all and slide the blocks along them. Discs across
+// a broken joint then slide through each other (docs/smooth_joint.md "Discs sliding past each
+// other": the overlap guard does not stop them), and the run goes on until the pulse has passed.
+TEST(LabShpb, BeddedSpecimenRunsWhileItsJointsSlide) {
+  const std::string table =
+      "[test]\ntype = \"shpb\"\nhistory_interval = 50\n[test.shpb]\nbar_length_m = 0.3\n"
+      "bar_width_mm = 10\nincident_gauge_m = 0.1\ntransmitted_gauge_m = 0.1\n"
+      "pulse_peak_MPa = 200\npulse_duration_us = 100\nafter_pulse_us = 10\n"
+      "[[test.joints]]\ndip_deg = 30\nspacing_mm = 3\nsj_normal_stiffness_GPa_m = 8000\n"
+      "sj_shear_stiffness_GPa_m = 5500\nsj_tensile_strength_MPa = 0.5\nsj_cohesion_MPa = 1\n"
+      "sj_friction_angle_deg = 30\nsj_friction = 0.1\n";
+  const fs::path dir = cdem::test::scratch_dir("test_lab_shpb", "bedded");
+  const cdem::Specimen& specimen = cdem::test::small_rectangle_specimen();
+  const LabTestResult r = run_lab_test(specimen, cdem::test::lab_test_input(dir, specimen, table));
+  EXPECT_EQ(r.stop_reason, StopReason::PulsePassed);
+  ASSERT_EQ(r.joints.contacts.size(), 1u);
+  EXPECT_GT(r.joints.contacts[0], 10);
+}
+
 TEST(LabShpb, TooFewMaxStepsStopsBeforeTheRun) {
   LabTestInput few = shpb_input("short");
   few.controls.max_steps = 100;
