@@ -11,7 +11,7 @@ quasi-static reference is the summary of a uniaxial run of the same specimen bes
 by the run's prefix before '_' with its first letter replaced by 'u' (s30_40 -> u30.json,
 n_40 -> u.json); when present, DIF = the first failure peak (and the 3-wave peak) / its peak.
 --mean groups the runs of the same name (one directory per seed) and gives mean +- standard
-deviation over them. --plot draws one panel per run: the joint lines (grey), the cracks up to
+deviation over them (the first failure, its DIF and f_m per seed). --plot draws one panel per run: the joint lines (grey), the cracks up to
 the first failure peak (joint cracks blue, the others red) and after it (light dots)."""
 import json
 import sys
@@ -76,14 +76,17 @@ def mean_row(runs):
     def ms(key, fmt="%.2f"):
         v = np.array([r[key] for r in runs], dtype=float)
         return (fmt + " +- " + fmt) % (v.mean(), v.std(ddof=1) if len(v) > 1 else 0.0)
+
+    def each(key, fmt="%.2f"):
+        return ", ".join(fmt % r[key] if r[key] is not None else "-" for r in runs)
+
     share = np.mean([r["joint_cracks_first"] / max(r["cracks_first"], 1) for r in runs])
     m = runs[0]
     return ("| %s | %s | %.0f | %d | %s | %s | %s | %s | %s | %s | %.3f / %.3f (%.3f) | %.2f | %s |") % (
         m["name"], "none" if m["dip"] is None else "%g" % m["dip"], m["pulse"], len(runs),
-        ms("ucs"), ms("peak"), ms("first"), ms("dif_first"), ms("dif_peak"), ms("rate", "%.1f"),
-        max(r["r_bars"] for r in runs), max(r["r_bars_peak"] for r in runs),
-        max(r["r_step"] for r in runs), share,
-        ", ".join("%.3f" % r["f_m"] for r in runs))
+        each("ucs"), ms("peak"), each("first"), each("dif_first"), ms("dif_peak"),
+        ms("rate", "%.1f"), max(r["r_bars"] for r in runs), max(r["r_bars_peak"] for r in runs),
+        max(r["r_step"] for r in runs), share, each("f_m", "%.3f"))
 
 
 def plot(paths, out):
@@ -140,8 +143,8 @@ def main(argv):
             paths.append(a)
     runs = [measure(p) for p in paths]
     if mean:
-        print("| run | dip (deg) | pulse (MPa) | seeds | quasi-static peak (MPa) | 3-wave peak (MPa) | "
-              "first failure (MPa) | DIF, first failure | DIF, 3-wave peak | mean strain rate (1/s) | "
+        print("| run | dip (deg) | pulse (MPa) | seeds | quasi-static peak per seed (MPa) | 3-wave peak "
+              "(MPa) | first failure per seed (MPa) | DIF, first failure, per seed | DIF, 3-wave peak | mean strain rate (1/s) | "
               "largest \\|R\\| as real bars read it: to first failure / to 3-wave peak (per step, to "
               "first failure) | joint cracks / all cracks by "
               "first failure | f_m per seed |")
