@@ -137,14 +137,17 @@ ShpbAnalysis analyse_shpb(const ShpbWaves& w, const ShpbGeometry& g) {
   if (g.bar_radius > 0) gauge_forces(w, g, gauge_records, h);
 
   std::size_t first = peak;
+  std::size_t cracked = 0;  // the first record at or after the first crack
+  while (cracked < peak && w.time[cracked] < w.first_crack_time) ++cracked;
   double running = 0;
-  for (std::size_t k = 0; k < peak; ++k) {
+  for (std::size_t k = cracked; k < peak; ++k) {
     running = std::max(running, h.stress[k]);
     if (running > kFirstFailureFloor * f.peak_stress &&
         h.stress[k] < (1 - kFirstFailureDrop) * running) {
-      first = static_cast<std::size_t>(
-          std::max_element(h.stress.begin(), h.stress.begin() + static_cast<long>(k)) -
-          h.stress.begin());
+      first =
+          static_cast<std::size_t>(std::max_element(h.stress.begin() + static_cast<long>(cracked),
+                                                    h.stress.begin() + static_cast<long>(k)) -
+                                   h.stress.begin());
       break;
     }
   }

@@ -19,6 +19,10 @@ struct ShpbWaves {
   std::vector<double> incident;     // eps_i at the incident bar's face
   std::vector<double> reflected;    // eps_r there
   std::vector<double> transmitted;  // eps_t at the transmitted bar's face
+  // s, since the loading began: the specimen's first bond failure (infinity: none). Before it
+  // the specimen is elastic, so a fall of the stress there is the waves' ringing, not a failure:
+  // the first failure is looked for from this time on. 0 = from the start.
+  double first_crack_time = 0;
   std::size_t size() const { return time.size(); }
 };
 
@@ -92,9 +96,10 @@ struct ShpbFigures {
   // The largest |R| of the face forces as gauges of ShpbGeometry::gauge_window read them (each
   // force averaged over that window, centred), over the same branch.
   double equilibrium_worst_gauge = 0;
-  // The first failure: the largest stress before the stress first falls kFirstFailureDrop below
-  // its running maximum (records above kFirstFailureFloor x the peak); the peak when it never
-  // does. At high pulses the peak is a later hump of the crushed specimen (docs/lab_tests.md).
+  // The first failure: from the first crack on (ShpbWaves::first_crack_time), the largest stress
+  // before the stress first falls kFirstFailureDrop below its running maximum (records above
+  // kFirstFailureFloor x the peak); the peak when it never does. At high pulses the peak is a later
+  // hump of the crushed specimen (docs/lab_tests.md).
   double first_failure_stress = 0;   // Pa
   double time_at_first_failure = 0;  // s
   // |R| per step (largest, mean) and as the gauges read it (largest) from 50 % of the first

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -335,6 +336,12 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
   }
 
   out.waves = face_waves(out.gauges, bars);
+  out.waves.first_crack_time = std::numeric_limits<double>::infinity();
+  for (const Crack& k : world.cracks().cracks)
+    if (k.time >= time0) {  // the log is in time order; earlier ones are the genesis's
+      out.waves.first_crack_time = k.time - time0;
+      break;
+    }
   try {
     out.analysis = analyse_shpb(out.waves, out.geometry);
   } catch (const std::invalid_argument& err) {

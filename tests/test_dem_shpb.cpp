@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/input_error.hpp"
@@ -288,6 +289,40 @@ TEST(ShpbAnalysis, FirstFailureAndGaugeAveragedEquilibrium) {
   // Point gauges (window 0) read the per-step ratio.
   g.gauge_window = 0;
   EXPECT_NEAR(analyse_shpb(w, g).figures.equilibrium_worst_gauge_first_failure, spike, 1e-12);
+}
+
+// A wiggle of the wave front before any crack is not a failure: the stress rises to 10 % of the
+// peak (record 10), falls by half (record 15), then rises to the peak (record 200). Looked for
+// from the start (first_crack_time 0), the first failure is the wiggle; from a first crack at
+// record 50 on, or with no crack at all, the stress never falls before the peak, so the first
+// failure is the peak.
+TEST(ShpbAnalysis, NoFirstFailureBeforeTheFirstCrack) {
+  const auto base = [](int k) {
+    if (k <= 10) return 2e-5 * k;
+    if (k <= 15) return 2e-4 - 2e-5 * (k - 10);
+    if (k <= 200) return 1e-4 + (2e-3 - 1e-4) * (k - 15) / 185.0;
+    return 2e-3 - 2e-5 * (k - 200);
+  };
+  ShpbWaves w;
+  w.time_step = 1e-7;
+  for (int k = 0; k <= 300; ++k) {
+    w.time.push_back(k * 1e-7);
+    w.incident.push_back(base(k));
+    w.reflected.push_back(0.0);
+    w.transmitted.push_back(base(k));
+  }
+  const ShpbGeometry g{200e9, 5000, 0.05, 0.05, 0.05};
+  const double stress_per_strain = 200e9;  // E A eps / A_s with A = A_s
+  ShpbFigures f = analyse_shpb(w, g).figures;
+  EXPECT_NEAR(f.first_failure_stress, stress_per_strain * 2e-4, 1e-6);
+  EXPECT_NEAR(f.time_at_first_failure, 10e-7, 1e-15);
+  w.first_crack_time = 50e-7;
+  f = analyse_shpb(w, g).figures;
+  EXPECT_NEAR(f.first_failure_stress, stress_per_strain * 2e-3, 1e-6);
+  EXPECT_NEAR(f.time_at_first_failure, 200e-7, 1e-15);
+  EXPECT_EQ(f.first_failure_stress, f.peak_stress);
+  w.first_crack_time = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(analyse_shpb(w, g).figures.first_failure_stress, f.peak_stress);
 }
 
 // The forces as gauges on real round bars read them, against the long-wave closed form: equal
