@@ -165,7 +165,8 @@ def analyse(h5_path, summary, specimen_path):
                      for c in CLASS_NAMES)
     n_straight = sum(crossing.values())
     # Check of the count: bonds per area x mean centre distance 2 R x 2 / pi (mean |cos| of an
-    # isotropic direction) is what a line meets per length (the aggregates, bondless inside, averaged in).
+    # isotropic direction) is what a line meets per length (the aggregates, with no bond inside,
+    # averaged in).
     isotropic_per_mm = bonds / beam_area * 2 * r_mean * 2 / np.pi * 1e-3
     return dict(p_max=b["peak_load_kN_per_m"], r_mean_mm=r_mean * 1e3, states=states, hand=hand,
                 isotropic_per_mm=isotropic_per_mm,
