@@ -44,7 +44,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import complete_curve as cc  # noqa: E402
 
 BAND_MM = 10.0  # cracks within this of mid-span are the main crack's (aggregates 5-15 mm)
-HISTORY_KEYS = cc.HISTORY_KEYS + ("time", "friction_energy", "breakage_energy")
+HISTORY_KEYS = cc.HISTORY_KEYS + ("time", "cmod", "friction_energy", "breakage_energy")
 CLASS_NAMES = ("mortar", "itz")  # crack log classes 0, 1: the flat-jointed ones
 BOND_GAP_RATIO = 1e-4  # dem/bond_installation.hpp: a pair within gap_ratio x min(R1, R2) is bonded
 
@@ -149,7 +149,7 @@ def analyse(h5_path, summary, specimen_path):
         if i is None or (name in ("cut", "gone") and i >= end):
             continue
         s = cc.state(h, i, ligament, b["mass_between_supports_kg_per_m"])
-        s.update(ledger(h, i, area))
+        s.update(ledger(h, i, area), cmod_mm=h["cmod"][i] * 1e3)
         s["cracks"] = crack_counts(cracks, h["time"][i], x_mid, ligament * 1e3, elements)
         states[name] = s
     r_mean = float(r[tag == 0].mean())
@@ -195,15 +195,15 @@ def print_run(name, a):
     print(f"  straight crack: {a['straight_interfaces']} interfaces "
           f"({a['straight_per_mm']:.3f} per mm; bonds per area x 4 R / pi: "
           f"{a['isotropic_per_mm']:.3f} per mm), G_straight {a['g_straight']:.2f} N/m")
-    print("  | state | delta mm | P/P_max | G_F (no m g) | work | stored | kinetic | breakage | "
-          "friction | damping | elements broken: all / band | interfaces broken: all / band "
+    print("  | state | delta mm | CMOD mm | P/P_max | G_F (no m g) | work | stored | kinetic | "
+          "breakage | friction | damping | elements broken: all / band | interfaces broken: all / band "
           "(per mm) | mJ/m per element | multiplier (band / straight) |")
-    print("  |" + "---|" * 14)
+    print("  |" + "---|" * 15)
     for state, s in a["states"].items():
         c = s["cracks"]
         mult = c["band"]["pairs"] / a["straight_interfaces"] if a["straight_interfaces"] else 0.0
-        print(f"  | {state} | {s['delta_mm']:.4f} | {s['p_frac']:.3f} | {s['gf']:.2f} "
-              f"({s['gf_nw']:.2f}) | {s['work']:.2f} | {s['stored']:.2f} | {s['kinetic']:.3f} | "
+        print(f"  | {state} | {s['delta_mm']:.4f} | {s['cmod_mm']:.4f} | {s['p_frac']:.3f} | "
+              f"{s['gf']:.2f} ({s['gf_nw']:.2f}) | {s['work']:.2f} | {s['stored']:.2f} | {s['kinetic']:.3f} | "
               f"{s['breakage']:.2f} | {s['friction']:.2f} | {s['damping']:.2f} | "
               f"{c['all']['elements']} / {c['band']['elements']} | {c['all']['pairs']} / "
               f"{c['band']['pairs']} ({c['all']['pairs_per_mm']:.2f} / "

@@ -31,12 +31,13 @@ fj_elements = 2
 
 def history():
     """complete_curve's history, plus time (1 ms a record), breakage (0.0005 J/m a record to
-    record 30: one crack each) and friction (0.0002 J/m a record)."""
+    record 30: one crack each), friction (0.0002 J/m a record) and a CMOD of half the deflection."""
     h = tc.history()
     n = tc.RECORDS
     h["time"] = [1e-3 * i for i in range(n)]
     h["breakage_energy"] = [0.0005 * min(i, 30) for i in range(n)]
     h["friction_energy"] = [0.0002 * i for i in range(n)]
+    h["cmod"] = [0.5 * d for d in h["deflection"]]
     return h
 
 
@@ -110,6 +111,7 @@ def test_the_ledger_by_hand(tmp_path):
     # The end, record 60: work 0.18, stored 0, kinetic 1e-4, breakage 0.015, friction 0.012,
     # damped 0.1529 J/m.
     end = s["end"]
+    assert end["cmod_mm"] == pytest.approx(0.030)
     for key, joules in dict(work=0.18, stored=0, kinetic=1e-4, breakage=0.015, friction=0.012,
                             damping=0.1529).items():
         assert end[key] == pytest.approx(joules / LIGAMENT, abs=1e-12), key
@@ -161,4 +163,4 @@ def test_main_prints_the_table(tmp_path, capsys):
     eb.main([str(tmp_path)])
     out = capsys.readouterr().out
     assert "D050_s1: P_max 10.00 kN/m" in out
-    assert "| end | 0.0600 |" in out
+    assert "| end | 0.0600 | 0.0300 |" in out
