@@ -197,14 +197,16 @@ def print_run(name, a):
           f"{a['isotropic_per_mm']:.3f} per mm), G_straight {a['g_straight']:.2f} N/m")
     print("  | state | delta mm | CMOD mm | P/P_max | G_F (no m g) | work | stored | kinetic | "
           "breakage | friction | damping | elements broken: all / band | "
-          "interfaces broken: all / band (per mm) | mJ/m per element | multiplier (band / straight) |")
+          "interfaces broken: all / band (per mm) | mJ/m per element | "
+          "multiplier (band / straight) |")
     print("  |" + "---|" * 15)
     for state, s in a["states"].items():
         c = s["cracks"]
         mult = c["band"]["pairs"] / a["straight_interfaces"] if a["straight_interfaces"] else 0.0
         print(f"  | {state} | {s['delta_mm']:.4f} | {s['cmod_mm']:.4f} | {s['p_frac']:.3f} | "
               f"{s['gf']:.2f} ({s['gf_nw']:.2f}) | {s['work']:.2f} | {s['stored']:.2f} | "
-              f"{s['kinetic']:.3f} | {s['breakage']:.2f} | {s['friction']:.2f} | {s['damping']:.2f} | "
+              f"{s['kinetic']:.3f} | {s['breakage']:.2f} | {s['friction']:.2f} | "
+              f"{s['damping']:.2f} | "
               f"{c['all']['elements']} / {c['band']['elements']} | {c['all']['pairs']} / "
               f"{c['band']['pairs']} ({c['all']['pairs_per_mm']:.2f} / "
               f"{c['band']['pairs_per_mm']:.2f}) | {c['all']['energy_per_element'] * 1e3:.3f} | "

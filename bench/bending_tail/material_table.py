@@ -65,7 +65,8 @@ COLUMNS = (("discs", "{:d}"), ("sigma_t", "{:.3f}"), ("E", "{:.2f}"), ("nu", "{:
            ("damping", "{:.1f}"), ("elements_per_mm", "{:.2f}"),
            ("energy_per_element", "{:.5f}"))
 HEAD = ("| R_mean mm | seed | discs | sigma_t MPa | E GPa | nu | sigma_u MPa | "
-        "tension stop P/P_max | work N/m | stored | breakage | friction | damping | elements broken per mm | "
+        "tension stop P/P_max | work N/m | stored | breakage | friction | damping | "
+        "elements broken per mm | "
         "J/m per element |")
 
 
