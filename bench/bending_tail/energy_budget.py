@@ -44,6 +44,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import complete_curve as cc  # noqa: E402
 
 BAND_MM = 10.0  # cracks within this of mid-span are the main crack's (aggregates 5-15 mm)
+LINES = 15  # vertical cuts across the beam for the mean interfaces a straight crack meets
 HISTORY_KEYS = cc.HISTORY_KEYS + ("time", "cmod", "friction_energy", "breakage_energy")
 CLASS_NAMES = ("mortar", "itz")  # crack log classes 0, 1: the flat-jointed ones
 BOND_GAP_RATIO = 1e-4  # dem/bond_installation.hpp: a pair within gap_ratio x min(R1, R2) is bonded
@@ -164,12 +165,18 @@ def analyse(h5_path, summary, specimen_path):
     g_straight = sum(hand[c]["per_mm"] * 1e3 * mats[c]["elements"] * hand[c]["element_energy"]
                      for c in CLASS_NAMES)
     n_straight = sum(crossing.values())
-    # Check of the count: bonds per area x mean centre distance 2 R x 2 / pi (mean |cos| of an
-    # isotropic direction) is what a line meets per length (the aggregates, with no bond inside,
-    # averaged in).
-    isotropic_per_mm = bonds / beam_area * 2 * r_mean * 2 / np.pi * 1e-3
+    # The same cut at LINES places across the beam (x from 0.15 L to 0.85 L), mean per mm: the
+    # mid-span line is one draw of where the aggregates lie.
+    lines_per_mm = float(np.mean([
+        sum(straight_crossings(x, y, r, clump, xl, b["notch_depth_mm"] * 1e-3,
+                               b["depth_mm"] * 1e-3).values())
+        for xl in np.linspace(0.15 * length, 0.85 * length, LINES)])) / (ligament * 1e3)
+    # Check of the count: interfaces per area (genesis counts flat-joint elements) x mean centre
+    # distance 2 R x 2 / pi (mean |cos| of an isotropic direction) is what a line meets per
+    # length (the aggregates, with no bond inside, averaged in).
+    isotropic_per_mm = bonds / elements / beam_area * 2 * r_mean * 2 / np.pi * 1e-3
     return dict(p_max=b["peak_load_kN_per_m"], r_mean_mm=r_mean * 1e3, states=states, hand=hand,
-                isotropic_per_mm=isotropic_per_mm,
+                isotropic_per_mm=isotropic_per_mm, lines_per_mm=lines_per_mm,
                 straight_interfaces=n_straight, straight_per_mm=n_straight / (ligament * 1e3),
                 g_straight=g_straight, ligament_mm=ligament * 1e3)
 
@@ -193,7 +200,8 @@ def print_run(name, a):
               f"an opening of {h['opening'] * 1e6:.3f} um; a straight cut meets {h['per_mm']:.3f} "
               f"{cls} interfaces per mm")
     print(f"  straight crack: {a['straight_interfaces']} interfaces "
-          f"({a['straight_per_mm']:.3f} per mm; bonds per area x 4 R / pi: "
+          f"({a['straight_per_mm']:.3f} per mm; mean of {LINES} cuts across the beam "
+          f"{a['lines_per_mm']:.3f}; interfaces per area x 4 R / pi: "
           f"{a['isotropic_per_mm']:.3f} per mm), G_straight {a['g_straight']:.2f} N/m")
     print("  | state | delta mm | CMOD mm | P/P_max | G_F (no m g) | work | stored | kinetic | "
           "breakage | friction | damping | elements broken: all / band | "

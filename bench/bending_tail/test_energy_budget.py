@@ -57,14 +57,14 @@ def specimen_discs():
     """(x, y, r, clump, tag): radius 1 mm everywhere. Across x = 0.1 m: a mortar pair touching
     (crossing at y 20 mm: counts), a mortar disc on a pebble (y 30 mm: an ITZ interface), two
     pebbles of different aggregates (y 40 mm: not bonded), a mortar pair in the notch's height
-    (y 10 mm), a mortar pair 1 um apart (above the 0.1 um tolerance), a mortar pair on one side
-    (x 0.097, 0.0989). Two mortar discs far away."""
+    (y 10 mm), a mortar pair 1 um apart (above the 0.1 um tolerance), a mortar pair touching on
+    one side (across x = 0.09 m). Two mortar discs far away."""
     rows = [(0.099, 0.020, -1), (0.101, 0.020, -1),
             (0.099, 0.030, -1), (0.101, 0.030, 0),
             (0.099, 0.040, 1), (0.101, 0.040, 2),
             (0.099, 0.010, -1), (0.101, 0.010, -1),
             (0.0989995, 0.045, -1), (0.1010005, 0.045, -1),
-            (0.097, 0.035, -1), (0.0989, 0.035, -1),
+            (0.089, 0.035, -1), (0.091, 0.035, -1),
             (0.05, 0.02, -1), (0.15, 0.02, -1)]
     x, y, clump = (np.array(c, dtype=float) for c in zip(*rows))
     clump = clump.astype(np.int32)
@@ -153,8 +153,12 @@ def test_the_straight_cut_and_the_hand_estimate(tmp_path):
     assert a["hand"]["itz"]["element_energy"] == pytest.approx(1e-3)
     # G_straight: 1/35 per mm x 1000 x 2 elements x (2 + 1) mJ/m = 0.1714 N/m.
     assert a["g_straight"] == pytest.approx(1000 / 35 * 2 * 3e-3)
-    # Buffon's check: 140 bonds over 0.2 x 0.05 - 0.015 x 0.004 m^2, x 2 mm x 2 / pi.
-    assert a["isotropic_per_mm"] == pytest.approx(140 / 0.00994 * 2e-3 * 2 / np.pi * 1e-3)
+    # Buffon's check: 140 bonded elements, 70 interfaces, over 0.2 x 0.05 - 0.015 x 0.004 m^2,
+    # x 2 mm x 2 / pi.
+    assert a["isotropic_per_mm"] == pytest.approx(70 / 0.00994 * 2e-3 * 2 / np.pi * 1e-3)
+    # The cuts across the beam, x = 0.03, 0.04, ..., 0.17 m: the one at 0.1 m meets the two
+    # interfaces, the one at 0.09 m a third.
+    assert a["lines_per_mm"] == pytest.approx(3 / eb.LINES / 35)
     assert a["r_mean_mm"] == pytest.approx(1.0)
 
 
