@@ -22,8 +22,9 @@ kn = E* / (R1 + R2) per area, pulled apart to its strength sigma_c, holds
     e = 1/2 sigma_c^2 l (R1 + R2) / E*   (J/m; R1 = R2 = R, the mortar's mean radius)
 at an opening delta = sigma_c (R1 + R2) / E*. A straight vertical crack from the notch tip to
 the top face cuts n_s interfaces per mm: counted on the specimen (pairs whose gap is within the
-genesis' bond tolerance, their centre line crossing x = L/2 above the notch; two pebbles of one
-aggregate are one rigid body, two of different aggregates are not bonded), so that
+genesis' bond tolerance, their centre line crossing the cut above the notch; two pebbles of one
+aggregate are one rigid body, two of different aggregates are not bonded), the mean of LINES
+vertical cuts across the beam (the one at mid-span is printed beside it), so that
     G_straight = n_s N_r e       (N/m)
 and the microcracking multiplier is the interfaces broken over the n_s (H - a0) a straight crack
 would have to break.
@@ -154,30 +155,28 @@ def analyse(h5_path, summary, specimen_path):
         s["cracks"] = crack_counts(cracks, h["time"][i], x_mid, ligament * 1e3, elements)
         states[name] = s
     r_mean = float(r[tag == 0].mean())
-    crossing = straight_crossings(x, y, r, clump, x_mid, b["notch_depth_mm"] * 1e-3,
-                                  b["depth_mm"] * 1e-3)
+    y_low, y_high = b["notch_depth_mm"] * 1e-3, b["depth_mm"] * 1e-3
+    at_mid = straight_crossings(x, y, r, clump, x_mid, y_low, y_high)
+    # The straight crack: the cut at mid-span is one draw of where the aggregates lie, so the
+    # estimate takes the mean of the same cut at LINES places across the beam (x from 0.15 L to
+    # 0.85 L), per class.
+    cuts = [straight_crossings(x, y, r, clump, xl, y_low, y_high)
+            for xl in np.linspace(0.15 * length, 0.85 * length, LINES)]
     hand = {}
     for cls, m in mats.items():
         e, opening = element_at_strength(m["sigma_c"], m["emod"], r_mean, m["elements"],
                                          m["radius_multiplier"])
         hand[cls] = dict(element_energy=e, opening=opening,
-                         per_mm=crossing[cls] / (ligament * 1e3))
+                         per_mm=float(np.mean([c[cls] for c in cuts])) / (ligament * 1e3))
     g_straight = sum(hand[c]["per_mm"] * 1e3 * mats[c]["elements"] * hand[c]["element_energy"]
                      for c in CLASS_NAMES)
-    n_straight = sum(crossing.values())
-    # The same cut at LINES places across the beam (x from 0.15 L to 0.85 L), mean per mm: the
-    # mid-span line is one draw of where the aggregates lie.
-    lines_per_mm = float(np.mean([
-        sum(straight_crossings(x, y, r, clump, xl, b["notch_depth_mm"] * 1e-3,
-                               b["depth_mm"] * 1e-3).values())
-        for xl in np.linspace(0.15 * length, 0.85 * length, LINES)])) / (ligament * 1e3)
     # Check of the count: interfaces per area (genesis counts flat-joint elements) x mean centre
     # distance 2 R x 2 / pi (mean |cos| of an isotropic direction) is what a line meets per
     # length (the aggregates, with no bond inside, averaged in).
     isotropic_per_mm = bonds / elements / beam_area * 2 * r_mean * 2 / np.pi * 1e-3
     return dict(p_max=b["peak_load_kN_per_m"], r_mean_mm=r_mean * 1e3, states=states, hand=hand,
-                isotropic_per_mm=isotropic_per_mm, lines_per_mm=lines_per_mm,
-                straight_interfaces=n_straight, straight_per_mm=n_straight / (ligament * 1e3),
+                isotropic_per_mm=isotropic_per_mm, at_mid=sum(at_mid.values()),
+                straight_per_mm=sum(h["per_mm"] for h in hand.values()),
                 g_straight=g_straight, ligament_mm=ligament * 1e3)
 
 
@@ -199,9 +198,9 @@ def print_run(name, a):
         print(f"  hand, {cls}: an element at sigma_c holds {h['element_energy'] * 1e3:.3f} mJ/m at "
               f"an opening of {h['opening'] * 1e6:.3f} um; a straight cut meets {h['per_mm']:.3f} "
               f"{cls} interfaces per mm")
-    print(f"  straight crack: {a['straight_interfaces']} interfaces "
-          f"({a['straight_per_mm']:.3f} per mm; mean of {LINES} cuts across the beam "
-          f"{a['lines_per_mm']:.3f}; interfaces per area x 4 R / pi: "
+    print(f"  straight crack: {a['straight_per_mm']:.3f} interfaces per mm (mean of {LINES} "
+          f"cuts across the beam; at mid-span {a['at_mid']}, "
+          f"{a['at_mid'] / a['ligament_mm']:.3f} per mm; interfaces per area x 4 R / pi: "
           f"{a['isotropic_per_mm']:.3f} per mm), G_straight {a['g_straight']:.2f} N/m")
     print("  | state | delta mm | CMOD mm | P/P_max | G_F (no m g) | work | stored | kinetic | "
           "breakage | friction | damping | elements broken: all / band | "
@@ -210,7 +209,8 @@ def print_run(name, a):
     print("  |" + "---|" * 15)
     for state, s in a["states"].items():
         c = s["cracks"]
-        mult = c["band"]["pairs"] / a["straight_interfaces"] if a["straight_interfaces"] else 0.0
+        straight = a["straight_per_mm"] * a["ligament_mm"]
+        mult = c["band"]["pairs"] / straight if straight else 0.0
         print(f"  | {state} | {s['delta_mm']:.4f} | {s['cmod_mm']:.4f} | {s['p_frac']:.3f} | "
               f"{s['gf']:.2f} ({s['gf_nw']:.2f}) | {s['work']:.2f} | {s['stored']:.2f} | "
               f"{s['kinetic']:.3f} | {s['breakage']:.2f} | {s['friction']:.2f} | "

@@ -142,23 +142,23 @@ def test_crack_counts_by_hand(tmp_path):
 
 def test_the_straight_cut_and_the_hand_estimate(tmp_path):
     a = analysed(tmp_path)
-    # One mortar and one ITZ interface across x = 0.1 m above the notch; 2 over 35 mm.
-    assert a["straight_interfaces"] == 2
-    assert a["hand"]["mortar"]["per_mm"] == pytest.approx(1 / 35)
-    assert a["hand"]["itz"]["per_mm"] == pytest.approx(1 / 35)
+    # The cuts across the beam, x = 0.03, 0.04, ..., 0.17 m: the one at 0.1 m (mid-span) meets a
+    # mortar and an ITZ interface above the notch, the one at 0.09 m a mortar one: per cut 2 / 15
+    # mortar and 1 / 15 ITZ interfaces, over 35 mm.
+    assert a["at_mid"] == 2
+    assert a["hand"]["mortar"]["per_mm"] == pytest.approx(2 / eb.LINES / 35)
+    assert a["hand"]["itz"]["per_mm"] == pytest.approx(1 / eb.LINES / 35)
+    assert a["straight_per_mm"] == pytest.approx(3 / eb.LINES / 35)
     # Mortar: opening 10 MPa x 2 mm / 50 GPa = 0.4 um, element 1 mm long: 1/2 x 10 MPa x 0.4 um
     # x 1 mm = 2 mJ/m. ITZ: 5 MPa x 2 mm / 25 GPa = 0.4 um, 1 mJ/m.
     assert a["hand"]["mortar"]["opening"] == pytest.approx(0.4e-6)
     assert a["hand"]["mortar"]["element_energy"] == pytest.approx(2e-3)
     assert a["hand"]["itz"]["element_energy"] == pytest.approx(1e-3)
-    # G_straight: 1/35 per mm x 1000 x 2 elements x (2 + 1) mJ/m = 0.1714 N/m.
-    assert a["g_straight"] == pytest.approx(1000 / 35 * 2 * 3e-3)
+    # G_straight: 1000 / 35 / 15 per m x 2 elements x (2 x 2 + 1 x 1) mJ/m.
+    assert a["g_straight"] == pytest.approx(1000 / 35 / eb.LINES * 2 * 5e-3)
     # Buffon's check: 140 bonded elements, 70 interfaces, over 0.2 x 0.05 - 0.015 x 0.004 m^2,
     # x 2 mm x 2 / pi.
     assert a["isotropic_per_mm"] == pytest.approx(70 / 0.00994 * 2e-3 * 2 / np.pi * 1e-3)
-    # The cuts across the beam, x = 0.03, 0.04, ..., 0.17 m: the one at 0.1 m meets the two
-    # interfaces, the one at 0.09 m a third.
-    assert a["lines_per_mm"] == pytest.approx(3 / eb.LINES / 35)
     assert a["r_mean_mm"] == pytest.approx(1.0)
 
 
