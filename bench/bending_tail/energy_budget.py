@@ -26,8 +26,8 @@ genesis' bond tolerance, their centre line crossing the cut above the notch; two
 aggregate are one rigid body, two of different aggregates are not bonded), the mean of LINES
 vertical cuts across the beam (the one at mid-span is printed beside it), so that
     G_straight = n_s N_r e       (N/m)
-and the microcracking multiplier is the interfaces broken over the n_s (H - a0) a straight crack
-would have to break.
+and the microcracking multiplier is the interfaces broken (anywhere in the beam) over the
+n_s (H - a0) a straight crack would have to break.
     python3 bench/bending_tail/energy_budget.py RUN_DIR...
 RUN_DIR: a run directory of bench/size_effect/size_effect.sh (D*_s*.json, .h5, .specimen.h5).
 Units: SI inside; printed in N/m (energies per ligament area), J/m, mm and um.
@@ -205,12 +205,12 @@ def print_run(name, a):
     print("  | state | delta mm | CMOD mm | P/P_max | G_F (no m g) | work | stored | kinetic | "
           "breakage | friction | damping | elements broken: all / band | "
           "interfaces broken: all / band (per mm) | mJ/m per element | "
-          "multiplier (band / straight) |")
+          "multiplier (all / straight) |")
     print("  |" + "---|" * 15)
     for state, s in a["states"].items():
         c = s["cracks"]
         straight = a["straight_per_mm"] * a["ligament_mm"]
-        mult = c["band"]["pairs"] / straight if straight else 0.0
+        mult = c["all"]["pairs"] / straight if straight else 0.0
         print(f"  | {state} | {s['delta_mm']:.4f} | {s['cmod_mm']:.4f} | {s['p_frac']:.3f} | "
               f"{s['gf']:.2f} ({s['gf_nw']:.2f}) | {s['work']:.2f} | {s['stored']:.2f} | "
               f"{s['kinetic']:.3f} | {s['breakage']:.2f} | {s['friction']:.2f} | "
