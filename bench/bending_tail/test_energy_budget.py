@@ -168,3 +168,6 @@ def test_main_prints_the_table(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "D050_s1: P_max 10.00 kN/m" in out
     assert "| end | 0.0600 | 0.0300 |" in out
+    # The multiplier at the end: 15 interfaces broken over the 3 / 15 a straight crack meets.
+    end_row = next(line for line in out.splitlines() if "| end |" in line)
+    assert end_row.endswith("| 75.00 |")
