@@ -12,9 +12,10 @@ the boundary work into (N/m, per ligament area t (H - a0)):
   friction  slip work of broken and never-bonded contacts
   damping   the rest: local damping (the history does not record it; the scheme's own balance
             error, O(dt^2), is in it too)
-and counts the bond failures to there: flat-joint elements and interfaces (pairs) broken, all of
-them and those within BAND_MM of mid-span (the main crack winds round aggregates of up to 15 mm),
-per mm of ligament, with the mean energy an element released.
+(its end checked against the run's summary), and counts the bond failures to there: flat-joint
+elements and interfaces (pairs) broken, all of them and those within BAND_MM of mid-span (the
+main crack winds round aggregates of up to 15 mm), per mm of ligament, with the mean energy an
+element released.
 
 Beside them, the hand estimate of what a straight crack through the same brittle bonds takes.
 One flat-joint element of length l = 2 lambda R / N_r on an interface of normal stiffness
@@ -154,6 +155,9 @@ def analyse(h5_path, summary, specimen_path):
         s.update(ledger(h, i, area), cmod_mm=h["cmod"][i] * 1e3)
         s["cracks"] = crack_counts(cracks, h["time"][i], x_mid, ligament * 1e3, elements)
         states[name] = s
+    cc.check(states["end"], {"w0": b["work_of_fracture_J_per_m"],
+                             "gf": b["fracture_energy_N_per_m"],
+                             "gf_diss": b["dissipated_fracture_energy_N_per_m"]}, h5_path)
     r_mean = float(r[tag == 0].mean())
     y_low, y_high = b["notch_depth_mm"] * 1e-3, b["depth_mm"] * 1e-3
     at_mid = straight_crossings(x, y, r, clump, x_mid, y_low, y_high)

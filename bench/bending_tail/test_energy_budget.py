@@ -71,7 +71,7 @@ def specimen_discs():
     return x, y, np.full(len(x), 1e-3), clump, (clump >= 0).astype(np.int32)
 
 
-def write_run(tmp_path):
+def write_run(tmp_path, gf_factor=1.0):
     with h5py.File(tmp_path / "D050_s1.h5", "w") as f:
         for k, v in history().items():
             f.create_dataset(f"history/{k}", data=v)
@@ -89,7 +89,10 @@ def write_run(tmp_path):
         c["width_m"], c["height_m"], c["notch_depth_m"], c["notch_width_m"] = (
             LENGTH, 0.05, 0.015, 0.004)
     summary = {"bending": {"peak_load_kN_per_m": 10.0, "depth_mm": 50, "notch_depth_mm": 15,
-                           "mass_between_supports_kg_per_m": tc.MASS}}
+                           "mass_between_supports_kg_per_m": tc.MASS,
+                           "work_of_fracture_J_per_m": tc.W0_END * gf_factor,
+                           "fracture_energy_N_per_m": tc.rilem(tc.W0_END, 0.060e-3),
+                           "dissipated_fracture_energy_N_per_m": (0.180 - 1e-4) / LIGAMENT}}
     (tmp_path / "D050_s1.json").write_text(json.dumps(summary))
     return summary
 
@@ -160,6 +163,12 @@ def test_the_straight_cut_and_the_hand_estimate(tmp_path):
     # x 2 mm x 2 / pi.
     assert a["isotropic_per_mm"] == pytest.approx(70 / 0.00994 * 2e-3 * 2 / np.pi * 1e-3)
     assert a["r_mean_mm"] == pytest.approx(1.0)
+
+
+def test_a_summary_that_disagrees_with_the_history_is_refused(tmp_path):
+    summary = write_run(tmp_path, gf_factor=1.01)
+    with pytest.raises(SystemExit):
+        eb.analyse(str(tmp_path / "D050_s1.h5"), summary, str(tmp_path / "D050_s1.specimen.h5"))
 
 
 def test_main_prints_the_table(tmp_path, capsys):
