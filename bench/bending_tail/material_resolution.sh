@@ -21,12 +21,9 @@ out="$(cd "${2:-out/material}" && pwd)"
 runs="${3:-0.7:2 0.7:3 1.0:2 1.0:3 1.4:2 1.4:3}"
 cdem="$build/bin/cdem"
 cd "$out"
-set_key() {  # file key value: replace the value of a key of the samples, check it was there
-  sed -i -E "s|^$2 = .*|$2 = $3  # set by bench/bending_tail/material_resolution.sh|" "$1"
-  grep -q "^$2 = $3 " "$1" || { echo "material_resolution: no key $2 in $1" >&2; exit 2; }
-}
-cmp -s "$src/samples/materials/c30_flat_joint.toml" materials.toml ||
-  cp "$src/samples/materials/c30_flat_joint.toml" materials.toml
+script="bench/bending_tail/material_resolution.sh"
+source "$src/bench/size_effect/sample_keys.sh"
+copy_material
 
 for run in $runs; do
   r="${run%%:*}"

@@ -42,12 +42,9 @@ max_deflection_d="${MAX_DEFLECTION_D:-0.001}"
 cdem="$build/bin/cdem"
 cd "$out"
 mm() { python3 -c "print(f'{$1:g}')"; }  # a length in mm from D (the factors are exact in %g)
-set_key() {  # file key value: replace the value of a key of the samples, check it was there
-  sed -i -E "s|^$2 = .*|$2 = $3  # set by bench/size_effect/size_effect.sh|" "$1"
-  grep -q "^$2 = $3 " "$1" || { echo "size_effect: no key $2 in $1" >&2; exit 2; }
-}
-cmp -s "$src/samples/materials/c30_flat_joint.toml" materials.toml ||
-  cp "$src/samples/materials/c30_flat_joint.toml" materials.toml
+script="bench/size_effect/size_effect.sh"
+source "$src/bench/size_effect/sample_keys.sh"
+copy_material
 
 for run in $runs; do
   d="${run%%:*}"
