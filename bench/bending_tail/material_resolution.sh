@@ -15,14 +15,10 @@
 {
 set -euo pipefail
 src="$(cd "$(dirname "$0")/../.." && pwd)"
-build="$(cd "${1:-build}" && pwd)"
-mkdir -p "${2:-out/material}"
-out="$(cd "${2:-out/material}" && pwd)"
-runs="${3:-0.7:2 0.7:3 1.0:2 1.0:3 1.4:2 1.4:3}"
-cdem="$build/bin/cdem"
-cd "$out"
 script="bench/bending_tail/material_resolution.sh"
 source "$src/bench/size_effect/sample_keys.sh"
+enter_output "${1:-build}" "${2:-out/material}"
+runs="${3:-0.7:2 0.7:3 1.0:2 1.0:3 1.4:2 1.4:3}"
 copy_material
 
 for run in $runs; do

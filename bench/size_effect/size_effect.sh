@@ -33,17 +33,13 @@
 {
 set -euo pipefail
 src="$(cd "$(dirname "$0")/../.." && pwd)"
-build="$(cd "${1:-build}" && pwd)"
-mkdir -p "${2:-out/size_effect}"
-out="$(cd "${2:-out/size_effect}" && pwd)"
+script="bench/size_effect/size_effect.sh"
+source "$src/bench/size_effect/sample_keys.sh"
+enter_output "${1:-build}" "${2:-out/size_effect}"
 runs="${3:-50:1 50:2 100:1 100:2 200:1}"
 stop_fraction="${STOP_FRACTION:-0.5}"
 max_deflection_d="${MAX_DEFLECTION_D:-0.001}"
-cdem="$build/bin/cdem"
-cd "$out"
 mm() { python3 -c "print(f'{$1:g}')"; }  # a length in mm from D (the factors are exact in %g)
-script="bench/size_effect/size_effect.sh"
-source "$src/bench/size_effect/sample_keys.sh"
 copy_material
 
 for run in $runs; do
