@@ -80,8 +80,9 @@ def main(directory):
             cells = [fmt.format(run[k]) for k, fmt in COLUMNS]
             print(f"| {r_mean:g} | {run['seed']} | " + " | ".join(cells) + " |")
         if len(rows) > 1:
-            cells = [fmt.format(type(rows[0][k])(statistics.fmean(r[k] for r in rows)))
-                     for k, fmt in COLUMNS]
+            means = {k: statistics.fmean(r[k] for r in rows) for k, _ in COLUMNS}
+            means["discs"] = int(means["discs"])  # a count: printed whole
+            cells = [fmt.format(means[k]) for k, fmt in COLUMNS]
             print(f"| {r_mean:g} | mean | " + " | ".join(cells) + " |")
 
 
