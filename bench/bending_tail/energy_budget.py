@@ -11,7 +11,8 @@ the boundary work into (N/m, per ligament area t (H - a0)):
   breakage  strain energy the bonds held when they broke (the crack log's `energy`, summed)
   friction  slip work of broken and never-bonded contacts
   damping   the rest: local damping (the history does not record it; the scheme's own balance
-            error, O(dt^2), is in it too)
+            error, O(dt^2), is in it too, and under density scaling the kinetic energy of the
+            integration masses beyond the physical one, about 0 once the beam is at rest)
 (its end checked against the run's summary), and counts the bond failures to there: flat-joint
 elements and interfaces (pairs) broken, all of them and those within BAND_MM of mid-span (the
 main crack winds round aggregates of up to 15 mm), per mm of ligament, with the mean energy an
