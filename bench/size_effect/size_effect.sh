@@ -33,21 +33,14 @@
 {
 set -euo pipefail
 src="$(cd "$(dirname "$0")/../.." && pwd)"
-build="$(cd "${1:-build}" && pwd)"
-mkdir -p "${2:-out/size_effect}"
-out="$(cd "${2:-out/size_effect}" && pwd)"
+script="bench/size_effect/size_effect.sh"
+source "$src/bench/size_effect/sample_keys.sh"
+enter_output "${1:-build}" "${2:-out/size_effect}"
 runs="${3:-50:1 50:2 100:1 100:2 200:1}"
 stop_fraction="${STOP_FRACTION:-0.5}"
 max_deflection_d="${MAX_DEFLECTION_D:-0.001}"
-cdem="$build/bin/cdem"
-cd "$out"
 mm() { python3 -c "print(f'{$1:g}')"; }  # a length in mm from D (the factors are exact in %g)
-set_key() {  # file key value: replace the value of a key of the samples, check it was there
-  sed -i -E "s|^$2 = .*|$2 = $3  # set by bench/size_effect/size_effect.sh|" "$1"
-  grep -q "^$2 = $3 " "$1" || { echo "size_effect: no key $2 in $1" >&2; exit 2; }
-}
-cmp -s "$src/samples/materials/c30_flat_joint.toml" materials.toml ||
-  cp "$src/samples/materials/c30_flat_joint.toml" materials.toml
+copy_material
 
 for run in $runs; do
   d="${run%%:*}"
