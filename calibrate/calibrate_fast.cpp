@@ -278,6 +278,16 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
   // them; a singular J falls back to its diagonal); marks a target out of reach when its scale
   // already sits on the bound the step points past.
   const auto correct = [&](const std::vector<double>& y) {
+    if (plan.correction) {
+      ScaledCorrection c = plan.correction(scales, y);
+      for (auto& o : c.out_of_reach) {
+        for (std::size_t g = 0; g < n; ++g)
+          if (groups[g].target == o.target) reachable[g] = false;
+        result.out_of_reach.push_back(std::move(o));
+      }
+      if (c.out_of_reach.empty()) scales = c.scales;
+      return;
+    }
     std::vector<std::size_t> free;
     for (std::size_t g = 0; g < n; ++g)
       if (reachable[g]) free.push_back(g);
@@ -371,6 +381,12 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
     correct(y);
     if (std::none_of(reachable.begin(), reachable.end(), [](bool r) { return r; })) {
       result.stop_reason = "every target is out of reach within the bounds";
+      break;
+    }
+    // A plan's own correction that finds a target out of reach has no next point to run.
+    if (plan.correction && !result.out_of_reach.empty()) {
+      result.stop_reason = "a target is out of reach after iteration " + std::to_string(it) +
+                           " (the correction's reason in the report)";
       break;
     }
     if (it == plan.max_iterations)
