@@ -748,6 +748,53 @@ TEST(CalibrateTables, SigmaTAloneAtTheBaseShearRatioWithKbTau) {
       f);
 }
 
+TEST(CalibrateTables, ACalibrationSpecimenThatIsTheMeanOfSeveral) {
+  // [specimen] seeds = [1, 7, 8]: every iteration runs the three and works on their mean. Seed 1
+  // is the tables' own; 7 and 8 are 1.2x in sigma_t, and every specimen but seed 1 scatters by
+  // 1 + 0.02 sin(3 seed) in E and sigma_t (TableModel). So the lookup's run gives the means
+  // E (1 + s7 + s8) / 3 and sigma_t (1 + 1.2 s7 + 1.2 s8) / 3 of the targets, a constant bias that
+  // the correction removes exactly. The verification seeds default to the five after the last
+  // calibration seed (9-13): 1.2x, so their mean misses and one correction on it follows.
+  Files f;
+  f.parameters = "seeds = [1, 7, 8]\n" + kParameters;
+  const auto in = read_calibration_input(make_calibration("mean_of_three", f));
+  ASSERT_EQ(in.calibration_seeds, (std::vector<std::uint64_t>{1, 7, 8}));
+  EXPECT_EQ(in.verification_seeds, (std::vector<std::uint64_t>{9, 10, 11, 12, 13}));
+  TableModel model(in, 1, 1);
+  model.other_specimens = 1.2;
+  const auto r = calibrate(in, model);
+  ASSERT_EQ(r.iterations.size(), 2u);
+  const double s7 = 1 + 0.02 * std::sin(21.0), s8 = 1 + 0.02 * std::sin(24.0);
+  EXPECT_NEAR(r.iterations[0].errors[0], (1 + s7 + s8) / 3 - 1, 1e-9);
+  EXPECT_NEAR(r.iterations[0].errors[1], (1 + 1.2 * s7 + 1.2 * s8) / 3 - 1, 1e-9);
+  for (const double e : r.iterations[1].errors) EXPECT_NEAR(e, 0, 1e-9);
+  std::vector<std::uint64_t> first;
+  for (const auto& sim : r.simulations)
+    if (sim.stage == "tables_01") first.push_back(sim.point.specimen_seed);
+  EXPECT_EQ(first, (std::vector<std::uint64_t>{1, 7, 8}));
+  EXPECT_EQ(model.points, 3 + 3 + 5 + 5);
+  EXPECT_TRUE(r.success()) << r.stop_reason;
+
+  // Refusals: seed and seeds together, a repeated seed, a verification seed among them, the
+  // paper strategy (its surfaces are fitted on one specimen).
+  expect_refusals({
+      {"seeds_both", &Files::parameters, kParameters, "seed = 1\nseeds = [1, 7]\n" + kParameters,
+       "specimen.seeds", "not both"},
+      {"seeds_repeat", &Files::parameters, kParameters, "seeds = [1, 7, 1]\n" + kParameters,
+       "specimen.seeds", "repeats a seed"},
+  });
+  expect_refusals(
+      {{"seeds_overlap", &Files::head, "strategy", "verification_seeds = [7, 9]\nstrategy",
+        "verification_seeds", "holds seed 7, one of [specimen] seeds"}},
+      f);
+  try {
+    read_calibration_input(make_calibration("seeds_paper", f), CalibrationStrategy::Paper);
+    ADD_FAILURE() << "no InputError for the paper strategy with several seeds";
+  } catch (const cdem::InputError& e) {
+    EXPECT_EQ(e.key(), "specimen.seeds") << e.what();
+  }
+}
+
 TEST(CalibrateTables, AFailedLastRunIsReportedWithAReason) {
   // The correction's run fails: no verification, and the stop reason says why (it was empty
   // when the iterations ran out on a failed run).
