@@ -478,9 +478,12 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
       break;
     }
   }
-  if (!result.verifications.empty() && !result.verifications.back().passed)
+  if (!result.verifications.empty() && !result.verifications.back().passed) {
     result.stop_reason += "; the verification mean missed the tolerance after " +
                           std::to_string(result.verifications.size() - 1) + " correction(s) on it";
+    if (!result.out_of_reach.empty())
+      result.stop_reason += ", and the correction on it found a target out of reach";
+  }
   return result;
 }
 

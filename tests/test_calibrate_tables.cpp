@@ -430,7 +430,8 @@ class TableModel : public cdem::test::PointModel {
                                       {3, 0.2, 30}, "c", "k");
     factor_.reference = 2;
   }
-  double other_specimens = 1;  // strength of the verification specimens against the first
+  double other_specimens = 1;      // strength of the verification specimens against the first
+  double other_specimens_ucs = 1;  // their sigma_u against the first's
   // When > 0, the calibration specimen's sigma_t jumps at this sigma_cn (MPa): 1.3 x the
   // tables' above, 0.7 x below (as one D 30 mm disc does between the regimes of E* / sigma_cn).
   double jump_MPa = 0;
@@ -462,7 +463,7 @@ class TableModel : public cdem::test::PointModel {
     o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
         kb_ * bias * scatter * sigma * cell_.at(x) * shear / 4;
     o.responses[static_cast<int>(CalibrationTarget::SigmaU)] =
-        ku_ * scatter * sigma * ucs_cell_.at(rho);
+        ku_ * (first ? 1 : other_specimens_ucs) * scatter * sigma * ucs_cell_.at(rho);
     return o;
   }
 
@@ -635,6 +636,21 @@ TEST(CalibrateTables, ABiasBeyondTheTablesIsOutOfReachWithoutAStep) {
   EXPECT_NE(r.out_of_reach[0].why.find("only from"), std::string::npos) << r.out_of_reach[0].why;
   EXPECT_NE(r.stop_reason.find("out of reach after iteration 1"), std::string::npos)
       << r.stop_reason;
+
+  // The same bias on the verification specimens only (the calibration specimen is the tables'
+  // own): one run, then the correction on the verification mean finds sigma_u out of reach, and
+  // the stop reason says so.
+  TableModel verified(in, 1, 1);
+  verified.other_specimens_ucs = 0.6;
+  const auto v = calibrate(in, verified);
+  EXPECT_FALSE(v.success());
+  EXPECT_EQ(v.iterations.size(), 1u);
+  EXPECT_EQ(v.verifications.size(), 1u);
+  ASSERT_EQ(v.out_of_reach.size(), 1u);
+  EXPECT_EQ(v.out_of_reach[0].target, CalibrationTarget::SigmaU);
+  EXPECT_NE(v.stop_reason.find("the correction on it found a target out of reach"),
+            std::string::npos)
+      << v.stop_reason;
 }
 
 TEST(CalibrateTables, UniaxialStrengthAloneKeepsTheBaseShearRatio) {
