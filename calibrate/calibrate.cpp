@@ -79,7 +79,7 @@ CalibrateOutcome run_calibration(const CalibrateOptions& options) {
   }
   check_output_directory(inputs, {options.output_dir ? "-o" : "output_dir", output_dir});
   CampaignSimulator simulator(input, output_dir, options.jobs, options.verbose);
-  std::vector<std::uint64_t> seeds{input.calibration_seed};
+  std::vector<std::uint64_t> seeds = input.calibration_seeds;
   for (const auto s : input.verification_seeds)
     if (std::find(seeds.begin(), seeds.end(), s) == seeds.end()) seeds.push_back(s);
   simulator.make_specimens(seeds);

@@ -239,6 +239,30 @@ CalibrationResult calibrate_fast(const CalibrationInput& input, Simulator& simul
   return calibrate_scaled(input, simulator, fast_plan(input));
 }
 
+namespace {
+
+// The calibration specimen's outcome when it is several ([specimen] seeds): the mean of every
+// response, or the first failure (a mean over the specimens that ran would be another
+// specimen's each time one fails).
+SimulationOutcome mean_outcome(const std::vector<SimulationOutcome>& outcomes) {
+  for (const auto& o : outcomes)
+    if (!o.ok) return o;
+  SimulationOutcome mean = outcomes.front();
+  const double n = static_cast<double>(outcomes.size());
+  for (std::size_t t = 0; t < mean.responses.size(); ++t) {
+    mean.responses[t] = 0;
+    for (const auto& o : outcomes) mean.responses[t] += o.responses[t] / n;
+  }
+  for (std::size_t i = 1; i < outcomes.size(); ++i) {
+    mean.simulations += outcomes[i].simulations;
+    mean.warnings.insert(mean.warnings.end(), outcomes[i].warnings.begin(),
+                         outcomes[i].warnings.end());
+  }
+  return mean;
+}
+
+}  // namespace
+
 CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& simulator,
                                    const ScaledPlan& plan) {
   CalibrationResult result;
@@ -278,6 +302,16 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
   // them; a singular J falls back to its diagonal); marks a target out of reach when its scale
   // already sits on the bound the step points past.
   const auto correct = [&](const std::vector<double>& y) {
+    if (plan.correction) {
+      ScaledCorrection c = plan.correction(scales, y);
+      for (auto& o : c.out_of_reach) {
+        for (std::size_t g = 0; g < n; ++g)
+          if (groups[g].target == o.target) reachable[g] = false;
+        result.out_of_reach.push_back(std::move(o));
+      }
+      if (c.out_of_reach.empty()) scales = c.scales;
+      return;
+    }
     std::vector<std::size_t> free;
     for (std::size_t g = 0; g < n; ++g)
       if (reachable[g]) free.push_back(g);
@@ -324,15 +358,22 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
     char number[16];
     std::snprintf(number, sizeof number, "_%02d", it);
     const std::string stage = plan.stage_prefix + number;
-    const auto outcomes =
-        run_batch(simulator, input, result, stage, {"iteration " + std::to_string(it)},
-                  {{fast_values(input, groups, scales), input.calibration_seed}});
+    std::vector<std::string> labels;
+    std::vector<SimulationPoint> points;
+    for (const auto seed : input.calibration_seeds) {
+      labels.push_back("iteration " + std::to_string(it) +
+                       (input.calibration_seeds.size() > 1
+                            ? ", calibration specimen seed " + std::to_string(seed)
+                            : std::string()));
+      points.push_back({fast_values(input, groups, scales), seed});
+    }
+    const auto outcomes = run_batch(simulator, input, result, stage, labels, points);
     if (!outcomes) {
       result.stop_reason = "the simulation budget (" + std::to_string(input.max_simulations) +
                            ") ran out before the iteration converged";
       break;
     }
-    const auto& o = outcomes->front();
+    const SimulationOutcome o = mean_outcome(*outcomes);
     FastIteration row;
     row.iteration = it;
     row.scales = scales;
@@ -371,6 +412,12 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
     correct(y);
     if (std::none_of(reachable.begin(), reachable.end(), [](bool r) { return r; })) {
       result.stop_reason = "every target is out of reach within the bounds";
+      break;
+    }
+    // A plan's own correction that finds a target out of reach has no next point to run.
+    if (plan.correction && !result.out_of_reach.empty()) {
+      result.stop_reason = "a target is out of reach after iteration " + std::to_string(it) +
+                           " (the correction's reason in the report)";
       break;
     }
     if (it == plan.max_iterations)
@@ -431,9 +478,12 @@ CalibrationResult calibrate_scaled(const CalibrationInput& input, Simulator& sim
       break;
     }
   }
-  if (!result.verifications.empty() && !result.verifications.back().passed)
+  if (!result.verifications.empty() && !result.verifications.back().passed) {
     result.stop_reason += "; the verification mean missed the tolerance after " +
                           std::to_string(result.verifications.size() - 1) + " correction(s) on it";
+    if (!result.out_of_reach.empty())
+      result.stop_reason += ", and the correction on it found a target out of reach";
+  }
   return result;
 }
 

@@ -13,6 +13,7 @@
 // learnt. Converged within the tolerance, the set is verified on independent specimens, and
 // corrected on the verification mean if that misses (with max_refinements >= 2, two
 // verifications give a secant of their own).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,13 @@ std::vector<double> fast_start_scales(const CalibrationInput& input,
 Eigen::VectorXd fast_values(const CalibrationInput& input, const std::vector<FastGroup>& groups,
                             const std::vector<double>& scales);
 
+// A correction that replaces the Newton step (ScaledPlan::correction): the scales of the next
+// run, or the targets it finds out of reach (then `scales` is empty and the iteration stops).
+struct ScaledCorrection {
+  std::vector<double> scales;  // per group
+  std::vector<OutOfReach> out_of_reach;
+};
+
 // How the scaled iteration runs. The fast strategy: its groups from the semi-analytical start,
 // the priors' sensitivities, fast.tolerance and its iterations; the tables strategy
 // (calibrate_tables.hpp): the start and sensitivities of the lookup tables, at most two runs.
@@ -67,6 +75,13 @@ struct ScaledPlan {
   // tables strategy keeps the tables' own: measured over several specimens per cell, while a
   // secant between two runs of one specimen is that specimen's (a jump of its failure mode).
   bool learn = true;
+  // When set, every correction (after a run on the calibration specimen and on a verification
+  // mean) is this function of the scales of the point that ran and its responses per group,
+  // instead of the Newton step on `sensitivities`: the tables strategy solves its tables again
+  // for target / bias, the bias measured at that point (calibrate_tables.hpp).
+  std::function<ScaledCorrection(const std::vector<double>& scales,
+                                 const std::vector<double>& responses)>
+      correction;
 };
 
 // The fast strategy's plan (the priors of the header comment).

@@ -425,7 +425,8 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
   }
 
   const InputTable specimen = root.table("specimen");
-  specimen.reject_unknown_keys({"generator", "brazilian_generator", "bending_generator", "seed"});
+  specimen.reject_unknown_keys(
+      {"generator", "brazilian_generator", "bending_generator", "seed", "seeds"});
   for (std::size_t i = 0; i < in.tests.size(); ++i) {
     const char* key = test_files[i]->generator_key;
     if (!specimen.has(key))
@@ -434,14 +435,36 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
     in.tests[i].generator = generator_text(specimen, key, file);
   }
   constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
-  in.calibration_seed = static_cast<std::uint64_t>(specimen.integer_or("seed", 1, 0, kMaxSeed));
+  if (specimen.has("seeds")) {
+    if (specimen.has("seed")) specimen.fail("seeds", "give seed or seeds, not both");
+    for (const auto s : specimen.integers("seeds", 0, kMaxSeed))
+      in.calibration_seeds.push_back(static_cast<std::uint64_t>(s));
+    if (in.calibration_seeds.empty())
+      specimen.fail("seeds", "needs at least one seed: the calibration specimens");
+    if (std::set<std::uint64_t>(in.calibration_seeds.begin(), in.calibration_seeds.end()).size() !=
+        in.calibration_seeds.size())
+      specimen.fail("seeds", "repeats a seed; the mean is over distinct specimens");
+  } else {
+    in.calibration_seeds.push_back(
+        static_cast<std::uint64_t>(specimen.integer_or("seed", 1, 0, kMaxSeed)));
+  }
+  in.calibration_seed = in.calibration_seeds.front();
 
   if (root.has("verification_seeds")) {
     for (const auto s : root.integers("verification_seeds", 0, kMaxSeed))
       in.verification_seeds.push_back(static_cast<std::uint64_t>(s));
   } else {
-    for (std::uint64_t i = 1; i <= 5; ++i) in.verification_seeds.push_back(in.calibration_seed + i);
+    const std::uint64_t last =
+        *std::max_element(in.calibration_seeds.begin(), in.calibration_seeds.end());
+    for (std::uint64_t i = 1; i <= 5; ++i) in.verification_seeds.push_back(last + i);
   }
+  // Several calibration specimens are for a mean that the verification checks independently.
+  if (in.calibration_seeds.size() > 1)
+    for (const auto s : in.verification_seeds)
+      if (std::count(in.calibration_seeds.begin(), in.calibration_seeds.end(), s))
+        root.fail("verification_seeds", "holds seed " + std::to_string(s) +
+                                            ", one of [specimen] seeds; verification specimens "
+                                            "must be independent of the calibration specimens");
   if (in.verification_seeds.empty())
     root.fail("verification_seeds", "needs at least one seed: a calibration is verified");
   if (std::set<std::uint64_t>(in.verification_seeds.begin(), in.verification_seeds.end()).size() !=
@@ -483,6 +506,10 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
   }
   if (const auto tables = root.optional_table("tables")) read_tables_settings(*tables, file, in);
   if (strategy) in.strategy = *strategy;
+  if (in.strategy == CalibrationStrategy::Paper && in.calibration_seeds.size() > 1)
+    specimen.fail("seeds",
+                  "the paper strategy fits its surfaces on one calibration specimen; give one "
+                  "seed (a mean over several specimens is for the fast and tables strategies)");
   const int k = static_cast<int>(in.parameters.size());
   if (in.strategy == CalibrationStrategy::Paper) {
     const int screen_limit = in.paper.screen == "taguchi_l27" ? 13 : 19;

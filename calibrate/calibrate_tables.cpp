@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -39,10 +40,6 @@ const std::string kTensileKey(lab::material_key_for(lab::MaterialLaw::ContactBon
                                                     ParameterRole::TensileStrength));
 const std::string kShearKey(lab::material_key_for(lab::MaterialLaw::ContactBond,
                                                   ParameterRole::ShearStrength));
-// The Brazilian sensitivity d ln sigma_t / d ln sigma_cn = 1 - slope is held in [0.5, 2]: a
-// table segment steeper than that is one specimen's noise rather than the material's trend.
-constexpr double kMinStrengthExponent = 0.5;
-constexpr double kMaxStrengthExponent = 2.0;
 // Bisection steps on ln(E* / sigma_cn) within one segment of the table: 2^-100 of a segment.
 constexpr int kBisections = 100;
 // A K_U segment flatter than this d ln K_U / d ln(tau_cs / sigma_cn) does not set tau_cs: there
@@ -571,38 +568,205 @@ void check_within_levels(double rho, const CellCoefficient& cell, const LookupTa
                          table.file.string() + "); no extrapolation");
 }
 
-// The group of the plan that aims at `target`, and the mortar key it must hold.
-std::size_t group_of(const ScaledPlan& plan, CalibrationTarget target) {
-  for (std::size_t g = 0; g < plan.groups.size(); ++g)
-    if (plan.groups[g].target == target) return g;
-  return plan.groups.size();
+// The group of the plan that aims at `target`; groups.size() when no target is that.
+std::size_t group_of(const std::vector<FastGroup>& groups, CalibrationTarget target) {
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    if (groups[g].target == target) return g;
+  return groups.size();
 }
 
-// Start scale of a group that puts its mortar key `name` at `value`; refuses a value outside the
-// key's bounds.
-double start_scale(const CalibrationInput& input, const FastGroup& group, const std::string& name,
-                   double value, const std::string& what) {
-  for (const int i : group.parameters) {
-    const auto& p = input.parameters[static_cast<std::size_t>(i)];
-    if (p.key.rfind("materials.mortar." + name, 0) != 0) continue;
-    const double scale = value / p.start;
-    if (!(scale >= group.scale_lower && scale <= group.scale_upper))
-      throw InputError(input.file.string(), "parameters",
-                       "the tables put " + p.key + " at " + shortest_number(value) + " (" + what +
-                           "), outside the bounds of the keys of " + target_name(group.target) +
-                           " (a common scale in [" + shortest_number(group.scale_lower) + ", " +
-                           shortest_number(group.scale_upper) +
-                           "] of the start values); widen the bounds");
-    return scale;
+// The index of the free key materials.mortar.<name>... in a group, or -1.
+int key_in_group(const CalibrationInput& input, const FastGroup& group, const std::string& name) {
+  for (const int i : group.parameters)
+    if (input.parameters[static_cast<std::size_t>(i)].key.rfind("materials.mortar." + name, 0) == 0)
+      return i;
+  return -1;
+}
+
+// What the strategy knows once its tables are read: the cells at the specimens' packings, the
+// base materials, and which group sets which contact value. It solves the tables for targets
+// (the lookup, and each correction for target / bias) and says what the tables predict at a
+// point of contact values (the bias of a run is measured / predicted there).
+struct TablesModel {
+  const CalibrationInput* input = nullptr;
+  std::vector<FastGroup> groups;
+  std::size_t ge = 0, gt = 0, gu = 0;  // the groups of E, sigma_t, sigma_u; groups.size(): none
+  bool both_strengths = false;         // sigma_t and sigma_u: tau_cs / sigma_cn set by K_U
+  bool with_kb_tau = false;            // K_B times F(tau_cs / sigma_cn)
+  double base_emod_GPa = 0, base_sigma_cn_MPa = 0, base_rho = 0;  // the base materials' mortar
+  double K_E = 0;
+  Packing disc, rectangle;
+  CellCoefficient kb_cell, ku_cell;
+  ShearFactor factor;
+  bool has(std::size_t g) const { return g < groups.size(); }
+};
+
+// The contact values the strategy sets: E*, sigma_cn, tau_cs.
+struct ContactPoint {
+  double emod_GPa = 0, sigma_cn_MPa = 0, tau_cs_MPa = 0;
+};
+
+struct TablesSolution {
+  ContactPoint point;
+  BrazilianLookup brazilian;
+  UniaxialLookup uniaxial;
+  double shear_factor = 1, shear_factor_slope = 0;  // F(rho), d ln F / d ln rho
+};
+
+// The tables solved for `wanted` (per group, in the groups' units): E* from K_E; then
+// (sigma_cn, rho) together when K_B depends on rho and a sigma_u target sets it; else sigma_cn
+// from the Brazilian relation at the rho it runs at, then rho from K_U. Throws InputError on
+// the target the tables do not reach.
+TablesSolution solve_tables(const TablesModel& m, const std::vector<double>& wanted) {
+  const std::string file = m.input->file.string();
+  TablesSolution s;
+  auto& p = s.point;
+  p.emod_GPa = m.has(m.ge) ? wanted[m.ge] / m.K_E : m.base_emod_GPa;
+  const double sigma_t = m.has(m.gt) ? wanted[m.gt] : 0;
+  const double sigma_u = m.has(m.gu) ? wanted[m.gu] : 0;
+  if (m.both_strengths && m.with_kb_tau) {
+    const CoupledLookup c = solve_coupled(m.kb_cell, m.factor, m.ku_cell, m.disc.r_ratio, sigma_t,
+                                          sigma_u, p.emod_GPa, file);
+    s.brazilian = c.brazilian;
+    s.uniaxial = c.uniaxial;
+    s.shear_factor = c.factor;
+    s.shear_factor_slope = c.factor_slope;
+  } else if (m.has(m.gt)) {
+    // rho is the base materials' (sigma_t alone) or not known to K_B (no kb_tau: F = 1).
+    if (m.with_kb_tau) s.shear_factor = m.factor.at(m.base_rho);
+    s.brazilian =
+        solve_brazilian(m.kb_cell, m.disc.r_ratio, sigma_t, p.emod_GPa, file, s.shear_factor);
+    if (m.both_strengths)
+      s.uniaxial = solve_uniaxial(m.ku_cell, s.brazilian.sigma_cn_MPa, sigma_u, file);
   }
-  throw InputError(input.file.string(), "parameters",
-                   std::string("the tables strategy sets ") + target_name(group.target) +
-                       " through materials.mortar." + name + "; set it free ([[parameters]])");
+  if (m.has(m.gt))
+    p.sigma_cn_MPa = s.brazilian.sigma_cn_MPa;
+  else if (m.has(m.gu))  // no sigma_t: sigma_cn (with tau_cs, one group) solves sigma_u = K_U
+                         // sigma_cn
+    p.sigma_cn_MPa = sigma_u / m.ku_cell.at(m.base_rho);
+  else
+    p.sigma_cn_MPa = m.base_sigma_cn_MPa;
+  p.tau_cs_MPa = (m.both_strengths ? s.uniaxial.shear_to_normal : m.base_rho) * p.sigma_cn_MPa;
+  return s;
+}
+
+// What the tables predict at a point, per group: E = K_E E*, sigma_t = sigma_cn K_B(E* /
+// sigma_cn) F(rho) / (1 + R_max / R_min), sigma_u = sigma_cn K_U(rho), rho = tau_cs / sigma_cn.
+std::vector<double> predict_tables(const TablesModel& m, const ContactPoint& p) {
+  std::vector<double> out(m.groups.size(), std::nan(""));
+  const double rho = p.tau_cs_MPa / p.sigma_cn_MPa;
+  if (m.has(m.ge)) out[m.ge] = m.K_E * p.emod_GPa;
+  if (m.has(m.gt))
+    out[m.gt] = p.sigma_cn_MPa * m.kb_cell.at(p.emod_GPa * 1e3 / p.sigma_cn_MPa) *
+                (m.with_kb_tau ? m.factor.at(rho) : 1.0) / (1 + m.disc.r_ratio);
+  if (m.has(m.gu)) out[m.gu] = p.sigma_cn_MPa * m.ku_cell.at(rho);
+  return out;
+}
+
+// The contact key each group moves and the value a point puts there: E* for E, sigma_cn for
+// sigma_t (and for sigma_u without sigma_t: its group moves every strength), tau_cs for sigma_u
+// with sigma_t.
+std::pair<std::string, double> group_key(const TablesModel& m, std::size_t g,
+                                         const ContactPoint& p) {
+  if (g == m.ge) return {kModulusKey, p.emod_GPa};
+  if (g == m.gu && m.both_strengths) return {kShearKey, p.tau_cs_MPa};
+  return {kTensileKey, p.sigma_cn_MPa};
+}
+
+// The scale of group g that puts its key at the point's value (start x scale), or NaN when the
+// group's keys cannot hold it (a common scale outside [scale_lower, scale_upper]).
+double scale_to(const TablesModel& m, std::size_t g, const ContactPoint& p) {
+  const auto [name, value] = group_key(m, g, p);
+  const int i = key_in_group(*m.input, m.groups[g], name);
+  if (i < 0)
+    throw InputError(m.input->file.string(), "parameters",
+                     std::string("the tables strategy sets ") + target_name(m.groups[g].target) +
+                         " through materials.mortar." + name + "; set it free ([[parameters]])");
+  const double scale = value / m.input->parameters[static_cast<std::size_t>(i)].start;
+  return scale >= m.groups[g].scale_lower && scale <= m.groups[g].scale_upper ? scale
+                                                                              : std::nan("");
+}
+
+// The point that scales put the contact keys at (a key no group moves: the base materials').
+ContactPoint point_at(const TablesModel& m, const std::vector<double>& scales) {
+  const Eigen::VectorXd values = fast_values(*m.input, m.groups, scales);
+  ContactPoint p{m.base_emod_GPa, m.base_sigma_cn_MPa, m.base_rho * m.base_sigma_cn_MPa};
+  for (std::size_t g = 0; g < m.groups.size(); ++g)
+    for (const auto& [name, slot] :
+         std::vector<std::pair<std::string, double*>>{{kModulusKey, &p.emod_GPa},
+                                                      {kTensileKey, &p.sigma_cn_MPa},
+                                                      {kShearKey, &p.tau_cs_MPa}})
+      if (const int i = key_in_group(*m.input, m.groups[g], name); i >= 0) *slot = values[i];
+  return p;
+}
+
+std::string describe_point(const ContactPoint& p) {
+  return "E* " + four(p.emod_GPa) + " GPa, sigma_cn " + four(p.sigma_cn_MPa) + " MPa, tau_cs " +
+         four(p.tau_cs_MPa) + " MPa (tau_cs / sigma_cn " + four(p.tau_cs_MPa / p.sigma_cn_MPa) +
+         ")";
+}
+
+// The reason of an InputError without its "file: key '...': " head.
+std::string reason_of(const InputError& e) {
+  const std::string what = e.what(), head = "key '" + e.key() + "': ";
+  const auto at = what.find(head);
+  return at == std::string::npos ? what : what.substr(at + head.size());
+}
+
+// The correction of the tables strategy: at the point that ran, bias_i = measured_i / tables_i;
+// the tables solved again (the same solve as the lookup) for target_i / bias_i. A constant bias
+// is removed exactly in one correction, and the solve follows the kinks of the tables where a
+// step on their slopes at the lookup would cross them. Targets the biased tables do not reach
+// are out of reach (the solve's own reason), with no step. `log` gets a line per correction.
+ScaledCorrection correct_on_tables(const TablesModel& m, const std::vector<double>& scales,
+                                   const std::vector<double>& measured, std::string& log) {
+  const ContactPoint at = point_at(m, scales);
+  const std::vector<double> table = predict_tables(m, at);
+  std::vector<double> wanted(m.groups.size());
+  std::string biases, aims;
+  for (std::size_t g = 0; g < m.groups.size(); ++g) {
+    const CalibrationTarget t = m.groups[g].target;
+    const double bias = measured[g] / table[g];
+    wanted[g] = m.input->target_value(t) / bias;
+    biases += std::string(biases.empty() ? "" : ", ") + target_name(t) + " " + four(bias);
+    aims += std::string(aims.empty() ? "" : ", ") + target_name(t) + " " + four(wanted[g]) + " " +
+            target_unit(t);
+  }
+  const std::string head = "at " + describe_point(at) + ", measured / tables: " + biases +
+                           "; the tables solved for target / bias (" + aims + ")";
+  ScaledCorrection out;
+  const auto refuse = [&](std::size_t g, const std::string& why) {
+    const CalibrationTarget t = m.groups[g].target;
+    out.out_of_reach.push_back({t, m.input->target_value(t), measured[g], head + ": " + why});
+  };
+  try {
+    const TablesSolution s = solve_tables(m, wanted);
+    for (std::size_t g = 0; g < m.groups.size(); ++g) {
+      out.scales.push_back(scale_to(m, g, s.point));
+      if (std::isnan(out.scales.back()))
+        refuse(g, "they put " + group_key(m, g, s.point).first + " at " +
+                      four(group_key(m, g, s.point).second) +
+                      ", outside the bounds of its keys; widen the bounds");
+    }
+    log += "- correction " + head + ": " + describe_point(s.point) + "\n";
+  } catch (const InputError& e) {
+    for (std::size_t g = 0; g < m.groups.size(); ++g)
+      if (e.key() == std::string("targets.") + target_name(m.groups[g].target))
+        refuse(g, reason_of(e));
+    if (out.out_of_reach.empty())  // not one target's: every target's
+      for (std::size_t g = 0; g < m.groups.size(); ++g) refuse(g, reason_of(e));
+  }
+  if (!out.out_of_reach.empty()) {
+    out.scales.clear();
+    log += "- correction " + head + ": out of reach (below)\n";
+  }
+  return out;
 }
 
 }  // namespace
 
-ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
+ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
+                       std::shared_ptr<std::string> corrections) {
   const std::string file = input.file.string();
   for (const auto& t : input.targets)
     if (t.target != CalibrationTarget::SigmaT && t.target != CalibrationTarget::E &&
@@ -612,13 +776,16 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
                        "sigma_u (K_U) only; use strategy \"fast\" or \"paper\" for " +
                            std::string(target_name(t.target)));
   check_fast_parameters(input);
+  auto model = std::make_shared<TablesModel>();
+  TablesModel& m = *model;
+  m.input = &input;
+  m.groups = fast_groups(input);
   ScaledPlan plan;
   plan.strategy = CalibrationStrategy::Tables;
   plan.stage_prefix = "tables";
-  plan.groups = fast_groups(input);
-  plan.start_scales.assign(plan.groups.size(), 1.0);
+  plan.groups = m.groups;
   const auto n = static_cast<Eigen::Index>(plan.groups.size());
-  plan.sensitivities = Eigen::MatrixXd::Identity(n, n);
+  plan.sensitivities = Eigen::MatrixXd::Identity(n, n);  // not used: `correction` replaces them
   plan.tolerance = input.tables.tolerance;
   plan.max_iterations = input.tables.max_iterations;
   plan.max_refinements = input.tables.max_refinements;
@@ -628,18 +795,18 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
 
   const InputTable mortar =
       InputTable::parse_string(input.materials, file).table("materials").table("mortar");
-  const std::size_t ge = group_of(plan, CalibrationTarget::E);
-  const std::size_t gt = group_of(plan, CalibrationTarget::SigmaT);
-  const std::size_t gu = group_of(plan, CalibrationTarget::SigmaU);
+  m.ge = group_of(m.groups, CalibrationTarget::E);
+  m.gt = group_of(m.groups, CalibrationTarget::SigmaT);
+  m.gu = group_of(m.groups, CalibrationTarget::SigmaU);
   // With sigma_t and sigma_u targets, tau_cs / sigma_cn is the K_U table's to set; with a
   // sigma_t target and a kb_tau table it may be any of that table's levels. Either way the K_E
   // and K_B tables' own tau_cs / sigma_cn is not required of the base materials (K_E moves by
   // 1.4-2.1 % from 0.25 to 2, docs/lookup_tables.md).
-  const bool both_strengths = gt < plan.groups.size() && gu < plan.groups.size();
-  const bool with_kb_tau = gt < plan.groups.size() && !input.tables.kb_tau_file.empty();
-  const bool shear_ratio_free = both_strengths || with_kb_tau;
-  double emod_GPa = mortar.quantity(kModulusKey, Dimension::Stress, Range::positive()) / units::GPa;
-  if (ge < plan.groups.size()) {
+  m.both_strengths = m.has(m.gt) && m.has(m.gu);
+  m.with_kb_tau = m.has(m.gt) && !input.tables.kb_tau_file.empty();
+  const bool shear_ratio_free = m.both_strengths || m.with_kb_tau;
+  m.base_emod_GPa = mortar.quantity(kModulusKey, Dimension::Stress, Range::positive()) / units::GPa;
+  if (m.has(m.ge)) {
     if (input.tables.ke_file.empty())
       throw InputError(file, "tables.ke",
                        "missing: E is a target, and the tables strategy reads K_E (E = K_E E*) "
@@ -650,26 +817,22 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
     check_conditions(input, ke, "tables.ke", shear_ratio_free);
     const Packing packing = read_packing(test, file, "specimen.generator");
     const CellCoefficient k = interpolate_cell(ke, packing, file, "specimen.generator");
-    emod_GPa = input.target_value(CalibrationTarget::E) / k.at(0);
-    plan.start_scales[ge] =
-        start_scale(input, plan.groups[ge], kModulusKey, emod_GPa, "E* = E / K_E");
+    m.K_E = k.at(0);
     md << "- E: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
        << four(packing.r_min_mm) << " mm; K_E = " << four(k.at(0)) << " from " << k.cells << " of `"
-       << ke.file.string() << "`; E* = E / K_E = " << four(emod_GPa) << " GPa\n";
+       << ke.file.string()
+       << "`; E* = E / K_E = " << four(input.target_value(CalibrationTarget::E) / m.K_E)
+       << " GPa\n";
     if (!k.note.empty()) md << "  - " << k.note << "\n";
   }
+  // The bond strengths after the K_E table's check of the law (a linear mortar has none).
+  m.base_sigma_cn_MPa =
+      mortar.quantity(kTensileKey, Dimension::Stress, Range::positive()) / units::MPa;
+  m.base_rho = mortar.quantity(kShearKey, Dimension::Stress, Range::positive()) /
+               mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
   // The Brazilian side: K_B's cell at the disc's packing and, with a kb_tau table, F(rho).
-  const double sigma_t =
-      gt < plan.groups.size() ? input.target_value(CalibrationTarget::SigmaT) : 0;
-  const double sigma_u =
-      gu < plan.groups.size() ? input.target_value(CalibrationTarget::SigmaU) : 0;
-  const double base_rho = mortar.quantity(kShearKey, Dimension::Stress, Range::positive()) /
-                          mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
   std::optional<LookupTable> kb, ku, kb_tau;
-  Packing disc, rectangle;
-  CellCoefficient kb_cell, ku_cell;
-  ShearFactor factor;
-  if (gt < plan.groups.size()) {
+  if (m.has(m.gt)) {
     if (input.test(TestKind::Tension)->name != "brazilian")
       throw InputError(file, "tests.direct_tension",
                        "the tables strategy has a Brazilian table (K_B) only; name the sigma_t "
@@ -680,25 +843,27 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
                        "table named here, e.g. kb = \"tables/brazilian_kb_x_table.csv\"");
     kb = read_lookup_table(input.tables.kb_file, kBrazilianTable, file, "tables.kb");
     check_conditions(input, *kb, "tables.kb", shear_ratio_free);
-    disc = read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
-    check_size(*kb, "D", {{"diameter_mm", disc.diameter_mm}}, file, "specimen.brazilian_generator");
-    kb_cell = interpolate_cell(*kb, disc, file, "specimen.brazilian_generator");
-    if (with_kb_tau) {
+    m.disc = read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
+    check_size(*kb, "D", {{"diameter_mm", m.disc.diameter_mm}}, file,
+               "specimen.brazilian_generator");
+    m.kb_cell = interpolate_cell(*kb, m.disc, file, "specimen.brazilian_generator");
+    if (m.with_kb_tau) {
       kb_tau =
           read_lookup_table(input.tables.kb_tau_file, kBrazilianShearTable, file, "tables.kb_tau");
       check_conditions(input, *kb_tau, "tables.kb_tau", true);
-      check_size(*kb_tau, "D", {{"diameter_mm", disc.diameter_mm}}, file,
+      check_size(*kb_tau, "D", {{"diameter_mm", m.disc.diameter_mm}}, file,
                  "specimen.brazilian_generator");
-      factor.kb_tau = interpolate_cell(*kb_tau, disc, file, "specimen.brazilian_generator");
-      factor.reference = kb->condition("shear_to_normal");
-      check_within_levels(factor.reference, factor.kb_tau, *kb_tau, file, "tables.kb_tau",
+      m.factor.kb_tau = interpolate_cell(*kb_tau, m.disc, file, "specimen.brazilian_generator");
+      m.factor.reference = kb->condition("shear_to_normal");
+      check_within_levels(m.factor.reference, m.factor.kb_tau, *kb_tau, file, "tables.kb_tau",
                           "the K_B table's tau_cs / sigma_cn (" + kb->file.string() + ")");
-      if (!both_strengths)
-        check_within_levels(base_rho, factor.kb_tau, *kb_tau, file, "materials.mortar." + kShearKey,
+      if (!m.both_strengths)
+        check_within_levels(m.base_rho, m.factor.kb_tau, *kb_tau, file,
+                            "materials.mortar." + kShearKey,
                             "tau_cs / sigma_cn of the base materials");
     }
   }
-  if (gu < plan.groups.size()) {
+  if (m.has(m.gu)) {
     if (input.tables.ku_file.empty())
       throw InputError(file, "tables.ku",
                        "missing: sigma_u is a target, and the tables strategy reads K_U (sigma_u = "
@@ -706,108 +871,93 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup) {
                        "\"tables/uniaxial_ku_table.csv\"");
     ku = read_lookup_table(input.tables.ku_file, kUniaxialStrengthTable, file, "tables.ku");
     check_conditions(input, *ku, "tables.ku");
-    rectangle = read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
-    check_size(*ku, "W x H", {{"width_mm", rectangle.width_mm}, {"height_mm", rectangle.height_mm}},
-               file, "specimen.generator");
-    ku_cell = interpolate_cell(*ku, rectangle, file, "specimen.generator");
-    if (!both_strengths)
-      check_within_levels(base_rho, ku_cell, *ku, file, "materials.mortar." + kShearKey,
+    m.rectangle = read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
+    check_size(*ku, "W x H",
+               {{"width_mm", m.rectangle.width_mm}, {"height_mm", m.rectangle.height_mm}}, file,
+               "specimen.generator");
+    m.ku_cell = interpolate_cell(*ku, m.rectangle, file, "specimen.generator");
+    if (!m.both_strengths)
+      check_within_levels(m.base_rho, m.ku_cell, *ku, file, "materials.mortar." + kShearKey,
                           "tau_cs / sigma_cn of the base materials");
   }
 
-  // The lookup: (sigma_cn, rho) together when K_B depends on rho and a sigma_u target sets it;
-  // else sigma_cn from the Brazilian relation at the rho it runs at, then rho from K_U.
-  BrazilianLookup b;
-  UniaxialLookup u;
-  double shear_factor = 1, shear_factor_slope = 0;  // F(rho), d ln F / d ln rho
-  if (both_strengths && with_kb_tau) {
-    const CoupledLookup c =
-        solve_coupled(kb_cell, factor, ku_cell, disc.r_ratio, sigma_t, sigma_u, emod_GPa, file);
-    b = c.brazilian;
-    u = c.uniaxial;
-    shear_factor = c.factor;
-    shear_factor_slope = c.factor_slope;
-  } else if (gt < plan.groups.size()) {
-    // rho is the base materials' (sigma_t alone) or not known to K_B (no kb_tau: F = 1).
-    if (with_kb_tau) shear_factor = factor.at(base_rho);
-    b = solve_brazilian(kb_cell, disc.r_ratio, sigma_t, emod_GPa, file, shear_factor);
-    if (both_strengths) u = solve_uniaxial(ku_cell, b.sigma_cn_MPa, sigma_u, file);
+  // The lookup: the tables solved for the targets themselves.
+  std::vector<double> targets;
+  for (const auto& g : m.groups) targets.push_back(input.target_value(g.target));
+  const TablesSolution s = solve_tables(m, targets);
+  const BrazilianLookup& b = s.brazilian;
+  const UniaxialLookup& u = s.uniaxial;
+  for (std::size_t g = 0; g < m.groups.size(); ++g) {
+    plan.start_scales.push_back(scale_to(m, g, s.point));
+    if (std::isnan(plan.start_scales.back())) {
+      const auto& group = m.groups[g];
+      const auto [name, value] = group_key(m, g, s.point);
+      throw InputError(file, "parameters",
+                       "the tables put materials.mortar." + name + " at " + shortest_number(value) +
+                           ", outside the bounds of the keys of " + target_name(group.target) +
+                           " (a common scale in [" + shortest_number(group.scale_lower) + ", " +
+                           shortest_number(group.scale_upper) +
+                           "] of the start values); widen the bounds");
+    }
   }
 
-  if (gt < plan.groups.size()) {
-    plan.start_scales[gt] =
-        start_scale(input, plan.groups[gt], kTensileKey, b.sigma_cn_MPa, "sigma_cn from K_B");
-    // With both strengths the sigma_t group moves sigma_cn alone, so rho = tau_cs / sigma_cn
-    // falls as sigma_cn rises: d ln sigma_t / d ln sigma_cn = 1 - s - phi, d ln sigma_t / d ln
-    // tau_cs = phi (phi = d ln F / d ln rho). Alone it moves every strength, rho kept: 1 - s.
-    const double phi = both_strengths ? shear_factor_slope : 0;
-    const double exponent =
-        std::clamp(1 - b.slope - phi, kMinStrengthExponent, kMaxStrengthExponent);
-    const auto it = static_cast<Eigen::Index>(gt);
-    plan.sensitivities(it, it) = exponent;
-    if (ge < plan.groups.size()) plan.sensitivities(it, static_cast<Eigen::Index>(ge)) = b.slope;
-    if (both_strengths) plan.sensitivities(it, static_cast<Eigen::Index>(gu)) = phi;
-    md << "- sigma_t: Brazilian packing R_max/R_min " << four(disc.r_ratio) << ", R_min "
-       << four(disc.r_min_mm) << " mm, D " << four(disc.diameter_mm) << " mm; K_B from "
-       << kb_cell.cells << " of `" << kb->file.string() << "`; at E* = " << four(emod_GPa)
+  if (m.has(m.gt)) {
+    md << "- sigma_t: Brazilian packing R_max/R_min " << four(m.disc.r_ratio) << ", R_min "
+       << four(m.disc.r_min_mm) << " mm, D " << four(m.disc.diameter_mm) << " mm; K_B from "
+       << m.kb_cell.cells << " of `" << kb->file.string() << "`; at E* = " << four(s.point.emod_GPa)
        << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength)
        << ", K_B = " << four(b.K_B)
        << " (measured at tau_cs = " << four(kb->condition("shear_to_normal")) << " sigma_cn)";
-    if (with_kb_tau)
-      md << " x F(tau_cs / sigma_cn = " << four(both_strengths ? u.shear_to_normal : base_rho)
-         << ") = " << four(shear_factor) << " (K_B against tau_cs / sigma_cn from "
-         << factor.kb_tau.cells << " of `" << kb_tau->file.string()
+    if (m.with_kb_tau)
+      md << " x F(tau_cs / sigma_cn = " << four(m.both_strengths ? u.shear_to_normal : m.base_rho)
+         << ") = " << four(s.shear_factor) << " (K_B against tau_cs / sigma_cn from "
+         << m.factor.kb_tau.cells << " of `" << kb_tau->file.string()
          << "`, measured at E* / sigma_cn = " << four(kb_tau->condition("emod_per_sigma_cn"))
          << ")";
     md << ", sigma_cn = " << four(b.sigma_cn_MPa) << " MPa\n"
        << "  - d ln K_B / d ln(E* / sigma_cn) = " << four(b.slope);
-    if (both_strengths && with_kb_tau) md << ", d ln F / d ln(tau_cs / sigma_cn) = " << four(phi);
-    md << " there: the correction uses d ln sigma_t / d ln sigma_cn = " << four(exponent)
-       << (ge < plan.groups.size() ? ", d ln sigma_t / d ln E* = " + four(b.slope) : std::string())
-       << (both_strengths ? ", d ln sigma_t / d ln tau_cs = " + four(phi) : std::string()) << "\n";
-    if (!kb_cell.note.empty()) md << "  - " << kb_cell.note << "\n";
-    if (with_kb_tau && !factor.kb_tau.note.empty()) md << "  - " << factor.kb_tau.note << "\n";
+    if (m.both_strengths && m.with_kb_tau)
+      md << ", d ln F / d ln(tau_cs / sigma_cn) = " << four(s.shear_factor_slope);
+    md << " there\n";
+    if (!m.kb_cell.note.empty()) md << "  - " << m.kb_cell.note << "\n";
+    if (m.with_kb_tau && !m.factor.kb_tau.note.empty())
+      md << "  - " << m.factor.kb_tau.note << "\n";
   }
-  if (gu < plan.groups.size()) {
-    const auto iu = static_cast<Eigen::Index>(gu);
-    md << "- sigma_u: uniaxial packing R_max/R_min " << four(rectangle.r_ratio) << ", R_min "
-       << four(rectangle.r_min_mm) << " mm, " << four(rectangle.width_mm) << " x "
-       << four(rectangle.height_mm) << " mm; K_U from " << ku_cell.cells << " of `"
+  if (m.has(m.gu)) {
+    md << "- sigma_u: uniaxial packing R_max/R_min " << four(m.rectangle.r_ratio) << ", R_min "
+       << four(m.rectangle.r_min_mm) << " mm, " << four(m.rectangle.width_mm) << " x "
+       << four(m.rectangle.height_mm) << " mm; K_U from " << m.ku_cell.cells << " of `"
        << ku->file.string()
        << "` (measured at E* / sigma_cn = " << four(ku->condition("emod_per_sigma_cn")) << ")";
-    if (both_strengths) {
-      const double sigma_cn_MPa = b.sigma_cn_MPa;
-      plan.start_scales[gu] = start_scale(input, plan.groups[gu], kShearKey,
-                                          u.shear_to_normal * sigma_cn_MPa, "tau_cs from K_U");
-      plan.sensitivities(iu, iu) = u.slope;
-      plan.sensitivities(iu, static_cast<Eigen::Index>(gt)) = 1 - u.slope;
-      md << "; at sigma_cn = " << four(sigma_cn_MPa)
-         << " MPa (E* / sigma_cn = " << four(emod_GPa * 1e3 / sigma_cn_MPa)
+    if (m.both_strengths) {
+      md << "; at sigma_cn = " << four(s.point.sigma_cn_MPa)
+         << " MPa (E* / sigma_cn = " << four(s.point.emod_GPa * 1e3 / s.point.sigma_cn_MPa)
          << ") the target needs K_U = " << four(u.K_U)
          << ", tau_cs / sigma_cn = " << four(u.shear_to_normal)
-         << ", tau_cs = " << four(u.shear_to_normal * sigma_cn_MPa) << " MPa"
-         << (with_kb_tau ? " (solved together with sigma_t: K_B depends on tau_cs / sigma_cn)" : "")
+         << ", tau_cs = " << four(s.point.tau_cs_MPa) << " MPa"
+         << (m.with_kb_tau ? " (solved together with sigma_t: K_B depends on tau_cs / sigma_cn)"
+                           : "")
          << "\n"
-         << "  - d ln K_U / d ln(tau_cs / sigma_cn) = " << four(u.slope)
-         << " there: the correction uses d ln sigma_u / d ln tau_cs = " << four(u.slope)
-         << " and d ln sigma_u / d ln sigma_cn = " << four(1 - u.slope)
-         << (with_kb_tau ? std::string()
-                         : "; K_B is read at its own tau_cs / sigma_cn (no kb_tau table; "
-                           "docs/lookup_tables.md \"K_B against tau_cs / sigma_cn\")")
+         << "  - d ln K_U / d ln(tau_cs / sigma_cn) = " << four(u.slope) << " there"
+         << (m.with_kb_tau ? std::string()
+                           : "; K_B is read at its own tau_cs / sigma_cn (no kb_tau table; "
+                             "docs/lookup_tables.md \"K_B against tau_cs / sigma_cn\")")
          << "\n";
     } else {
-      // No sigma_t target: tau_cs / sigma_cn stays the base materials', and sigma_cn (with
-      // tau_cs, one group) solves sigma_u = K_U sigma_cn.
-      const double K = ku_cell.at(base_rho);
-      plan.start_scales[gu] =
-          start_scale(input, plan.groups[gu], kTensileKey, sigma_u / K, "sigma_cn from K_U");
-      md << "; at the base materials' tau_cs / sigma_cn = " << four(base_rho)
-         << ", K_U = " << four(K) << ", sigma_cn = " << four(sigma_u / K)
-         << " MPa (tau_cs / sigma_cn kept)\n";
+      md << "; at the base materials' tau_cs / sigma_cn = " << four(m.base_rho)
+         << ", K_U = " << four(m.ku_cell.at(m.base_rho))
+         << ", sigma_cn = " << four(s.point.sigma_cn_MPa) << " MPa (tau_cs / sigma_cn kept)\n";
     }
-    if (!ku_cell.note.empty()) md << "  - " << ku_cell.note << "\n";
+    if (!m.ku_cell.note.empty()) md << "  - " << m.ku_cell.note << "\n";
   }
+  md << "- corrections: the tables solved again for target / bias, the bias = measured / "
+        "tables at the point that ran (docs/lookup_tables.md \"The correction\")\n";
   if (lookup) *lookup = md.str();
+  if (!corrections) corrections = std::make_shared<std::string>();
+  plan.correction = [model, corrections](const std::vector<double>& scales,
+                                         const std::vector<double>& measured) {
+    return correct_on_tables(*model, scales, measured, *corrections);
+  };
   return plan;
 }
 
@@ -817,9 +967,10 @@ void check_tables_input(const CalibrationInput& input) {
 
 CalibrationResult calibrate_tables(const CalibrationInput& input, Simulator& simulator) {
   std::string lookup;
-  const ScaledPlan plan = tables_plan(input, &lookup);
+  const auto corrections = std::make_shared<std::string>();
+  const ScaledPlan plan = tables_plan(input, &lookup, corrections);
   CalibrationResult result = calibrate_scaled(input, simulator, plan);
-  result.lookup = lookup;
+  result.lookup = lookup + *corrections;
   return result;
 }
 

@@ -2,8 +2,9 @@
 // The tables strategy of `cdem calibrate` (issue 17; docs/calibration.md "Tables strategy"), for
 // contact-bonded mortar-only (rock) specimens: the contact values for the targets come from
 // lookup tables that cdem campaigns made (docs/lookup_tables.md), one run on the calibration
-// specimen checks them, one proportional correction at most follows, and the result is verified
-// on independent specimens like every strategy's.
+// specimen checks them, one correction at most follows (the tables solved again for target /
+// bias, the bias measured by that run), and the result is verified on independent specimens
+// like every strategy's.
 //   E = K_E E*                                  (uniaxial; K_E per packing cell)
 //   sigma_t = sigma_cn K_B / (1 + R_max/R_min)  (Brazilian, SPEC 7; K_B per packing cell and
 //                                                E* / sigma_cn level)
@@ -22,6 +23,7 @@
 // measured.
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -164,12 +166,15 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
                           CalibrationInput& input);
 
 // The plan of the tables strategy: the fast strategy's groups, started at the looked-up values,
-// with the sensitivities the tables give (d ln sigma_t / d ln sigma_cn = 1 - slope, d ln
-// sigma_t / d ln E* = slope, E proportional to E*; d ln sigma_u / d ln tau_cs = s and d ln
-// sigma_u / d ln sigma_cn = 1 - s with s the K_U table's slope), and input.tables' tolerance and
-// run counts.
-// `lookup` gets the report's markdown. Throws InputError for everything the strategy cannot do.
-ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup = nullptr);
+// input.tables' tolerance and run counts, and its own correction (ScaledPlan::correction): at
+// the point that ran, bias_i = measured_i / tables_i per target, and the tables solved again,
+// the same solve as the lookup, for target_i / bias_i. A constant bias is removed in one
+// correction, and the solve follows the kinks of the tables (a K_U segment that flattens); when
+// the biased targets are beyond the tables' reach, the correction says so (out of reach, the
+// solve's reason) instead of stepping. `lookup` gets the report's markdown, `corrections` a line
+// per correction made. Throws InputError for everything the strategy cannot do.
+ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup = nullptr,
+                       std::shared_ptr<std::string> corrections = nullptr);
 
 // The checks of the input for the tables strategy (all of tables_plan's), before anything runs.
 void check_tables_input(const CalibrationInput& input);
