@@ -137,7 +137,7 @@ class DiscPairKernel {
     // not from the overlap, and its discs slide along the joint through each other (Itasca's
     // model; docs/smooth_joint.md "Discs sliding past each other"). Only the other pairs' overlap
     // is a sign of instability.
-    within_guard = kind == BondKind::SmoothJoint || g.overlap <= guard_ * std::min(g.ri, g.rj);
+    within_guard = g.overlap <= guard_ * std::min(g.ri, g.rj) || kind == BondKind::SmoothJoint;
     const PairForce f = kind == BondKind::None       ? linear(k, g)
                         : kind == BondKind::Parallel ? parallel_bonded(k, g)
                                                      : bonded(k, g);
