@@ -14,6 +14,9 @@
 
 namespace cdem::dem {
 
+class World;
+struct MemoryFootprint;  // dem/memory_footprint.hpp
+
 // Persistent per-contact state, structure of arrays (sign conventions of
 // dem/parallel_bond.hpp: n from the first disc to the second, t = (-ny, nx)).
 struct ContactStates {
@@ -90,6 +93,8 @@ class ContactStore {
              const std::vector<std::uint64_t>& wall_candidates, const Discs& discs);
 
  private:
+  // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
+  friend MemoryFootprint memory_footprint(const World& world);
   std::vector<std::uint64_t> merged_keys_;
   ContactStates merged_state_;
 };

@@ -18,6 +18,7 @@
 #include "dem/discs.hpp"
 #include "dem/energy.hpp"
 #include "dem/linear_contact.hpp"
+#include "dem/memory_footprint.hpp"
 #include "dem/neighbor_list.hpp"
 #include "dem/servo.hpp"
 #include "dem/threaded_cycle.hpp"
@@ -217,6 +218,8 @@ class World {
   // Tests only (defined in tests/world_test_access.hpp): states the methods above never make,
   // such as a stiffness raised without a time-step update, to test the instability diagnosis.
   friend struct WorldTestAccess;
+  // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
+  friend MemoryFootprint memory_footprint(const World& world);
 
   void rebuild();
   void update_time_step();
