@@ -63,9 +63,9 @@ void ContactStore::merge(const std::vector<std::uint64_t>& pair_candidates,
     contact_class[k] = static_cast<std::uint8_t>(disc_pair_class(
         static_cast<int>(discs.material[first[k]]), static_cast<int>(discs.material[second[k]])));
 
-  merge_state(wall_keys, wall_state, wall_candidates, merged_keys_, merged_state_);
-  std::swap(wall_keys, merged_keys_);
-  std::swap(wall_state, merged_state_);
+  merge_state(wall_keys, wall_state, wall_candidates, merged_wall_keys_, merged_wall_state_);
+  std::swap(wall_keys, merged_wall_keys_);
+  std::swap(wall_state, merged_wall_state_);
   split_keys(wall_keys, wall_disc, wall_index);
   ++merge_count;
 }

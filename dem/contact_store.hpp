@@ -95,8 +95,11 @@ class ContactStore {
  private:
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
   friend MemoryFootprint memory_footprint(const World& world);
-  std::vector<std::uint64_t> merged_keys_;
-  ContactStates merged_state_;
+  // Merge buffers, swapped with the lists at each merge. Disc-wall contacts have their own: with
+  // one pair of buffers for both, the disc-disc buffer was swapped into the wall lists and the
+  // store held three disc-disc-sized copies of the keys and state (94 bytes per disc on C30).
+  std::vector<std::uint64_t> merged_keys_, merged_wall_keys_;
+  ContactStates merged_state_, merged_wall_state_;
 };
 
 }  // namespace cdem::dem

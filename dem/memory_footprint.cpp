@@ -38,6 +38,7 @@ MemoryFootprint memory_footprint(const World& world) {
   m.joints = capacity_bytes(fj.gap0, fj.theta, fj.bonded, fj.first_element, fj.element_shear,
                             sj.sets, sj.set, sj.nx, sj.ny, sj.area, sj.gap, sj.fs, sj.bonded);
   m.merge_scratch = capacity_bytes(c.merged_keys_) + state_bytes(c.merged_state_);
+  m.wall_pairs += capacity_bytes(c.merged_wall_keys_) + state_bytes(c.merged_wall_state_);
   const NeighborList& n = world.neighbors_;
   m.neighbor_list =
       capacity_bytes(n.x0_, n.y0_, n.r0_, n.wall_ax0_, n.wall_ay0_, n.cell_start_, n.cell_discs_,
