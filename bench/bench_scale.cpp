@@ -208,14 +208,19 @@ int run(const Options& o) {
   using namespace cdem::dem;
   using namespace cdem::lab;
   std::printf("load average at start: %s\n", load_average().c_str());
-  const cdem::Specimen specimen = tiled(cdem::read_specimen(o.specimen), o.tile_x, o.tile_y);
+  const cdem::Specimen source = cdem::read_specimen(o.specimen);
   WorldSettings settings;
   read_material_table(fs::path(CDEM_SOURCE_DIR) / kMaterials[o.law]).apply(settings);
   settings.threads = o.threads;
   GenesisOptions genesis;
   GenesisReport report;
-  const cdem::Specimen cleaned = remove_floating_discs(specimen, settings, genesis, report);
-
+  // The floating discs are removed from the generated specimen, before it is tiled: at a seam
+  // between copies, each side lay against its mould wall, and without the wall the removal
+  // peels the copies from their seams inwards (36 passes and 11.8 % of the mortar on C30 tiled
+  // 9 x 5, against 1 pass and 4.9 % for the specimen alone).
+  const cdem::Specimen cleaned =
+      tiled(remove_floating_discs(source, settings, genesis, report), o.tile_x, o.tile_y);
+  const cdem::Specimen& specimen = cleaned;
   // The resident size measures the world only if what was freed before is given back and every
   // array of the world is mapped afresh: glibc otherwise raises its mmap threshold after the
   // floating removal's world is freed and serves the new world from heap pages still resident
@@ -243,14 +248,16 @@ int run(const Options& o) {
   const double discs = static_cast<double>(w.discs().size());
   const double pairs = static_cast<double>(w.contacts().keys.size());
   const double bodies = static_cast<double>(w.bodies().size());
-  std::printf("specimen %s tiled %d x %d: %ld discs, %zu clumps, mould %.1f x %.1f mm\n",
-              o.specimen.c_str(), o.tile_x, o.tile_y, report.discs_in_specimen,
-              specimen.clumps.size(), 1e3 * specimen.container.width,
-              1e3 * specimen.container.height);
   std::printf(
-      "world: %.0f discs (%ld floating removed), %.0f bodies, %.0f candidate pairs "
+      "specimen %s (%ld discs, %ld floating removed) tiled %d x %d: %zu discs, %zu "
+      "clumps, mould %.1f x %.1f mm\n",
+      o.specimen.c_str(), report.discs_in_specimen, report.floating_removed, o.tile_x, o.tile_y,
+      specimen.disc_count(), specimen.clumps.size(), 1e3 * specimen.container.width,
+      1e3 * specimen.container.height);
+  std::printf(
+      "world: %.0f discs, %.0f bodies, %.0f candidate pairs "
       "(%.3f per disc), %ld bonds (%s), dt %.4g ns, threads %d\n",
-      discs, report.floating_removed, bodies, pairs, pairs / discs, bonds,
+      discs, bodies, pairs, pairs / discs, bonds,
       o.law == 0 ? "parallel bonds" : "flat-joint elements", w.time_step() * 1e9, o.threads);
   std::printf("build (world, bonds, 2 + %ld warm-up steps): %.2f s CPU\n", o.warmup, build_cpu_s);
   std::printf("memory, resident growth over the build: %.0f B, %.1f B/disc\n", resident_growth,

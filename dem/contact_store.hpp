@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "dem/array_growth.hpp"
 #include "dem/discs.hpp"
 #include "dem/flat_joint_states.hpp"
 #include "dem/smooth_joint_states.hpp"
@@ -33,6 +34,10 @@ struct ContactStates {
   std::vector<std::int32_t> joint;
 
   void resize(std::size_t n) {
+    for (auto* v : {&shear_force, &bond_normal, &bond_shear, &bond_moment, &bond_gap})
+      make_room(*v, n);
+    make_room(bond, n);
+    make_room(joint, n);
     shear_force.assign(n, 0.0);
     bond.assign(n, 0);
     bond_normal.assign(n, 0.0);
