@@ -17,7 +17,6 @@
 // world is built: a large world from a small generated section, for when generating the large
 // one would take longer than the benchmark (docs/performance.md "Scale").
 #include <malloc.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -31,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "core/resident_size.hpp"
 #include "dem/bond_installation.hpp"
 #include "dem/memory_footprint.hpp"
 #include "dem/world_from_specimen.hpp"
@@ -108,14 +108,6 @@ Options parse(int argc, char** argv) {
   if (!fs::is_regular_file(o.specimen))
     usage_error("specimen file '" + o.specimen.string() + "' does not exist");
   return o;
-}
-
-// Bytes resident now (/proc/self/statm, second field, in pages).
-double resident_bytes() {
-  std::ifstream statm("/proc/self/statm");
-  long pages_total = 0, pages_resident = 0;
-  statm >> pages_total >> pages_resident;
-  return static_cast<double>(pages_resident) * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
 
 std::string load_average() {
@@ -227,7 +219,7 @@ int run(const Options& o) {
   // (the growth then read 190 B per disc against 606 accounted on C30).
   mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   malloc_trim(0);
-  const double resident_before = resident_bytes();
+  const double resident_before = cdem::resident_bytes();
   const double cpu_build = cpu_seconds();
   World w = world_from_specimen(cleaned, settings);
   BondInstallation installation;
@@ -242,7 +234,7 @@ int run(const Options& o) {
   }
   w.cycle(o.warmup);
   const double build_cpu_s = cpu_seconds() - cpu_build;
-  const double resident_growth = resident_bytes() - resident_before;
+  const double resident_growth = cdem::resident_bytes() - resident_before;
   const MemoryFootprint footprint = memory_footprint(w);
 
   const double discs = static_cast<double>(w.discs().size());
@@ -284,8 +276,8 @@ int run(const Options& o) {
   std::printf(
       "memory after timing: resident growth %.1f B/disc, accounted %.1f B/disc, %.0f "
       "candidate pairs (%.3f per disc), %ld neighbour builds\n",
-      (resident_bytes() - resident_before) / discs, static_cast<double>(after.total()) / discs,
-      static_cast<double>(w.contacts().keys.size()),
+      (cdem::resident_bytes() - resident_before) / discs,
+      static_cast<double>(after.total()) / discs, static_cast<double>(w.contacts().keys.size()),
       static_cast<double>(w.contacts().keys.size()) / discs, w.neighbors().build_count);
   print_footprint(after, discs, static_cast<double>(w.contacts().keys.size()), bodies);
   std::printf("load average at end: %s\n", load_average().c_str());

@@ -2,13 +2,12 @@
 // reasons: the byte size of each array's element, summed over the fields the structs declare,
 // and the resident size the process gains when it builds a world.
 #include <malloc.h>
-#include <unistd.h>
 
 #include <cstdint>
-#include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "core/resident_size.hpp"
 #include "dem/memory_footprint.hpp"
 #include "dem/world.hpp"
 
@@ -43,13 +42,6 @@ World lattice(int n) {
   w.add_wall(side, side, 0, side);
   w.add_wall(0, side, 0, 0);
   return w;
-}
-
-double resident_bytes() {
-  std::ifstream statm("/proc/self/statm");
-  long pages_total = 0, pages_resident = 0;
-  statm >> pages_total >> pages_resident;
-  return static_cast<double>(pages_resident) * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
 
 TEST(MemoryFootprint, BodiesAndDiscsHoldExactlyTheirFieldsAfterReserve) {
@@ -106,13 +98,13 @@ TEST(MemoryFootprint, WallListsStayTheSizeOfTheWallContactsOverRebuilds) {
 TEST(MemoryFootprint, AccountsForTheResidentGrowthOfALargeWorld) {
   mallopt(M_MMAP_THRESHOLD, 128 * 1024);  // large arrays mapped afresh, returned when freed
   malloc_trim(0);
-  const double before = resident_bytes();
+  const double before = cdem::resident_bytes();
   World w = lattice(300);
   for (int rebuild = 0; rebuild < 2; ++rebuild) {
     w.invalidate_neighbors();
     w.step();
   }
-  const double growth = resident_bytes() - before;
+  const double growth = cdem::resident_bytes() - before;
   const auto m = memory_footprint(w);
   const double accounted = static_cast<double>(m.total());
   // The per-pair arrays' headroom (an eighth of their size, a ninth of their capacity) is
