@@ -29,6 +29,14 @@ struct Bodies {
   std::vector<std::uint8_t> prescribed;
 
   std::size_t size() const { return x.size(); }
+  // Room for n bodies in every array, so a world built body by body holds no growth slack.
+  void reserve(std::size_t n) {
+    for (auto* v : {&x, &y, &theta, &vx, &vy, &omega, &fx, &fy, &moment, &fx_applied, &fy_applied,
+                    &mass, &inertia, &inv_mass_dyn, &inv_inertia_dyn})
+      v->reserve(n);
+    for (auto* v : {&first_disc, &disc_count}) v->reserve(n);
+    for (auto* v : {&is_clump, &prescribed}) v->reserve(n);
+  }
 };
 
 }  // namespace cdem::dem

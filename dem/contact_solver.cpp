@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dem/array_growth.hpp"
 #include "dem/disc_pair_kernel.hpp"
 
 namespace cdem::dem {
@@ -108,14 +109,18 @@ void prepare_force_results(ContactForces& pair, ContactForces& wall_pair,
                            const ContactStore& list) {
   const auto resize = [](ContactForces& f, std::size_t n, bool walls) {
     if (f.normal.size() == n) return;
-    for (auto* v : {&f.normal, &f.overlap, &f.fx, &f.fy, &f.bond_energy_released}) v->resize(n);
-    f.failure.resize(n);
-    f.failed_elements.resize(n);
-    f.failed_shear.resize(n);
+    const auto grow = [n](auto& v) {
+      make_room(v, n);
+      v.resize(n);
+    };
+    for (auto* v : {&f.normal, &f.overlap, &f.fx, &f.fy, &f.bond_energy_released}) grow(*v);
+    grow(f.failure);
+    grow(f.failed_elements);
+    grow(f.failed_shear);
     if (walls) {
-      f.moment.resize(n);
-      f.cx.resize(n);
-      f.cy.resize(n);
+      grow(f.moment);
+      grow(f.cx);
+      grow(f.cy);
     }
   };
   resize(pair, list.keys.size(), false);

@@ -2,6 +2,7 @@
 
 #include <bit>
 
+#include "dem/array_growth.hpp"
 #include "dem/contact_model.hpp"
 
 namespace cdem::dem {
@@ -20,6 +21,7 @@ void merge_state(const std::vector<std::uint64_t>& old_keys, const ContactStates
     while (c < candidates.size() && candidates[c] < old_keys[o]) ++c;
     if (kept(o) && (c == candidates.size() || candidates[c] != old_keys[o])) ++count;
   }
+  make_room(out_keys, count);
   out_keys.resize(count);
   out_state.resize(count);
   std::size_t o = 0, c = 0, n = 0;
@@ -42,6 +44,8 @@ void merge_state(const std::vector<std::uint64_t>& old_keys, const ContactStates
 
 void split_keys(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& a,
                 std::vector<std::int32_t>& b) {
+  make_room(a, keys.size());
+  make_room(b, keys.size());
   a.resize(keys.size());
   b.resize(keys.size());
   for (std::size_t k = 0; k < keys.size(); ++k) {
@@ -58,14 +62,15 @@ void ContactStore::merge(const std::vector<std::uint64_t>& pair_candidates,
   std::swap(keys, merged_keys_);
   std::swap(state, merged_state_);
   split_keys(keys, first, second);
+  make_room(contact_class, keys.size());
   contact_class.resize(keys.size());
   for (std::size_t k = 0; k < keys.size(); ++k)
     contact_class[k] = static_cast<std::uint8_t>(disc_pair_class(
         static_cast<int>(discs.material[first[k]]), static_cast<int>(discs.material[second[k]])));
 
-  merge_state(wall_keys, wall_state, wall_candidates, merged_keys_, merged_state_);
-  std::swap(wall_keys, merged_keys_);
-  std::swap(wall_state, merged_state_);
+  merge_state(wall_keys, wall_state, wall_candidates, merged_wall_keys_, merged_wall_state_);
+  std::swap(wall_keys, merged_wall_keys_);
+  std::swap(wall_state, merged_wall_state_);
   split_keys(wall_keys, wall_disc, wall_index);
   ++merge_count;
 }

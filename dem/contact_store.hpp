@@ -8,11 +8,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "dem/array_growth.hpp"
 #include "dem/discs.hpp"
 #include "dem/flat_joint_states.hpp"
 #include "dem/smooth_joint_states.hpp"
 
 namespace cdem::dem {
+
+class World;
+struct MemoryFootprint;  // dem/memory_footprint.hpp
 
 // Persistent per-contact state, structure of arrays (sign conventions of
 // dem/parallel_bond.hpp: n from the first disc to the second, t = (-ny, nx)).
@@ -30,6 +34,10 @@ struct ContactStates {
   std::vector<std::int32_t> joint;
 
   void resize(std::size_t n) {
+    for (auto* v : {&shear_force, &bond_normal, &bond_shear, &bond_moment, &bond_gap})
+      make_room(*v, n);
+    make_room(bond, n);
+    make_room(joint, n);
     shear_force.assign(n, 0.0);
     bond.assign(n, 0);
     bond_normal.assign(n, 0.0);
@@ -90,8 +98,13 @@ class ContactStore {
              const std::vector<std::uint64_t>& wall_candidates, const Discs& discs);
 
  private:
-  std::vector<std::uint64_t> merged_keys_;
-  ContactStates merged_state_;
+  // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
+  friend MemoryFootprint memory_footprint(const World& world);
+  // Merge buffers, swapped with the lists at each merge. Disc-wall contacts have their own: with
+  // one pair of buffers for both, the disc-disc buffer was swapped into the wall lists and the
+  // store held three disc-disc-sized copies of the keys and state (94 bytes per disc on C30).
+  std::vector<std::uint64_t> merged_keys_, merged_wall_keys_;
+  ContactStates merged_state_, merged_wall_state_;
 };
 
 }  // namespace cdem::dem

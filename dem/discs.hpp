@@ -22,6 +22,14 @@ struct Discs {
   std::vector<double> fx, fy, moment;  // N, N m
 
   std::size_t size() const { return x.size(); }
+  // Room for n discs in every array, so a world built disc by disc holds no growth slack.
+  void reserve(std::size_t n) {
+    for (auto* v : {&x, &y, &r, &vx, &vy, &omega, &offset_x, &offset_y, &fx, &fy, &moment})
+      v->reserve(n);
+    body.reserve(n);
+    active.reserve(n);
+    material.reserve(n);
+  }
 };
 
 }  // namespace cdem::dem

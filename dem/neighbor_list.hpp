@@ -13,6 +13,9 @@
 
 namespace cdem::dem {
 
+class World;
+struct MemoryFootprint;  // dem/memory_footprint.hpp
+
 class NeighborList {
  public:
   double skin = 0;  // m, extra gap under which a pair is kept as a candidate
@@ -34,6 +37,8 @@ class NeighborList {
   const std::vector<std::uint64_t>& wall_candidates() const { return wall_keys_; }
 
  private:
+  // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
+  friend MemoryFootprint memory_footprint(const World& world);
   void build_grid(const Discs& discs);
   // Reference positions and radii of the last build (walls: first end point).
   std::vector<double> x0_, y0_, r0_, wall_ax0_, wall_ay0_;

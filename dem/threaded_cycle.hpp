@@ -33,6 +33,9 @@
 
 namespace cdem::dem {
 
+class World;
+struct MemoryFootprint;  // dem/memory_footprint.hpp
+
 struct ThreadedStep {
   ForcePassResult pass;
   bool integrated = false;  // false: a bond broke or a guard tripped; the caller integrates
@@ -56,6 +59,8 @@ class ThreadedCycle {
                     ContactForces& pair, ContactForces& wall_pair, const ThreadedStepSettings& s);
 
  private:
+  // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
+  friend MemoryFootprint memory_footprint(const World& world);
   // What one pair puts on its discs: forces on the second disc, moments on each.
   struct PairSum {
     double fx, fy, moment_i, moment_j;

@@ -18,6 +18,7 @@
 #include "dem/discs.hpp"
 #include "dem/energy.hpp"
 #include "dem/linear_contact.hpp"
+#include "dem/memory_footprint.hpp"
 #include "dem/neighbor_list.hpp"
 #include "dem/servo.hpp"
 #include "dem/threaded_cycle.hpp"
@@ -87,6 +88,13 @@ class World {
     return walls_.append(from, static_cast<std::size_t>(index));
   }
   void add_container_walls(const Container& mould, int polygon_sides = 256);
+  // Room for `bodies` bodies and `discs` discs in all, so a world built one body at a time holds
+  // its arrays at their size (vector growth would leave up to half of them unused: 50 bytes per
+  // disc on C30, docs/performance.md "Scale").
+  void reserve(std::size_t bodies, std::size_t discs) {
+    bodies_.reserve(bodies);
+    discs_.reserve(discs);
+  }
 
   // One cycle: (neighbour rebuild if needed), force pass, wall servos, energy bookkeeping,
   // integration, wall motion. Throws RunError on instability (non-finite state, overlap beyond
@@ -217,6 +225,8 @@ class World {
   // Tests only (defined in tests/world_test_access.hpp): states the methods above never make,
   // such as a stiffness raised without a time-step update, to test the instability diagnosis.
   friend struct WorldTestAccess;
+  // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
+  friend MemoryFootprint memory_footprint(const World& world);
 
   void rebuild();
   void update_time_step();

@@ -1,5 +1,6 @@
 #include "dem/world_from_specimen.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -21,6 +22,9 @@ World world_from_specimen(const Specimen& s, const WorldSettings& settings,
     if (c >= 0) pebbles[static_cast<std::size_t>(c)].push_back(static_cast<std::int32_t>(i));
   }
   World world(settings);
+  const auto mortar = static_cast<std::size_t>(
+      std::count_if(s.clump.begin(), s.clump.end(), [](std::int32_t c) { return c < 0; }));
+  world.reserve(mortar + clumps, n);
   std::vector<std::int32_t> map(n, -1);
   for (std::size_t i = 0; i < n; ++i) {
     if (s.clump[i] >= 0) continue;

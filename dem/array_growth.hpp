@@ -1,0 +1,18 @@
+#pragma once
+// How the per-pair arrays of the engine grow. A std::vector resized past its capacity doubles
+// it, so a list that grows by a few pairs at a rebuild can end up holding twice what it uses:
+// in the generator's packing, whose candidate pairs grow from none to about 2.5 per disc, the
+// force results and the contact store's arrays ended near twice their size (docs/performance.md
+// "Scale"). Growing to the new size plus an eighth bounds that slack to 12.5 %, and a list that
+// creeps up still reallocates only once per eighth of growth (never in a step without a rebuild).
+#include <cstddef>
+
+namespace cdem::dem {
+
+// Makes room for n elements in v: when n exceeds the capacity, reserves n + n / 8.
+template <class V>
+void make_room(V& v, std::size_t n) {
+  if (n > v.capacity()) v.reserve(n + n / 8);
+}
+
+}  // namespace cdem::dem

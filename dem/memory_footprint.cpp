@@ -1,0 +1,58 @@
+#include "dem/memory_footprint.hpp"
+
+#include "dem/world.hpp"
+
+namespace cdem::dem {
+
+namespace {
+
+std::size_t state_bytes(const ContactStates& s) {
+  return capacity_bytes(s.shear_force, s.bond, s.bond_normal, s.bond_shear, s.bond_moment,
+                        s.bond_gap, s.joint);
+}
+
+std::size_t force_bytes(const ContactForces& f) {
+  return capacity_bytes(f.normal, f.overlap, f.fx, f.fy, f.moment, f.cx, f.cy, f.failure,
+                        f.bond_energy_released, f.failed_elements, f.failed_shear, f.broken);
+}
+
+}  // namespace
+
+MemoryFootprint memory_footprint(const World& world) {
+  MemoryFootprint m;
+  const Bodies& b = world.bodies_;
+  m.bodies = capacity_bytes(b.x, b.y, b.theta, b.vx, b.vy, b.omega, b.fx, b.fy, b.moment,
+                            b.fx_applied, b.fy_applied, b.mass, b.inertia, b.inv_mass_dyn,
+                            b.inv_inertia_dyn, b.first_disc, b.disc_count, b.is_clump, b.prescribed,
+                            world.stiffness_, world.rot_stiffness_);
+  const Discs& d = world.discs_;
+  m.discs = capacity_bytes(d.x, d.y, d.r, d.vx, d.vy, d.omega, d.offset_x, d.offset_y, d.body,
+                           d.active, d.material, d.fx, d.fy, d.moment);
+  const ContactStore& c = world.contacts_;
+  m.pairs = capacity_bytes(c.keys, c.first, c.second, c.contact_class) + state_bytes(c.state) +
+            force_bytes(world.pair_forces_);
+  m.wall_pairs = capacity_bytes(c.wall_keys, c.wall_disc, c.wall_index) +
+                 state_bytes(c.wall_state) + force_bytes(world.wall_forces_);
+  const FlatJointStates& fj = c.flat_joints;
+  const SmoothJointStates& sj = c.smooth_joints;
+  m.joints = capacity_bytes(fj.gap0, fj.theta, fj.bonded, fj.first_element, fj.element_shear,
+                            sj.sets, sj.set, sj.nx, sj.ny, sj.area, sj.gap, sj.fs, sj.bonded);
+  m.merge_scratch = capacity_bytes(c.merged_keys_) + state_bytes(c.merged_state_);
+  m.wall_pairs += capacity_bytes(c.merged_wall_keys_) + state_bytes(c.merged_wall_state_);
+  const NeighborList& n = world.neighbors_;
+  m.neighbor_list =
+      capacity_bytes(n.x0_, n.y0_, n.r0_, n.wall_ax0_, n.wall_ay0_, n.cell_start_, n.cell_discs_,
+                     n.disc_cell_, n.pair_keys_, n.wall_keys_, n.scratch_);
+  const ThreadedCycle& t = world.threaded_;
+  m.thread_plan = capacity_bytes(t.first_start_, t.second_start_, t.second_pairs_, t.wall_start_,
+                                 t.cuts_, t.shared_, t.shared_discs_, t.direct_, t.sums_, t.virial_,
+                                 t.body_energy_, t.wall_slip_, t.lanes_);
+  for (const auto& lane : t.lanes_) m.thread_plan += capacity_bytes(lane.slips, lane.broken);
+  const Walls& w = world.walls_;
+  m.other = capacity_bytes(w.ax, w.ay, w.bx, w.by, w.arc, w.vx, w.vy, w.friction, w.fx, w.fy, w.sxx,
+                           w.sxy, w.syx, w.syy, world.servos_.servos, world.cracks_.cracks,
+                           world.energy_.last_dx, world.energy_.last_dy);
+  return m;
+}
+
+}  // namespace cdem::dem
