@@ -3,13 +3,16 @@
 // PRL 97, 170201, 2006), driving a dem::World towards a minimum of its contact energy through
 // the World's public API. Each cycle is the engine's own undamped step (force pass, leapfrog),
 // after which the velocities are mixed towards the force direction,
-//   v <- (1 - a) v + a |v| F / |F|   (global norms over every free degree of freedom),
-// and the mixing a and the step dt follow the power P = F . v: after n_min cycles of P > 0 the
-// step grows by f_inc (up to dt_max) and a decays by f_a; at P <= 0 the velocities are zeroed,
-// the step is cut by f_dec and a restarts at a_start. So the dissipation comes only from the
-// quench at P <= 0, not from a damping force, and the motion between quenches is that of an
-// inertial descent along the force (a heavy ball), which crosses long, soft modes in fewer
-// cycles than damped dynamics. Deterministic: every sum runs in body order.
+//   v <- (1 - a) v + a |v| F / |F|   (global norms over every free translational degree of
+//   freedom, in the mass-weighted coordinates sqrt(m) x, so the mixing never adds kinetic
+//   energy when the masses differ),
+// and the mixing a and the step dt follow the power P = F . v of the velocity before the kick:
+// after n_min cycles of P > 0 the step grows by f_inc (up to dt_max) and a decays by f_a; at
+// P <= 0 the cycle restarts from x(t) at rest (only the kick, v = dt F / m, remains), the step is
+// cut by f_dec and a restarts at a_start. So the dissipation comes only from these quenches, not
+// from a damping force, and the motion between them is an inertial descent along the force (a
+// heavy ball), which crosses long, soft modes in fewer cycles than damped dynamics. f_inc =
+// f_dec = 1 keeps the step fixed. Deterministic: every sum runs in body order.
 //
 // The engine's step (force pass, kick, drift) cannot be split, so the mixing comes after its
 // drift, and the drift is then corrected by dt x the velocity change (World::translate_bodies):

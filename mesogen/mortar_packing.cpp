@@ -277,7 +277,7 @@ RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarP
     }
     return false;
   };
-  double log_scale = 0;  // ln of the radius factor applied since the start of this stage
+  double log_scale = 0;  // ln of the radius factor applied since the FIRE relaxation began
   double previous_log_scale = 0, previous_sigma = -1;  // the last relaxed state (Pa)
   for (bool relaxed = relax(c.unbalanced_limit); relaxed;) {
     const double contact_sigma = world.last_force_pass().virial / (2.0 * area);
