@@ -256,8 +256,9 @@ RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarP
   undamped.local_damping = 0;  // FIRE's quench is the only dissipation
   // FIRE at a fixed step, the critical one (Bitzek et al.'s dt_max; leapfrog on the Gershgorin
   // bound is stable to sqrt(2) x it, docs/dem_design.md). Each step change costs the engine a
-  // neighbour rebuild (set_fixed_time_step), and with the adaptive step the packing's cycles
-  // cost 83 ns per disc against the damped servo's 60 (docs/performance.md "FIRE relaxation").
+  // neighbour rebuild (set_fixed_time_step): with the adaptive step the cycles cost 75-83 ns of
+  // CPU per disc, at this fixed one 68-71, the damped servo's 60-63 (docs/performance.md "FIRE
+  // relaxation"), for about as many cycles.
   undamped.time_step_safety = 1.0;
   world.set_settings(undamped);
   FireParameters fixed_step;
