@@ -1,7 +1,9 @@
 // Mortar packing (SPEC 3.4) at n = 0.12, R_mean = 0.5 mm, R_max/R_min = 2.5, E* = 16 GPa,
-// sigma0 = 0.1 MPa, 5 %. Arguments: mould width and height (mm) and OpenMP threads.
-//   100 x 200 mm: the reference mould (~22,400 discs), three repetitions (read the median);
-//   250 x 500 mm: the scaling point of issue 18 (~140,000 discs), one repetition.
+// sigma0 = 0.1 MPa, 5 %. Arguments: mould width and height (mm), threads of the DEM cycles, the
+// relaxation (0: "damped", the default; 1: "fire") and the seed.
+//   100 x 200 mm: the reference mould (~22,400 discs), three repetitions of seed 20260401 on 1 and
+//   2 threads (read the median), and seeds 1-3 of either relaxation (the stability suite's);
+//   250 x 500 mm: the scaling point of issue 18 (~140,000 discs), one repetition each.
 // Counters carry the packing figures so the timing is read beside them, and the cost per
 // disc-cycle (ns, wall and CPU) so a change in the cycle count and one in the cycle's cost can
 // be told apart.
@@ -23,10 +25,12 @@ void BM_MortarPacking(benchmark::State& state) {
   mould.height = static_cast<double>(state.range(1)) * 1e-3;
   cdem::mesogen::MortarPackingControls controls;
   controls.threads = static_cast<int>(state.range(2));
+  controls.relaxation = state.range(3) ? cdem::mesogen::MortarRelaxation::Fire
+                                       : cdem::mesogen::MortarRelaxation::Damped;
   cdem::mesogen::MortarPacking p;
   double seconds = 0, cpu_seconds = 0;
   for (auto _ : state) {
-    cdem::Rng rng(20260401);
+    cdem::Rng rng(static_cast<std::uint64_t>(state.range(4)));
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
     p = cdem::mesogen::pack_mortar(mould, controls, rng);
@@ -56,15 +60,22 @@ void BM_MortarPacking(benchmark::State& state) {
 }
 
 BENCHMARK(BM_MortarPacking)
-    ->Args({100, 200, 1})
-    ->Args({100, 200, 2})
+    ->Args({100, 200, 1, 0, 20260401})
+    ->Args({100, 200, 2, 0, 20260401})
     ->Unit(benchmark::kSecond)
     ->Iterations(1)
     ->Repetitions(3)
     ->UseRealTime();
 
 BENCHMARK(BM_MortarPacking)
-    ->Args({250, 500, 1})
+    ->Args({100, 200, 1, 0, 1})
+    ->Args({100, 200, 1, 1, 1})
+    ->Args({100, 200, 1, 0, 2})
+    ->Args({100, 200, 1, 1, 2})
+    ->Args({100, 200, 1, 0, 3})
+    ->Args({100, 200, 1, 1, 3})
+    ->Args({250, 500, 1, 0, 20260401})
+    ->Args({250, 500, 1, 1, 20260401})
     ->Unit(benchmark::kSecond)
     ->Iterations(1)
     ->Repetitions(1)

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/input_error.hpp"
 #include "dem/instability.hpp"
@@ -143,6 +144,24 @@ void World::scale_radii(double factor) {
   // Uniform scaling leaves every kn unchanged (kn depends on the radius ratio only), so the
   // critical step scales with sqrt(m) ~ factor.
   if (!settings_.density_scaling && settings_.fixed_time_step <= 0 && factor < 1) dt_ *= factor;
+}
+
+void World::translate_bodies(const std::vector<double>& dx, const std::vector<double>& dy) {
+  if (dx.size() != bodies_.size() || dy.size() != bodies_.size())
+    throw std::invalid_argument("World::translate_bodies: one displacement per body expected");
+  double largest2 = 0;  // m^2
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    bodies_.x[b] += dx[b];
+    bodies_.y[b] += dy[b];
+    for (std::int32_t i = bodies_.first_disc[b]; i < bodies_.first_disc[b] + bodies_.disc_count[b];
+         ++i) {
+      discs_.x[i] += dx[b];
+      discs_.y[i] += dy[b];
+    }
+    largest2 = std::max(largest2, dx[b] * dx[b] + dy[b] * dy[b]);
+  }
+  moved_bound_ += std::sqrt(largest2);
+  energy_.reference_pending = true;
 }
 
 void World::set_body_velocity(int b, double vx, double vy, double omega) {

@@ -108,6 +108,11 @@ class World {
   // packings); the mass and inertia of free discs follow (r^2, r^4). Clump pebble offsets and
   // clump inertias are left alone.
   void scale_radii(double factor);
+  // Translates body b and its discs by (dx[b], dy[b]) (m; one entry per body, velocities left
+  // alone), so the next force pass sees the new positions; the neighbour list's rebuild check
+  // counts the move. For a relaxation that must change the drift the last step() made with a
+  // velocity it changes afterwards (FIRE, mesogen/fire_relaxation.hpp); the cycle never calls it.
+  void translate_bodies(const std::vector<double>& dx, const std::vector<double>& dy);
   // Sets a body's velocity (m/s, rad/s) and carries it to its discs at once, so the next force
   // pass already sees it (prescribed motions, initial conditions).
   void set_body_velocity(int body, double vx, double vy, double omega);

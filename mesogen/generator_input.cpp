@@ -168,7 +168,7 @@ GeneratorInput read_generator_input(const InputTable& root) {
 
   const InputTable m = root.table("mortar");
   m.reject_unknown_keys({"r_mean", "r_ratio", "porosity", "density", "sigma0", "stress_tolerance",
-                         "packing_emod", "max_steps", "expansion_steps"});
+                         "packing_emod", "max_steps", "expansion_steps", "relaxation"});
   auto& mc = in.mortar;
   mc.r_mean = m.quantity("r_mean", Dimension::Length, Range::open(0, 0.1));
   mc.r_ratio = m.number_or("r_ratio", 2.5, Range::closed(1, 20));
@@ -179,6 +179,9 @@ GeneratorInput read_generator_input(const InputTable& root) {
   mc.emod = m.quantity_or("packing_emod", Dimension::Stress, 16e9, Range::open(0, 1e13));
   mc.max_steps = m.integer_or("max_steps", 400000, 1, 1'000'000'000);
   mc.expansion_steps = m.integer_or("expansion_steps", mc.expansion_steps, 1, 10'000'000);
+  mc.relaxation = m.string_or("relaxation", "damped", {"damped", "fire"}) == "fire"
+                      ? MortarRelaxation::Fire
+                      : MortarRelaxation::Damped;
 
   // The mortar must be finer than the specimen and, with aggregates, than the smallest one.
   const double side = std::min(in.container.width, in.container.height);

@@ -9,6 +9,7 @@
 #include "core/input_error.hpp"
 #include "dem/measure.hpp"
 #include "dem/world.hpp"
+#include "mesogen/fire_relaxation.hpp"
 
 namespace cdem::mesogen {
 
@@ -32,6 +33,13 @@ constexpr double kRateSpanDiameters = 100.0;
 constexpr double kHoldGain = 0.5;     // fraction of the wall-stress error corrected per interval
 constexpr long kCheckEvery = 50;      // cycles between convergence checks
 constexpr long kStiffnessEvery = 10;  // cycles between updates of the servo's stiffness estimate
+// relaxation = "fire" (relax_fire).
+// Stress ratio between successive stage targets. Measured on the 100 x 200 mm mould (seed
+// 20260401, docs/performance.md): a decade per stage with stages ended at an unbalanced ratio of
+// 2e-2 unjammed the packing (coordination 2.95 at 6 MPa, 2.26 at 0.37 MPa); halving, with every
+// stage relaxed to the packing's own unbalanced limit, keeps it jammed (3.64 at 0.22 MPa).
+constexpr double kFireStageDrop = 2.0;
+constexpr long kFireCheckEvery = 10;  // FIRE cycles between unbalanced-ratio checks
 
 void check_controls(const Container& mould, const MortarPackingControls& c) {
   const auto bad = [](const char* key, const std::string& reason) {
@@ -160,6 +168,142 @@ double affine_stiffness(const dem::World& w, double area, AffineContacts which) 
   return sum / (2.0 * area);
 }
 
+// The state a relaxation to sigma0 ends in: stresses in Pa (compression positive) and the
+// unbalanced-force ratio of its last check.
+struct RelaxedState {
+  double wall_stress = 0, contact_stress = 0, unbalanced_ratio = 1;
+  bool converged = false;
+};
+
+// The convergence test of both relaxations: both stresses within the tolerance of sigma0 (Pa)
+// and the forces balanced.
+bool at_sigma0(double wall_sigma, double contact_sigma, double ratio,
+               const MortarPackingControls& c) {
+  const double tolerance = c.stress_tolerance * c.sigma0;
+  return std::abs(wall_sigma - c.sigma0) <= tolerance &&
+         std::abs(contact_sigma - c.sigma0) <= tolerance && ratio <= c.unbalanced_limit;
+}
+
+// relaxation = "damped": the radius servo in locally damped cycles.
+RelaxedState relax_damped(dem::World& world, const Container& mould,
+                          const MortarPackingControls& c) {
+  // Radius servo at fixed mould, two stages.
+  // 1. Decompression: all radii shrink by one common factor per cycle chosen so the contact
+  //    stress (instantaneous, no lag) would drop by a fixed fraction if the discs did not move:
+  //    a constant logarithmic rate. It has to be slow against the relaxation of the whole
+  //    packing, else contacts open faster than the discs can follow, the coordination number
+  //    collapses and the packing unjams (re-jamming from below then creeps for ~1e5 cycles).
+  // 2. Hold: the radii are left alone while the packing settles, except for a proportional
+  //    correction on the wall stress (the reported figure) every check interval.
+  const Eigen::Vector2d centre = mould.centre();
+  const double span_diameters = std::max(mould.width, mould.height) / (2.0 * c.r_mean);
+  const double rate_scale = std::min(1.0, kRateSpanDiameters / span_diameters);
+  const double band = 0.25 * c.stress_tolerance * c.sigma0;
+  const double area = mould.area();
+  double wall_sigma = 0, contact_sigma = 0, ratio = 1, stiffness = 0, hold_rate = 0;
+  bool holding = false;
+  while (world.step_count() < c.max_steps) {
+    world.step();
+    const double sigma = world.last_force_pass().virial / (2.0 * area);
+    if (!holding) holding = sigma <= c.sigma0 + band;
+    if (!holding) {
+      if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
+        stiffness = affine_stiffness(world, area, AffineContacts::Touching);
+      const double fraction =
+          rate_scale *
+          (sigma > kFastDecompressionAbove * c.sigma0 ? kFastDecompression : kSlowDecompression);
+      if (stiffness > 0) world.scale_radii(1.0 - fraction * sigma / stiffness);
+    } else if (hold_rate != 0) {
+      world.scale_radii(1.0 + hold_rate);
+    }
+    if (world.step_count() % kCheckEvery) continue;
+    wall_sigma = dem::mean_stress(dem::wall_stress(world, area, centre));
+    contact_sigma = sigma;
+    ratio = dem::unbalanced_force_ratio(world);
+    if (at_sigma0(wall_sigma, contact_sigma, ratio, c))
+      return {wall_sigma, contact_sigma, ratio, true};
+    // Kinetic-energy quench while holding (PFC practice: zero the velocities). Local damping
+    // acts on the force only, so a disc that lost its contacts keeps its velocity and rattles
+    // around for thousands of cycles, keeping the unbalanced-force ratio up; quenching during
+    // the decompression instead makes the packing unjam, so it is done in the hold stage only.
+    if (holding)
+      for (std::size_t b = 0; b < world.bodies().size(); ++b)
+        world.set_body_velocity(static_cast<int>(b), 0, 0, 0);
+    hold_rate = 0;
+    if (holding && std::abs(wall_sigma - c.sigma0) > band) {
+      // Spread a fraction of the affine correction over the next interval.
+      const double k = std::max(affine_stiffness(world, area, AffineContacts::Touching),
+                                affine_stiffness(world, area, AffineContacts::Candidates) / 10);
+      hold_rate = kHoldGain * (c.sigma0 - wall_sigma) / k / static_cast<double>(kCheckEvery);
+    }
+  }
+  return {wall_sigma, contact_sigma, ratio, false};
+}
+
+// relaxation = "fire": the decompression as a sequence of static problems, as in the jamming
+// literature (O'Hern et al., PRE 68, 011306, 2003). Each stage shrinks every radius by one
+// common factor at once, chosen so the contact stress would fall to the stage's target, then
+// relaxes the packing with FIRE (mesogen/fire_relaxation.hpp) until its forces balance. The
+// stress of a relaxed jammed packing is close to linear in its solid fraction (harmonic
+// contacts: sigma ~ phi - phi_J), so the factor of a stage comes from the secant through the
+// last two relaxed states, and that of the first from the affine stiffness (which is stiffer
+// than the relaxed response, so the first stage undershoots its target, on the jammed side).
+// Targets: half the stress of the last relaxed state per stage, down to sigma0; then secant
+// corrections at sigma0 until both stresses are within the tolerance. Every stage is relaxed to
+// the packing's unbalanced-force limit.
+RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarPackingControls& c) {
+  dem::WorldSettings undamped = world.settings();
+  undamped.local_damping = 0;  // FIRE's quench is the only dissipation
+  // FIRE at a fixed step, the critical one (Bitzek et al.'s dt_max; leapfrog on the Gershgorin
+  // bound is stable to sqrt(2) x it, docs/dem_design.md). Each step change costs the engine a
+  // neighbour rebuild (set_fixed_time_step): with the adaptive step the cycles cost 75-83 ns of
+  // CPU per disc, at this fixed one 68-71, the damped servo's 60-63 (docs/performance.md "FIRE
+  // relaxation"), for about as many cycles.
+  undamped.time_step_safety = 1.0;
+  world.set_settings(undamped);
+  FireParameters fixed_step;
+  fixed_step.f_inc = 1;
+  fixed_step.f_dec = 1;
+  FireRelaxation fire(world, fixed_step);
+  const double area = mould.area();
+  const Eigen::Vector2d centre = mould.centre();
+  // FIRE cycles until the unbalanced-force ratio is at most `limit` (false: max_steps reached).
+  double ratio = 1;
+  const auto relax = [&](double limit) {
+    while (world.step_count() < c.max_steps) {
+      fire.step();
+      if (world.step_count() % kFireCheckEvery) continue;
+      ratio = dem::unbalanced_force_ratio(world);
+      if (ratio <= limit) return true;
+    }
+    return false;
+  };
+  double log_scale = 0;  // ln of the radius factor applied since the FIRE relaxation began
+  double previous_log_scale = 0, previous_sigma = -1;  // the last relaxed state (Pa)
+  for (bool relaxed = relax(c.unbalanced_limit); relaxed;) {
+    const double contact_sigma = world.last_force_pass().virial / (2.0 * area);
+    const double wall_sigma = dem::mean_stress(dem::wall_stress(world, area, centre));
+    if (at_sigma0(wall_sigma, contact_sigma, ratio, c))
+      return {wall_sigma, contact_sigma, ratio, true};
+    const double target = std::max(c.sigma0, contact_sigma / kFireStageDrop);
+    // d sigma / d ln r, Pa: the secant of the relaxed states, else the affine stiffness.
+    double slope = affine_stiffness(world, area, AffineContacts::Touching);
+    if (previous_sigma >= 0 && log_scale != previous_log_scale && contact_sigma != previous_sigma)
+      slope = (contact_sigma - previous_sigma) / (log_scale - previous_log_scale);
+    if (!(slope > 0)) slope = affine_stiffness(world, area, AffineContacts::Candidates);
+    previous_log_scale = log_scale;
+    previous_sigma = contact_sigma;
+    const double step = (target - contact_sigma) / slope;
+    log_scale += step;
+    world.scale_radii(std::exp(step));
+    fire.restart();
+    relaxed = relax(c.unbalanced_limit);
+  }
+  // max_steps reached: the state where it stopped (the last step's contact stress).
+  return {dem::mean_stress(dem::wall_stress(world, area, centre)),
+          world.last_force_pass().virial / (2.0 * area), ratio, false};
+}
+
 }  // namespace
 
 long default_expansion_steps(double r_ratio) {
@@ -254,60 +398,11 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   }
 
   world.set_neighbor_skin(0.2 * r_min);
-
-  // Radius servo at fixed mould, two stages.
-  // 1. Decompression: all radii shrink by one common factor per cycle chosen so the contact
-  //    stress (instantaneous, no lag) would drop by a fixed fraction if the discs did not move:
-  //    a constant logarithmic rate. It has to be slow against the relaxation of the whole
-  //    packing, else contacts open faster than the discs can follow, the coordination number
-  //    collapses and the packing unjams (re-jamming from below then creeps for ~1e5 cycles).
-  // 2. Hold: the radii are left alone while the packing settles, except for a proportional
-  //    correction on the wall stress (the reported figure) every check interval.
-  const Eigen::Vector2d centre = mould.centre();
-  const double span_diameters = std::max(mould.width, mould.height) / (2.0 * c.r_mean);
-  const double rate_scale = std::min(1.0, kRateSpanDiameters / span_diameters);
-  const double band = 0.25 * c.stress_tolerance * c.sigma0;
-  double wall_sigma = 0, contact_sigma = 0, ratio = 1, stiffness = 0, hold_rate = 0;
-  bool holding = false;
-  while (world.step_count() < c.max_steps) {
-    world.step();
-    const double sigma = world.last_force_pass().virial / (2.0 * area);
-    if (!holding) holding = sigma <= c.sigma0 + band;
-    if (!holding) {
-      if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
-        stiffness = affine_stiffness(world, area, AffineContacts::Touching);
-      const double fraction =
-          rate_scale *
-          (sigma > kFastDecompressionAbove * c.sigma0 ? kFastDecompression : kSlowDecompression);
-      if (stiffness > 0) world.scale_radii(1.0 - fraction * sigma / stiffness);
-    } else if (hold_rate != 0) {
-      world.scale_radii(1.0 + hold_rate);
-    }
-    if (world.step_count() % kCheckEvery) continue;
-    wall_sigma = dem::mean_stress(dem::wall_stress(world, area, centre));
-    contact_sigma = sigma;
-    ratio = dem::unbalanced_force_ratio(world);
-    if (std::abs(wall_sigma - c.sigma0) <= c.stress_tolerance * c.sigma0 &&
-        std::abs(contact_sigma - c.sigma0) <= c.stress_tolerance * c.sigma0 &&
-        ratio <= c.unbalanced_limit) {
-      out.converged = true;
-      break;
-    }
-    // Kinetic-energy quench while holding (PFC practice: zero the velocities). Local damping
-    // acts on the force only, so a disc that lost its contacts keeps its velocity and rattles
-    // around for thousands of cycles, keeping the unbalanced-force ratio up; quenching during
-    // the decompression instead makes the packing unjam, so it is done in the hold stage only.
-    if (holding)
-      for (std::size_t b = 0; b < world.bodies().size(); ++b)
-        world.set_body_velocity(static_cast<int>(b), 0, 0, 0);
-    hold_rate = 0;
-    if (holding && std::abs(wall_sigma - c.sigma0) > band) {
-      // Spread a fraction of the affine correction over the next interval.
-      const double k = std::max(affine_stiffness(world, area, AffineContacts::Touching),
-                                affine_stiffness(world, area, AffineContacts::Candidates) / 10);
-      hold_rate = kHoldGain * (c.sigma0 - wall_sigma) / k / static_cast<double>(kCheckEvery);
-    }
-  }
+  const RelaxedState end = c.relaxation == MortarRelaxation::Fire ? relax_fire(world, mould, c)
+                                                                  : relax_damped(world, mould, c);
+  const double wall_sigma = end.wall_stress, contact_sigma = end.contact_stress,
+               ratio = end.unbalanced_ratio;
+  out.converged = end.converged;
   out.steps = world.step_count();
   if (!out.converged) {
     std::ostringstream msg;

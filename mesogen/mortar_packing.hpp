@@ -8,6 +8,12 @@
 
 namespace cdem::mesogen {
 
+// How the expanded packing is relaxed to sigma0 (docs/generator.md "Relaxation").
+enum class MortarRelaxation {
+  Damped,  // radius servo in locally damped cycles (the default)
+  Fire,    // decompression in static stages, each relaxed by FIRE (mesogen/fire_relaxation.hpp)
+};
+
 struct MortarPackingControls {
   double r_mean = 0.5e-3;  // m, mean disc radius
   // R_max / R_min; radii uniform in [R_min, R_max]. Below kMinPackedRatio it is packed at
@@ -34,6 +40,7 @@ struct MortarPackingControls {
   // one's load is squeezed past its own radius in a sound packing (pack_mortar says why). At 2
   // the smaller disc lies wholly inside the larger (squeezed through): the packing is lost.
   double overlap_guard = 2.0;
+  MortarRelaxation relaxation = MortarRelaxation::Damped;
 };
 
 // Equal discs crystallise under radius expansion: hexagonal grains whose boundaries hold discs

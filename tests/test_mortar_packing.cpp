@@ -227,4 +227,41 @@ TEST(MortarPacking, SmallDiscSqueezedPastItsRadiusByTheExpansionIsNoInstability)
   EXPECT_EQ(static_cast<long>(s.r.size()), p["disc_count_formula"].get<long>());
 }
 
+// relaxation = "fire" (docs/generator.md "Relaxation"): the same contract as the default on the
+// small moulds above, the same bits for the same seed, and the key read from the mortar table.
+TEST(MortarPacking, FireRelaxationReachesSigma0) {
+  MortarPackingControls c;
+  c.relaxation = cdem::mesogen::MortarRelaxation::Fire;
+  const Container square = rectangle(0.02, 0.02);
+  const MortarPacking p = pack(square, c, 1);
+  expect_valid(p, square, c);
+  const Container round = disc(0.025);
+  expect_valid(pack(round, c, 2), round, c);
+  const MortarPacking again = pack(square, c, 1);
+  EXPECT_EQ(p.x, again.x);
+  EXPECT_EQ(p.r, again.r);
+  EXPECT_EQ(p.steps, again.steps);
+}
+
+TEST(MortarPacking, RelaxationKeyIsReadAndChecked) {
+  const auto read = [](const std::string& mortar) {
+    return cdem::mesogen::read_generator_input(cdem::InputTable::parse_string(
+        "[specimen]\nshape = \"disc\"\ndiameter_mm = 30\n[mortar]\nr_mean_mm = 0.5\n" + mortar,
+        "relaxation key"));
+  };
+  EXPECT_EQ(read("").mortar.relaxation, cdem::mesogen::MortarRelaxation::Damped);
+  EXPECT_EQ(read("relaxation = \"damped\"\n").mortar.relaxation,
+            cdem::mesogen::MortarRelaxation::Damped);
+  EXPECT_EQ(read("relaxation = \"fire\"\n").mortar.relaxation,
+            cdem::mesogen::MortarRelaxation::Fire);
+  try {
+    (void)read("relaxation = \"cg\"\n");
+    ADD_FAILURE() << "an unknown relaxation was accepted";
+  } catch (const cdem::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("mortar.relaxation"), std::string::npos) << what;
+    EXPECT_NE(what.find("'damped', 'fire'"), std::string::npos) << what;
+  }
+}
+
 }  // namespace

@@ -91,17 +91,28 @@ TEST(LargeMould, FinestMortarOfTheFullC30MouldPacksJammed) {
 // statistics a faster packing must keep (issue 18): jammed (expect_jammed); the residual stress
 // the packing's own target, sigma0 within its tolerance; the porosity that of a jammed frictionless
 // packing, well above the nominal 0.12 and below the 0.22 of a loose one (test_mortar_packing.cpp).
-TEST(ReferenceMould, C30MortarPacksJammedAtSigma0ForThreeSeeds) {
-  cdem::mesogen::MortarPackingControls controls;
+void expect_reference_statistics(const cdem::mesogen::MortarPackingControls& controls,
+                                 const std::string& what) {
   for (std::uint64_t seed : {1, 2, 3}) {
     cdem::Rng rng(seed);
     const auto p =
         cdem::mesogen::pack_mortar({cdem::ContainerShape::Rectangle, 0.1, 0.2}, controls, rng);
-    expect_jammed(p, "C30 mould, seed " + std::to_string(seed));
+    expect_jammed(p, what + ", seed " + std::to_string(seed));
     EXPECT_NEAR(p.residual_stress, controls.sigma0, controls.stress_tolerance * controls.sigma0);
     EXPECT_GT(p.porosity, 0.13);
     EXPECT_LT(p.porosity, 0.22);
   }
+}
+
+TEST(ReferenceMould, C30MortarPacksJammedAtSigma0ForThreeSeeds) {
+  expect_reference_statistics(cdem::mesogen::MortarPackingControls{}, "C30 mould");
+}
+
+// The same statistics with relaxation = "fire" (docs/generator.md "Relaxation").
+TEST(ReferenceMould, C30MortarRelaxedByFirePacksJammedAtSigma0ForThreeSeeds) {
+  cdem::mesogen::MortarPackingControls controls;
+  controls.relaxation = cdem::mesogen::MortarRelaxation::Fire;
+  expect_reference_statistics(controls, "C30 mould, FIRE");
 }
 
 }  // namespace
