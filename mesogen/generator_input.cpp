@@ -182,6 +182,11 @@ GeneratorInput read_generator_input(const InputTable& root) {
   mc.relaxation = m.string_or("relaxation", "damped", {"damped", "fire"}) == "fire"
                       ? MortarRelaxation::Fire
                       : MortarRelaxation::Damped;
+  if (mc.relaxation == MortarRelaxation::Fire)
+    if (const std::string why =
+            fire_span_refusal(in.container.width, in.container.height, mc.r_mean);
+        !why.empty())
+      m.fail("relaxation", why);
 
   // The mortar must be finer than the specimen and, with aggregates, than the smallest one.
   const double side = std::min(in.container.width, in.container.height);

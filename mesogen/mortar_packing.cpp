@@ -58,6 +58,10 @@ void check_controls(const Container& mould, const MortarPackingControls& c) {
   if (c.expansion_steps < 0) bad("expansion_steps", "must be >= 0 (0: from r_ratio)");
   if (c.wall_segments < 3) bad("wall_segments", "must be >= 3");
   if (!(c.overlap_guard > 0)) bad("overlap_guard", "must be > 0 (x the smaller radius)");
+  if (c.relaxation == MortarRelaxation::Fire)
+    if (const std::string why = fire_span_refusal(mould.width, mould.height, c.r_mean);
+        !why.empty())
+      bad("relaxation", why);
 }
 
 // Random sequential addition at half radius: uniform centres, each disc wholly inside the mould
@@ -196,7 +200,7 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   // 2. Hold: the radii are left alone while the packing settles, except for a proportional
   //    correction on the wall stress (the reported figure) every check interval.
   const Eigen::Vector2d centre = mould.centre();
-  const double span_diameters = std::max(mould.width, mould.height) / (2.0 * c.r_mean);
+  const double span_diameters = mould_span_diameters(mould.width, mould.height, c.r_mean);
   const double rate_scale = std::min(1.0, kRateSpanDiameters / span_diameters);
   const double band = 0.25 * c.stress_tolerance * c.sigma0;
   const double area = mould.area();
@@ -309,6 +313,20 @@ RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarP
 long default_expansion_steps(double r_ratio) {
   const double ratio_over_4 = r_ratio / 4;
   return std::max(500L, std::lround(500 * ratio_over_4 * ratio_over_4));
+}
+
+double mould_span_diameters(double width, double height, double r_mean) {
+  return std::max(width, height) / (2.0 * r_mean);
+}
+
+std::string fire_span_refusal(double width, double height, double r_mean) {
+  const double span = mould_span_diameters(width, height, r_mean);
+  if (span <= kFireSpanDiameters * (1 + 1e-9)) return {};
+  std::ostringstream why;
+  why << "'fire' keeps the packing jammed on moulds up to " << kFireSpanDiameters
+      << " mean diameters across (measured), this one is " << span
+      << ": use 'damped' (the default)";
+  return why.str();
 }
 
 MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c, Rng& rng) {

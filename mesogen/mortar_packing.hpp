@@ -6,6 +6,8 @@
 #include "core/rng.hpp"
 #include "core/specimen.hpp"
 
+#include <string>
+
 namespace cdem::mesogen {
 
 // How the expanded packing is relaxed to sigma0 (docs/generator.md "Relaxation").
@@ -13,6 +15,18 @@ enum class MortarRelaxation {
   Damped,  // radius servo in locally damped cycles (the default)
   Fire,    // decompression in static stages, each relaxed by FIRE (mesogen/fire_relaxation.hpp)
 };
+
+// A mould's larger side in mean disc diameters (width, height and r_mean in m).
+double mould_span_diameters(double width, double height, double r_mean);
+
+// Widest mould, in mean diameters, on which FIRE was measured to keep the packing jammed: the
+// 100 x 200 mm mould at R_mean 0.5 mm, 3 seeds. On a 500-diameter mould (250 x 500 mm) the
+// packing unjammed below 3.3 MPa and the hold never converged (docs/performance.md "FIRE
+// relaxation"), so wider moulds are refused rather than left to cycle to max_steps.
+constexpr double kFireSpanDiameters = 200.0;
+
+// Why `relaxation = "fire"` is refused for this mould (empty: accepted).
+std::string fire_span_refusal(double width, double height, double r_mean);
 
 struct MortarPackingControls {
   double r_mean = 0.5e-3;  // m, mean disc radius

@@ -44,6 +44,7 @@ expect specimen_too_small 2 "gradation.d_max" "$(variant specimen_too_small 's/^
 expect unknown_gradation 2 "unknown value 'talbot'" "$(variant unknown_gradation 's/^type = "walraven"/type = "talbot"/')"
 expect expansion_zero 2 "mortar.expansion_steps" "$(variant expansion_zero 's/^porosity = 0.12/porosity = 0.12\nexpansion_steps = 0/')"
 expect bad_relaxation 2 "mortar.relaxation.*unknown value 'cg' (allowed: 'damped', 'fire')" "$(variant bad_relaxation 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "cg"/')"
+expect fire_wide_mould 2 "relaxation.*'fire' keeps the packing jammed on moulds up to 200 mean diameters across" "$(variant fire_wide_mould 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "fire"/; s/^r_mean_mm = 0.5 /r_mean_mm = 0.35 /')"
 expect misspelt_key 2 "unknown key" "$(variant misspelt_key 's/^porosity = 0.12/porosty = 0.12/')"
 expect bad_unit 2 "unknown unit" "$(variant bad_unit 's/^density_kg_m3 = 2000/density = "2000 furlongs"/')"
 expect toml_syntax 2 "TOML syntax error" "$(variant toml_syntax 's/^seed = 1/seed = = 1/')"
