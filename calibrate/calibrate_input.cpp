@@ -435,6 +435,7 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
     in.tests[i].generator = generator_text(specimen, key, file);
   }
   constexpr long long kMaxSeed = std::numeric_limits<long long>::max();
+  in.calibration_seeds.clear();
   if (specimen.has("seeds")) {
     if (specimen.has("seed")) specimen.fail("seeds", "give seed or seeds, not both");
     for (const auto s : specimen.integers("seeds", 0, kMaxSeed))
@@ -448,7 +449,6 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
     in.calibration_seeds.push_back(
         static_cast<std::uint64_t>(specimen.integer_or("seed", 1, 0, kMaxSeed)));
   }
-  in.calibration_seed = in.calibration_seeds.front();
 
   if (root.has("verification_seeds")) {
     for (const auto s : root.integers("verification_seeds", 0, kMaxSeed))

@@ -139,11 +139,11 @@ struct CalibrationInput {
   std::vector<CalibrationTest> tests;
   std::string materials;  // the base [materials.*] tables as TOML text (start values)
 
-  std::uint64_t calibration_seed = 1;  // specimen the strategy iterates on
   // The calibration specimen of the fast and tables strategies: one seed ([specimen] seed), or
-  // several ([specimen] seeds) whose mean response is what they iterate on; calibration_seed is
-  // the first.
-  std::vector<std::uint64_t> calibration_seeds;
+  // several ([specimen] seeds) whose mean response is what they iterate on. Never empty.
+  std::vector<std::uint64_t> calibration_seeds{1};
+  // The specimen the paper strategy iterates on, and the first of several.
+  std::uint64_t calibration_seed() const { return calibration_seeds.front(); }
   std::vector<std::uint64_t> verification_seeds;  // independent specimens (default 5)
 
   double verification_tolerance = 0.05;  // mean relative error accepted per target

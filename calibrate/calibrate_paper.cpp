@@ -106,7 +106,7 @@ CalibrationResult calibrate_paper(const CalibrationInput& input, Simulator& simu
     std::vector<SimulationPoint> points;
     std::vector<std::string> labels;
     for (Eigen::Index r = 0; r < natural.rows(); ++r) {
-      points.push_back({natural.row(r).transpose(), input.calibration_seed});
+      points.push_back({natural.row(r).transpose(), input.calibration_seed()});
       labels.push_back(stage + " run " + std::to_string(r + 1));
     }
     return run_batch(simulator, input, result, stage, labels, points);

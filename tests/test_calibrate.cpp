@@ -130,14 +130,14 @@ class AnalyticModel : public PointModel {
     o.simulations = 1;
     const double strength =
         (weakest_link ? std::min({sm, cm / 3, 2 * si}) : sm) *
-        (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_strength);
+        (p.specimen_seed == input_.calibration_seed() ? 1.0 : other_specimens_strength);
     o.responses[0] = scatter * 1.17 * std::pow(strength, 0.85) * std::pow(si / 0.5, 0.15) *
                      std::pow(cm / 30, 0.03) * std::pow(em / 16, 0.05);  // sigma_u, MPa
     o.responses[1] = scatter * 1.65 * std::pow(em, 0.9) * std::pow(ei / 0.5, 0.1) *
                      std::pow(km / 1.45, kratio_exponent_E) * std::pow(sm / 10, 0.02);  // E, GPa
     o.responses[2] = 0.207 * std::pow(km / 1.45, kratio_exponent_nu) * std::pow(ki / 1.45, 0.1) *
                      std::pow(em / 16, -0.03) *
-                     (p.specimen_seed == input_.calibration_seed ? 1.0 : other_specimens_nu);
+                     (p.specimen_seed == input_.calibration_seed() ? 1.0 : other_specimens_nu);
     return o;
   }
 
@@ -324,7 +324,7 @@ TEST(CalibrateFast, ConvergesOnTheAnalyticModel) {
   EXPECT_NEAR(x[3] / x[2], 1.0, 1e-12);
   // And the result meets the targets on the calibration specimen.
   AnalyticModel check(in);
-  const auto y = check.run("check", {{x, in.calibration_seed}}).front();
+  const auto y = check.run("check", {{x, in.calibration_seed()}}).front();
   EXPECT_NEAR(y.response(CalibrationTarget::SigmaU) / 40, 1, 0.02);
   EXPECT_NEAR(y.response(CalibrationTarget::E) / 30, 1, 0.02);
   EXPECT_NEAR(y.response(CalibrationTarget::Nu) / 0.2, 1, 0.02);
@@ -388,7 +388,7 @@ TEST(CalibrateFast, ReportsATargetOutOfReachWithTheClosestValue) {
   EXPECT_EQ(r.out_of_reach[0].target, CalibrationTarget::SigmaU);
   // The closest value is the model at the upper bounds of every strength.
   AnalyticModel at_bound(in);
-  const auto y = at_bound.run("check", {{r.calibrated, in.calibration_seed}}).front();
+  const auto y = at_bound.run("check", {{r.calibrated, in.calibration_seed()}}).front();
   EXPECT_DOUBLE_EQ(r.calibrated[4], 20);
   EXPECT_DOUBLE_EQ(r.calibrated[7], 30);
   EXPECT_NEAR(r.out_of_reach[0].closest, y.response(CalibrationTarget::SigmaU), 1e-9);
@@ -620,7 +620,7 @@ class FractureModel : public PointModel {
     const double cm = rel("materials.mortar.pb_cohesion_MPa", 30);
     const double ci = rel("materials.itz.pb_cohesion_MPa", 15);
     const auto seed = static_cast<double>(p.specimen_seed);
-    const bool calibration_specimen = p.specimen_seed == input_.calibration_seed;
+    const bool calibration_specimen = p.specimen_seed == input_.calibration_seed();
     SimulationOutcome o;
     o.ok = true;
     o.simulations = 2;
@@ -740,7 +740,7 @@ TEST(CalibrateFast, ReachesAFractureEnergyTarget) {
   EXPECT_NEAR(x[5] / x[4], 3.0, 1e-12);
   // G_F met on the calibration specimen within the fast tolerance, and on the verification mean.
   FractureModel check(in);
-  const auto y = check.run("check", {{x, in.calibration_seed}}).front();
+  const auto y = check.run("check", {{x, in.calibration_seed()}}).front();
   EXPECT_NEAR(y.response(CalibrationTarget::GF) / 40, 1, in.fast.tolerance);
   for (const auto& s : r.verifications.back().targets)
     EXPECT_LE(std::abs(s.relative_error), in.verification_tolerance) << target_name(s.target);
@@ -801,7 +801,7 @@ TEST(CalibratePaper, ReachesAFractureEnergyTarget) {
   // The surface predicts G_F itself (the exponential of the fit), within the fit's error of what
   // the model gives at the calibrated point.
   FractureModel check(in);
-  const auto y = check.run("check", {{r.calibrated, in.calibration_seed}}).front();
+  const auto y = check.run("check", {{r.calibrated, in.calibration_seed()}}).front();
   EXPECT_NEAR(r.surfaces[2].predict(r.inversion->x) / y.response(CalibrationTarget::GF), 1, 0.1);
   for (const auto& s : r.verifications.back().targets)
     EXPECT_LE(std::abs(s.relative_error), in.verification_tolerance) << target_name(s.target);

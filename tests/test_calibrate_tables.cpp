@@ -450,7 +450,7 @@ class TableModel : public cdem::test::PointModel {
     }
     o.simulations = 2;
     // The calibration specimen is the tables' own; the others scatter about it by 2 %.
-    const bool first = p.specimen_seed == input_.calibration_seed;
+    const bool first = p.specimen_seed == input_.calibration_seed();
     const double jump = jump_MPa > 0 ? (sigma >= jump_MPa ? 1.3 : 0.7) : 1;
     const double bias = first ? jump : other_specimens;
     const double scatter =
