@@ -13,8 +13,6 @@
 #include <cstdint>
 #include <vector>
 
-#include <immintrin.h>
-
 #include "dem/contact_solver.hpp"
 #include "dem/lanes.hpp"
 
@@ -23,11 +21,6 @@ namespace cdem::dem {
 // Pairs per block of the force pass: their geometries (sqrt, division) are computed first, in
 // a loop with no dependency between iterations, then their laws. 64 geometries fit in L1.
 inline constexpr std::size_t kGeometryBlock = 64;
-
-// Whether the pass evaluates geometries and parallel bonds kLaneCount pairs at a time: with AVX
-// (four lanes) it pays, with the two lanes of SSE2 it did not (docs/performance.md "Per-core
-// speed, session 13"); the results are the same bits either way.
-inline constexpr bool kBatchedPairs = kLaneCount >= 4;
 
 // Geometry of a pair, or of several (T = Lanes, dem/lanes.hpp).
 template <class T>
@@ -90,84 +83,27 @@ class DiscPairKernel {
   // of a block of pairs before their laws (see disc_disc_pass): the geometries are
   // independent of each other, so their sqrt and division latencies overlap instead of
   // stalling each pair's law.
-  // Geometry of a pair (or of several, T = Lanes) from the centre offset dx, dy (m) of j from
-  // i and the radii.
-  template <class T>
-  static PairGeometryOf<T> pair_geometry(T dx, T dy, T ri, T rj) {
-    PairGeometryOf<T> g;
-    g.ri = ri;
-    g.rj = rj;
-    const T reach = ri + rj;
-    const T dist = sqrt_of(dx * dx + dy * dy);
-    g.overlap = reach - dist;
-    const T inv = 1.0 / (dist * reach);
-    const T inverse_dist = reach * inv;
-    g.nx = dx * inverse_dist;
-    g.ny = dy * inverse_dist;
-    g.inverse_length = dist * inv;
-    const auto apart = dist > 0;
-    if (!all_of(apart)) {  // coincident centres: no normal (the guard stops the run)
-      g.nx = select(apart, g.nx, T{});
-      g.ny = select(apart, g.ny, T{});
-      g.inverse_length = select(apart, g.inverse_length, 1.0 / reach);
-    }
-    return g;
-  }
-  static double sqrt_of(double a) { return std::sqrt(a); }
-  // One instruction for every lane (GCC does not vectorize std::sqrt, which may set errno).
-  static Lanes sqrt_of(Lanes a) {
-#if defined(__AVX__)
-    return _mm256_sqrt_pd(a);
-#else
-    return _mm_sqrt_pd(a);
-#endif
-  }
-  static bool all_of(bool condition) {
-    return condition;
-  }
-  static bool all_of(LaneMask condition) {
-    for (std::size_t l = 0; l < kLaneCount; ++l)
-      if (!condition[l]) return false;
-    return true;
-  }
-
   Geometry geometry(std::size_t k) const {
     Geometry g;
     g.i = first_[k];
     g.j = second_[k];
-    static_cast<PairGeometryOf<double>&>(g) =
-        pair_geometry<double>(x_[g.j] - x_[g.i], y_[g.j] - y_[g.i], r_[g.i], r_[g.j]);
-    return g;
-  }
-
-  // The geometries of pairs [begin, end) into g[0..end - begin): kLaneCount at a time (their
-  // sqrt and divisions in one instruction each), the rest one at a time.
-  void geometries(std::size_t begin, std::size_t end, Geometry* g) const {
-    std::size_t k = begin;
-    for (; k + kLaneCount <= end; k += kLaneCount) {
-      Lanes dx, dy, ri, rj;
-      for (std::size_t l = 0; l < kLaneCount; ++l) {
-        const std::int32_t i = first_[k + l], j = second_[k + l];
-        Geometry& o = g[k + l - begin];
-        o.i = i;
-        o.j = j;
-        dx[l] = x_[j] - x_[i];
-        dy[l] = y_[j] - y_[i];
-        ri[l] = r_[i];
-        rj[l] = r_[j];
-      }
-      const PairGeometryOf<Lanes> gl = pair_geometry(dx, dy, ri, rj);
-      for (std::size_t l = 0; l < kLaneCount; ++l) {
-        Geometry& o = g[k + l - begin];
-        o.ri = gl.ri[l];
-        o.rj = gl.rj[l];
-        o.overlap = gl.overlap[l];
-        o.nx = gl.nx[l];
-        o.ny = gl.ny[l];
-        o.inverse_length = gl.inverse_length[l];
-      }
+    const double dx = x_[g.j] - x_[g.i], dy = y_[g.j] - y_[g.i];
+    g.ri = r_[g.i];
+    g.rj = r_[g.j];
+    const double reach = g.ri + g.rj;
+    const double dist = std::sqrt(dx * dx + dy * dy);
+    g.overlap = reach - dist;
+    if (dist > 0) {
+      const double inv = 1.0 / (dist * reach);
+      const double inverse_dist = reach * inv;
+      g.nx = dx * inverse_dist;
+      g.ny = dy * inverse_dist;
+      g.inverse_length = dist * inv;
+    } else {  // coincident centres: no normal (the guard stops the run)
+      g.nx = g.ny = 0;
+      g.inverse_length = 1.0 / reach;
     }
-    for (; k < end; ++k) g[k - begin] = geometry(k);
+    return g;
   }
 
   DiscPairKernel(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
@@ -237,13 +173,8 @@ class DiscPairKernel {
     std::size_t bad = end;
     for (std::size_t start = begin; start < end; start += kGeometryBlock) {
       const std::size_t stop = std::min(start + kGeometryBlock, end);
-      if constexpr (kBatchedPairs) {
-        geometries(start, stop, g);
-        parallel_bonded_lanes(start, stop, g, batched, done);
-      } else {
-        for (std::size_t k = start; k < stop; ++k) g[k - start] = geometry(k);
-        std::fill_n(done, stop - start, false);
-      }
+      for (std::size_t k = start; k < stop; ++k) g[k - start] = geometry(k);
+      parallel_bonded_lanes(start, stop, g, batched, done);
       for (std::size_t k = start; k < stop; ++k) {
         const Geometry& gk = g[k - start];
         if (done[k - start]) {
@@ -341,18 +272,14 @@ class DiscPairKernel {
     const T arm_i = g.ri - 0.5 * g.overlap, arm_j = g.rj - 0.5 * g.overlap;
     return (m.vxj - m.vxi) * -g.ny + (m.vyj - m.vyi) * g.nx - arm_j * m.wj - arm_i * m.wi;
   }
-  double tangential_velocity(const Geometry& g) const {
-    return tangential_velocity(g, motion(g));
-  }
+  double tangential_velocity(const Geometry& g) const { return tangential_velocity(g, motion(g)); }
 
   // Velocity of j's centre relative to i's along n (m/s; positive = separating).
   template <class T>
   static T normal_velocity(const PairGeometryOf<T>& g, const PairMotionOf<T>& m) {
     return (m.vxj - m.vxi) * g.nx + (m.vyj - m.vyi) * g.ny;
   }
-  double normal_velocity(const Geometry& g) const {
-    return normal_velocity(g, motion(g));
-  }
+  double normal_velocity(const Geometry& g) const { return normal_velocity(g, motion(g)); }
 
   template <class T>
   static ResolvedPairOf<T> resolve(const PairGeometryOf<T>& g, T normal, T shear, T bond_moment) {
