@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "dem/contact_solver.hpp"
-#include "dem/lanes.hpp"
 
 namespace cdem::dem {
 
@@ -22,60 +21,14 @@ namespace cdem::dem {
 // a loop with no dependency between iterations, then their laws. 64 geometries fit in L1.
 inline constexpr std::size_t kGeometryBlock = 64;
 
-// Geometry of a pair, or of several (T = Lanes, dem/lanes.hpp).
-template <class T>
-struct PairGeometryOf {
-  T ri, rj;          // m, radii of the first and second disc
-  T overlap;         // m, reach - centre distance
-  T nx, ny;          // unit normal from i to j
-  T inverse_length;  // 1/m, 1 / (R_i + R_j)
-};
-
-// Velocities of the two discs of a pair (m/s; spins rad/s).
-template <class T>
-struct PairMotionOf {
-  T vxi, vyi, wi, vxj, vyj, wj;
-};
-
-// The linear part of a bonded pair (contact or parallel bond): trial shear force of the
-// step (N, along t) and the compression-only normal force (N).
-template <class T>
-struct BondedLinearPartOf {
-  T kn, ks;  // N/m, normal and shear stiffness
-  T vt;      // m/s, tangential velocity of j's contact point relative to i's
-  T old;     // N, shear force of the previous step
-  T trial;   // N, old shear force plus the step's increment
-  T fn;      // N, compression-only normal force
-};
-
-// A parallel-bonded pair's law before its failure test: the contact's shear force after the
-// Coulomb limit and its slip work, and the bond's geometry, forces and stresses.
-template <class T>
-struct ParallelBondedPairOf {
-  BondedLinearPartOf<T> linear;
-  T fs;         // N, contact shear force along t
-  T slip_work;  // J per m
-  ParallelBondGeometryOf<T> bond;
-  ParallelBondStateOf<T> state;
-  ParallelBondStressOf<T> stress;
-};
-
-// Totals on j from a pair's normal (compression positive) and shear force along t and the
-// bond moment on j.
-template <class T>
-struct ResolvedPairOf {
-  T normal, overlap, fx, fy, moment_i, moment_j;
-};
-
-// The class constants of the parallel-bond law for several pairs, one per lane.
-struct ParallelBondLanes {
-  Lanes modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
-};
-
 class DiscPairKernel {
  public:
-  struct Geometry : PairGeometryOf<double> {
+  struct Geometry {
     std::int32_t i, j;
+    double ri, rj;
+    double overlap;         // m, reach - centre distance
+    double nx, ny;          // unit normal from i to j
+    double inverse_length;  // 1/m, 1 / (R_i + R_j)
   };
 
   // Geometry of pair k. sqrt and division share one unit of the core, so 1 / dist and
@@ -161,66 +114,30 @@ class DiscPairKernel {
   // their laws) and hands each to take(k, geometry, force) in ascending k: the loop of the
   // one-thread pass and of each thread's range. Returns the first pair tripping the guard, or
   // `end` when none does.
-  // Within a block, the intact parallel bonds are evaluated kLaneCount at a time first
-  // (parallel_bonded_lanes; a pair whose bond breaks in this step is left to the one-pair path),
-  // then every pair is taken in order; the results do not depend on the order of evaluation
-  // (each pair writes only its own slots).
   template <class Take>
   std::size_t evaluate_range(std::size_t begin, std::size_t end, Take&& take) const {
     Geometry g[kGeometryBlock];
-    PairForce batched[kGeometryBlock];
-    bool done[kGeometryBlock];
     std::size_t bad = end;
     for (std::size_t start = begin; start < end; start += kGeometryBlock) {
       const std::size_t stop = std::min(start + kGeometryBlock, end);
       for (std::size_t k = start; k < stop; ++k) g[k - start] = geometry(k);
-      parallel_bonded_lanes(start, stop, g, batched, done);
       for (std::size_t k = start; k < stop; ++k) {
-        const Geometry& gk = g[k - start];
-        if (done[k - start]) {
-          if (!within_guard(gk, BondKind::Parallel)) bad = std::min(bad, k);
-          take(k, gk, batched[k - start]);
-          continue;
-        }
-        bool within;
-        const PairForce f = evaluate(k, gk, within);
-        if (!within) bad = std::min(bad, k);
-        take(k, gk, f);
+        bool within_guard;
+        const PairForce f = evaluate(k, g[k - start], within_guard);
+        if (!within_guard) bad = std::min(bad, k);
+        take(k, g[k - start], f);
       }
     }
     return bad;
   }
 
-  // Evaluates the pairs of [start, stop) with an intact parallel bond, kLaneCount at a time,
-  // those left over one at a time. done[k - start] tells which pairs it evaluated: their
-  // results are in out[k - start] and the per-pair arrays. A batch evaluates the law of
-  // parallel_bonded for every lane with the same operations (bitwise the same results); a
-  // lane whose bond breaks writes nothing and is left undone, for the one-pair path.
-  void parallel_bonded_lanes(std::size_t start, std::size_t stop, const Geometry* g, PairForce* out,
-                             bool* done) const {
-    std::size_t lanes[kGeometryBlock];
-    std::size_t n = 0;
-    for (std::size_t k = start; k < stop; ++k) {
-      const bool bonded = bond_[k] == static_cast<std::uint8_t>(BondKind::Parallel);
-      done[k - start] = false;
-      lanes[n] = k;
-      n += bonded;
-    }
-    for (std::size_t b = 0; b + kLaneCount <= n; b += kLaneCount)
-      parallel_bonded_batch(lanes + b, start, g, out, done);
-  }
-
-  // A smooth joint's discs may overlap without limit: its force comes from the joint's own gap,
-  // not from the overlap, and its discs slide along the joint through each other (Itasca's
-  // model; docs/smooth_joint.md "Discs sliding past each other"). Only the other pairs' overlap
-  // is a sign of instability.
-  bool within_guard(const Geometry& g, BondKind kind) const {
-    return g.overlap <= guard_ * std::min(g.ri, g.rj) || kind == BondKind::SmoothJoint;
-  }
-
-  PairForce evaluate(std::size_t k, const Geometry& g, bool& within) const {
+  PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
     const auto kind = static_cast<BondKind>(bond_[k]);
-    within = within_guard(g, kind);
+    // A smooth joint's discs may overlap without limit: its force comes from the joint's own gap,
+    // not from the overlap, and its discs slide along the joint through each other (Itasca's
+    // model; docs/smooth_joint.md "Discs sliding past each other"). Only the other pairs' overlap
+    // is a sign of instability.
+    within_guard = g.overlap <= guard_ * std::min(g.ri, g.rj) || kind == BondKind::SmoothJoint;
     const PairForce f = kind == BondKind::None       ? linear(k, g)
                         : kind == BondKind::Parallel ? parallel_bonded(k, g)
                                                      : bonded(k, g);
@@ -260,88 +177,32 @@ class DiscPairKernel {
     }
   }
 
-  // The law of one pair, or of several (T = Lanes), and its parts.
-  PairMotionOf<double> motion(const Geometry& g) const {
-    return {vx_[g.i], vy_[g.i], w_[g.i], vx_[g.j], vy_[g.j], w_[g.j]};
-  }
-
+ private:
   // Tangential velocity of j's contact point relative to i's (m/s), spins included; the arms
   // are R - overlap / 2.
-  template <class T>
-  static T tangential_velocity(const PairGeometryOf<T>& g, const PairMotionOf<T>& m) {
-    const T arm_i = g.ri - 0.5 * g.overlap, arm_j = g.rj - 0.5 * g.overlap;
-    return (m.vxj - m.vxi) * -g.ny + (m.vyj - m.vyi) * g.nx - arm_j * m.wj - arm_i * m.wi;
+  double tangential_velocity(const Geometry& g) const {
+    const double arm_i = g.ri - 0.5 * g.overlap, arm_j = g.rj - 0.5 * g.overlap;
+    return (vx_[g.j] - vx_[g.i]) * -g.ny + (vy_[g.j] - vy_[g.i]) * g.nx - arm_j * w_[g.j] -
+           arm_i * w_[g.i];
   }
-  double tangential_velocity(const Geometry& g) const { return tangential_velocity(g, motion(g)); }
 
   // Velocity of j's centre relative to i's along n (m/s; positive = separating).
-  template <class T>
-  static T normal_velocity(const PairGeometryOf<T>& g, const PairMotionOf<T>& m) {
-    return (m.vxj - m.vxi) * g.nx + (m.vyj - m.vyi) * g.ny;
+  double normal_velocity(const Geometry& g) const {
+    return (vx_[g.j] - vx_[g.i]) * g.nx + (vy_[g.j] - vy_[g.i]) * g.ny;
   }
-  double normal_velocity(const Geometry& g) const { return normal_velocity(g, motion(g)); }
 
-  template <class T>
-  static ResolvedPairOf<T> resolve(const PairGeometryOf<T>& g, T normal, T shear, T bond_moment) {
-    ResolvedPairOf<T> f;
+  // Totals on j from the normal (compression positive) and shear force along t and the bond
+  // moment on j.
+  static void resolve(const Geometry& g, double normal, double shear, double bond_moment,
+                      PairForce& f) {
     f.normal = normal;
     f.overlap = g.overlap;
     f.fx = normal * g.nx - shear * g.ny;
     f.fy = normal * g.ny + shear * g.nx;
     f.moment_i = -(g.ri - 0.5 * g.overlap) * shear - bond_moment;
     f.moment_j = -(g.rj - 0.5 * g.overlap) * shear + bond_moment;
-    return f;
-  }
-  static void resolve(const Geometry& g, double normal, double shear, double bond_moment,
-                      PairForce& f) {
-    const ResolvedPairOf<double> r = resolve<double>(g, normal, shear, bond_moment);
-    f.normal = r.normal;
-    f.overlap = r.overlap;
-    f.fx = r.fx;
-    f.fy = r.fy;
-    f.moment_i = r.moment_i;
-    f.moment_j = r.moment_j;
   }
 
-  // The linear part of a bonded pair with the normal stiffness's E* (Pa) and 1 / kappa of its
-  // class, the shear force of the previous step (N) and the time step (s).
-  template <class T>
-  static BondedLinearPartOf<T> bonded_linear_part(const PairGeometryOf<T>& g,
-                                                  const PairMotionOf<T>& m, T emod,
-                                                  T shear_per_normal_stiffness, T old_shear, T dt) {
-    BondedLinearPartOf<T> l;
-    l.kn = disc_normal_stiffness(emod, g.ri, g.rj, g.inverse_length);
-    l.ks = l.kn * shear_per_normal_stiffness;
-    l.vt = tangential_velocity(g, m);
-    l.old = old_shear;
-    l.trial = linear_shear_increment(l.old, l.ks, l.vt, dt);
-    l.fn = l.kn * max_of(g.overlap, T{});
-    return l;
-  }
-
-  // A pair with an intact parallel bond (SPEC 4; docs/dem_design.md "Bonds in the contact
-  // loop"): the linear contact with Coulomb slip plus the bond's springs, up to the failure
-  // test. P: ParallelBondParams for one pair, ParallelBondLanes for several.
-  template <class T, class P>
-  static ParallelBondedPairOf<T> parallel_bonded_law(const PairGeometryOf<T>& g,
-                                                     const PairMotionOf<T>& m, T emod,
-                                                     T shear_per_normal_stiffness, T mu, const P& p,
-                                                     T tan_friction_angle, T old_shear,
-                                                     ParallelBondStateOf<T> state, T dt) {
-    ParallelBondedPairOf<T> r;
-    r.linear = bonded_linear_part(g, m, emod, shear_per_normal_stiffness, old_shear, dt);
-    const BondedLinearPartOf<T>& l = r.linear;
-    r.fs = coulomb_limit(l.trial, mu, l.fn);
-    r.slip_work = linear_slip_work(l.old, l.trial, r.fs, l.ks);
-    r.bond = parallel_bond_geometry(p, g.ri, g.rj, g.inverse_length);
-    r.state = state;
-    parallel_bond_increment(r.state, r.bond, normal_velocity(g, m) * dt, l.vt * dt,
-                            (m.wj - m.wi) * dt);
-    r.stress = parallel_bond_stress(r.state, r.bond, p, tan_friction_angle);
-    return r;
-  }
-
- private:
   double shear_stiffness(int contact_class, double kn) const {
     return kn * shear_per_normal_stiffness_[contact_class];
   }
@@ -368,27 +229,40 @@ class DiscPairKernel {
     return f;
   }
 
-  BondedLinearPartOf<double> bonded_linear_part(std::size_t k, const Geometry& g, int cls) const {
-    return bonded_linear_part<double>(g, motion(g), laws_[cls].emod,
-                                      shear_per_normal_stiffness_[cls], shear_[k], dt_);
+  // The linear part of a bonded pair (contact or parallel bond): trial shear force of the
+  // step (N, along t) and the compression-only normal force (N).
+  struct BondedLinearPart {
+    double kn, ks, vt, old, trial, fn;
+  };
+  BondedLinearPart bonded_linear_part(std::size_t k, const Geometry& g, int cls) const {
+    BondedLinearPart l;
+    l.kn = laws_[cls].normal_stiffness(g.ri, g.rj, g.inverse_length);
+    l.ks = shear_stiffness(cls, l.kn);
+    l.vt = tangential_velocity(g);
+    l.old = shear_[k];
+    l.trial = linear_shear_increment(l.old, l.ks, l.vt, dt_);
+    l.fn = l.kn * std::max(g.overlap, 0.0);
+    return l;
   }
 
-  // One pair with an intact parallel bond. In the pass where the bond breaks the contact is
-  // already plain linear. 83 % of the C30 pairs take this law, so it has its own function,
-  // without the branches of the other bond kinds.
+  // A pair with an intact parallel bond (SPEC 4; docs/dem_design.md "Bonds in the contact
+  // loop"): the linear contact with Coulomb slip plus the bond's springs. In the pass where the
+  // bond breaks the contact is already plain linear. 83 % of the C30 pairs take this path, so
+  // it has its own function, without the branches of the other bond kinds.
   PairForce parallel_bonded(std::size_t k, const Geometry& g) const {
     const int cls = contact_class_[k];
-    const ParallelBondParams& p = bonds_[cls].parallel;
-    const ParallelBondedPairOf<double> r =
-        parallel_bonded_law<double>(g, motion(g), laws_[cls].emod, shear_per_normal_stiffness_[cls],
-                                    laws_[cls].mu, p, tan_friction_angle_[cls], shear_[k],
-                                    {bond_normal_[k], bond_shear_[k], bond_moment_[k]}, dt_);
+    const BondedLinearPart l = bonded_linear_part(k, g, cls);
+    const double fs = coulomb_limit(l.trial, laws_[cls].mu, l.fn);
     PairForce f;
-    f.slip_work = r.slip_work;
-    ParallelBondState pb = r.state;
-    f.failure = parallel_bond_failure(r.stress, p);
+    f.slip_work = linear_slip_work(l.old, l.trial, fs, l.ks);
+    const ParallelBondParams& p = bonds_[cls].parallel;
+    const ParallelBondGeometry bg = parallel_bond_geometry(p, g.ri, g.rj, g.inverse_length);
+    ParallelBondState pb{bond_normal_[k], bond_shear_[k], bond_moment_[k]};
+    parallel_bond_increment(pb, bg, normal_velocity(g) * dt_, l.vt * dt_,
+                            (w_[g.j] - w_[g.i]) * dt_);
+    f.failure = parallel_bond_failure(pb, bg, p, tan_friction_angle_[cls]);
     if (f.failure != BondFailure::None) {
-      f.released = parallel_bond_strain_energy(pb, r.bond);
+      f.released = parallel_bond_strain_energy(pb, bg);
       pb = {};
       bond_[k] = static_cast<std::uint8_t>(BondKind::None);
       bond_gap_[k] = 0;
@@ -396,82 +270,10 @@ class DiscPairKernel {
     bond_normal_[k] = pb.fn;
     bond_shear_[k] = pb.fs;
     bond_moment_[k] = pb.m;
-    shear_[k] = r.fs;
+    shear_[k] = fs;
     // Totals on j: linear part plus bond (the bond's normal force is tension positive).
-    resolve(g, r.linear.fn - pb.fn, r.fs + pb.fs, pb.m, f);
+    resolve(g, l.fn - pb.fn, fs + pb.fs, pb.m, f);
     return f;
-  }
-
-  // kLaneCount pairs with an intact parallel bond, lanes[0..kLaneCount) (ascending pair
-  // indices of the block that starts at pair `start`): the law of parallel_bonded in every
-  // lane. Gathers and stores go lane by lane.
-  void parallel_bonded_batch(const std::size_t* lanes, std::size_t start, const Geometry* g,
-                             PairForce* out, bool* done) const {
-    PairGeometryOf<Lanes> gl;
-    PairMotionOf<Lanes> ml;
-    Lanes emod, spn, mu, tan_phi, old_shear;
-    ParallelBondStateOf<Lanes> state;
-    ParallelBondLanes p;
-    for (std::size_t l = 0; l < kLaneCount; ++l) {
-      const std::size_t k = lanes[l];
-      const Geometry& gk = g[k - start];
-      gl.ri[l] = gk.ri;
-      gl.rj[l] = gk.rj;
-      gl.overlap[l] = gk.overlap;
-      gl.nx[l] = gk.nx;
-      gl.ny[l] = gk.ny;
-      gl.inverse_length[l] = gk.inverse_length;
-      ml.vxi[l] = vx_[gk.i];
-      ml.vyi[l] = vy_[gk.i];
-      ml.wi[l] = w_[gk.i];
-      ml.vxj[l] = vx_[gk.j];
-      ml.vyj[l] = vy_[gk.j];
-      ml.wj[l] = w_[gk.j];
-      const int cls = contact_class_[k];
-      emod[l] = laws_[cls].emod;
-      spn[l] = shear_per_normal_stiffness_[cls];
-      mu[l] = laws_[cls].mu;
-      tan_phi[l] = tan_friction_angle_[cls];
-      const ParallelBondParams& pc = bonds_[cls].parallel;
-      p.modulus[l] = pc.modulus;
-      p.stiffness_ratio[l] = pc.stiffness_ratio;
-      p.tensile_strength[l] = pc.tensile_strength;
-      p.cohesion[l] = pc.cohesion;
-      p.radius_multiplier[l] = pc.radius_multiplier;
-      p.moment_factor[l] = pc.moment_factor;
-      old_shear[l] = shear_[k];
-      state.fn[l] = bond_normal_[k];
-      state.fs[l] = bond_shear_[k];
-      state.m[l] = bond_moment_[k];
-    }
-    const ParallelBondedPairOf<Lanes> r = parallel_bonded_law(
-        gl, ml, emod, spn, mu, p, tan_phi, old_shear, state, broadcast<Lanes>(dt_));
-    const LaneMask breaks =
-        parallel_bond_breaks_in_tension(r.stress, p) | parallel_bond_breaks_in_shear(r.stress);
-    const ResolvedPairOf<Lanes> f =
-        resolve(gl, r.linear.fn - r.state.fn, r.fs + r.state.fs, r.state.m);
-    for (std::size_t l = 0; l < kLaneCount; ++l) {
-      if (breaks[l]) continue;
-      const std::size_t k = lanes[l];
-      bond_normal_[k] = r.state.fn[l];
-      bond_shear_[k] = r.state.fs[l];
-      bond_moment_[k] = r.state.m[l];
-      shear_[k] = r.fs[l];
-      normal_[k] = f.normal[l];
-      overlap_[k] = f.overlap[l];
-      fx_[k] = f.fx[l];
-      fy_[k] = f.fy[l];
-      PairForce& o = out[k - start];
-      o = PairForce{};
-      o.normal = f.normal[l];
-      o.overlap = f.overlap[l];
-      o.fx = f.fx[l];
-      o.fy = f.fy[l];
-      o.moment_i = f.moment_i[l];
-      o.moment_j = f.moment_j[l];
-      o.slip_work = r.slip_work[l];
-      done[k - start] = true;
-    }
   }
 
   // A pair with a contact bond, flat joint or smooth joint. While a contact bond holds, its
@@ -481,7 +283,7 @@ class DiscPairKernel {
     if (kind == BondKind::FlatJoint) return flat_joint(k, g);
     if (kind == BondKind::SmoothJoint) return smooth_joint(k, g);
     const int cls = contact_class_[k];
-    const BondedLinearPartOf<double> l = bonded_linear_part(k, g, cls);
+    const BondedLinearPart l = bonded_linear_part(k, g, cls);
     const double fn_bonded = l.kn * (g.overlap + bond_gap_[k]);
     PairForce f;
     f.failure = contact_bond_failure(fn_bonded, l.trial,
