@@ -14,24 +14,23 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
       planned_walls_ == walls && planned_threads_ == threads)
     return;
   first_start_.assign(n + 1, 0);
-  second_start_.assign(n + 1, 0);
+  std::vector<std::int32_t> second_start(n + 1, 0), second_pairs(count);
   wall_start_.assign(n + 1, 0);
   for (std::size_t k = 0; k < count; ++k) {
     ++first_start_[static_cast<std::size_t>(list.first[k]) + 1];
-    ++second_start_[static_cast<std::size_t>(list.second[k]) + 1];
+    ++second_start[static_cast<std::size_t>(list.second[k]) + 1];
   }
   for (std::size_t k = 0; k < walls; ++k)
     ++wall_start_[static_cast<std::size_t>(list.wall_disc[k]) + 1];
   for (std::size_t i = 0; i < n; ++i) {
     first_start_[i + 1] += first_start_[i];
-    second_start_[i + 1] += second_start_[i];
+    second_start[i + 1] += second_start[i];
     wall_start_[i + 1] += wall_start_[i];
   }
   // Pairs where each disc is the second, in ascending pair order (a stable counting sort).
-  second_pairs_.resize(count);
-  std::vector<std::int32_t> next(second_start_.begin(), second_start_.end() - 1);
+  std::vector<std::int32_t> next(second_start.begin(), second_start.end() - 1);
   for (std::size_t k = 0; k < count; ++k)
-    second_pairs_[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
+    second_pairs[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
         static_cast<std::int32_t>(k);
 
   // Cuts between the threads' disc ranges, at body starts, balancing a work estimate: the pairs
@@ -66,18 +65,39 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
                j = static_cast<std::size_t>(list.second[k]);
     if (range_of[i] != range_of[j]) shared_[j] = 1;
   }
-  direct_.resize(count);
+  // The pairs that reach a shared disc, ascending, each with the ends its thread adds at once;
+  // every other pair is added onto both discs as it is evaluated.
+  special_pairs_.clear();
+  special_direct_.clear();
   for (std::size_t k = 0; k < count; ++k) {
     const auto i = static_cast<std::size_t>(list.first[k]),
                j = static_cast<std::size_t>(list.second[k]);
-    direct_[k] = static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
-                                           (shared_[j] ? 0 : kDirectSecond));
+    if (!shared_[i] && !shared_[j]) continue;
+    special_pairs_.push_back(static_cast<std::int32_t>(k));
+    special_direct_.push_back(static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
+                                                        (shared_[j] ? 0 : kDirectSecond)));
   }
+  special_pairs_.push_back(static_cast<std::int32_t>(count));  // never reached
+  std::vector<std::int32_t> rank(count, -1);
+  for (std::size_t s = 0; s + 1 < special_pairs_.size(); ++s)
+    rank[static_cast<std::size_t>(special_pairs_[s])] = static_cast<std::int32_t>(s);
   shared_discs_.clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (shared_[i]) shared_discs_.push_back(static_cast<std::int32_t>(i));
-  sums_.resize(count);
-  virial_.resize(count);
+  shared_terms_.clear();
+  shared_term_start_.clear();
+  shared_term_mid_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!shared_[i]) continue;
+    shared_discs_.push_back(static_cast<std::int32_t>(i));
+    shared_term_start_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
+    for (std::int32_t s = second_start[i]; s < second_start[i + 1]; ++s)
+      shared_terms_.push_back(
+          rank[static_cast<std::size_t>(second_pairs[static_cast<std::size_t>(s)])]);
+    shared_term_mid_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
+    for (std::int32_t k = first_start_[i]; k < first_start_[i + 1]; ++k)
+      shared_terms_.push_back(rank[static_cast<std::size_t>(k)]);
+  }
+  shared_term_start_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
+  parts_.resize(special_pairs_.size() - 1);
   wall_slip_.resize(walls);
   planned_build_ = list.merge_count;
   planned_pairs_ = count;
@@ -87,23 +107,27 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
 }
 
 void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const {
-  const PairSum* sums = sums_.data();
-  const auto first = std::lower_bound(shared_discs_.begin(), shared_discs_.end(),
-                                      static_cast<std::int32_t>(begin));
-  for (auto it = first; it != shared_discs_.end() && *it < static_cast<std::int32_t>(end); ++it) {
-    const auto i = static_cast<std::size_t>(*it);
+  const PairSum* parts = parts_.data();
+  const std::int32_t* terms = shared_terms_.data();
+  const auto first =
+      static_cast<std::size_t>(std::lower_bound(shared_discs_.begin(), shared_discs_.end(),
+                                                static_cast<std::int32_t>(begin)) -
+                               shared_discs_.begin());
+  for (std::size_t s = first;
+       s < shared_discs_.size() && shared_discs_[s] < static_cast<std::int32_t>(end); ++s) {
+    const auto i = static_cast<std::size_t>(shared_discs_[s]);
     // The one-thread pass adds pair k onto both discs in ascending k, starting from zero: the
     // pairs where i is the second disc (first disc < i) all come before those where it is the
     // first.
     double fx = 0, fy = 0, m = 0;
-    for (std::int32_t s = second_start_[i]; s < second_start_[i + 1]; ++s) {
-      const PairSum& p = sums[second_pairs_[static_cast<std::size_t>(s)]];
+    for (std::int32_t e = shared_term_start_[s]; e < shared_term_mid_[s]; ++e) {
+      const PairSum& p = parts[terms[e]];
       fx += p.fx;
       fy += p.fy;
       m += p.moment_j;
     }
-    for (std::int32_t k = first_start_[i]; k < first_start_[i + 1]; ++k) {
-      const PairSum& p = sums[k];
+    for (std::int32_t e = shared_term_mid_[s]; e < shared_term_start_[s + 1]; ++e) {
+      const PairSum& p = parts[terms[e]];
       fx -= p.fx;
       fy -= p.fy;
       m += p.moment_i;
@@ -130,7 +154,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   long bad_wall = -1;
   bool integrated = false;
   double unused_slip = 0;
-  const std::int32_t *first = list.first.data(), *second = list.second.data();
   double *disc_fx = discs.fx.data(), *disc_fy = discs.fy.data(), *disc_m = discs.moment.data();
   auto job = [&](int t) {
     Lane& lane = lanes_[static_cast<std::size_t>(t)];
@@ -149,32 +172,49 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     std::fill(disc_m + disc_begin, disc_m + disc_end, 0.0);
     const auto pair_begin = static_cast<std::size_t>(first_start_[disc_begin]);
     const auto pair_end = static_cast<std::size_t>(first_start_[disc_end]);
+    // Pairs that reach no shared disc are added onto both discs at once, as the one-thread pass
+    // adds them; the others (special_pairs_, ascending) store their part for the shared disc.
+    std::size_t special =
+        static_cast<std::size_t>(std::lower_bound(special_pairs_.begin(), special_pairs_.end(),
+                                                  static_cast<std::int32_t>(pair_begin)) -
+                                 special_pairs_.begin());
+    auto next_special = static_cast<std::size_t>(special_pairs_[special]);
+    double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
+    long touching = 0;
     const std::size_t bad = kernel.evaluate_range(
         pair_begin, pair_end, [&](std::size_t k, const Geometry& gk, const PairForce& f) {
           // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
-          // others store theirs for the chain to go on in pair order after the job.
-          const double virial = f.normal * (gk.ri + gk.rj - f.overlap);
-          if (t == 0)
-            lane.virial += virial;
-          else
-            virial_[k] = virial;
-          const std::uint8_t direct = direct_[k];
-          if (direct != (kDirectFirst | kDirectSecond))
-            sums_[k] = {f.fx, f.fy, f.moment_i, f.moment_j};
-          if (direct & kDirectSecond) {
-            disc_fx[second[k]] += f.fx;
-            disc_fy[second[k]] += f.fy;
+          // chain goes on over the other threads' pairs after the job.
+          if (t == 0) virial += f.normal * (gk.ri + gk.rj - f.overlap);
+          const std::int32_t i = gk.i, j = gk.j;
+          if (k != next_special) {
+            disc_fx[j] += f.fx;
+            disc_fy[j] += f.fy;
+            disc_fx[i] -= f.fx;
+            disc_fy[i] -= f.fy;
+            disc_m[i] += f.moment_i;
+            disc_m[j] += f.moment_j;
+          } else {
+            parts_[special] = {f.fx, f.fy, f.moment_i, f.moment_j};
+            const std::uint8_t direct = special_direct_[special];
+            if (direct & kDirectSecond) {
+              disc_fx[j] += f.fx;
+              disc_fy[j] += f.fy;
+              disc_m[j] += f.moment_j;
+            }
+            if (direct & kDirectFirst) {
+              disc_fx[i] -= f.fx;
+              disc_fy[i] -= f.fy;
+              disc_m[i] += f.moment_i;
+            }
+            next_special = static_cast<std::size_t>(special_pairs_[++special]);
           }
-          if (direct & kDirectFirst) {
-            disc_fx[first[k]] -= f.fx;
-            disc_fy[first[k]] -= f.fy;
-            disc_m[first[k]] += f.moment_i;
-          }
-          if (direct & kDirectSecond) disc_m[second[k]] += f.moment_j;
-          lane.touching += f.overlap > 0;
+          touching += f.overlap > 0;
           if (f.slip_work != 0) lane.slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
           if (f.failure != BondFailure::None) lane.broken.push_back(static_cast<std::int32_t>(k));
         });
+    lane.virial = virial;
+    lane.touching = touching;
     if (bad < pair_end) lane.bad = static_cast<long>(bad);
     if (t == nt - 1)
       bad_wall = disc_wall_forces(discs, walls, list, wall_pair, wall_law, s.dt, s.guard,
@@ -222,8 +262,13 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     r.bonds_broken += elements ? std::popcount(elements) : 1;
   }
   r.virial = lanes_[0].virial;
-  for (std::size_t k = static_cast<std::size_t>(first_start_[cuts_[1]]); k < count; ++k)
-    r.virial += virial_[k];
+  {
+    const double *normal = pair.normal.data(), *overlap = pair.overlap.data(),
+                 *radius = discs.r.data();
+    const std::int32_t *first = list.first.data(), *second = list.second.data();
+    for (std::size_t k = static_cast<std::size_t>(first_start_[cuts_[1]]); k < count; ++k)
+      r.virial += normal[k] * (radius[first[k]] + radius[second[k]] - overlap[k]);
+  }
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;
   r.bad_wall_pair = bad_wall;

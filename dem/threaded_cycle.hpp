@@ -74,26 +74,33 @@ class ThreadedCycle {
     double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
     RangeMotion motion;
   };
-  // direct_ bits: the pair's thread adds it onto its first / second disc as it evaluates it.
+  // special_direct_ bits: the pair's thread adds it onto its first / second disc as it
+  // evaluates it (the other end is shared).
   static constexpr std::uint8_t kDirectFirst = 1, kDirectSecond = 2;
 
   // Cuts the discs into `threads` ranges and finds the shared discs (rebuilt when the list or
   // the team is): per-disc lists of the pairs (where each disc is the second disc, where the
   // first) and of its disc-wall pairs.
   void plan(const Bodies& bodies, const Discs& discs, const ContactStore& list, int threads);
-  // Sums, in pair order, the pairs of the shared discs of [begin, end).
+  // Sums, in pair order, the stored parts of the shared discs of [begin, end).
   void sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const;
 
   long planned_build_ = -1;
   std::size_t planned_pairs_ = 0, planned_discs_ = 0, planned_walls_ = 0;
   int planned_threads_ = 0;
-  std::vector<std::int32_t> first_start_, second_start_, second_pairs_, wall_start_;
+  std::vector<std::int32_t> first_start_, wall_start_;  // per disc: first pair, first wall pair
   std::vector<std::size_t> cuts_;           // thread t owns discs [cuts_[t], cuts_[t + 1])
   std::vector<std::uint8_t> shared_;        // per disc: 1 if an earlier range's pair reaches it
   std::vector<std::int32_t> shared_discs_;  // the shared discs, ascending
-  std::vector<std::uint8_t> direct_;        // per pair: kDirectFirst | kDirectSecond
-  std::vector<PairSum> sums_;               // per pair, written only where a disc is shared
-  std::vector<double> virial_;              // N m, per pair: normal force x centre distance
+  // The pairs reaching a shared disc, ascending, then the pair count (a sentinel); per such
+  // pair its kDirectFirst | kDirectSecond bits and the part it stores in a step.
+  std::vector<std::int32_t> special_pairs_;
+  std::vector<std::uint8_t> special_direct_;
+  std::vector<PairSum> parts_;
+  // Per shared disc s: shared_terms_[shared_term_start_[s], shared_term_mid_[s]) are the parts
+  // (indices into parts_) of its pairs as second disc, then up to shared_term_start_[s + 1] as
+  // first disc, each ascending: the order of the one-thread pass.
+  std::vector<std::int32_t> shared_terms_, shared_term_start_, shared_term_mid_;
   std::vector<BodyStepEnergy> body_energy_;
   std::vector<double> wall_slip_;  // J, per disc-wall pair
   std::vector<Lane> lanes_;
