@@ -64,6 +64,8 @@ class ThreadedCycle {
  private:
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
   friend MemoryFootprint memory_footprint(const World& world);
+  // Sets the cuts of a test (tests/world_test_access.hpp): any cuts must give the same bits.
+  friend struct WorldTestAccess;
   // What one pair puts on its discs: forces on the second disc, moments on each.
   struct PairSum {
     double fx, fy, moment_i, moment_j;
