@@ -7,6 +7,33 @@
 
 namespace cdem::dem {
 
+namespace {
+
+// Cuts items [0, n) into `ranges` contiguous ranges of equal estimated time, the estimate of
+// item i being its weight times the measured time per unit weight (`rate`) of the range that
+// holds it under the `old` cuts. Returns the cuts (ranges + 1 entries, 0 first, n last).
+std::vector<std::size_t> equal_time_cuts(const std::vector<double>& weight,
+                                         const std::vector<std::size_t>& old,
+                                         const std::vector<double>& rate) {
+  const std::size_t n = weight.size(), ranges = old.size() - 1;
+  std::vector<double> before(n + 1, 0.0);
+  for (std::size_t t = 0; t < ranges; ++t)
+    for (std::size_t i = old[t]; i < old[t + 1]; ++i)
+      before[i + 1] = before[i] + rate[t] * weight[i];
+  std::vector<std::size_t> cuts(ranges + 1, n);
+  cuts[0] = 0;
+  for (std::size_t t = 1; t < ranges; ++t) {
+    const double target = before[n] * static_cast<double>(t) / static_cast<double>(ranges);
+    cuts[t] = std::max(
+        cuts[t - 1], static_cast<std::size_t>(
+                         std::lower_bound(before.begin(), before.end(), target) - before.begin()));
+    cuts[t] = std::min(cuts[t], n);
+  }
+  return cuts;
+}
+
+}  // namespace
+
 void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const ContactStore& list,
                          int threads) {
   const std::size_t n = discs.size(), count = list.keys.size(), walls = list.wall_keys.size();
@@ -14,70 +41,37 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
       planned_walls_ == walls && planned_threads_ == threads)
     return;
   first_start_.assign(n + 1, 0);
-  second_start_.assign(n + 1, 0);
   wall_start_.assign(n + 1, 0);
-  for (std::size_t k = 0; k < count; ++k) {
+  for (std::size_t k = 0; k < count; ++k)
     ++first_start_[static_cast<std::size_t>(list.first[k]) + 1];
-    ++second_start_[static_cast<std::size_t>(list.second[k]) + 1];
-  }
   for (std::size_t k = 0; k < walls; ++k)
     ++wall_start_[static_cast<std::size_t>(list.wall_disc[k]) + 1];
   for (std::size_t i = 0; i < n; ++i) {
     first_start_[i + 1] += first_start_[i];
-    second_start_[i + 1] += second_start_[i];
     wall_start_[i + 1] += wall_start_[i];
   }
-  // Pairs where each disc is the second, in ascending pair order (a stable counting sort).
-  second_pairs_.resize(count);
-  std::vector<std::int32_t> next(second_start_.begin(), second_start_.end() - 1);
-  for (std::size_t k = 0; k < count; ++k)
-    second_pairs_[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
-        static_cast<std::int32_t>(k);
-
-  // Cuts between the threads' disc ranges, at body starts, balancing a work estimate: the pairs
-  // a disc is first of (its thread evaluates them) and about a third of a pair for the disc's
-  // share of the sums and the integration.
-  std::vector<double> work_before(n + 1, 0.0);
+  // Work estimates: per disc, the pairs it is first of (its thread evaluates them) and a little
+  // for clearing its sums; per body, its discs (gathered and placed) and the body itself.
+  pair_work_.resize(n);
   for (std::size_t i = 0; i < n; ++i)
-    work_before[i + 1] = work_before[i] + 0.3 + (first_start_[i + 1] - first_start_[i]);
-  cuts_.assign(static_cast<std::size_t>(threads) + 1, n);
-  cuts_[0] = 0;
-  for (int t = 1; t < threads; ++t) {
-    const double target = work_before[n] * t / threads;
-    auto i = static_cast<std::size_t>(
-        std::lower_bound(work_before.begin(), work_before.end(), target) - work_before.begin());
-    i = std::max(i, cuts_[static_cast<std::size_t>(t) - 1]);
-    while (i < n && bodies.first_disc[static_cast<std::size_t>(discs.body[i])] !=
-                        static_cast<std::int32_t>(i))
-      ++i;
-    cuts_[static_cast<std::size_t>(t)] = std::min(i, n);
+    pair_work_[i] = 0.05 + (first_start_[i + 1] - first_start_[i]);
+  body_work_.resize(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) body_work_[b] = 1.0 + bodies.disc_count[b];
+  const auto parts = static_cast<std::size_t>(threads) + 1;
+  // The cuts stay where the measured times put them while the discs and the team do.
+  if (planned_discs_ != n || planned_threads_ != threads || cuts_.size() != parts ||
+      body_cuts_.size() != parts || body_cuts_.back() != bodies.size()) {
+    const std::vector<double> unit(static_cast<std::size_t>(threads), 1.0);
+    std::vector<std::size_t> whole(parts, n);
+    whole[0] = 0;
+    cuts_ = equal_time_cuts(pair_work_, whole, unit);
+    std::vector<std::size_t> all_bodies(parts, bodies.size());
+    all_bodies[0] = 0;
+    body_cuts_ = equal_time_cuts(body_work_, all_bodies, unit);
+    samples_ = 0;
   }
-  // Discs that receive a pair of an earlier thread's range (its first disc is below the
-  // disc's range): their sums wait for the barrier. Every other disc gets all its pairs from
-  // its own thread, in pair order, so that thread adds them as it evaluates them.
-  shared_.assign(n, 0);
-  std::vector<std::size_t> range_of(n);
-  for (int t = 0; t < threads; ++t)
-    for (std::size_t i = cuts_[static_cast<std::size_t>(t)];
-         i < cuts_[static_cast<std::size_t>(t) + 1]; ++i)
-      range_of[i] = static_cast<std::size_t>(t);
-  for (std::size_t k = 0; k < count; ++k) {
-    const auto i = static_cast<std::size_t>(list.first[k]),
-               j = static_cast<std::size_t>(list.second[k]);
-    if (range_of[i] != range_of[j]) shared_[j] = 1;
-  }
-  direct_.resize(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    const auto i = static_cast<std::size_t>(list.first[k]),
-               j = static_cast<std::size_t>(list.second[k]);
-    direct_[k] = static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
-                                           (shared_[j] ? 0 : kDirectSecond));
-  }
-  shared_discs_.clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (shared_[i]) shared_discs_.push_back(static_cast<std::int32_t>(i));
-  sums_.resize(count);
-  virial_.resize(count);
+  snap_cuts_to_bodies(bodies, discs);
+  plan_shared(discs, list);
   wall_slip_.resize(walls);
   planned_build_ = list.merge_count;
   planned_pairs_ = count;
@@ -86,24 +80,142 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
   planned_threads_ = threads;
 }
 
+void ThreadedCycle::snap_cuts_to_bodies(const Bodies& bodies, const Discs& discs) {
+  const std::size_t n = discs.size();
+  for (std::size_t t = 1; t + 1 < cuts_.size(); ++t) {
+    std::size_t i = std::max(cuts_[t], cuts_[t - 1]);
+    while (i < n && bodies.first_disc[static_cast<std::size_t>(discs.body[i])] !=
+                        static_cast<std::int32_t>(i))
+      ++i;
+    cuts_[t] = std::min(i, n);
+  }
+}
+
+void ThreadedCycle::rebalance(const Bodies& bodies, const Discs& discs, const ContactStore& list) {
+  const std::size_t threads = cuts_.size() - 1;
+  // Measured seconds per unit of estimated work in each range; an empty range takes the mean.
+  const auto rates = [threads](const std::vector<double>& work,
+                               const std::vector<std::size_t>& cuts, const double Lane::*seconds,
+                               const std::vector<Lane>& lanes, double& imbalance) {
+    std::vector<double> rate(threads, 0.0);
+    double total = 0, total_work = 0, longest = 0;
+    for (std::size_t t = 0; t < threads; ++t) {
+      double w = 0;
+      for (std::size_t i = cuts[t]; i < cuts[t + 1]; ++i) w += work[i];
+      const double time = lanes[t].*seconds;
+      total += time;
+      total_work += w;
+      longest = std::max(longest, time);
+      rate[t] = w > 0 ? time / w : -1;
+    }
+    const double mean_rate = total_work > 0 ? total / total_work : 1;
+    for (double& r : rate)
+      if (!(r > 0)) r = mean_rate > 0 ? mean_rate : 1;
+    imbalance = total > 0 ? longest * static_cast<double>(threads) / total - 1 : 0;
+    return rate;
+  };
+  double imbalance = 0;
+  const std::vector<double> pair_rate =
+      rates(pair_work_, cuts_, &Lane::pair_seconds, lanes_, imbalance);
+  if (imbalance > kTolerance) {
+    const std::vector<std::size_t> target = equal_time_cuts(pair_work_, cuts_, pair_rate);
+    // Half-way: the rate of a range is not uniform over it, so a full step can overshoot.
+    for (std::size_t t = 1; t < threads; ++t) cuts_[t] = (cuts_[t] + target[t]) / 2;
+    snap_cuts_to_bodies(bodies, discs);
+    plan_shared(discs, list);
+  }
+  const std::vector<double> body_rate =
+      rates(body_work_, body_cuts_, &Lane::body_seconds, lanes_, imbalance);
+  if (imbalance > kTolerance) {
+    const std::vector<std::size_t> target = equal_time_cuts(body_work_, body_cuts_, body_rate);
+    for (std::size_t t = 1; t < threads; ++t) body_cuts_[t] = (body_cuts_[t] + target[t]) / 2;
+  }
+  for (Lane& lane : lanes_) lane.pair_seconds = lane.body_seconds = 0;
+  samples_ = 0;
+}
+
+void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
+  const std::size_t n = discs.size(), count = list.keys.size();
+  std::vector<std::int32_t> second_start(n + 1, 0), second_pairs(count);
+  for (std::size_t k = 0; k < count; ++k)
+    ++second_start[static_cast<std::size_t>(list.second[k]) + 1];
+  for (std::size_t i = 0; i < n; ++i) second_start[i + 1] += second_start[i];
+  // Pairs where each disc is the second, in ascending pair order (a stable counting sort).
+  std::vector<std::int32_t> next(second_start.begin(), second_start.end() - 1);
+  for (std::size_t k = 0; k < count; ++k)
+    second_pairs[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
+        static_cast<std::int32_t>(k);
+  // Discs that receive a pair of an earlier thread's range (its first disc is below the
+  // disc's range): their sums wait for the barrier. Every other disc gets all its pairs from
+  // its own thread, in pair order, so that thread adds them as it evaluates them.
+  const auto threads = cuts_.size() - 1;
+  shared_.assign(n, 0);
+  std::vector<std::size_t> range_of(n);
+  for (std::size_t t = 0; t < threads; ++t)
+    for (std::size_t i = cuts_[t]; i < cuts_[t + 1]; ++i) range_of[i] = t;
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(list.first[k]),
+               j = static_cast<std::size_t>(list.second[k]);
+    if (range_of[i] != range_of[j]) shared_[j] = 1;
+  }
+  // The pairs that reach a shared disc, ascending, each with the ends its thread adds at once;
+  // every other pair is added onto both discs as it is evaluated.
+  special_pairs_.clear();
+  special_direct_.clear();
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(list.first[k]),
+               j = static_cast<std::size_t>(list.second[k]);
+    if (!shared_[i] && !shared_[j]) continue;
+    special_pairs_.push_back(static_cast<std::int32_t>(k));
+    special_direct_.push_back(static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
+                                                        (shared_[j] ? 0 : kDirectSecond)));
+  }
+  special_pairs_.push_back(static_cast<std::int32_t>(count));  // never reached
+  std::vector<std::int32_t> rank(count, -1);
+  for (std::size_t s = 0; s + 1 < special_pairs_.size(); ++s)
+    rank[static_cast<std::size_t>(special_pairs_[s])] = static_cast<std::int32_t>(s);
+  shared_discs_.clear();
+  shared_terms_.clear();
+  shared_term_start_.clear();
+  shared_term_mid_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!shared_[i]) continue;
+    shared_discs_.push_back(static_cast<std::int32_t>(i));
+    shared_term_start_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
+    for (std::int32_t s = second_start[i]; s < second_start[i + 1]; ++s)
+      shared_terms_.push_back(
+          rank[static_cast<std::size_t>(second_pairs[static_cast<std::size_t>(s)])]);
+    shared_term_mid_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
+    for (std::int32_t k = first_start_[i]; k < first_start_[i + 1]; ++k)
+      shared_terms_.push_back(rank[static_cast<std::size_t>(k)]);
+  }
+  shared_term_start_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
+  parts_.resize(special_pairs_.size() - 1);
+  virial_.resize(count);
+}
+
 void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const {
-  const PairSum* sums = sums_.data();
-  const auto first = std::lower_bound(shared_discs_.begin(), shared_discs_.end(),
-                                      static_cast<std::int32_t>(begin));
-  for (auto it = first; it != shared_discs_.end() && *it < static_cast<std::int32_t>(end); ++it) {
-    const auto i = static_cast<std::size_t>(*it);
+  const PairSum* parts = parts_.data();
+  const std::int32_t* terms = shared_terms_.data();
+  const auto first =
+      static_cast<std::size_t>(std::lower_bound(shared_discs_.begin(), shared_discs_.end(),
+                                                static_cast<std::int32_t>(begin)) -
+                               shared_discs_.begin());
+  for (std::size_t s = first;
+       s < shared_discs_.size() && shared_discs_[s] < static_cast<std::int32_t>(end); ++s) {
+    const auto i = static_cast<std::size_t>(shared_discs_[s]);
     // The one-thread pass adds pair k onto both discs in ascending k, starting from zero: the
     // pairs where i is the second disc (first disc < i) all come before those where it is the
     // first.
     double fx = 0, fy = 0, m = 0;
-    for (std::int32_t s = second_start_[i]; s < second_start_[i + 1]; ++s) {
-      const PairSum& p = sums[second_pairs_[static_cast<std::size_t>(s)]];
+    for (std::int32_t e = shared_term_start_[s]; e < shared_term_mid_[s]; ++e) {
+      const PairSum& p = parts[terms[e]];
       fx += p.fx;
       fy += p.fy;
       m += p.moment_j;
     }
-    for (std::int32_t k = first_start_[i]; k < first_start_[i + 1]; ++k) {
-      const PairSum& p = sums[k];
+    for (std::int32_t e = shared_term_mid_[s]; e < shared_term_start_[s + 1]; ++e) {
+      const PairSum& p = parts[terms[e]];
       fx -= p.fx;
       fy -= p.fy;
       m += p.moment_i;
@@ -130,10 +242,11 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   long bad_wall = -1;
   bool integrated = false;
   double unused_slip = 0;
-  const std::int32_t *first = list.first.data(), *second = list.second.data();
   double *disc_fx = discs.fx.data(), *disc_fy = discs.fy.data(), *disc_m = discs.moment.data();
+  const bool sample = steps_++ % kSampleEvery == 0;
   auto job = [&](int t) {
     Lane& lane = lanes_[static_cast<std::size_t>(t)];
+    const double start = sample ? thread_cpu_seconds() : 0;
     lane.slips.clear();
     lane.broken.clear();
     lane.touching = 0;
@@ -149,37 +262,60 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     std::fill(disc_m + disc_begin, disc_m + disc_end, 0.0);
     const auto pair_begin = static_cast<std::size_t>(first_start_[disc_begin]);
     const auto pair_end = static_cast<std::size_t>(first_start_[disc_end]);
+    // Pairs that reach no shared disc are added onto both discs at once, as the one-thread pass
+    // adds them; the others (special_pairs_, ascending) store their part for the shared disc.
+    std::size_t special =
+        static_cast<std::size_t>(std::lower_bound(special_pairs_.begin(), special_pairs_.end(),
+                                                  static_cast<std::int32_t>(pair_begin)) -
+                                 special_pairs_.begin());
+    auto next_special = static_cast<std::size_t>(special_pairs_[special]);
+    double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
+    long touching = 0;
     const std::size_t bad = kernel.evaluate_range(
         pair_begin, pair_end, [&](std::size_t k, const Geometry& gk, const PairForce& f) {
           // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
-          // others store theirs for the chain to go on in pair order after the job.
-          const double virial = f.normal * (gk.ri + gk.rj - f.overlap);
+          // others store theirs, and thread 0 goes on with the chain in its phase 2.
+          const double pair_virial = f.normal * (gk.ri + gk.rj - f.overlap);
           if (t == 0)
-            lane.virial += virial;
+            virial += pair_virial;
           else
-            virial_[k] = virial;
-          const std::uint8_t direct = direct_[k];
-          if (direct != (kDirectFirst | kDirectSecond))
-            sums_[k] = {f.fx, f.fy, f.moment_i, f.moment_j};
-          if (direct & kDirectSecond) {
-            disc_fx[second[k]] += f.fx;
-            disc_fy[second[k]] += f.fy;
+            virial_[k] = pair_virial;
+          const std::int32_t i = gk.i, j = gk.j;
+          if (k != next_special) {
+            disc_fx[j] += f.fx;
+            disc_fy[j] += f.fy;
+            disc_fx[i] -= f.fx;
+            disc_fy[i] -= f.fy;
+            disc_m[i] += f.moment_i;
+            disc_m[j] += f.moment_j;
+          } else {
+            parts_[special] = {f.fx, f.fy, f.moment_i, f.moment_j};
+            const std::uint8_t direct = special_direct_[special];
+            if (direct & kDirectSecond) {
+              disc_fx[j] += f.fx;
+              disc_fy[j] += f.fy;
+              disc_m[j] += f.moment_j;
+            }
+            if (direct & kDirectFirst) {
+              disc_fx[i] -= f.fx;
+              disc_fy[i] -= f.fy;
+              disc_m[i] += f.moment_i;
+            }
+            next_special = static_cast<std::size_t>(special_pairs_[++special]);
           }
-          if (direct & kDirectFirst) {
-            disc_fx[first[k]] -= f.fx;
-            disc_fy[first[k]] -= f.fy;
-            disc_m[first[k]] += f.moment_i;
-          }
-          if (direct & kDirectSecond) disc_m[second[k]] += f.moment_j;
-          lane.touching += f.overlap > 0;
+          touching += f.overlap > 0;
           if (f.slip_work != 0) lane.slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
           if (f.failure != BondFailure::None) lane.broken.push_back(static_cast<std::int32_t>(k));
         });
+    lane.virial = virial;
+    lane.touching = touching;
     if (bad < pair_end) lane.bad = static_cast<long>(bad);
     if (t == nt - 1)
       bad_wall = disc_wall_forces(discs, walls, list, wall_pair, wall_law, s.dt, s.guard,
                                   unused_slip, wall_slip_.data());
+    if (sample) lane.pair_seconds += thread_cpu_seconds() - start;
     team.barrier();
+    const double phase2_start = sample ? thread_cpu_seconds() : 0;
     // Phase 2: this thread's discs and bodies. Every thread reads the same flags, so all take
     // the same branch.
     bool stop = bad_wall >= 0;
@@ -187,19 +323,31 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       const Lane& other = lanes_[static_cast<std::size_t>(u)];
       stop = stop || other.bad >= 0 || !other.broken.empty();
     }
-    sum_shared_discs(discs, disc_begin, disc_end);
-    add_wall_pairs(discs, list, wall_pair, static_cast<std::size_t>(wall_start_[disc_begin]),
-                   static_cast<std::size_t>(wall_start_[disc_end]));
-    if (!stop && disc_begin < disc_end) {
-      const std::size_t body_begin = static_cast<std::size_t>(discs.body[disc_begin]);
-      const std::size_t body_end =
-          disc_end < discs.size() ? static_cast<std::size_t>(discs.body[disc_end]) : bodies.size();
+    if (t == 0) {
+      // The virial chain goes on over the other threads' pairs, in pair order.
+      double v = lane.virial;
+      for (std::size_t k = pair_end; k < count; ++k) v += virial_[k];
+      lane.virial = v;
+    }
+    // This thread's bodies (a cut of its own, balanced on the measured time of this phase) and
+    // their discs.
+    const std::size_t body_begin = body_cuts_[static_cast<std::size_t>(t)];
+    const std::size_t body_end = body_cuts_[static_cast<std::size_t>(t) + 1];
+    const auto disc_of = [&](std::size_t b) {
+      return b < bodies.size() ? static_cast<std::size_t>(bodies.first_disc[b]) : discs.size();
+    };
+    sum_shared_discs(discs, disc_of(body_begin), disc_of(body_end));
+    add_wall_pairs(discs, list, wall_pair,
+                   static_cast<std::size_t>(wall_start_[disc_of(body_begin)]),
+                   static_cast<std::size_t>(wall_start_[disc_of(body_end)]));
+    if (!stop && body_begin < body_end) {
       gather_body_forces(bodies, discs, body_begin, body_end);
       // Likewise thread 0's energy sums are the start of the chain over the bodies.
       lane.motion =
           integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, body_begin, body_end,
                           s.book_energy && t > 0 ? body_energy_.data() : nullptr);
     }
+    if (sample) lane.body_seconds += thread_cpu_seconds() - phase2_start;
     if (t == 0) integrated = !stop;
   };
   team.run(job);
@@ -222,8 +370,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     r.bonds_broken += elements ? std::popcount(elements) : 1;
   }
   r.virial = lanes_[0].virial;
-  for (std::size_t k = static_cast<std::size_t>(first_start_[cuts_[1]]); k < count; ++k)
-    r.virial += virial_[k];
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;
   r.bad_wall_pair = bad_wall;
@@ -240,15 +386,14 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       m.disc_speed2 = std::max(m.disc_speed2, lane.disc_speed2);
       m.pebble_speed = std::max(m.pebble_speed, lane.pebble_speed);
     }
-    const std::size_t rest =
-        cuts_[1] < discs.size() ? static_cast<std::size_t>(discs.body[cuts_[1]]) : bodies.size();
     if (s.book_energy)
-      for (std::size_t b = rest; b < bodies.size(); ++b) {
+      for (std::size_t b = body_cuts_[1]; b < bodies.size(); ++b) {
         m.damped += body_energy_[b].damped;
         m.applied += body_energy_[b].applied;
         m.prescribed -= body_energy_[b].prescribed;
       }
   }
+  if (sample && ++samples_ == kSamples) rebalance(bodies, discs, list);
   return out;
 }
 

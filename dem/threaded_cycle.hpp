@@ -3,23 +3,26 @@
 // and bodies and the integration in one job of a persistent thread team per step
 // (dem/worker_team.hpp), with one barrier inside it.
 //
-// Each thread owns a contiguous range of discs (cut at body starts where a work estimate is
-// balanced) and so of bodies and of the sorted pair list (the pairs whose first disc is its).
-// Phase 1: it evaluates its pairs with the pair kernel of the one-thread pass and adds each at
-// once onto the discs that no other thread's pair reaches, which therefore get all their pairs
-// from it in pair order; for a shared disc (reached from an earlier range: discs near a cut,
-// and the clumps' pebbles, numbered after the mortar) it stores the pair's part. Thread
-// `threads - 1` also evaluates the disc-wall pairs. Barrier. Phase 2: it sums its shared discs
-// in pair order from the stored parts (pairs where the disc is second, then where it is first:
-// the order of the one-thread pass), adds its wall pairs, and integrates its bodies.
+// Phase 1: each thread owns a contiguous range of discs (cut at a body start) and so of the
+// sorted pair list (the pairs whose first disc is its). It evaluates its pairs with the pair
+// kernel of the one-thread pass and adds each at once onto the discs that no other thread's
+// pair reaches, which therefore get all their pairs from it in pair order; for a shared disc
+// (reached from an earlier range: discs near a cut, and the clumps' pebbles, numbered after the
+// mortar) it stores the pair's part. Thread `threads - 1` also evaluates the disc-wall pairs.
+// Barrier. Phase 2: each thread owns a contiguous range of bodies (a cut of its own): it sums
+// their shared discs in pair order from the stored parts (pairs where the disc is second, then
+// where it is first: the order of the one-thread pass), adds their wall pairs and integrates
+// them. Both cuts follow the CPU time each thread measures for each phase (sampled steps), so
+// that the threads reach the barrier and the end together; no result depends on the cuts.
 //
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
 // thread for any thread count. The scalar totals (virial, slip work, released energy, energy
 // ledger terms) are summed in pair or body order: thread 0, whose pairs and bodies come first,
-// sums its own as it goes, and the chain goes on after the job over the stored terms of the
-// others. In a step where a bond broke or a guard tripped the job stops before the
-// integration: the caller records the cracks (which read the positions of the step) or stops,
-// and integrates afterwards, as the one-thread cycle does.
+// sums its own as it goes; it goes on with the virial chain over the others' stored terms in
+// its phase 2, and the other chains go on after the job. In a step where a bond broke or a
+// guard tripped the job stops before the integration: the caller records the cracks (which
+// read the positions of the step) or stops, and integrates afterwards, as the one-thread cycle
+// does.
 #include <cstdint>
 #include <vector>
 
@@ -61,6 +64,8 @@ class ThreadedCycle {
  private:
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
   friend MemoryFootprint memory_footprint(const World& world);
+  // Sets the cuts of a test (tests/world_test_access.hpp): any cuts must give the same bits.
+  friend struct WorldTestAccess;
   // What one pair puts on its discs: forces on the second disc, moments on each.
   struct PairSum {
     double fx, fy, moment_i, moment_j;
@@ -71,29 +76,54 @@ class ThreadedCycle {
     std::vector<std::int32_t> broken;                    // pairs whose bond broke, ascending
     long touching = 0;
     long bad = -1;
-    double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
+    double virial = 0;  // N m, thread 0 only: the virial of every pair, in pair order
     RangeMotion motion;
+    double pair_seconds = 0, body_seconds = 0;  // s, CPU time of phase 1 and 2, sampled steps
   };
-  // direct_ bits: the pair's thread adds it onto its first / second disc as it evaluates it.
+  // special_direct_ bits: the pair's thread adds it onto its first / second disc as it
+  // evaluates it (the other end is shared).
   static constexpr std::uint8_t kDirectFirst = 1, kDirectSecond = 2;
 
-  // Cuts the discs into `threads` ranges and finds the shared discs (rebuilt when the list or
-  // the team is): per-disc lists of the pairs (where each disc is the second disc, where the
-  // first) and of its disc-wall pairs.
+  // Per-disc first pair and first wall pair, the work estimates, the first cuts (kept while
+  // the discs and the team are) and the shared discs; rebuilt when the list or the team is.
   void plan(const Bodies& bodies, const Discs& discs, const ContactStore& list, int threads);
-  // Sums, in pair order, the pairs of the shared discs of [begin, end).
+  // Keeps the cuts, finds the shared discs and the special pairs of the cut list.
+  void plan_shared(const Discs& discs, const ContactStore& list);
+  // Moves each disc cut up to the next body start.
+  void snap_cuts_to_bodies(const Bodies& bodies, const Discs& discs);
+  // Moves the cuts half-way towards equal measured times of each phase, where they differ by
+  // more than kTolerance.
+  void rebalance(const Bodies& bodies, const Discs& discs, const ContactStore& list);
+  // Sums, in pair order, the stored parts of the shared discs of [begin, end).
   void sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const;
 
   long planned_build_ = -1;
   std::size_t planned_pairs_ = 0, planned_discs_ = 0, planned_walls_ = 0;
   int planned_threads_ = 0;
-  std::vector<std::int32_t> first_start_, second_start_, second_pairs_, wall_start_;
-  std::vector<std::size_t> cuts_;           // thread t owns discs [cuts_[t], cuts_[t + 1])
+  std::vector<std::int32_t> first_start_, wall_start_;  // per disc: first pair, first wall pair
+  // Phase 1: thread t evaluates the pairs of discs [cuts_[t], cuts_[t + 1]) (cut at body
+  // starts); phase 2: it sums and integrates bodies [body_cuts_[t], body_cuts_[t + 1]).
+  std::vector<std::size_t> cuts_, body_cuts_;
+  // Work estimates per disc (phase 1) and per body (phase 2); the measured CPU time of each
+  // thread's phase, sampled every kSampleEvery steps, scales them, kSamples samples at a time.
+  std::vector<double> pair_work_, body_work_;
+  static constexpr long kSampleEvery = 8;
+  static constexpr int kSamples = 16;
+  static constexpr double kTolerance = 0.02;  // longest / mean phase time - 1 left as it is
+  long steps_ = 0;
+  int samples_ = 0;
   std::vector<std::uint8_t> shared_;        // per disc: 1 if an earlier range's pair reaches it
   std::vector<std::int32_t> shared_discs_;  // the shared discs, ascending
-  std::vector<std::uint8_t> direct_;        // per pair: kDirectFirst | kDirectSecond
-  std::vector<PairSum> sums_;               // per pair, written only where a disc is shared
-  std::vector<double> virial_;              // N m, per pair: normal force x centre distance
+  // The pairs reaching a shared disc, ascending, then the pair count (a sentinel); per such
+  // pair its kDirectFirst | kDirectSecond bits and the part it stores in a step.
+  std::vector<std::int32_t> special_pairs_;
+  std::vector<std::uint8_t> special_direct_;
+  std::vector<PairSum> parts_;
+  std::vector<double> virial_;  // N m, per pair of threads 1..: normal force x centre distance
+  // Per shared disc s: shared_terms_[shared_term_start_[s], shared_term_mid_[s]) are the parts
+  // (indices into parts_) of its pairs as second disc, then up to shared_term_start_[s + 1] as
+  // first disc, each ascending: the order of the one-thread pass.
+  std::vector<std::int32_t> shared_terms_, shared_term_start_, shared_term_mid_;
   std::vector<BodyStepEnergy> body_energy_;
   std::vector<double> wall_slip_;  // J, per disc-wall pair
   std::vector<Lane> lanes_;

@@ -1,5 +1,7 @@
 #include "dem/worker_team.hpp"
 
+#include <time.h>
+
 namespace cdem::dem {
 
 namespace {
@@ -23,6 +25,12 @@ void wait_while_equal(const std::atomic<std::uint32_t>& a, std::uint32_t old) {
 }
 
 }  // namespace
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 WorkerTeam::WorkerTeam(int threads) : size_(threads < 1 ? 1 : threads) {
   workers_.reserve(static_cast<std::size_t>(size_ - 1));

@@ -48,6 +48,9 @@ class WorkerTeam {
   std::atomic<std::uint32_t> barrier_generation_{0};
 };
 
+// CPU time of the calling thread (s): what a thread's work costs, whatever the machine's load.
+double thread_cpu_seconds();
+
 // Owns a team for a copyable holder: a copy starts without one (threads are not shared between
 // copies of a world); `get` starts or resizes it.
 class WorkerTeamHandle {
