@@ -33,7 +33,8 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   brazilian_scatter_r3.4_step.toml: the D 30 mm discs again at 1.1 x sigma_cn (and tau_cs);
 - brazilian_arc_r3.4.toml (session 13): the same D 30 mm ratio-3.4 discs (seeds 31-38) loaded
   through loading arcs (brazilian_arc_base.toml) at tau_cs = 2 sigma_cn, E* / sigma_cn 900, 818
-  (the step), 600, 1,200: K_B of that cell with arcs, and whether the arcs' discs follow sigma_cn.
+  (the step), 600, 1,200: K_B of that cell with arcs, and whether the arcs' discs follow sigma_cn;
+  brazilian_arc25_r3.4.toml: the same discs at 900 with arcs of 25 degrees.
 
     cd tables && python3 make_sandstone_tables.py            # writes both
     python3 make_sandstone_tables.py --reduced OUT_DIR        # the CI subset (tests/)
@@ -77,6 +78,10 @@ SCATTER_STEP = dict(SCATTER, pairs=[(rho, x / 1.1) for rho, x in SCATTER["pairs"
 # the sample's E* / sigma_cn (900) and its step (900 / 1.1) first, then 600 and 1,200 around
 # them: K_B of the ratio-3.4 cell with the arcs, the table of the sample with arcs.
 ARC = dict(SCATTER, pairs=[(2, 900), (2, 900 / 1.1), (2, 600), (2, 1200)])
+# ... and with arcs of 25 degrees at the sample's point: on D 30 mm the loaded length of the
+# validation's 15 degree arcs on D 50 mm (docs/lab_tests.md), against the 15 degree arcs that
+# drive only 1-2 discs at a pole on 1 disc in 9.
+ARC25 = dict(SCATTER, pairs=[(2, 900)], arc_deg=25.0)
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
@@ -179,12 +184,17 @@ def main():
              [r + [ARC["diameter_mm"]] for rho, x in ARC["pairs"]
               for r in rows(ARC["ratios"], R_MIN_MM, [x], [rho])],
              ARC["seeds"])]
+        campaigns += [
+            ("brazilian_arc25_r3.4", "Brazilian K_B of the ratio-3.4 disc with 25 degree arcs",
+             "brazilian_arc_base.toml", KB_TAU_GATHER,
+             [r + [ARC25["diameter_mm"], ARC25["arc_deg"]] for rho, x in ARC25["pairs"]
+              for r in rows(ARC25["ratios"], R_MIN_MM, [x], [rho])], ARC25["seeds"])]
     for name, what, base, gather, r, seeds in campaigns:
         if not r:
             continue
         extra = ("specimen.diameter_mm" if name.startswith(("brazilian_scatter", "brazilian_arc"))
                  else "materials.mortar.kratio")
-        keys = STRENGTH_KEYS + [extra][:len(r[0]) - len(STRENGTH_KEYS)]
+        keys = (STRENGTH_KEYS + [extra, "test.loading_arc_deg"])[:len(r[0])]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
                               gather, keys, r, header(what, len(r), seeds, name))
         write(os.path.join(out_dir, name + ".toml"), text)
