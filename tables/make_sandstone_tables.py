@@ -34,7 +34,9 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
 - brazilian_arc_r3.4.toml (session 13): the same D 30 mm ratio-3.4 discs (seeds 31-38) loaded
   through loading arcs (brazilian_arc_base.toml) at tau_cs = 2 sigma_cn, E* / sigma_cn 900, 818
   (the step), 600, 1,200: K_B of that cell with arcs, and whether the arcs' discs follow sigma_cn;
-  brazilian_arc25_r3.4.toml: the same discs at 900 with arcs of 25 degrees.
+  brazilian_arc25_r3.4.toml: the same discs at 900 with arcs of 25 degrees;
+- uniaxial_scatter_r2.7.toml (session 13): the three-target sample's rectangle (ratio 2.7) at
+  tau_cs / sigma_cn 1.5, E* / sigma_cn 750, 20 x 40 and 30 x 60 mm, seeds 31-38.
 
     cd tables && python3 make_sandstone_tables.py            # writes both
     python3 make_sandstone_tables.py --reduced OUT_DIR        # the CI subset (tests/)
@@ -82,6 +84,11 @@ ARC = dict(SCATTER, pairs=[(2, 900), (2, 900 / 1.1), (2, 600), (2, 1200)])
 # validation's 15 degree arcs on D 50 mm (docs/lab_tests.md), against the 15 degree arcs that
 # drive only 1-2 discs at a pole on 1 disc in 9.
 ARC25 = dict(SCATTER, pairs=[(2, 900)], arc_deg=25.0)
+# The uniaxial seed scatter of the three-target sample's rectangles (ratio 2.7) at tau_cs /
+# sigma_cn 1.5, E* / sigma_cn 750 (near session 11's verified point, rho 1.45 at 755), on the
+# 20 x 40 mm rectangle of the K_U table and on 30 x 60 mm: does a larger rectangle narrow sigma_u?
+UCS_SCATTER = dict(ratios=[2.7], pairs=[(1.5, 750)], sizes_mm=[(20, 40), (30, 60)],
+                   seeds=SCATTER["seeds"])
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
@@ -189,12 +196,21 @@ def main():
              "brazilian_arc_base.toml", KB_TAU_GATHER,
              [r + [ARC25["diameter_mm"], ARC25["arc_deg"]] for rho, x in ARC25["pairs"]
               for r in rows(ARC25["ratios"], R_MIN_MM, [x], [rho])], ARC25["seeds"])]
+        campaigns += [
+            ("uniaxial_scatter_r2.7", "Uniaxial seed scatter of the ratio-2.7 rectangle against "
+             "its size", "uniaxial_ke_base.toml", KU_GATHER,
+             [r + [w, h] for w, h in UCS_SCATTER["sizes_mm"] for rho, x in UCS_SCATTER["pairs"]
+              for r in rows(UCS_SCATTER["ratios"], R_MIN_MM, [x], [rho])],
+             UCS_SCATTER["seeds"])]
     for name, what, base, gather, r, seeds in campaigns:
         if not r:
             continue
         extra = ("specimen.diameter_mm" if name.startswith(("brazilian_scatter", "brazilian_arc"))
                  else "materials.mortar.kratio")
-        keys = (STRENGTH_KEYS + [extra, "test.loading_arc_deg"])[:len(r[0])]
+        if name.startswith("uniaxial_scatter"):
+            keys = STRENGTH_KEYS + ["specimen.width_mm", "specimen.height_mm"]
+        else:
+            keys = (STRENGTH_KEYS + [extra, "test.loading_arc_deg"])[:len(r[0])]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
                               gather, keys, r, header(what, len(r), seeds, name))
         write(os.path.join(out_dir, name + ".toml"), text)
