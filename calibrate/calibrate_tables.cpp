@@ -18,6 +18,7 @@
 #include "campaign/shortest_number.hpp"
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "lab/lab_test.hpp"
 #include "lab/material_keys.hpp"
 
 namespace cdem::calib {
@@ -474,20 +475,29 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
 
 void check_loading(const LookupTable& table, const CalibrationTest& test,
                    const std::string& calibration_file) {
-  const InputTable t =
+  const lab::LabTestControls c = lab::read_lab_test_controls(
       InputTable::parse_string(test.text, calibration_file + " (tests." + test.name + ")")
-          .table("test");
-  const std::string platens = t.string_or("platens", "flat");
+          .table("test"));
+  const auto arc_words = [](double deg) {
+    return "loading arcs of " + four(deg) + " degrees";
+  };
   const bool arcs = table.has_condition("loading_arc_deg");
-  const std::string made =
-      arcs ? "loading arcs of " + shortest_number(table.condition("loading_arc_deg")) + " degrees"
-           : "curved jaws";
-  std::string asked = platens == "curved_jaws" ? "curved jaws" : platens + " platens";
-  bool same_loading = !arcs && platens == "curved_jaws";
-  if (platens == "loading_arc") {
-    const double arc_deg = t.number_or("loading_arc_deg", 15, Range::closed(1, 60));
-    asked = "loading arcs of " + shortest_number(arc_deg) + " degrees";
-    same_loading = arcs && same(arc_deg, table.condition("loading_arc_deg"));
+  const std::string made = arcs ? arc_words(table.condition("loading_arc_deg")) : "curved jaws";
+  std::string asked;
+  bool same_loading = false;
+  switch (c.platens) {
+    case lab::BrazilianPlatens::CurvedJaws:
+      asked = "curved jaws";
+      same_loading = !arcs;
+      break;
+    case lab::BrazilianPlatens::LoadingArc:
+      asked = arc_words(c.loading_arc / units::degree);
+      same_loading =
+          arcs && same(c.loading_arc / units::degree, table.condition("loading_arc_deg"));
+      break;
+    case lab::BrazilianPlatens::Flat:
+      asked = "flat platens";
+      break;
   }
   if (!same_loading)
     throw InputError(calibration_file, "tests." + test.name,
