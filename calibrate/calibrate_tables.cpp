@@ -478,9 +478,7 @@ void check_loading(const LookupTable& table, const CalibrationTest& test,
   const lab::LabTestControls c = lab::read_lab_test_controls(
       InputTable::parse_string(test.text, calibration_file + " (tests." + test.name + ")")
           .table("test"));
-  const auto arc_words = [](double deg) {
-    return "loading arcs of " + four(deg) + " degrees";
-  };
+  const auto arc_words = [](double deg) { return "loading arcs of " + four(deg) + " degrees"; };
   const bool arcs = table.has_condition("loading_arc_deg");
   const std::string made = arcs ? arc_words(table.condition("loading_arc_deg")) : "curved jaws";
   std::string asked;
