@@ -18,6 +18,7 @@
 #include "campaign/shortest_number.hpp"
 #include "core/input_error.hpp"
 #include "core/units.hpp"
+#include "lab/lab_test.hpp"
 #include "lab/material_keys.hpp"
 
 namespace cdem::calib {
@@ -126,7 +127,8 @@ double segment_log_slope(const std::vector<double>& levels, const std::vector<do
 const TableLayout kBrazilianTable{"K_B",
                                   "emod_per_sigma_cn",
                                   "E* / sigma_cn",
-                                  {"kratio", "friction", "shear_to_normal", "diameter_mm"}};
+                                  {"kratio", "friction", "shear_to_normal", "diameter_mm"},
+                                  {"loading_arc_deg"}};
 const TableLayout kModulusTable{"K_E", "", "", {"kratio", "friction", "shear_to_normal"}};
 const TableLayout kUniaxialStrengthTable{
     "K_U",
@@ -136,7 +138,8 @@ const TableLayout kUniaxialStrengthTable{
 const TableLayout kBrazilianShearTable{"K_B",
                                        "shear_to_normal",
                                        "tau_cs / sigma_cn",
-                                       {"kratio", "friction", "emod_per_sigma_cn", "diameter_mm"}};
+                                       {"kratio", "friction", "emod_per_sigma_cn", "diameter_mm"},
+                                       {"loading_arc_deg"}};
 
 LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayout& layout,
                               const std::string& calibration_file, const std::string& key) {
@@ -156,6 +159,7 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
   std::string line;
   int line_number = 0;
   std::set<std::tuple<double, double, double>> seen;
+  std::vector<std::string> held = layout.conditions;  // and the optional ones the header has
   while (std::getline(in, line)) {
     ++line_number;
     if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos)
@@ -168,6 +172,11 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
         if (!column.count(c))
           fail(where, "not a " + coefficient + " table: no column '" + c +
                           "' in the header (docs/lookup_tables.md lists the columns)");
+      for (const auto& c : layout.optional_conditions)
+        if (column.count(c)) {
+          need.push_back(c);
+          held.push_back(c);
+        }
       continue;
     }
     std::map<std::string, double> v;
@@ -183,7 +192,7 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
     }
     const LookupRow row{v["r_ratio"], v["r_min_mm"], layout.level.empty() ? 0 : v[layout.level],
                         v[coefficient]};
-    for (const auto& c : layout.conditions) {
+    for (const auto& c : held) {
       const auto [first, inserted] = table.conditions.emplace(c, v[c]);
       if (!inserted && !same(v[c], first->second))
         fail(where, "column '" + c + "' is " + shortest_number(v[c]) + ", the first row's " +
@@ -462,6 +471,39 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
   input.tables.tolerance = t.number_or("tolerance", 0.05, Range::open(0, 0.5));
   input.tables.max_iterations = static_cast<int>(t.integer_or("max_iterations", 2, 1, 2));
   input.tables.max_refinements = static_cast<int>(t.integer_or("max_refinements", 1, 0, 10));
+}
+
+void check_loading(const LookupTable& table, const CalibrationTest& test,
+                   const std::string& calibration_file) {
+  const lab::LabTestControls c = lab::read_lab_test_controls(
+      InputTable::parse_string(test.text, calibration_file + " (tests." + test.name + ")")
+          .table("test"));
+  const auto arc_words = [](double deg) { return "loading arcs of " + four(deg) + " degrees"; };
+  const bool arcs = table.has_condition("loading_arc_deg");
+  const std::string made = arcs ? arc_words(table.condition("loading_arc_deg")) : "curved jaws";
+  std::string asked;
+  bool same_loading = false;
+  switch (c.platens) {
+    case lab::BrazilianPlatens::CurvedJaws:
+      asked = "curved jaws";
+      same_loading = !arcs;
+      break;
+    case lab::BrazilianPlatens::LoadingArc:
+      asked = arc_words(c.loading_arc / units::degree);
+      same_loading =
+          arcs && same(c.loading_arc / units::degree, table.condition("loading_arc_deg"));
+      break;
+    case lab::BrazilianPlatens::Flat:
+      asked = "flat platens";
+      break;
+  }
+  if (!same_loading)
+    throw InputError(calibration_file, "tests." + test.name,
+                     "the Brazilian test loads the disc through " + asked + ", and the " +
+                         table.coefficient() + " table (" + table.file.string() +
+                         ") was made with " + made +
+                         "; K_B depends on the loading (docs/lab_tests.md \"Loading arcs\"): "
+                         "use the table's loading or a table made with the test's");
 }
 
 namespace {
@@ -846,6 +888,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     m.disc = read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
     check_size(*kb, "D", {{"diameter_mm", m.disc.diameter_mm}}, file,
                "specimen.brazilian_generator");
+    check_loading(*kb, *input.test(TestKind::Tension), file);
     m.kb_cell = interpolate_cell(*kb, m.disc, file, "specimen.brazilian_generator");
     if (m.with_kb_tau) {
       kb_tau =
@@ -853,6 +896,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
       check_conditions(input, *kb_tau, "tables.kb_tau", true);
       check_size(*kb_tau, "D", {{"diameter_mm", m.disc.diameter_mm}}, file,
                  "specimen.brazilian_generator");
+      check_loading(*kb_tau, *input.test(TestKind::Tension), file);
       m.factor.kb_tau = interpolate_cell(*kb_tau, m.disc, file, "specimen.brazilian_generator");
       m.factor.reference = kb->condition("shear_to_normal");
       check_within_levels(m.factor.reference, m.factor.kb_tau, *kb_tau, file, "tables.kb_tau",
@@ -903,8 +947,12 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
 
   if (m.has(m.gt)) {
     md << "- sigma_t: Brazilian packing R_max/R_min " << four(m.disc.r_ratio) << ", R_min "
-       << four(m.disc.r_min_mm) << " mm, D " << four(m.disc.diameter_mm) << " mm; K_B from "
-       << m.kb_cell.cells << " of `" << kb->file.string() << "`; at E* = " << four(s.point.emod_GPa)
+       << four(m.disc.r_min_mm) << " mm, D " << four(m.disc.diameter_mm) << " mm, "
+       << (kb->has_condition("loading_arc_deg")
+               ? "loading arcs of " + four(kb->condition("loading_arc_deg")) + " degrees"
+               : std::string("curved jaws"))
+       << "; K_B from " << m.kb_cell.cells << " of `" << kb->file.string()
+       << "`; at E* = " << four(s.point.emod_GPa)
        << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength)
        << ", K_B = " << four(b.K_B)
        << " (measured at tau_cs = " << four(kb->condition("shear_to_normal")) << " sigma_cn)";

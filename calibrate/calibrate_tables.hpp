@@ -39,8 +39,13 @@ struct TableLayout {
   std::string level;                    // column of the second dimension; empty: none
   std::string level_name;               // the same in words, for messages
   std::vector<std::string> conditions;  // columns that every row holds at one value
+  // Conditions a table may hold (every row at one value when it does); a table without one was
+  // made at the condition's default (e.g. a Brazilian table without loading_arc_deg: curved
+  // jaws).
+  std::vector<std::string> optional_conditions = {};
 };
-// K_B per cell and E* / sigma_cn, on D discs, at one tau_cs / sigma_cn.
+// K_B per cell and E* / sigma_cn, on D discs, at one tau_cs / sigma_cn; loaded through curved
+// jaws, or through loading arcs of loading_arc_deg when the table has that column.
 extern const TableLayout kBrazilianTable;
 // K_E = E / E* per cell.
 extern const TableLayout kModulusTable;
@@ -66,9 +71,10 @@ struct LookupTable {
   std::filesystem::path file;
   TableLayout layout;
   std::vector<LookupRow> rows;
-  std::map<std::string, double> conditions;  // per column of layout.conditions
+  std::map<std::string, double> conditions;  // per column of layout.(optional_)conditions held
   const std::string& coefficient() const { return layout.coefficient; }
   double condition(const std::string& column) const { return conditions.at(column); }
+  bool has_condition(const std::string& column) const { return conditions.count(column) > 0; }
 };
 
 // Reads and checks a table. Throws InputError naming the calibration file, the key that named the
@@ -76,6 +82,13 @@ struct LookupTable {
 // a positive finite number, conditions that differ between rows, a row given twice, no rows.
 LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayout& layout,
                               const std::string& calibration_file, const std::string& key);
+
+// The Brazilian test's loading (its [test] platens and loading_arc_deg) against the loading a K_B
+// table was made with (loading arcs of the table's loading_arc_deg, curved jaws without that
+// column): K_B depends on it (docs/lab_tests.md "Loading arcs"). Throws InputError on
+// `tests.brazilian` naming both when they differ.
+void check_loading(const LookupTable& table, const CalibrationTest& test,
+                   const std::string& calibration_file);
 
 // The packing a generator input asks for (its [mortar] r_ratio and r_mean; R_min = 2 R_mean /
 // (1 + R_max / R_min)) and, for a disc, its diameter.

@@ -260,6 +260,10 @@ std::string generator_text(const toml::table& inline_spec) {
 
 }  // namespace
 
+LabTestControls read_lab_test_controls(const InputTable& test) {
+  return read_controls(test);
+}
+
 LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path& base_dir) {
   input.reject_unknown_keys({"seed", "specimen", "materials", "test"});
   LabTestInput out;

@@ -127,6 +127,9 @@ struct LabTestInput {
 // other values out of range, unknown keys.
 LabTestInput read_lab_test(const std::filesystem::path& file);
 LabTestInput read_lab_test(const InputTable& input, const std::filesystem::path& base_dir);
+// The controls of a test file's [test] table alone (read_lab_test's reading, defaults and
+// checks), for a reader that needs the loading without the specimen and materials.
+LabTestControls read_lab_test_controls(const InputTable& test);
 
 // Throws InputError when the specimen's shape does not suit the test (Brazilian needs a disc,
 // uniaxial, direct tension and biaxial a rectangle without a notch, three-point bending a

@@ -26,6 +26,17 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   and cells at E* / sigma_cn 3000 (the elastic part: cheap), seeds 11-12;
 - direct_tension_kd.toml: direct tension of the same rectangles on R_max / R_min 2.7 at E* /
   sigma_cn 600, tau_cs = 2 sigma_cn, seeds 11-13: K_D on one cell.
+- brazilian_scatter_r3.4.toml (session 13): the seed scatter of the sandstone's ratio-3.4 disc
+  where its calibration runs, against tau_cs / sigma_cn (0.5, 1, 1.5, 2) and the disc's size
+  (D 30 and 50 mm): at each rho the E* / sigma_cn that the tables (K_B x F at 3.4) give for
+  the sample's targets, seeds 31-38 (neither the tables' 11-13 nor the calibrations' 1-10);
+  brazilian_scatter_r3.4_step.toml: the D 30 mm discs again at 1.1 x sigma_cn (and tau_cs);
+- brazilian_arc_r3.4.toml (session 13): the same D 30 mm ratio-3.4 discs (seeds 31-38) loaded
+  through loading arcs (brazilian_arc_base.toml) at tau_cs = 2 sigma_cn, E* / sigma_cn 900, 818
+  (the step), 600, 1,200: K_B of that cell with arcs, and whether the arcs' discs follow sigma_cn;
+  brazilian_arc25_r3.4.toml: the same discs at 900 with arcs of 25 degrees;
+- uniaxial_scatter_r2.7.toml (session 13): the three-target sample's rectangle (ratio 2.7) at
+  tau_cs / sigma_cn 1.5, E* / sigma_cn 750, 20 x 40 and 30 x 60 mm, seeds 31-38.
 
     cd tables && python3 make_sandstone_tables.py            # writes both
     python3 make_sandstone_tables.py --reduced OUT_DIR        # the CI subset (tests/)
@@ -54,6 +65,30 @@ SHEAR_TO_NORMAL_LEVELS = [0.25, 0.5, 1, 1.5, 2, 3, 4, 8]   # tau_cs / sigma_cn o
 KB_TAU = dict(ratios=[3, 2, 4, 1.5], levels=[600], shear=[0.5, 1, 4, 1.5], seeds=SEEDS)
 NU_KRATIO = dict(ratios=KU_RADIUS_RATIOS, levels=[3000], kratio=[1, 1.5, 2.5, 4], seeds=[11, 12])
 KD = dict(ratios=[2.7], levels=[600], seeds=SEEDS)
+# The scatter campaign of the ratio-3.4 disc: (tau_cs / sigma_cn, E* / sigma_cn) pairs where
+# the tables put sigma_t 9.08 MPa at E* 39.78 GPa (E 18 GPa / K_E 0.4524): K_B of the K_B table
+# at 3.4 (cells 3 and 4, weights 0.6, 0.4) times F of the kb_tau table, rounded to 10.
+# D 50 mm is a campaign of its own, at the sample's rho 2 only: its runs cost 3-8x a D 30 mm
+# run (85-225 s each at load 20; the other levels were stopped for that, docs/lookup_tables.md).
+SCATTER = dict(ratios=[3.4], pairs=[(0.5, 520), (1, 750), (1.5, 850), (2, 900)],
+               diameter_mm=30, seeds=[31, 32, 33, 34, 35, 36, 37, 38])
+SCATTER_D50 = dict(SCATTER, pairs=[(2, 900)], diameter_mm=50)
+# The same D 30 mm discs with sigma_cn (and tau_cs) 10 % higher, the size of a correction's step:
+# does each disc's sigma_t follow proportionally, or jump between failure regimes?
+SCATTER_STEP = dict(SCATTER, pairs=[(rho, x / 1.1) for rho, x in SCATTER["pairs"]])
+# The same disc loaded through loading arcs (brazilian_arc_base.toml) at tau_cs = 2 sigma_cn:
+# the sample's E* / sigma_cn (900) and its step (900 / 1.1) first, then 600 and 1,200 around
+# them: K_B of the ratio-3.4 cell with the arcs, the table of the sample with arcs.
+ARC = dict(SCATTER, pairs=[(2, 900), (2, 900 / 1.1), (2, 600), (2, 1200)])
+# ... and with arcs of 25 degrees at the sample's point: on D 30 mm the loaded length of the
+# validation's 15 degree arcs on D 50 mm (docs/lab_tests.md), against the 15 degree arcs that
+# drive only 1-2 discs at a pole on 1 disc in 9.
+ARC25 = dict(SCATTER, pairs=[(2, 900)], arc_deg=25.0)
+# The uniaxial seed scatter of the three-target sample's rectangles (ratio 2.7) at tau_cs /
+# sigma_cn 1.5, E* / sigma_cn 750 (near session 11's verified point, rho 1.45 at 755), on the
+# 20 x 40 mm rectangle of the K_U table and on 30 x 60 mm: does a larger rectangle narrow sigma_u?
+UCS_SCATTER = dict(ratios=[2.7], pairs=[(1.5, 750)], sizes_mm=[(20, 40), (30, 60)],
+                   seeds=SCATTER["seeds"])
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
@@ -142,10 +177,40 @@ def main():
             ("direct_tension_kd", "Direct tension K_D on one cell", "direct_tension_kd_base.toml",
              KD_GATHER, rows(KD["ratios"], R_MIN_MM, KD["levels"]),
              KD["seeds"])]
+        campaigns += [
+            (name, f"Brazilian seed scatter of the ratio-3.4 disc (D {sc['diameter_mm']} mm) "
+             "against tau_cs / sigma_cn", "brazilian_kb_x_base.toml", KB_TAU_GATHER,
+             [r + [sc["diameter_mm"]] for rho, x in sc["pairs"]
+              for r in rows(sc["ratios"], R_MIN_MM, [x], [rho])], sc["seeds"])
+            for name, sc in [("brazilian_scatter_r3.4", SCATTER),
+                             ("brazilian_scatter_r3.4_d50", SCATTER_D50),
+                             ("brazilian_scatter_r3.4_step", SCATTER_STEP)]]
+        campaigns += [
+            ("brazilian_arc_r3.4", "Brazilian K_B of the ratio-3.4 disc with loading arcs",
+             "brazilian_arc_base.toml", KB_TAU_GATHER,
+             [r + [ARC["diameter_mm"]] for rho, x in ARC["pairs"]
+              for r in rows(ARC["ratios"], R_MIN_MM, [x], [rho])],
+             ARC["seeds"])]
+        campaigns += [
+            ("brazilian_arc25_r3.4", "Brazilian K_B of the ratio-3.4 disc with 25 degree arcs",
+             "brazilian_arc_base.toml", KB_TAU_GATHER,
+             [r + [ARC25["diameter_mm"], ARC25["arc_deg"]] for rho, x in ARC25["pairs"]
+              for r in rows(ARC25["ratios"], R_MIN_MM, [x], [rho])], ARC25["seeds"])]
+        campaigns += [
+            ("uniaxial_scatter_r2.7", "Uniaxial seed scatter of the ratio-2.7 rectangle against "
+             "its size", "uniaxial_ke_base.toml", KU_GATHER,
+             [r + [w, h] for w, h in UCS_SCATTER["sizes_mm"] for rho, x in UCS_SCATTER["pairs"]
+              for r in rows(UCS_SCATTER["ratios"], R_MIN_MM, [x], [rho])],
+             UCS_SCATTER["seeds"])]
     for name, what, base, gather, r, seeds in campaigns:
         if not r:
             continue
-        keys = STRENGTH_KEYS + ["materials.mortar.kratio"][:len(r[0]) - len(STRENGTH_KEYS)]
+        extra = ("specimen.diameter_mm" if name.startswith(("brazilian_scatter", "brazilian_arc"))
+                 else "materials.mortar.kratio")
+        if name.startswith("uniaxial_scatter"):
+            keys = STRENGTH_KEYS + ["specimen.width_mm", "specimen.height_mm"]
+        else:
+            keys = (STRENGTH_KEYS + [extra, "test.loading_arc_deg"])[:len(r[0])]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
                               gather, keys, r, header(what, len(r), seeds, name))
         write(os.path.join(out_dir, name + ".toml"), text)

@@ -357,6 +357,8 @@ texpect tables_kb_tau_missing tables.kb_tau \
   's/^E_GPa = 18/&\nsigma_u_MPa = 45.4/; s#^ke = .*#&\nku = "../tables/uniaxial_ku_table.csv"\nkb_tau = "../tables/nowhere.csv"#'
 texpect tables_coupled_outside targets.sigma_u \
   's/^E_GPa = 18/&\nsigma_u_MPa = 200/; s#^ke = .*#&\nku = "../tables/uniaxial_ku_table.csv"\nkb_tau = "../tables/brazilian_kb_tau_table.csv"#'
+# The jaws' K_B table with a Brazilian test loaded through loading arcs (session 13).
+texpect tables_loading tests.brazilian 's#sandstone/brazilian.toml#sandstone/brazilian_arc.toml#'
 
 echo "$passed passed, $failures failed"
 [ "$passed" -ge 40 ] || { echo "FAIL: fewer than 40 cases ran"; exit 1; }

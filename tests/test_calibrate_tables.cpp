@@ -110,9 +110,14 @@ const std::string kHeadUcs = replace(replace(kHead, "E_GPa = 18", "E_GPa = 18\ns
 const std::string kHeadCoupled =
     replace(kHeadUcs, "ku = \"ku.csv\"", "ku = \"ku.csv\"\nkb_tau = \"kb_tau.csv\"");
 
+// The Brazilian test: curved jaws, the loading the tables without a loading_arc_deg column were
+// made with.
+const std::string kBrazilianTest = "[test]\ntype = \"brazilian\"\nplatens = \"curved_jaws\"\n";
+
 struct Files {
   std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, kb_tau = kKBTau, materials = kMaterials,
-              disc = kDisc, rectangle = kRectangle, parameters = kParameters;
+              disc = kDisc, rectangle = kRectangle, parameters = kParameters,
+              brazilian = kBrazilianTest;
 };
 
 // A calibration directory for the tables strategy: a uniaxial and a Brazilian test with the
@@ -121,8 +126,7 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
   const auto dir = cdem::test::scratch_dir("calibrate_tables", test);
   write(dir / "ucs.toml",
         "specimen = \"none.h5\"\n" + f.materials + "[test]\ntype = \"uniaxial\"\n");
-  write(dir / "brazilian.toml",
-        "specimen = \"none.h5\"\n" + f.materials + "[test]\ntype = \"brazilian\"\n");
+  write(dir / "brazilian.toml", "specimen = \"none.h5\"\n" + f.materials + f.brazilian);
   write(dir / "rectangle.toml", f.rectangle);
   write(dir / "disc.toml", f.disc);
   write(dir / "kb.csv", f.kb);
@@ -370,6 +374,11 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
       {"bounds", &Files::parameters, "bounds = [5, 400]", "bounds = [5, 20]", "parameters",
        "outside the bounds"},
       {"no_ku", &Files::head, "E_GPa = 18", "E_GPa = 18\nsigma_u_MPa = 40", "tables.ku", "missing"},
+      // The K_B table holds no loading_arc_deg: made with curved jaws, and only for them.
+      {"flat_platens", &Files::brazilian, "curved_jaws", "flat", "tests.brazilian",
+       "through flat platens, and the K_B table"},
+      {"arcs_on_jaws", &Files::brazilian, "curved_jaws", "loading_arc", "tests.brazilian",
+       "through loading arcs of 15 degrees, and the K_B table ("},
   });
   // Another bond law: its strengths are other keys, so the materials and parameters both change.
   Files f;
@@ -379,6 +388,39 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
   }
   f.materials = replace(f.materials, "contact_bond", "parallel_bond");
   expect_input_error(make_calibration("law", f), "materials.mortar.law", "contact_bond");
+}
+
+// A K_B table with a loading_arc_deg column was made with loading arcs of that arc: it speaks for
+// a Brazilian test with the same arcs only, and the jaws' tables for jaws only (K_B depends on
+// the loading, docs/lab_tests.md "Loading arcs").
+TEST(CalibrateTablesInput, TheBrazilianTableSpeaksForItsOwnLoading) {
+  Files arcs;
+  std::string kb;
+  std::istringstream in(kKB);
+  for (std::string line; std::getline(in, line);)
+    kb += line + (line[0] == '#' ? "" : line[0] == 'r' ? ",loading_arc_deg" : ",15") + "\n";
+  arcs.kb = kb;
+  arcs.brazilian = replace(kBrazilianTest, "curved_jaws", "loading_arc");
+  const auto in_arcs = read_calibration_input(make_calibration("arcs", arcs));
+  EXPECT_DOUBLE_EQ(read_lookup_table(in_arcs.tables.kb_file, kBrazilianTable, "c", "k")
+                       .condition("loading_arc_deg"),
+                   15);
+  // The jaws' table has no such condition.
+  EXPECT_FALSE(read_lookup_table(read_calibration_input(make_calibration("jaws")).tables.kb_file,
+                                 kBrazilianTable, "c", "k")
+                   .has_condition("loading_arc_deg"));
+  expect_refusals(
+      {
+          {"arcs_wider", &Files::brazilian, "platens = \"loading_arc\"",
+           "platens = \"loading_arc\"\nloading_arc_deg = 20.0", "tests.brazilian",
+           "loading arcs of 20 degrees, and the K_B table"},
+          {"jaws_on_arcs", &Files::brazilian, "loading_arc", "curved_jaws", "tests.brazilian",
+           ") was made with loading arcs of 15 degrees; K_B depends on the loading"},
+          {"arcs_mixed", &Files::kb, "4,0.2,3000,0.9,2.5,0.5,2,30,15",
+           "4,0.2,3000,0.9,2.5,0.5,2,30,20", "tables.kb",
+           "column 'loading_arc_deg' is 20, the first row's 15"},
+      },
+      arcs);
 }
 
 TEST(CalibrateTablesInput, RefusesWhatTheUniaxialTableDoesNotHold) {
