@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -196,6 +197,52 @@ void print_footprint(const cdem::dem::MemoryFootprint& m, double discs, double p
   row("total", m.total(), nullptr, 0);
 }
 
+// How many of the arrays a step walks at one index start at the same offset within a 4 KB page
+// (the same L1 set for the same index; dem/staggered_array.hpp): the most that share one.
+int most_at_one_page_offset(const World& w) {
+  const auto& b = w.bodies();
+  const auto& d = w.discs();
+  const auto& c = w.contacts();
+  const auto& f = w.pair_forces();
+  const void* arrays[] = {b.x.data(),
+                          b.y.data(),
+                          b.theta.data(),
+                          b.vx.data(),
+                          b.vy.data(),
+                          b.omega.data(),
+                          b.fx.data(),
+                          b.fy.data(),
+                          b.moment.data(),
+                          b.inv_mass_dyn.data(),
+                          b.inv_inertia_dyn.data(),
+                          b.first_disc.data(),
+                          b.is_clump.data(),
+                          b.prescribed.data(),
+                          d.x.data(),
+                          d.y.data(),
+                          d.vx.data(),
+                          d.vy.data(),
+                          d.omega.data(),
+                          d.fx.data(),
+                          d.fy.data(),
+                          d.moment.data(),
+                          c.first.data(),
+                          c.second.data(),
+                          c.contact_class.data(),
+                          c.state.shear_force.data(),
+                          c.state.bond.data(),
+                          c.state.bond_normal.data(),
+                          c.state.bond_shear.data(),
+                          c.state.bond_moment.data(),
+                          f.normal.data(),
+                          f.overlap.data(),
+                          f.fx.data(),
+                          f.fy.data()};
+  std::vector<int> count(4096 / 64, 0);
+  for (const void* p : arrays) ++count[(reinterpret_cast<std::uintptr_t>(p) % 4096) / 64];
+  return *std::max_element(count.begin(), count.end());
+}
+
 int run(const Options& o) {
   using namespace cdem::dem;
   using namespace cdem::lab;
@@ -258,6 +305,8 @@ int run(const Options& o) {
               static_cast<double>(footprint.total()),
               static_cast<double>(footprint.total()) / discs);
   print_footprint(footprint, discs, pairs, bodies);
+  std::printf("arrays of the step (34) starting in one cache line of a page: at most %d\n",
+              most_at_one_page_offset(w));
 
   std::vector<double> cpu_ns, wall_ns;
   for (int r = 0; r < o.repeats; ++r) {

@@ -3,30 +3,31 @@
 // body) or a clump (several pebble discs at fixed offsets in the body frame). Forces and moments
 // from the discs are summed about the body centroid before the body is integrated.
 #include <cstdint>
-#include <vector>
+
+#include "dem/staggered_array.hpp"
 
 namespace cdem::dem {
 
 struct Bodies {
   // Kinematics, world frame.
-  std::vector<double> x, y;    // m, centroid
-  std::vector<double> theta;   // rad, orientation (only clumps need it to place pebbles)
-  std::vector<double> vx, vy;  // m/s, at the half step t - dt/2 (central difference)
-  std::vector<double> omega;   // rad/s, at the half step
+  StaggeredArray<double> x, y;    // m, centroid
+  StaggeredArray<double> theta;   // rad, orientation (only clumps need it to place pebbles)
+  StaggeredArray<double> vx, vy;  // m/s, at the half step t - dt/2 (central difference)
+  StaggeredArray<double> omega;   // rad/s, at the half step
   // Resultants of the last force pass (contacts + applied), before local damping.
-  std::vector<double> fx, fy;  // N (per 1 m thickness)
-  std::vector<double> moment;  // N m
+  StaggeredArray<double> fx, fy;  // N (per 1 m thickness)
+  StaggeredArray<double> moment;  // N m
   // Applied external load (e.g. gravity when asked for), added to every force pass.
-  std::vector<double> fx_applied, fy_applied;  // N
+  StaggeredArray<double> fx_applied, fy_applied;  // N
   // Physical inertia (measurements, kinetic energy) and the inertia the integrator uses, which
   // differ only when density scaling is on.
-  std::vector<double> mass, inertia;                  // kg, kg m^2
-  std::vector<double> inv_mass_dyn, inv_inertia_dyn;  // 1/kg, 1/(kg m^2)
+  StaggeredArray<double> mass, inertia;                  // kg, kg m^2
+  StaggeredArray<double> inv_mass_dyn, inv_inertia_dyn;  // 1/kg, 1/(kg m^2)
   // Discs owned by the body: [first_disc, first_disc + disc_count).
-  std::vector<std::int32_t> first_disc, disc_count;
-  std::vector<std::uint8_t> is_clump;  // 1: pebbles sit at offsets and follow theta
+  StaggeredArray<std::int32_t> first_disc, disc_count;
+  StaggeredArray<std::uint8_t> is_clump;  // 1: pebbles sit at offsets and follow theta
   // 1: the velocity is prescribed (forces do not change it; zero holds the body in place).
-  std::vector<std::uint8_t> prescribed;
+  StaggeredArray<std::uint8_t> prescribed;
 
   std::size_t size() const { return x.size(); }
   // Room for n bodies in every array, so a world built body by body holds no growth slack.

@@ -12,6 +12,7 @@
 #include "dem/discs.hpp"
 #include "dem/linear_contact.hpp"
 #include "dem/neighbor_list.hpp"
+#include "dem/staggered_array.hpp"
 #include "dem/wall.hpp"
 
 namespace cdem::dem {
@@ -35,16 +36,16 @@ struct PairForce {
 // For a bonded pair `normal` is the total (linear part minus the parallel bond's tension) and
 // may be negative (tension); the linear part alone is normal + bond_normal of the state.
 struct ContactForces {
-  std::vector<double> normal;   // N, normal force, repulsive positive
-  std::vector<double> overlap;  // m, positive when touching
-  std::vector<double> fx, fy;   // N, force on the second disc (on the disc for walls)
-  std::vector<double> moment;   // N m, walls only: moment on the disc about its centre
-  std::vector<double> cx, cy;   // m, contact point (walls only)
+  StaggeredArray<double> normal;   // N, normal force, repulsive positive
+  StaggeredArray<double> overlap;  // m, positive when touching
+  StaggeredArray<double> fx, fy;   // N, force on the second disc (on the disc for walls)
+  StaggeredArray<double> moment;   // N m, walls only: moment on the disc about its centre
+  StaggeredArray<double> cx, cy;   // m, contact point (walls only)
   // Valid for the pairs listed in `broken` only (written when a bond breaks): how it failed,
   // and the strain energy it held (J).
-  std::vector<std::uint8_t> failure;
-  std::vector<double> bond_energy_released;
-  std::vector<std::uint32_t> failed_elements, failed_shear;  // flat joints (bits per element)
+  StaggeredArray<std::uint8_t> failure;
+  StaggeredArray<double> bond_energy_released;
+  StaggeredArray<std::uint32_t> failed_elements, failed_shear;  // flat joints (bits per element)
   // Pairs whose bond broke in this pass, ascending (disc-disc only; walls are not bonded).
   std::vector<std::int32_t> broken;
 };

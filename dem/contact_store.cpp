@@ -12,9 +12,9 @@ namespace {
 // The new list is the union of the candidates and the old pairs that hold an intact bond (a
 // bonded pair is never dropped, whatever its gap). Keys present in the old list carry their
 // state; new keys start from zero state. Both inputs are sorted, so the union is too.
-void merge_state(const std::vector<std::uint64_t>& old_keys, const ContactStates& old_state,
-                 const std::vector<std::uint64_t>& candidates, std::vector<std::uint64_t>& out_keys,
-                 ContactStates& out_state) {
+void merge_state(const StaggeredArray<std::uint64_t>& old_keys, const ContactStates& old_state,
+                 const std::vector<std::uint64_t>& candidates,
+                 StaggeredArray<std::uint64_t>& out_keys, ContactStates& out_state) {
   const auto kept = [&](std::size_t o) { return old_state.bond[o] != 0; };
   std::size_t count = candidates.size();
   for (std::size_t o = 0, c = 0; o < old_keys.size(); ++o) {
@@ -42,8 +42,8 @@ void merge_state(const std::vector<std::uint64_t>& old_keys, const ContactStates
   }
 }
 
-void split_keys(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& a,
-                std::vector<std::int32_t>& b) {
+void split_keys(const StaggeredArray<std::uint64_t>& keys, StaggeredArray<std::int32_t>& a,
+                StaggeredArray<std::int32_t>& b) {
   make_room(a, keys.size());
   make_room(b, keys.size());
   a.resize(keys.size());

@@ -12,6 +12,7 @@
 #include "dem/discs.hpp"
 #include "dem/flat_joint_states.hpp"
 #include "dem/smooth_joint_states.hpp"
+#include "dem/staggered_array.hpp"
 
 namespace cdem::dem {
 
@@ -21,17 +22,17 @@ struct MemoryFootprint;  // dem/memory_footprint.hpp
 // Persistent per-contact state, structure of arrays (sign conventions of
 // dem/parallel_bond.hpp: n from the first disc to the second, t = (-ny, nx)).
 struct ContactStates {
-  std::vector<double> shear_force;  // N, linear part, component along the tangent t
-  std::vector<std::uint8_t> bond;   // BondKind of the intact bond; 0 = none or broken
+  StaggeredArray<double> shear_force;  // N, linear part, component along the tangent t
+  StaggeredArray<std::uint8_t> bond;   // BondKind of the intact bond; 0 = none or broken
   // Parallel bond: normal force (N, tension positive), shear force on the second disc along t
   // (N), moment on the second disc (N m).
-  std::vector<double> bond_normal, bond_shear, bond_moment;
+  StaggeredArray<double> bond_normal, bond_shear, bond_moment;
   // Contact bond: gap at installation (m, >= 0); the bonded linear part is at zero normal
   // force at this gap, Fn = kn (overlap + bond_gap).
-  std::vector<double> bond_gap;
+  StaggeredArray<double> bond_gap;
   // Flat joint: index of the interface's entry in ContactStore::flat_joints; smooth joint: of
   // its entry in ContactStore::smooth_joints.
-  std::vector<std::int32_t> joint;
+  StaggeredArray<std::int32_t> joint;
 
   void resize(std::size_t n) {
     for (auto* v : {&shear_force, &bond_normal, &bond_shear, &bond_moment, &bond_gap})
@@ -72,13 +73,13 @@ class ContactStore {
  public:
   // Disc-disc contacts: keys (i << 32 | j, i < j) sorted ascending, with the two indices, the
   // contact class and the persistent state aligned with them.
-  std::vector<std::uint64_t> keys;
-  std::vector<std::int32_t> first, second;
-  std::vector<std::uint8_t> contact_class;  // ContactClass of the pair (from the materials)
+  StaggeredArray<std::uint64_t> keys;
+  StaggeredArray<std::int32_t> first, second;
+  StaggeredArray<std::uint8_t> contact_class;  // ContactClass of the pair (from the materials)
   ContactStates state;
   // Disc-wall contacts: keys (disc << 32 | wall) sorted ascending.
-  std::vector<std::uint64_t> wall_keys;
-  std::vector<std::int32_t> wall_disc, wall_index;
+  StaggeredArray<std::uint64_t> wall_keys;
+  StaggeredArray<std::int32_t> wall_disc, wall_index;
   ContactStates wall_state;
   // The flat joints' interfaces, referred to by state.joint (entries outlive their pairs).
   FlatJointStates flat_joints;
@@ -103,7 +104,7 @@ class ContactStore {
   // Merge buffers, swapped with the lists at each merge. Disc-wall contacts have their own: with
   // one pair of buffers for both, the disc-disc buffer was swapped into the wall lists and the
   // store held three disc-disc-sized copies of the keys and state (94 bytes per disc on C30).
-  std::vector<std::uint64_t> merged_keys_, merged_wall_keys_;
+  StaggeredArray<std::uint64_t> merged_keys_, merged_wall_keys_;
   ContactStates merged_state_, merged_wall_state_;
 };
 

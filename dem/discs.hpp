@@ -3,7 +3,8 @@
 // contiguous per-disc arrays (position, radius, velocity of the owning body carried to the disc),
 // so the pair kernel never looks at the bodies.
 #include <cstdint>
-#include <vector>
+
+#include "dem/staggered_array.hpp"
 
 namespace cdem::dem {
 
@@ -11,15 +12,15 @@ namespace cdem::dem {
 enum class DiscMaterial : std::uint8_t { Mortar = 0, Aggregate = 1 };
 
 struct Discs {
-  std::vector<double> x, y;                // m, centre, world frame
-  std::vector<double> r;                   // m, radius
-  std::vector<double> vx, vy, omega;       // m/s, rad/s: velocity of the disc centre and spin
-  std::vector<double> offset_x, offset_y;  // m, centre in the body frame (0 for free discs)
-  std::vector<std::int32_t> body;          // owning body
-  std::vector<std::uint8_t> active;        // 0: never in contact detection (buried pebble)
-  std::vector<DiscMaterial> material;
+  StaggeredArray<double> x, y;                // m, centre, world frame
+  StaggeredArray<double> r;                   // m, radius
+  StaggeredArray<double> vx, vy, omega;       // m/s, rad/s: velocity of the disc centre and spin
+  StaggeredArray<double> offset_x, offset_y;  // m, centre in the body frame (0 for free discs)
+  StaggeredArray<std::int32_t> body;          // owning body
+  StaggeredArray<std::uint8_t> active;        // 0: never in contact detection (buried pebble)
+  StaggeredArray<DiscMaterial> material;
   // Force and moment (about the disc centre) from the contacts of the last force pass.
-  std::vector<double> fx, fy, moment;  // N, N m
+  StaggeredArray<double> fx, fy, moment;  // N, N m
 
   std::size_t size() const { return x.size(); }
   // Room for n discs in every array, so a world built disc by disc holds no growth slack.

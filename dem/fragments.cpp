@@ -72,9 +72,9 @@ Fragments find_fragments(const World& world, double clump_density,
   f.fragment_of_disc.resize(discs.size());
   for (std::size_t i = 0; i < discs.size(); ++i)
     f.fragment_of_disc[i] = label[static_cast<std::size_t>(sets.root(discs.body[i]))];
-  f.x = discs.x;
-  f.y = discs.y;
-  f.r = discs.r;
+  f.x.assign(discs.x.begin(), discs.x.end());
+  f.y.assign(discs.y.begin(), discs.y.end());
+  f.r.assign(discs.r.begin(), discs.r.end());
   f.in_clump.resize(discs.size());
   for (std::size_t i = 0; i < discs.size(); ++i)
     f.in_clump[i] = bodies.is_clump[static_cast<std::size_t>(discs.body[i])];

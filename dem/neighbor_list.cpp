@@ -155,9 +155,9 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
   }
   std::sort(wall_keys_.begin(), wall_keys_.end());
 
-  x0_ = discs.x;
-  y0_ = discs.y;
-  r0_ = discs.r;
+  x0_.assign(discs.x.begin(), discs.x.end());
+  y0_.assign(discs.y.begin(), discs.y.end());
+  r0_.assign(discs.r.begin(), discs.r.end());
   wall_ax0_ = walls.ax;
   wall_ay0_ = walls.ay;
   ++build_count;

@@ -16,7 +16,7 @@ namespace cdem::dem {
 namespace {
 
 template <class T>
-void push_zero(std::initializer_list<std::vector<T>*> vectors) {
+void push_zero(std::initializer_list<StaggeredArray<T>*> vectors) {
   for (auto* v : vectors) v->push_back(T{});
 }
 

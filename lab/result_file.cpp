@@ -290,7 +290,7 @@ void ResultFile::snapshot(const World& world, long step, double time) {
   H5::Group g = hdf5::create_group(root, snapshot_name(index));
   write_scalar_attr<long>(g, "step", step);
   write_scalar_attr<double>(g, "time_s", time);
-  const auto copy = [&](const std::vector<double>& v, const char* name, const char* units) {
+  const auto copy = [&](const auto& v, const char* name, const char* units) {
     scratch_.assign(v.begin(), v.end());
     write_array(g, name, scratch_, units);
   };

@@ -431,9 +431,9 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
     throw RunError(msg.str());
   }
 
-  out.x = world.discs().x;
-  out.y = world.discs().y;
-  out.r = world.discs().r;
+  out.x.assign(world.discs().x.begin(), world.discs().x.end());
+  out.y.assign(world.discs().y.begin(), world.discs().y.end());
+  out.r.assign(world.discs().r.begin(), world.discs().r.end());
   out.porosity = dem::porosity(world, area);
   const dem::OverlapStatistics ov = dem::overlap_statistics(world);
   out.mean_overlap = ov.mean_overlap;

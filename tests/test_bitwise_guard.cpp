@@ -53,8 +53,8 @@ class StateHash {
     }
   }
   void add(double v) { add_bits(std::bit_cast<std::uint64_t>(v)); }
-  template <class T>
-  void add(const std::vector<T>& v) {
+  template <class T, class A>
+  void add(const std::vector<T, A>& v) {
     add_bits(v.size());
     for (const T& x : v) {
       if constexpr (std::is_floating_point_v<T>)

@@ -163,7 +163,7 @@ World jostling_world(int threads, std::uint64_t seed) {
 }
 
 struct Snapshot {
-  std::vector<double> x, y, theta;
+  StaggeredArray<double> x, y, theta;
   std::vector<Crack> cracks;
   ContactEnergy energy;
 };
@@ -174,7 +174,7 @@ Snapshot run(int threads) {
   return {w.bodies().x, w.bodies().y, w.bodies().theta, w.cracks().cracks, contact_energy(w)};
 }
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+bool same_bits(const StaggeredArray<double>& a, const StaggeredArray<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 

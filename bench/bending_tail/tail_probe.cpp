@@ -51,8 +51,8 @@ struct Probe {
   std::set<std::uint64_t> bonded0;
 
   void start(const World& w) {
-    x0 = w.discs().x;
-    y0 = w.discs().y;
+    x0.assign(w.discs().x.begin(), w.discs().x.end());
+    y0.assign(w.discs().y.begin(), w.discs().y.end());
     const ContactStore& nl = w.contacts();
     for (std::size_t k = 0; k < nl.keys.size(); ++k)
       if (nl.state.bond[k] != 0) bonded0.insert(nl.keys[k]);
