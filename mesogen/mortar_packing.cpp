@@ -58,6 +58,8 @@ void check_controls(const Container& mould, const MortarPackingControls& c) {
   if (c.expansion_steps < 0) bad("expansion_steps", "must be >= 0 (0: from r_ratio)");
   if (c.wall_segments < 3) bad("wall_segments", "must be >= 3");
   if (!(c.overlap_guard > 0)) bad("overlap_guard", "must be > 0 (x the smaller radius)");
+  if (c.threads < 1 || c.threads > kMaxMortarThreads)
+    bad("threads", "must be in [1, " + std::to_string(kMaxMortarThreads) + "]");
   if (c.relaxation == MortarRelaxation::Fire)
     if (const std::string why = fire_span_refusal(mould.width, mould.height, c.r_mean);
         !why.empty())
@@ -361,7 +363,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   dem::WorldSettings settings;
   settings.local_damping = c.local_damping;
   settings.density_scaling = true;
-  settings.threads = std::max(1, c.threads);
+  settings.threads = c.threads;
   // Nothing here reads the energy ledger, and its bookkeeping is a few % of a cycle. Its
   // runaway check was idle anyway while the radii change (every scale_radii restarts the
   // reference); the overlap and non-finite guards still stop a bad expansion with their

@@ -28,6 +28,9 @@ constexpr double kFireSpanDiameters = 200.0;
 // Why `relaxation = "fire"` is refused for this mould (empty: accepted).
 std::string fire_span_refusal(double width, double height, double r_mean);
 
+// Most threads a packing accepts (as `[test] threads`).
+constexpr int kMaxMortarThreads = 1024;
+
 struct MortarPackingControls {
   double r_mean = 0.5e-3;  // m, mean disc radius
   // R_max / R_min; radii uniform in [R_min, R_max]. Below kMinPackedRatio it is packed at
@@ -48,7 +51,9 @@ struct MortarPackingControls {
   // twice as slow to keep the packing jammed (measured on the reference mould: 10,350 instead
   // of 6,350 cycles, and a slightly looser packing).
   double local_damping = 0.3;
-  int threads = 1;  // threads of the DEM cycles (the result does not depend on it)
+  // Threads of the DEM cycles, 1..kMaxMortarThreads (the result does not depend on it):
+  // `mortar.threads`, or `cdem generate --threads`.
+  int threads = 1;
   // Overlap guard of the packing cycles, x the smaller radius of a pair. Not the engine's 1 (a
   // lab test's): at the stress the expansion reaches on purpose, a small disc carrying a large
   // one's load is squeezed past its own radius in a sound packing (pack_mortar says why). At 2

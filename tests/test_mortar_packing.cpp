@@ -264,4 +264,45 @@ TEST(MortarPacking, RelaxationKeyIsReadAndChecked) {
   }
 }
 
+// mortar.threads (and `cdem generate --threads`): the packing's cycles on the thread team give
+// the same bits as on one thread, for either relaxation.
+TEST(MortarPacking, TwoThreadsGiveTheSameBits) {
+  const Container square = rectangle(0.012, 0.012);
+  for (const auto relaxation :
+       {cdem::mesogen::MortarRelaxation::Damped, cdem::mesogen::MortarRelaxation::Fire}) {
+    MortarPackingControls c;
+    c.relaxation = relaxation;
+    const MortarPacking one = pack(square, c, 3);
+    c.threads = 2;
+    const MortarPacking two = pack(square, c, 3);
+    EXPECT_EQ(one.x, two.x);
+    EXPECT_EQ(one.y, two.y);
+    EXPECT_EQ(one.r, two.r);
+    EXPECT_EQ(one.steps, two.steps);
+  }
+}
+
+TEST(MortarPacking, ThreadsKeyIsReadAndChecked) {
+  const auto read = [](const std::string& mortar) {
+    return cdem::mesogen::read_generator_input(cdem::InputTable::parse_string(
+        "[specimen]\nshape = \"disc\"\ndiameter_mm = 30\n[mortar]\nr_mean_mm = 0.5\n" + mortar,
+        "threads key"));
+  };
+  EXPECT_EQ(read("").mortar.threads, 1);
+  EXPECT_EQ(read("threads = 2\n").mortar.threads, 2);
+  for (const std::string bad : {"threads = 0\n", "threads = 1025\n", "threads = 1.5\n"}) {
+    try {
+      (void)read(bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const cdem::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("threads key"), std::string::npos) << what;
+      EXPECT_NE(what.find("mortar.threads"), std::string::npos) << what;
+    }
+  }
+  MortarPackingControls c;
+  c.threads = 0;
+  EXPECT_THROW(pack(rectangle(0.02, 0.02), c, 1), cdem::InputError);
+}
+
 }  // namespace
