@@ -46,7 +46,7 @@ expect specimen_too_small 2 "gradation.d_max" "$(variant specimen_too_small 's/^
 expect unknown_gradation 2 "unknown value 'talbot'" "$(variant unknown_gradation 's/^type = "walraven"/type = "talbot"/')"
 expect expansion_zero 2 "mortar.expansion_steps" "$(variant expansion_zero 's/^porosity = 0.12/porosity = 0.12\nexpansion_steps = 0/')"
 expect bad_relaxation 2 "mortar.relaxation.*unknown value 'cg' (allowed: 'damped', 'fire')" "$(variant bad_relaxation 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "cg"/')"
-expect fire_wide_mould 2 "relaxation.*'fire' keeps the packing jammed on moulds up to 200 mean diameters across" "$(variant fire_wide_mould 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "fire"/; s/^r_mean_mm = 0.5 /r_mean_mm = 0.35 /')"
+expect fire_wide_mould 2 "relaxation.*'fire' keeps the packing jammed on moulds up to 500 mean diameters across" "$(variant fire_wide_mould 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "fire"/; s/^r_mean_mm = 0.5 /r_mean_mm = 0.15 /')"
 expect threads_key_zero 2 "mortar.threads.*\[1, 1024\]" "$(variant threads_key_zero 's/^porosity = 0.12/porosity = 0.12\nthreads = 0/')"
 expect threads_key_text 2 "mortar.threads" "$(variant threads_key_text 's/^porosity = 0.12/porosity = 0.12\nthreads = "two"/')"
 expect threads_option_zero 2 "cdem generate: key '--threads'.*\[1, 1024\], got 0" "$base" --threads 0
