@@ -15,15 +15,15 @@
 namespace cdem::mesogen {
 
 struct GenerateRequest {
-  std::filesystem::path input;        // generator TOML
-  std::filesystem::path output;       // specimen .h5
-  std::optional<std::uint64_t> seed;  // overrides the file's seed
-  // Overrides mortar.threads (threads of the packing's cycles; the specimen does not depend on
-  // it). Checked like the key: 1..kMaxMortarThreads, else InputError naming --threads.
-  std::optional<long long> threads;
+  std::filesystem::path input;                   // generator TOML
+  std::filesystem::path output;                  // specimen .h5
+  std::optional<std::uint64_t> seed;             // overrides the file's seed
   std::optional<std::filesystem::path> summary;  // summary JSON
   std::optional<std::filesystem::path> picture;  // PNG
   bool verbose = true;                           // phase lines on stderr
+  // Overrides mortar.threads (threads of the packing's cycles; the specimen does not depend on
+  // it). Checked like the key: 1..kMaxMortarThreads, else InputError naming --threads.
+  std::optional<long long> threads = std::nullopt;
 };
 
 // The top-level fields of the summary JSON run_generate writes, (campaigns check their
