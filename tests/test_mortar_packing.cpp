@@ -266,21 +266,19 @@ TEST(MortarPacking, RelaxationKeyIsReadAndChecked) {
 }
 
 // mortar.threads (and `cdem generate --threads`): the packing's cycles on the thread team give
-// the same bits as on one thread, for either relaxation.
+// the same bits as on one thread. FIRE here (its drift correction and mixing run beside the
+// team's step); the damped default on 2 threads is compared byte for byte by generate_bitwise.sh.
 TEST(MortarPacking, TwoThreadsGiveTheSameBits) {
   const Container square = rectangle(0.012, 0.012);
-  for (const auto relaxation :
-       {cdem::mesogen::MortarRelaxation::Damped, cdem::mesogen::MortarRelaxation::Fire}) {
-    MortarPackingControls c;
-    c.relaxation = relaxation;
-    const MortarPacking one = pack(square, c, 3);
-    c.threads = 2;
-    const MortarPacking two = pack(square, c, 3);
-    EXPECT_EQ(one.x, two.x);
-    EXPECT_EQ(one.y, two.y);
-    EXPECT_EQ(one.r, two.r);
-    EXPECT_EQ(one.steps, two.steps);
-  }
+  MortarPackingControls c;
+  c.relaxation = cdem::mesogen::MortarRelaxation::Fire;
+  const MortarPacking one = pack(square, c, 3);
+  c.threads = 2;
+  const MortarPacking two = pack(square, c, 3);
+  EXPECT_EQ(one.x, two.x);
+  EXPECT_EQ(one.y, two.y);
+  EXPECT_EQ(one.r, two.r);
+  EXPECT_EQ(one.steps, two.steps);
 }
 
 TEST(MortarPacking, ThreadsKeyIsReadAndChecked) {
