@@ -1,4 +1,5 @@
-// `cdem generate SPEC.toml -o specimen.h5 [--seed N] [--summary out.json] [--picture out.png]`
+// `cdem generate SPEC.toml -o specimen.h5 [--seed N] [--threads N] [--summary out.json]
+//  [--picture out.png]`
 #include <memory>
 
 #include "apps/commands.hpp"
@@ -12,6 +13,7 @@ Action add_generate_command(CLI::App& app) {
   struct Options {
     mesogen::GenerateRequest request;
     std::uint64_t seed = 0;
+    long long threads = 1;
     std::string summary, picture;
     bool quiet = false;
   };
@@ -24,12 +26,16 @@ Action add_generate_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   g->add_option("-o,--output", o->request.output, "Specimen file to write (HDF5)")->required();
   auto* seed = g->add_option("--seed", o->seed, "Random seed (overrides the file's `seed`)");
+  auto* threads = g->add_option("--threads", o->threads,
+                                "Threads of the mortar packing's cycles, 1-1024 (overrides "
+                                "mortar.threads; the specimen is the same for any count)");
   g->add_option("--summary", o->summary, "Write a summary JSON here");
   g->add_option("--picture", o->picture, "Write a PNG picture of the specimen here");
   g->add_flag("-q,--quiet", o->quiet, "No progress lines on stderr");
-  return [o, g, seed] {
+  return [o, g, seed, threads] {
     if (!g->parsed()) return;
     if (seed->count()) o->request.seed = o->seed;
+    if (threads->count()) o->request.threads = o->threads;
     if (!o->summary.empty()) o->request.summary = o->summary;
     if (!o->picture.empty()) o->request.picture = o->picture;
     o->request.verbose = !o->quiet;

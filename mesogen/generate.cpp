@@ -323,7 +323,15 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
 }
 
 void run_generate(const GenerateRequest& request) {
-  const GeneratorInput in = read_generator_input(InputTable::parse_file(request.input));
+  GeneratorInput in = read_generator_input(InputTable::parse_file(request.input));
+  if (request.threads) {
+    if (*request.threads < 1 || *request.threads > kMaxMortarThreads)
+      throw InputError("cdem generate", "--threads",
+                       "threads of the mortar packing, must be an integer in [1, " +
+                           std::to_string(kMaxMortarThreads) + "], got " +
+                           std::to_string(*request.threads));
+    in.mortar.threads = static_cast<int>(*request.threads);
+  }
   GenerateReport report{request.verbose, {}};
   const Specimen s = generate(in, request.seed.value_or(in.seed), report);
 

@@ -21,6 +21,9 @@ struct GenerateRequest {
   std::optional<std::filesystem::path> summary;  // summary JSON
   std::optional<std::filesystem::path> picture;  // PNG
   bool verbose = true;                           // phase lines on stderr
+  // Overrides mortar.threads (threads of the packing's cycles; the specimen does not depend on
+  // it). Checked like the key: 1..kMaxMortarThreads, else InputError naming --threads.
+  std::optional<long long> threads = std::nullopt;
 };
 
 // The top-level fields of the summary JSON run_generate writes, (campaigns check their

@@ -168,7 +168,7 @@ GeneratorInput read_generator_input(const InputTable& root) {
 
   const InputTable m = root.table("mortar");
   m.reject_unknown_keys({"r_mean", "r_ratio", "porosity", "density", "sigma0", "stress_tolerance",
-                         "packing_emod", "max_steps", "expansion_steps", "relaxation"});
+                         "packing_emod", "max_steps", "expansion_steps", "relaxation", "threads"});
   auto& mc = in.mortar;
   mc.r_mean = m.quantity("r_mean", Dimension::Length, Range::open(0, 0.1));
   mc.r_ratio = m.number_or("r_ratio", 2.5, Range::closed(1, 20));
@@ -182,6 +182,8 @@ GeneratorInput read_generator_input(const InputTable& root) {
   mc.relaxation = m.string_or("relaxation", "damped", {"damped", "fire"}) == "fire"
                       ? MortarRelaxation::Fire
                       : MortarRelaxation::Damped;
+  // Threads of the packing's DEM cycles; the packing is bitwise the same for any count.
+  mc.threads = static_cast<int>(m.integer_or("threads", mc.threads, 1, kMaxMortarThreads));
   if (mc.relaxation == MortarRelaxation::Fire)
     if (const std::string why =
             fire_span_refusal(in.container.width, in.container.height, mc.r_mean);

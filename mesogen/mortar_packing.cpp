@@ -34,12 +34,15 @@ constexpr double kHoldGain = 0.5;     // fraction of the wall-stress error corre
 constexpr long kCheckEvery = 50;      // cycles between convergence checks
 constexpr long kStiffnessEvery = 10;  // cycles between updates of the servo's stiffness estimate
 // relaxation = "fire" (relax_fire).
-// Stress ratio between successive stage targets. Measured on the 100 x 200 mm mould (seed
-// 20260401, docs/performance.md): a decade per stage with stages ended at an unbalanced ratio of
-// 2e-2 unjammed the packing (coordination 2.95 at 6 MPa, 2.26 at 0.37 MPa); halving, with every
-// stage relaxed to the packing's own unbalanced limit, keeps it jammed (3.64 at 0.22 MPa).
-constexpr double kFireStageDrop = 2.0;
 constexpr long kFireCheckEvery = 10;  // FIRE cycles between unbalanced-ratio checks
+// The jamming check of a stage: the most the fraction of floating discs (fewer than 3 contacts)
+// may rise over one stage. Relaxed halving stages raise it by at most 1.2 points (the reference
+// mould, seed 1: 1.3 % at 250 MPa to 7.9 % at sigma0, docs/performance.md "Session 13"); the
+// stage where the 500-diameter mould began to unjam (stages ended at 1e-2) raised it by 3.7.
+constexpr double kFireMaxFloatingRise = 0.02;
+// Stages undone by the jamming check before the relaxation gives up (each halves the stage's
+// stress drop in log and its unbalanced limit).
+constexpr int kFireMaxRestores = 6;
 
 void check_controls(const Container& mould, const MortarPackingControls& c) {
   const auto bad = [](const char* key, const std::string& reason) {
@@ -58,6 +61,9 @@ void check_controls(const Container& mould, const MortarPackingControls& c) {
   if (c.expansion_steps < 0) bad("expansion_steps", "must be >= 0 (0: from r_ratio)");
   if (c.wall_segments < 3) bad("wall_segments", "must be >= 3");
   if (!(c.overlap_guard > 0)) bad("overlap_guard", "must be > 0 (x the smaller radius)");
+  if (!(c.fire_stage_drop > 1)) bad("fire_stage_drop", "must be > 1");
+  if (c.threads < 1 || c.threads > kMaxMortarThreads)
+    bad("threads", "must be in [1, " + std::to_string(kMaxMortarThreads) + "]");
   if (c.relaxation == MortarRelaxation::Fire)
     if (const std::string why = fire_span_refusal(mould.width, mould.height, c.r_mean);
         !why.empty())
@@ -252,10 +258,15 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
 // contacts: sigma ~ phi - phi_J), so the factor of a stage comes from the secant through the
 // last two relaxed states, and that of the first from the affine stiffness (which is stiffer
 // than the relaxed response, so the first stage undershoots its target, on the jammed side).
-// Targets: half the stress of the last relaxed state per stage, down to sigma0; then secant
-// corrections at sigma0 until both stresses are within the tolerance. Every stage is relaxed to
-// the packing's unbalanced-force limit.
-RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarPackingControls& c) {
+// Targets: the stress of the last relaxed state over controls.fire_stage_drop per stage, down to
+// sigma0; then secant corrections at sigma0 until both stresses are within the tolerance.
+// A stage ends at the packing's unbalanced-force limit, scaled down on moulds wider than
+// kFireStageSpanDiameters (fire_stage_limit). Each relaxed stage passes a jamming check: if the
+// fraction of floating discs rose by more than kFireMaxFloatingRise since the last relaxed
+// state, the stage is undone (positions and radii back to that state) and the decompression goes
+// on from there with half the stage's stress drop in log and half its unbalanced limit.
+RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarPackingControls& c,
+                        int& restored_stages) {
   dem::WorldSettings undamped = world.settings();
   undamped.local_damping = 0;  // FIRE's quench is the only dissipation
   // FIRE at a fixed step, the critical one (Bitzek et al.'s dt_max; leapfrog on the Gershgorin
@@ -282,28 +293,71 @@ RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarP
     }
     return false;
   };
-  double log_scale = 0;  // ln of the radius factor applied since the FIRE relaxation began
-  double previous_log_scale = 0, previous_sigma = -1;  // the last relaxed state (Pa)
-  for (bool relaxed = relax(c.unbalanced_limit); relaxed;) {
+  const auto floating_fraction = [&world] {
+    return static_cast<double>(dem::floating_disc_count(world, 3)) /
+           static_cast<double>(world.discs().size());
+  };
+  double limit = fire_stage_limit(mould.width, mould.height, c);
+  double drop = c.fire_stage_drop;
+  // The last relaxed state that passed the jamming check: the ln of the radius factor applied
+  // since the FIRE relaxation began, its contact stress (Pa), the secant's previous point, its
+  // floating fraction and the positions of its bodies (m).
+  struct Stage {
+    double log_scale = 0, sigma = -1, previous_log_scale = 0, previous_sigma = -1, floating = -1;
+    std::vector<double> x, y;
+  } last;
+  double log_scale = 0;
+  std::vector<double> shift_x, shift_y;  // m
+  restored_stages = 0;
+  for (bool relaxed = relax(limit); relaxed;) {
     const double contact_sigma = world.last_force_pass().virial / (2.0 * area);
+    const double floating = floating_fraction();
+    if (last.floating >= 0 && floating > last.floating + kFireMaxFloatingRise) {
+      if (++restored_stages > kFireMaxRestores) break;
+      const dem::Bodies& b = world.bodies();
+      shift_x.resize(b.size());
+      shift_y.resize(b.size());
+      for (std::size_t k = 0; k < b.size(); ++k) {
+        shift_x[k] = last.x[k] - b.x[k];
+        shift_y[k] = last.y[k] - b.y[k];
+      }
+      world.translate_bodies(shift_x, shift_y);
+      world.scale_radii(std::exp(last.log_scale - log_scale));
+      log_scale = last.log_scale;
+      drop = std::sqrt(drop);
+      limit *= 0.5;
+      last.floating = -1;  // measured again once the restored state is relaxed to the new limit
+      fire.restart();
+      relaxed = relax(limit);
+      continue;
+    }
     const double wall_sigma = dem::mean_stress(dem::wall_stress(world, area, centre));
     if (at_sigma0(wall_sigma, contact_sigma, ratio, c))
       return {wall_sigma, contact_sigma, ratio, true};
-    const double target = std::max(c.sigma0, contact_sigma / kFireStageDrop);
+    // This state passed: the secant's points move on and it becomes the state to return to.
+    if (last.sigma >= 0 && last.log_scale != log_scale) {
+      last.previous_log_scale = last.log_scale;
+      last.previous_sigma = last.sigma;
+    }
+    last.log_scale = log_scale;
+    last.sigma = contact_sigma;
+    last.floating = floating;
+    last.x = world.bodies().x;
+    last.y = world.bodies().y;
+    const double target = std::max(c.sigma0, contact_sigma / drop);
     // d sigma / d ln r, Pa: the secant of the relaxed states, else the affine stiffness.
     double slope = affine_stiffness(world, area, AffineContacts::Touching);
-    if (previous_sigma >= 0 && log_scale != previous_log_scale && contact_sigma != previous_sigma)
-      slope = (contact_sigma - previous_sigma) / (log_scale - previous_log_scale);
+    if (last.previous_sigma >= 0 && log_scale != last.previous_log_scale &&
+        contact_sigma != last.previous_sigma)
+      slope = (contact_sigma - last.previous_sigma) / (log_scale - last.previous_log_scale);
     if (!(slope > 0)) slope = affine_stiffness(world, area, AffineContacts::Candidates);
-    previous_log_scale = log_scale;
-    previous_sigma = contact_sigma;
     const double step = (target - contact_sigma) / slope;
     log_scale += step;
     world.scale_radii(std::exp(step));
     fire.restart();
-    relaxed = relax(c.unbalanced_limit);
+    relaxed = relax(limit);
   }
-  // max_steps reached: the state where it stopped (the last step's contact stress).
+  // max_steps reached, or the jamming check gave up: the state where it stopped.
   return {dem::mean_stress(dem::wall_stress(world, area, centre)),
           world.last_force_pass().virial / (2.0 * area), ratio, false};
 }
@@ -317,6 +371,11 @@ long default_expansion_steps(double r_ratio) {
 
 double mould_span_diameters(double width, double height, double r_mean) {
   return std::max(width, height) / (2.0 * r_mean);
+}
+
+double fire_stage_limit(double width, double height, const MortarPackingControls& c) {
+  const double span = mould_span_diameters(width, height, c.r_mean);
+  return c.unbalanced_limit * std::min(1.0, kFireStageSpanDiameters / span);
 }
 
 std::string fire_span_refusal(double width, double height, double r_mean) {
@@ -361,7 +420,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   dem::WorldSettings settings;
   settings.local_damping = c.local_damping;
   settings.density_scaling = true;
-  settings.threads = std::max(1, c.threads);
+  settings.threads = c.threads;
   // Nothing here reads the energy ledger, and its bookkeeping is a few % of a cycle. Its
   // runaway check was idle anyway while the radii change (every scale_radii restarts the
   // reference); the overlap and non-finite guards still stop a bad expansion with their
@@ -416,12 +475,23 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   }
 
   world.set_neighbor_skin(0.2 * r_min);
-  const RelaxedState end = c.relaxation == MortarRelaxation::Fire ? relax_fire(world, mould, c)
-                                                                  : relax_damped(world, mould, c);
+  int restored_stages = 0;
+  const RelaxedState end = c.relaxation == MortarRelaxation::Fire
+                               ? relax_fire(world, mould, c, restored_stages)
+                               : relax_damped(world, mould, c);
+  out.fire_restored_stages = restored_stages;
   const double wall_sigma = end.wall_stress, contact_sigma = end.contact_stress,
                ratio = end.unbalanced_ratio;
   out.converged = end.converged;
   out.steps = world.step_count();
+  if (!out.converged && restored_stages > kFireMaxRestores) {
+    std::ostringstream msg;
+    msg << "mortar packing, relaxation 'fire' (mortar.relaxation): the packing unjammed "
+        << restored_stages << " times (its floating fraction rose by more than "
+        << kFireMaxFloatingRise << " over a stage) at contact stress " << contact_sigma
+        << " Pa; use 'damped' (the default)";
+    throw RunError(msg.str());
+  }
   if (!out.converged) {
     std::ostringstream msg;
     msg << "mortar packing did not reach sigma0 = " << c.sigma0

@@ -19,14 +19,24 @@ enum class MortarRelaxation {
 // A mould's larger side in mean disc diameters (width, height and r_mean in m).
 double mould_span_diameters(double width, double height, double r_mean);
 
-// Widest mould, in mean diameters, on which FIRE was measured to keep the packing jammed: the
-// 100 x 200 mm mould at R_mean 0.5 mm, 3 seeds. On a 500-diameter mould (250 x 500 mm) the
-// packing unjammed below 3.3 MPa and the hold never converged (docs/performance.md "FIRE
-// relaxation"), so wider moulds are refused rather than left to cycle to max_steps.
-constexpr double kFireSpanDiameters = 200.0;
+// Span, in mean diameters, up to which a FIRE stage ends at the packing's own unbalanced limit
+// (the 100 x 200 mm mould at R_mean 0.5 mm, 3 seeds). A wider mould's stages end at that limit
+// x this span / its span: unscaled, the 500-diameter mould (250 x 500 mm) unjammed below 3.3 MPa
+// and the hold never converged; scaled, it stayed jammed (docs/performance.md "FIRE relaxation",
+// "Session 13").
+constexpr double kFireStageSpanDiameters = 200.0;
+
+// Widest mould, in mean diameters, on which FIRE (with the stage limit above and the jamming
+// check of relax_fire) was measured to pack jammed at sigma0: the 500-diameter mould
+// (250 x 500 mm at R_mean 0.5 mm, docs/performance.md "Session 13"). Wider moulds are refused
+// rather than left unproven.
+constexpr double kFireSpanDiameters = 500.0;
 
 // Why `relaxation = "fire"` is refused for this mould (empty: accepted).
 std::string fire_span_refusal(double width, double height, double r_mean);
+
+// Most threads a packing accepts (as `[test] threads`).
+constexpr int kMaxMortarThreads = 1024;
 
 struct MortarPackingControls {
   double r_mean = 0.5e-3;  // m, mean disc radius
@@ -48,14 +58,26 @@ struct MortarPackingControls {
   // twice as slow to keep the packing jammed (measured on the reference mould: 10,350 instead
   // of 6,350 cycles, and a slightly looser packing).
   double local_damping = 0.3;
-  int threads = 1;  // threads of the DEM cycles (the result does not depend on it)
+  // Threads of the DEM cycles, 1..kMaxMortarThreads (the result does not depend on it):
+  // `mortar.threads`, or `cdem generate --threads`.
+  int threads = 1;
   // Overlap guard of the packing cycles, x the smaller radius of a pair. Not the engine's 1 (a
   // lab test's): at the stress the expansion reaches on purpose, a small disc carrying a large
   // one's load is squeezed past its own radius in a sound packing (pack_mortar says why). At 2
   // the smaller disc lies wholly inside the larger (squeezed through): the packing is lost.
   double overlap_guard = 2.0;
   MortarRelaxation relaxation = MortarRelaxation::Damped;
+  // relaxation = "fire": stress ratio between successive stage targets (> 1). Measured on the
+  // 100 x 200 mm mould (seed 20260401, docs/performance.md): a decade per stage with stages
+  // ended at an unbalanced ratio of 2e-2 unjammed the packing (coordination 2.95 at 6 MPa, 2.26 at
+  // 0.37 MPa); halving, with every stage relaxed to the packing's own unbalanced limit, keeps it
+  // jammed (3.64 at 0.22 MPa). Not an input key (tests make a packing unjam with it).
+  double fire_stage_drop = 2.0;
 };
+
+// The unbalanced-force ratio a FIRE stage ends at on this mould (width, height in m):
+// controls.unbalanced_limit x min(1, kFireStageSpanDiameters / span).
+double fire_stage_limit(double width, double height, const MortarPackingControls& c);
 
 // Equal discs crystallise under radius expansion: hexagonal grains whose boundaries hold discs
 // with too few contacts, so the packing is not jammed (D 50 mm, R_mean 0.3 mm, ratio 1:
@@ -93,6 +115,7 @@ struct MortarPacking {
   long floating_discs = 0;         // discs with fewer than 3 contacts
   long steps = 0;                  // DEM steps used
   bool converged = false;          // stress within tolerance and forces balanced
+  int fire_restored_stages = 0;    // relaxation = "fire": stages undone by the jamming check
 };
 
 // Throws RunError if the effort bound is reached without convergence (with the figures).

@@ -10,12 +10,14 @@ base="$SRC/samples/c30_specimen.toml"
 failures=0
 passed=0
 
-# expect NAME EXPECTED_EXIT PATTERN FILE: run generate on FILE, check exit code, message, no output.
+# expect NAME EXPECTED_EXIT PATTERN FILE [OPTION...]: run generate on FILE with the options, check
+# exit code, message, no output.
 expect() {
   local name=$1 code=$2 pattern=$3 file=$4
+  shift 4
   local out="$work/$name.h5" err="$work/$name.err"
   timeout 300 "$CDEM" generate "$file" -o "$out" --summary "$work/$name.json" \
-    --picture "$work/$name.png" -q 2>"$err"
+    --picture "$work/$name.png" -q "$@" 2>"$err"
   local rc=$?
   local leftovers
   leftovers=$(ls "$work" | grep -E "^$name\.(h5|json|png)" || true)
@@ -44,7 +46,11 @@ expect specimen_too_small 2 "gradation.d_max" "$(variant specimen_too_small 's/^
 expect unknown_gradation 2 "unknown value 'talbot'" "$(variant unknown_gradation 's/^type = "walraven"/type = "talbot"/')"
 expect expansion_zero 2 "mortar.expansion_steps" "$(variant expansion_zero 's/^porosity = 0.12/porosity = 0.12\nexpansion_steps = 0/')"
 expect bad_relaxation 2 "mortar.relaxation.*unknown value 'cg' (allowed: 'damped', 'fire')" "$(variant bad_relaxation 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "cg"/')"
-expect fire_wide_mould 2 "relaxation.*'fire' keeps the packing jammed on moulds up to 200 mean diameters across" "$(variant fire_wide_mould 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "fire"/; s/^r_mean_mm = 0.5 /r_mean_mm = 0.35 /')"
+expect fire_wide_mould 2 "relaxation.*'fire' keeps the packing jammed on moulds up to 500 mean diameters across" "$(variant fire_wide_mould 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "fire"/; s/^r_mean_mm = 0.5 /r_mean_mm = 0.15 /')"
+expect threads_key_zero 2 "mortar.threads.*\[1, 1024\]" "$(variant threads_key_zero 's/^porosity = 0.12/porosity = 0.12\nthreads = 0/')"
+expect threads_key_text 2 "mortar.threads" "$(variant threads_key_text 's/^porosity = 0.12/porosity = 0.12\nthreads = "two"/')"
+expect threads_option_zero 2 "cdem generate: key '--threads'.*\[1, 1024\], got 0" "$base" --threads 0
+expect threads_option_large 2 "key '--threads'.*\[1, 1024\], got 4096" "$base" --threads 4096
 expect misspelt_key 2 "unknown key" "$(variant misspelt_key 's/^porosity = 0.12/porosty = 0.12/')"
 expect bad_unit 2 "unknown unit" "$(variant bad_unit 's/^density_kg_m3 = 2000/density = "2000 furlongs"/')"
 expect toml_syntax 2 "TOML syntax error" "$(variant toml_syntax 's/^seed = 1/seed = = 1/')"

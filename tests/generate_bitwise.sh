@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Same input and seed, same bytes: `cdem generate` twice with the same seed writes identical
-# specimen files (cmp), in different folders and at different times (HDF5 would store each
+# specimen files (cmp), in different folders, at different times and on 1 or 2 threads (HDF5 would store each
 # object's creation time unless told not to). A third generation with another seed must differ,
 # so the comparison can fail. The same for `cdem run`: the result file of a uniaxial test on
 # that specimen, run twice at different times, is byte-identical (no
@@ -18,11 +18,15 @@ sleep 1.1  # HDF5 timestamps have a resolution of one second
 "$CDEM" generate spec.toml -o second/specimen.h5 --seed 7 -q
 "$CDEM" generate spec.toml -o other_seed.h5 --seed 8 -q
 cmp first/specimen.h5 second/specimen.h5
+# The packing's cycles on two threads (--threads, mortar.threads): the same bytes.
+mkdir two_threads
+"$CDEM" generate spec.toml -o two_threads/specimen.h5 --seed 7 --threads 2 -q
+cmp first/specimen.h5 two_threads/specimen.h5
 if cmp -s first/specimen.h5 other_seed.h5; then
   echo "FAIL: seeds 7 and 8 gave the same bytes"
   exit 1
 fi
-echo "ok: two generations with seed 7 are byte-identical ($(stat -c %s first/specimen.h5) bytes); seed 8 differs"
+echo "ok: two generations with seed 7 (one on 2 threads) are byte-identical ($(stat -c %s first/specimen.h5) bytes); seed 8 differs"
 
 sed -e 's/^pb_moment_factor = 1 /pb_moment_factor = 0 /' "$SRC/samples/c30_materials.toml" > materials.toml
 grep -q '^pb_moment_factor = 0 ' materials.toml || { echo "FAIL: no pb_moment_factor to change"; exit 1; }
