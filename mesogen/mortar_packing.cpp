@@ -342,8 +342,8 @@ RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarP
     last.log_scale = log_scale;
     last.sigma = contact_sigma;
     last.floating = floating;
-    last.x = world.bodies().x;
-    last.y = world.bodies().y;
+    last.x.assign(world.bodies().x.begin(), world.bodies().x.end());
+    last.y.assign(world.bodies().y.begin(), world.bodies().y.end());
     const double target = std::max(c.sigma0, contact_sigma / drop);
     // d sigma / d ln r, Pa: the secant of the relaxed states, else the affine stiffness.
     double slope = affine_stiffness(world, area, AffineContacts::Touching);
