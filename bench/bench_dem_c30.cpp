@@ -19,75 +19,30 @@
 #include <numeric>
 #include <string>
 
+#include "c30_world.hpp"
 #include "cycle_throughput.hpp"
-#include "dem/bond_installation.hpp"
-#include "dem/world_from_specimen.hpp"
-#include "io/specimen_file.hpp"
-#include "lab/material_genesis.hpp"
-#include "lab/material_table.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr long kSteps = 500;                  // cycles per timed iteration
-constexpr double kPlatenVelocity = 0.02;      // m/s, each platen (SPEC 8)
-constexpr double kPlatenOverhang = 0.25;      // platens reach this fraction of the width beyond
-                                              // each side (lab_test default)
-constexpr long kRelaxationMaxSteps = 20'000;  // bound on the genesis relaxation
+constexpr long kSteps = 500;  // cycles per timed iteration
 
-fs::path specimen_path() {
-  const char* s = std::getenv("CDEM_C30_SPECIMEN");
-  return s ? fs::path(s) : fs::path("/tmp/c30.h5");
-}
-
-struct C30World {
-  cdem::dem::World world;
-  cdem::lab::GenesisReport genesis;
-};
+using cdem::bench::C30World;
 
 const char* const kMaterials[] = {"samples/c30_materials.toml",
                                   "samples/materials/c30_flat_joint.toml"};
 
-// The specimen after genesis with the materials of `law`, with its platens, built once per
-// process and law and copied per run.
-C30World build_c30_world(int law) {
-  using namespace cdem::dem;
-  using namespace cdem::lab;
-  const cdem::Specimen specimen = cdem::read_specimen(specimen_path());
-  WorldSettings settings;
-  read_material_table(fs::path(CDEM_SOURCE_DIR) / kMaterials[law]).apply(settings);
-  GenesisOptions options;
-  options.relax_max_steps = kRelaxationMaxSteps;
-  GenesisReport report;
-  const cdem::Specimen cleaned = remove_floating_discs(specimen, settings, options, report);
-  World w = world_from_specimen(cleaned, settings);
-  install_test_bonds(w, options, report);
-  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (std::size_t i = 0; i < w.discs().size(); ++i) {
-    xmin = std::min(xmin, w.discs().x[i] - w.discs().r[i]);
-    xmax = std::max(xmax, w.discs().x[i] + w.discs().r[i]);
-    ymin = std::min(ymin, w.discs().y[i] - w.discs().r[i]);
-    ymax = std::max(ymax, w.discs().y[i] + w.discs().r[i]);
-  }
-  const double over = kPlatenOverhang * (xmax - xmin);
-  const int bottom = w.add_wall(xmin - over, ymin, xmax + over, ymin);
-  const int top = w.add_wall(xmax + over, ymax, xmin - over, ymax);
-  w.set_wall_velocity(bottom, 0, kPlatenVelocity);
-  w.set_wall_velocity(top, 0, -kPlatenVelocity);
-  return C30World{std::move(w), report};
-}
-
 const C30World& c30_world(int law) {
-  static const C30World parallel_bond = build_c30_world(0);
+  static const C30World parallel_bond = cdem::bench::build_c30_world(kMaterials[0]);
   if (law == 0) return parallel_bond;
-  static const C30World flat_joint = build_c30_world(1);
+  static const C30World flat_joint = cdem::bench::build_c30_world(kMaterials[1]);
   return flat_joint;
 }
 
 void BM_C30BondedSpecimenCycles(benchmark::State& state) {
-  if (!fs::exists(specimen_path())) {
-    state.SkipWithError(("no specimen at " + specimen_path().string() +
+  if (!fs::exists(cdem::bench::c30_specimen_path())) {
+    state.SkipWithError(("no specimen at " + cdem::bench::c30_specimen_path().string() +
                          ": run `cdem generate samples/c30_specimen.toml -o /tmp/c30.h5` or set "
                          "CDEM_C30_SPECIMEN")
                             .c_str());

@@ -13,15 +13,10 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <string>
 #include <vector>
 
-#include "dem/bond_installation.hpp"
-#include "dem/world_from_specimen.hpp"
-#include "io/specimen_file.hpp"
-#include "lab/material_genesis.hpp"
-#include "lab/material_table.hpp"
+#include "c30_world.hpp"
 
 // Under `valgrind --tool=callgrind --instr-atstart=no` only the timed steps are counted.
 #if __has_include(<valgrind/callgrind.h>)
@@ -33,46 +28,12 @@
 
 namespace {
 
-namespace fs = std::filesystem;
-
-constexpr double kPlatenVelocity = 0.02;      // m/s, each platen (SPEC 8)
-constexpr double kPlatenOverhang = 0.25;      // fraction of the width beyond each side
-constexpr long kRelaxationMaxSteps = 20'000;  // bound on the genesis relaxation
-constexpr long kWarmUpSteps = 20;             // cycles before each timed run (team start, plan)
+constexpr long kWarmUpSteps = 20;  // cycles before each timed run (team start, plan)
 
 double seconds(clockid_t clock) {
   timespec t{};
   clock_gettime(clock, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-cdem::dem::World build_c30_world() {
-  using namespace cdem::dem;
-  using namespace cdem::lab;
-  const char* env = std::getenv("CDEM_C30_SPECIMEN");
-  const fs::path path = env ? fs::path(env) : fs::path("/tmp/c30.h5");
-  const cdem::Specimen specimen = cdem::read_specimen(path);
-  WorldSettings settings;
-  read_material_table(fs::path(CDEM_SOURCE_DIR) / "samples/c30_materials.toml").apply(settings);
-  GenesisOptions options;
-  options.relax_max_steps = kRelaxationMaxSteps;
-  GenesisReport report;
-  const cdem::Specimen cleaned = remove_floating_discs(specimen, settings, options, report);
-  World w = world_from_specimen(cleaned, settings);
-  install_test_bonds(w, options, report);
-  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-  for (std::size_t i = 0; i < w.discs().size(); ++i) {
-    xmin = std::min(xmin, w.discs().x[i] - w.discs().r[i]);
-    xmax = std::max(xmax, w.discs().x[i] + w.discs().r[i]);
-    ymin = std::min(ymin, w.discs().y[i] - w.discs().r[i]);
-    ymax = std::max(ymax, w.discs().y[i] + w.discs().r[i]);
-  }
-  const double over = kPlatenOverhang * (xmax - xmin);
-  const int bottom = w.add_wall(xmin - over, ymin, xmax + over, ymin);
-  const int top = w.add_wall(xmax + over, ymax, xmin - over, ymax);
-  w.set_wall_velocity(bottom, 0, kPlatenVelocity);
-  w.set_wall_velocity(top, 0, -kPlatenVelocity);
-  return w;
 }
 
 }  // namespace
@@ -83,7 +44,7 @@ int main(int argc, char** argv) {
   std::vector<int> counts;
   for (int a = 3; a < argc; ++a) counts.push_back(std::atoi(argv[a]));
   if (counts.empty()) counts = {1, 2};
-  const cdem::dem::World c30 = build_c30_world();
+  const cdem::dem::World c30 = cdem::bench::build_c30_world("samples/c30_materials.toml").world;
   std::printf("discs %zu pairs %zu steps %ld\n", c30.discs().size(), c30.contacts().keys.size(),
               steps);
   std::printf("round threads wall_ms main_cpu_ms process_cpu_ms ns_per_disc_step_wall\n");
