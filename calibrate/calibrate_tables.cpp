@@ -129,7 +129,8 @@ const TableLayout kBrazilianTable{"K_B",
                                   "E* / sigma_cn",
                                   {"kratio", "friction", "shear_to_normal", "diameter_mm"},
                                   {"loading_arc_deg"}};
-const TableLayout kModulusTable{"K_E", "", "", {"kratio", "friction", "shear_to_normal"}};
+const TableLayout kModulusTable{
+    "K_E", "", "", {"kratio", "friction", "shear_to_normal", "width_mm", "height_mm"}};
 const TableLayout kUniaxialStrengthTable{
     "K_U",
     "shear_to_normal",
@@ -858,6 +859,8 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
         read_lookup_table(input.tables.ke_file, kModulusTable, file, "tables.ke");
     check_conditions(input, ke, "tables.ke", shear_ratio_free);
     const Packing packing = read_packing(test, file, "specimen.generator");
+    check_size(ke, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}},
+               file, "specimen.generator");
     const CellCoefficient k = interpolate_cell(ke, packing, file, "specimen.generator");
     m.K_E = k.at(0);
     md << "- E: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "

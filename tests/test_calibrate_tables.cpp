@@ -39,9 +39,9 @@ const std::string kKB =
     "4,0.2,1000,1.0,2.5,0.5,2,30\n"
     "4,0.2,3000,0.9,2.5,0.5,2,30\n";
 const std::string kKE =
-    "r_ratio,r_min_mm,K_E,kratio,friction,shear_to_normal\n"
-    "2,0.2,0.5,2.5,0.5,2\n"
-    "4,0.2,0.7,2.5,0.5,2\n";
+    "r_ratio,r_min_mm,K_E,kratio,friction,shear_to_normal,width_mm,height_mm\n"
+    "2,0.2,0.5,2.5,0.5,2,20,40\n"
+    "4,0.2,0.7,2.5,0.5,2,20,40\n";
 // K_U = sigma_u / sigma_cn at two radius ratios and five tau_cs / sigma_cn levels: proportional
 // to tau_cs / sigma_cn up to 0.5 (shear-driven), then flattening (tension-driven).
 const std::string kKU =
@@ -445,6 +445,32 @@ TEST(CalibrateTablesInput, RefusesWhatTheUniaxialTableDoesNotHold) {
   f.materials =
       replace(f.materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 40.0");
   EXPECT_NO_THROW(read_calibration_input(make_calibration("shear_free", f)));
+}
+
+// K_E depends on the rectangle's size against R_min (8 seeds: 0.5125 on 30 x 60 mm against
+// 0.4866 on 20 x 40 mm, docs/lookup_tables.md "Session 13"), so a K_E table speaks for
+// rectangles of its own W x H only, as the K_U table does.
+TEST(CalibrateTablesInput, TheModulusTableSpeaksForItsOwnSize) {
+  expect_refusals({
+      {"ke_size", &Files::rectangle, "width_mm = 20\nheight_mm = 40",
+       "width_mm = 30\nheight_mm = 60", "specimen.generator",
+       "the specimen is W x H 30 x 60 mm, and the K_E table"},
+      {"ke_height", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
+       "made on W x H 20 x 40 mm specimens: K_E depends on the size"},
+      {"ke_no_size", &Files::ke, ",width_mm,height_mm", "", "tables.ke", "no column 'width_mm'"},
+      {"ke_on_disc", &Files::rectangle, "shape = \"rectangle\"\nwidth_mm = 20\nheight_mm = 40",
+       "shape = \"disc\"\ndiameter_mm = 30", "specimen.generator", "has no W x H"},
+  });
+  // A table made on 30 x 60 mm rectangles is accepted for them (read_calibration_input runs the
+  // strategy's checks and lookup).
+  Files large;
+  large.ke = replace(replace(kKE, "2,20,40", "2,30,60"), "2,20,40", "2,30,60");
+  large.rectangle =
+      replace(kRectangle, "width_mm = 20\nheight_mm = 40", "width_mm = 30\nheight_mm = 60");
+  const auto in = read_calibration_input(make_calibration("ke_30x60", large));
+  const auto ke = read_lookup_table(in.tables.ke_file, kModulusTable, "c", "k");
+  EXPECT_DOUBLE_EQ(ke.condition("width_mm"), 30);
+  EXPECT_DOUBLE_EQ(ke.condition("height_mm"), 60);
 }
 
 // The DEM replaced by the relations the tables hold, off by known factors: E = ke K_E(rho) E*,
