@@ -359,6 +359,10 @@ texpect tables_coupled_outside targets.sigma_u \
   's/^E_GPa = 18/&\nsigma_u_MPa = 200/; s#^ke = .*#&\nku = "../tables/uniaxial_ku_table.csv"\nkb_tau = "../tables/brazilian_kb_tau_table.csv"#'
 # The jaws' K_B table with a Brazilian test loaded through loading arcs (session 13).
 texpect tables_loading tests.brazilian 's#sandstone/brazilian.toml#sandstone/brazilian_arc.toml#'
+# A uniaxial rectangle of another size than the K_E table's 20 x 40 mm (session 14).
+sed -e 's/^width_mm = .*/width_mm = 30/; s/^height_mm = .*/height_mm = 60/' \
+  tables_case/samples/sandstone/rectangle_r2.7.toml > tables_case/samples/sandstone/rect_30x60.toml
+texpect tables_ke_size specimen.generator 's#sandstone/rectangle_r2.7.toml#sandstone/rect_30x60.toml#'
 
 echo "$passed passed, $failures failed"
 [ "$passed" -ge 40 ] || { echo "FAIL: fewer than 40 cases ran"; exit 1; }
