@@ -44,10 +44,12 @@ MemoryFootprint memory_footprint(const World& world) {
       capacity_bytes(n.x0_, n.y0_, n.r0_, n.wall_ax0_, n.wall_ay0_, n.cell_start_, n.cell_discs_,
                      n.disc_cell_, n.pair_keys_, n.wall_keys_, n.scratch_);
   const ThreadedCycle& t = world.threaded_;
-  m.thread_plan = capacity_bytes(
-      t.first_start_, t.wall_start_, t.cuts_, t.body_cuts_, t.pair_work_, t.body_work_, t.shared_,
-      t.shared_discs_, t.special_pairs_, t.special_direct_, t.parts_, t.virial_, t.shared_terms_,
-      t.shared_term_start_, t.shared_term_mid_, t.body_energy_, t.wall_slip_, t.lanes_);
+  m.thread_plan = capacity_bytes(t.first_start_, t.wall_start_, t.cuts_, t.body_cuts_, t.pair_work_,
+                                 t.body_work_, t.shared_, t.shared_discs_, t.special_pairs_,
+                                 t.special_direct_, t.parts_, t.virial_, t.shared_terms_,
+                                 t.shared_term_start_, t.shared_term_mid_, t.rate_, t.cut_before_,
+                                 t.target_cuts_, t.range_of_, t.second_start_, t.second_pairs_,
+                                 t.next_second_, t.rank_, t.body_energy_, t.wall_slip_, t.lanes_);
   for (const auto& lane : t.lanes_) m.thread_plan += capacity_bytes(lane.slips, lane.broken);
   const Walls& w = world.walls_;
   m.other = capacity_bytes(w.ax, w.ay, w.bx, w.by, w.arc, w.vx, w.vy, w.friction, w.fx, w.fy, w.sxx,

@@ -11,16 +11,17 @@ namespace {
 
 // Cuts items [0, n) into `ranges` contiguous ranges of equal estimated time, the estimate of
 // item i being its weight times the measured time per unit weight (`rate`) of the range that
-// holds it under the `old` cuts. Returns the cuts (ranges + 1 entries, 0 first, n last).
-std::vector<std::size_t> equal_time_cuts(const std::vector<double>& weight,
-                                         const std::vector<std::size_t>& old,
-                                         const std::vector<double>& rate) {
+// holds it under the `old` cuts. Writes the cuts (ranges + 1 entries, 0 first, n last) to
+// `cuts`; `before` is scratch (n + 1 cumulative estimates, s). Neither allocates once sized.
+void equal_time_cuts(const std::vector<double>& weight, const std::vector<std::size_t>& old,
+                     const std::vector<double>& rate, std::vector<double>& before,
+                     std::vector<std::size_t>& cuts) {
   const std::size_t n = weight.size(), ranges = old.size() - 1;
-  std::vector<double> before(n + 1, 0.0);
+  before.assign(n + 1, 0.0);
   for (std::size_t t = 0; t < ranges; ++t)
     for (std::size_t i = old[t]; i < old[t + 1]; ++i)
       before[i + 1] = before[i] + rate[t] * weight[i];
-  std::vector<std::size_t> cuts(ranges + 1, n);
+  cuts.assign(ranges + 1, n);
   cuts[0] = 0;
   for (std::size_t t = 1; t < ranges; ++t) {
     const double target = before[n] * static_cast<double>(t) / static_cast<double>(ranges);
@@ -29,7 +30,6 @@ std::vector<std::size_t> equal_time_cuts(const std::vector<double>& weight,
                          std::lower_bound(before.begin(), before.end(), target) - before.begin()));
     cuts[t] = std::min(cuts[t], n);
   }
-  return cuts;
 }
 
 }  // namespace
@@ -58,16 +58,20 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
   body_work_.resize(bodies.size());
   for (std::size_t b = 0; b < bodies.size(); ++b) body_work_[b] = 1.0 + bodies.disc_count[b];
   const auto parts = static_cast<std::size_t>(threads) + 1;
+  // The scratch of the cuts, sized here so that rebalance (inside the step loop) allocates
+  // nothing.
+  rate_.assign(static_cast<std::size_t>(threads), 1.0);
+  cut_before_.reserve(std::max(n, bodies.size()) + 1);
+  target_cuts_.reserve(parts);
   // The cuts stay where the measured times put them while the discs and the team do.
   if (planned_discs_ != n || planned_threads_ != threads || cuts_.size() != parts ||
       body_cuts_.size() != parts || body_cuts_.back() != bodies.size()) {
-    const std::vector<double> unit(static_cast<std::size_t>(threads), 1.0);
-    std::vector<std::size_t> whole(parts, n);
-    whole[0] = 0;
-    cuts_ = equal_time_cuts(pair_work_, whole, unit);
-    std::vector<std::size_t> all_bodies(parts, bodies.size());
-    all_bodies[0] = 0;
-    body_cuts_ = equal_time_cuts(body_work_, all_bodies, unit);
+    target_cuts_.assign(parts, n);  // one range holding every disc
+    target_cuts_[0] = 0;
+    equal_time_cuts(pair_work_, target_cuts_, rate_, cut_before_, cuts_);
+    target_cuts_.assign(parts, bodies.size());
+    target_cuts_[0] = 0;
+    equal_time_cuts(body_work_, target_cuts_, rate_, cut_before_, body_cuts_);
     samples_ = 0;
   }
   snap_cuts_to_bodies(bodies, discs);
@@ -91,44 +95,41 @@ void ThreadedCycle::snap_cuts_to_bodies(const Bodies& bodies, const Discs& discs
   }
 }
 
+void ThreadedCycle::measured_rates(const std::vector<double>& work,
+                                   const std::vector<std::size_t>& cuts, double Lane::*seconds,
+                                   double& imbalance) {
+  const std::size_t threads = cuts.size() - 1;
+  double total = 0, total_work = 0, longest = 0;
+  for (std::size_t t = 0; t < threads; ++t) {
+    double w = 0;
+    for (std::size_t i = cuts[t]; i < cuts[t + 1]; ++i) w += work[i];
+    const double time = lanes_[t].*seconds;
+    total += time;
+    total_work += w;
+    longest = std::max(longest, time);
+    rate_[t] = w > 0 ? time / w : -1;
+  }
+  const double mean_rate = total_work > 0 ? total / total_work : 1;
+  for (std::size_t t = 0; t < threads; ++t)
+    if (!(rate_[t] > 0)) rate_[t] = mean_rate > 0 ? mean_rate : 1;
+  imbalance = total > 0 ? longest * static_cast<double>(threads) / total - 1 : 0;
+}
+
 void ThreadedCycle::rebalance(const Bodies& bodies, const Discs& discs, const ContactStore& list) {
   const std::size_t threads = cuts_.size() - 1;
-  // Measured seconds per unit of estimated work in each range; an empty range takes the mean.
-  const auto rates = [threads](const std::vector<double>& work,
-                               const std::vector<std::size_t>& cuts, const double Lane::*seconds,
-                               const std::vector<Lane>& lanes, double& imbalance) {
-    std::vector<double> rate(threads, 0.0);
-    double total = 0, total_work = 0, longest = 0;
-    for (std::size_t t = 0; t < threads; ++t) {
-      double w = 0;
-      for (std::size_t i = cuts[t]; i < cuts[t + 1]; ++i) w += work[i];
-      const double time = lanes[t].*seconds;
-      total += time;
-      total_work += w;
-      longest = std::max(longest, time);
-      rate[t] = w > 0 ? time / w : -1;
-    }
-    const double mean_rate = total_work > 0 ? total / total_work : 1;
-    for (double& r : rate)
-      if (!(r > 0)) r = mean_rate > 0 ? mean_rate : 1;
-    imbalance = total > 0 ? longest * static_cast<double>(threads) / total - 1 : 0;
-    return rate;
-  };
   double imbalance = 0;
-  const std::vector<double> pair_rate =
-      rates(pair_work_, cuts_, &Lane::pair_seconds, lanes_, imbalance);
+  measured_rates(pair_work_, cuts_, &Lane::pair_seconds, imbalance);
   if (imbalance > kTolerance) {
-    const std::vector<std::size_t> target = equal_time_cuts(pair_work_, cuts_, pair_rate);
+    equal_time_cuts(pair_work_, cuts_, rate_, cut_before_, target_cuts_);
     // Half-way: the rate of a range is not uniform over it, so a full step can overshoot.
-    for (std::size_t t = 1; t < threads; ++t) cuts_[t] = (cuts_[t] + target[t]) / 2;
+    for (std::size_t t = 1; t < threads; ++t) cuts_[t] = (cuts_[t] + target_cuts_[t]) / 2;
     snap_cuts_to_bodies(bodies, discs);
     plan_shared(discs, list);
   }
-  const std::vector<double> body_rate =
-      rates(body_work_, body_cuts_, &Lane::body_seconds, lanes_, imbalance);
+  measured_rates(body_work_, body_cuts_, &Lane::body_seconds, imbalance);
   if (imbalance > kTolerance) {
-    const std::vector<std::size_t> target = equal_time_cuts(body_work_, body_cuts_, body_rate);
-    for (std::size_t t = 1; t < threads; ++t) body_cuts_[t] = (body_cuts_[t] + target[t]) / 2;
+    equal_time_cuts(body_work_, body_cuts_, rate_, cut_before_, target_cuts_);
+    for (std::size_t t = 1; t < threads; ++t) body_cuts_[t] = (body_cuts_[t] + target_cuts_[t]) / 2;
   }
   for (Lane& lane : lanes_) lane.pair_seconds = lane.body_seconds = 0;
   samples_ = 0;
@@ -136,12 +137,18 @@ void ThreadedCycle::rebalance(const Bodies& bodies, const Discs& discs, const Co
 
 void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
   const std::size_t n = discs.size(), count = list.keys.size();
-  std::vector<std::int32_t> second_start(n + 1, 0), second_pairs(count);
+  // Scratch members: assign / clear reuse their capacity, so a call from rebalance between
+  // two list rebuilds allocates nothing.
+  std::vector<std::int32_t>& second_start = second_start_;
+  std::vector<std::int32_t>& second_pairs = second_pairs_;
+  second_start.assign(n + 1, 0);
+  second_pairs.resize(count);
   for (std::size_t k = 0; k < count; ++k)
     ++second_start[static_cast<std::size_t>(list.second[k]) + 1];
   for (std::size_t i = 0; i < n; ++i) second_start[i + 1] += second_start[i];
   // Pairs where each disc is the second, in ascending pair order (a stable counting sort).
-  std::vector<std::int32_t> next(second_start.begin(), second_start.end() - 1);
+  std::vector<std::int32_t>& next = next_second_;
+  next.assign(second_start.begin(), second_start.end() - 1);
   for (std::size_t k = 0; k < count; ++k)
     second_pairs[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
         static_cast<std::int32_t>(k);
@@ -150,7 +157,8 @@ void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
   // its own thread, in pair order, so that thread adds them as it evaluates them.
   const auto threads = cuts_.size() - 1;
   shared_.assign(n, 0);
-  std::vector<std::size_t> range_of(n);
+  std::vector<std::size_t>& range_of = range_of_;
+  range_of.resize(n);
   for (std::size_t t = 0; t < threads; ++t)
     for (std::size_t i = cuts_[t]; i < cuts_[t + 1]; ++i) range_of[i] = t;
   for (std::size_t k = 0; k < count; ++k) {
@@ -171,7 +179,8 @@ void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
                                                         (shared_[j] ? 0 : kDirectSecond)));
   }
   special_pairs_.push_back(static_cast<std::int32_t>(count));  // never reached
-  std::vector<std::int32_t> rank(count, -1);
+  std::vector<std::int32_t>& rank = rank_;
+  rank.assign(count, -1);
   for (std::size_t s = 0; s + 1 < special_pairs_.size(); ++s)
     rank[static_cast<std::size_t>(special_pairs_[s])] = static_cast<std::int32_t>(s);
   shared_discs_.clear();

@@ -94,6 +94,10 @@ class ThreadedCycle {
   // Moves the cuts half-way towards equal measured times of each phase, where they differ by
   // more than kTolerance.
   void rebalance(const Bodies& bodies, const Discs& discs, const ContactStore& list);
+  // Writes to rate_ the measured seconds per unit of estimated work of each range of `cuts`
+  // (an empty range takes the mean) and to `imbalance` the longest / mean time - 1.
+  void measured_rates(const std::vector<double>& work, const std::vector<std::size_t>& cuts,
+                      double Lane::*seconds, double& imbalance);
   // Sums, in pair order, the stored parts of the shared discs of [begin, end).
   void sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const;
 
@@ -124,6 +128,13 @@ class ThreadedCycle {
   // (indices into parts_) of its pairs as second disc, then up to shared_term_start_[s + 1] as
   // first disc, each ascending: the order of the one-thread pass.
   std::vector<std::int32_t> shared_terms_, shared_term_start_, shared_term_mid_;
+  // Scratch of plan_shared and rebalance (inside the step loop), kept so that they do not
+  // allocate: per range its rate (s per unit work), the cumulative estimate (s), the cuts a
+  // rebalance aims at; per disc its first second-disc pair, the pairs by second disc, the
+  // counting sort's next slot, its range; per pair its rank among the special pairs.
+  std::vector<double> rate_, cut_before_;
+  std::vector<std::size_t> target_cuts_, range_of_;
+  std::vector<std::int32_t> second_start_, second_pairs_, next_second_, rank_;
   std::vector<BodyStepEnergy> body_energy_;
   std::vector<double> wall_slip_;  // J, per disc-wall pair
   std::vector<Lane> lanes_;

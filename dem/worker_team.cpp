@@ -1,22 +1,47 @@
 #include "dem/worker_team.hpp"
 
+#include <sched.h>
 #include <time.h>
 
 namespace cdem::dem {
 
 namespace {
 
-// Waits until `a` no longer holds `old`: a short spin (the partner is usually a few
-// microseconds away when both run), then yields (a descheduled partner may be waiting for this
-// core), then sleeps until notified.
-void wait_while_equal(const std::atomic<std::uint32_t>& a, std::uint32_t old) {
-  constexpr int kSpins = 2000, kYields = 20;
-  for (int i = 0; i < kSpins; ++i) {
+// The CPUs this process may run on (its affinity mask when the team is first used).
+int allowed_cpus() {
+  static const int cpus = [] {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) != 0) return 1;
+    return CPU_COUNT(&set);
+  }();
+  return cpus;
+}
+
+// A wait's spin, in `pause` instructions (about 30 ns each on the project machine): short
+// (60 us) by default; long (0.6 ms, more than the imbalance of a C30 step) while the team
+// fits on the CPUs it may use, so that a wait on a running partner ends in the spin and never
+// in a futex sleep, whose wake-up goes through the kernel (and the hypervisor). A long spin
+// that runs out means the partner was descheduled (the machine is overloaded): the thread
+// then uses short spins for its next kBackOffWaits waits, so that it gives the core back as
+// the short policy does.
+constexpr int kShortSpins = 2000, kLongSpins = 20000, kYields = 20, kBackOffWaits = 256;
+thread_local int short_waits_left = 0;  // per thread: waits left on short spins
+
+// Waits until `a` no longer holds `old`: a spin (the partner is usually a few microseconds
+// away when both run), then yields (a descheduled partner may be waiting for this core), then
+// sleeps until notified.
+void wait_while_equal(const std::atomic<std::uint32_t>& a, std::uint32_t old, bool team_fits) {
+  const bool long_spin = team_fits && short_waits_left == 0;
+  if (short_waits_left > 0) --short_waits_left;
+  const int spins = long_spin ? kLongSpins : kShortSpins;
+  for (int i = 0; i < spins; ++i) {
     if (a.load(std::memory_order_acquire) != old) return;
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
 #endif
   }
+  if (long_spin) short_waits_left = kBackOffWaits;
   for (int i = 0; i < kYields; ++i) {
     if (a.load(std::memory_order_acquire) != old) return;
     std::this_thread::yield();
@@ -52,13 +77,13 @@ void WorkerTeam::run(void (*call)(void*, int), void* job) {
   generation_.notify_all();
   call(job, 0);
   for (std::uint32_t left; (left = running_.load(std::memory_order_acquire)) != 0;)
-    wait_while_equal(running_, left);
+    wait_while_equal(running_, left, size_ <= allowed_cpus());
 }
 
 void WorkerTeam::work(int t) {
   std::uint32_t seen = 0;
   for (;;) {
-    wait_while_equal(generation_, seen);
+    wait_while_equal(generation_, seen, size_ <= allowed_cpus());
     seen = generation_.load(std::memory_order_acquire);
     if (stopping_) return;
     call_(job_, t);
@@ -75,7 +100,7 @@ void WorkerTeam::barrier() {
     barrier_generation_.notify_all();
     return;
   }
-  wait_while_equal(barrier_generation_, generation);
+  wait_while_equal(barrier_generation_, generation, size_ <= allowed_cpus());
 }
 
 }  // namespace cdem::dem

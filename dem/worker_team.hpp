@@ -6,8 +6,13 @@
 // whose cores are shared with other jobs a spinning thread holds the core its descheduled
 // partner needs: measured on the project machine (load 6), 3,000 steps of a 320-disc packing
 // took 30-40 s on 2 threads against 0.3 s on 1 (0.15 s with OMP_WAIT_POLICY=passive, which a
-// library cannot set). Here a waiting thread spins a few microseconds, then yields, then
-// sleeps on a futex (std::atomic::wait), so a descheduled partner gets the core.
+// library cannot set). Here a waiting thread spins, then yields, then sleeps on a futex
+// (std::atomic::wait), so a descheduled partner gets the core. The spin is long (0.6 ms)
+// while the team has no more threads than the CPUs of the process's affinity mask, so that a
+// wait on a running partner does not end in a futex sleep and its wake-up (through the kernel
+// and, on a virtual machine, the hypervisor); after a long spin that ran out (the partner was
+// descheduled) a thread uses the short spin (60 us) for its next 256 waits
+// (docs/performance.md, "Session 14").
 #include <atomic>
 #include <cstdint>
 #include <memory>
