@@ -103,6 +103,15 @@ def cv_interval(cv, n, level=0.90):
     return lo, hi
 
 
+def emit_markdown(lines, path):
+    """Prints the table's lines and, if a path is given, writes them there too."""
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if path:
+        with open(path, "w") as f:
+            f.write(text)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dirs", nargs="+")
@@ -152,11 +161,7 @@ def main():
             lines.append(f"| {d:g} | {rho:g} | {x:g} | {len(rs)} | {', '.join(f'{v:.2f}' for v in rs)} | "
                          f"{np.mean(rs):.3f} | {np.std(rs, ddof=1) if len(rs) > 1 else 0:.3f} | "
                          f"{sum(abs(v - 1) > 0.2 for v in rs)} |")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    if a.markdown:
-        with open(a.markdown, "w") as f:
-            f.write(text)
+    emit_markdown(lines, a.markdown)
     return 0
 
 

@@ -20,7 +20,7 @@ from collections import defaultdict
 
 import numpy as np
 
-from fit_scatter import EMOD_MPA, cv_interval
+from fit_scatter import EMOD_MPA, cv_interval, emit_markdown
 
 
 def main():
@@ -58,11 +58,7 @@ def main():
             f"{ku.max():.3f} | {100 * s / m / math.sqrt(5):.1f} % | {ke.mean():.4f} "
             f"({100 * ke.std(ddof=1) / ke.mean():.1f} %) | {np.mean(shear):.2f} | "
             f"{np.mean([float(r['wall_s']) for r in good]):.0f} |")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    if a.markdown:
-        with open(a.markdown, "w") as f:
-            f.write(text)
+    emit_markdown(lines, a.markdown)
     return 0
 
 
