@@ -468,18 +468,32 @@ double solve_friction(const CellCoefficient& phi, double phi_deg, const std::str
                       const std::string& calibration_file) {
   const auto& mu = phi.levels;
   const auto& p = phi.coefficients;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i + 1 < mu.size(); ++i) {
-    if ((p[i] - phi_deg) * (p[i + 1] - phi_deg) > 0 || p[i] == p[i + 1]) continue;
+    if (!(p[i + 1] > p[i])) continue;  // mu does not set phi where phi does not rise with it
+    lo = std::min(lo, p[i]);
+    hi = std::max(hi, p[i + 1]);
+    if (phi_deg < p[i] || phi_deg > p[i + 1]) continue;
     // phi is linear in ln(mu) on the segment: mu = mu_i (mu_{i+1} / mu_i)^t.
     const double t = (phi_deg - p[i]) / (p[i + 1] - p[i]);
     return mu[i] * std::pow(mu[i + 1] / mu[i], t);
   }
-  const auto [lo, hi] = std::minmax_element(p.begin(), p.end());
+  const std::string range =
+      " (mu from " + four(mu.front()) + " to " + four(mu.back()) + " in " + table_file + ")";
+  if (!(hi > lo)) {
+    const auto [least, most] = std::minmax_element(p.begin(), p.end());
+    throw InputError(calibration_file, "targets.phi_deg",
+                     "phi does not rise with mu on this packing: " + four(*least) + " to " +
+                         four(*most) + " deg" + range +
+                         ", so mu does not set it there (docs/lookup_tables.md \"Session 15\"); "
+                         "no friction-angle target with this table");
+  }
   throw InputError(calibration_file, "targets.phi_deg",
-                   "phi = " + four(phi_deg) + " deg is outside what the Mohr-Coulomb table (" +
-                       table_file + ") reaches on this packing: phi from " + four(*lo) + " to " +
-                       four(*hi) + " deg (mu from " + four(mu.front()) + " to " + four(mu.back()) +
-                       "); no extrapolation: change the target or the table");
+                   "phi = " + four(phi_deg) +
+                       " deg is outside what the Mohr-Coulomb table reaches "
+                       "on this packing where phi rises with mu: phi from " +
+                       four(lo) + " to " + four(hi) + " deg" + range +
+                       "; no extrapolation: change the target or the table");
 }
 
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,

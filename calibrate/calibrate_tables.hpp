@@ -180,8 +180,10 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
                             const std::string& calibration_file);
 
 // mu for a friction-angle target on a cell of the Mohr-Coulomb table: phi(mu) piecewise linear in
-// ln mu between the table's mu levels, inverted on the first segment that crosses the target.
-// Refused (InputError on `targets.phi_deg`, naming the phi the cell reaches) when none does.
+// ln mu between the table's mu levels, inverted on the first segment where phi rises with mu and
+// crosses the target (where phi does not rise, mu does not set it: the tension-driven regime,
+// docs/lookup_tables.md "Session 15"). Refused (InputError on `targets.phi_deg`, naming the phi
+// the rising segments reach, or saying that none rises) when none does.
 double solve_friction(const CellCoefficient& phi, double phi_deg, const std::string& table_file,
                       const std::string& calibration_file);
 

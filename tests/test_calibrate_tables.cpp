@@ -935,6 +935,19 @@ TEST(TablesLookup, InvertsTheFrictionAngle) {
       EXPECT_NE(std::string(e.what()).find("phi from 12 to 32 deg"), std::string::npos) << e.what();
     }
   }
+  // A cell where phi falls with mu (31, 30, 29 deg; the tension-driven regime): mu does not set
+  // phi there, even for a phi it passes through.
+  CellCoefficient falling;
+  falling.levels = {0.25, 0.5, 1};
+  falling.coefficients = {31, 30, 29};
+  try {
+    solve_friction(falling, 30, "mc.csv", "cal.toml");
+    ADD_FAILURE() << "phi 30 accepted on a falling cell";
+  } catch (const cdem::InputError& e) {
+    EXPECT_EQ(e.key(), "targets.phi_deg");
+    EXPECT_NE(std::string(e.what()).find("phi does not rise with mu"), std::string::npos)
+        << e.what();
+  }
 }
 
 // The two bond strengths free (no modulus: no E target).
