@@ -17,7 +17,7 @@ Per cell, mu and rho (every counted series of every seed together):
   and last two levels), means over the seeds.
   The unconfined run is the uniaxial test bit for bit (docs/lab_tests.md "Biaxial"): its mean
   sigma_u / sigma_cn (K_U0) at mu 0.5 is checked against the K_U table (--ku), an independent
-  check of both campaigns (other seeds).
+  check of both campaigns (other seeds); K_E0 = E / E* of the same runs (E at mu).
 
 A series counts when its status is `ok` and every confinement's stop reason is
 `post_peak_drop`; the others are left out and counted.
@@ -49,7 +49,7 @@ CODE_FIT_TOLERANCE = 1e-9
 TABLE_COLUMNS = ["r_ratio", "r_min_mm", "friction", "shear_to_normal", "phi_deg", "N_phi",
                  "c_MPa", "q_MPa", "R2", "runs", "runs_left_out", "phi_seed_sd_deg",
                  "c_seed_sd_MPa", "q_seed_sd_MPa", "c_per_sigma_cn", "q_per_sigma_cn",
-                 "K_U0", "K_U0_seed_sd", "N_secant_low", "N_secant_high",
+                 "K_U0", "K_U0_seed_sd", "K_E0", "N_secant_low", "N_secant_high",
                  "shear_crack_share_unconfined", "shear_crack_share_top", "emod_per_sigma_cn",
                  "sigma_cn_MPa", "emod_GPa", "kratio", "width_mm", "height_mm",
                  "confinements_per_sigma_cn", "discs_mean", "wall_s_total"]
@@ -143,6 +143,7 @@ def fit(directory):
         low = [(b[1] - b[0]) / (a[1] - a[0]) for a, b in zip(s3, s1)]
         high = [(b[-1] - b[-2]) / (a[-1] - a[-2]) for a, b in zip(s3, s1)]
         discs = [float(r["confinements.0.genesis.discs"]) for r in good]
+        k_e = [float(r["confinements.0.young_modulus_GPa"]) / cond["emod_GPa"] for r in good]
         row.update(phi_deg=round(phi, 4), N_phi=round(n_phi, 5), c_MPa=round(c, 4),
                    q_MPa=round(q, 4), R2=round(r2, 4),
                    phi_seed_sd_deg=round(sd([p[2] for p in per_seed]), 4),
@@ -150,7 +151,7 @@ def fit(directory):
                    q_seed_sd_MPa=round(sd([p[1] for p in per_seed]), 4),
                    c_per_sigma_cn=round(c / sigma_cn, 5), q_per_sigma_cn=round(q / sigma_cn, 5),
                    K_U0=round(float(np.mean(ucs)) / sigma_cn, 5),
-                   K_U0_seed_sd=round(sd(ucs) / sigma_cn, 5),
+                   K_U0_seed_sd=round(sd(ucs) / sigma_cn, 5), K_E0=round(float(np.mean(k_e)), 5),
                    N_secant_low=round(float(np.mean(low)), 4),
                    N_secant_high=round(float(np.mean(high)), 4),
                    shear_crack_share_unconfined=share(good, 0, "shear"),
@@ -206,13 +207,13 @@ def plot(table, path):
 
 def markdown(table, ku, ku_mu, path):
     lines = ["| R_max/R_min | mu | tau_cs/sigma_cn | phi (deg) | N | c (MPa) | q (MPa) | R2 | "
-             "seed SD phi, c (MPa) | N secant low / high | K_U0 (SD) | K_U table | "
+             "seed SD phi, c (MPa) | N secant low / high | K_U0 (SD) | K_U table | K_E0 | "
              "shear share 0 / top | series (left out) |",
-             "|---" * 14 + "|"]
+             "|---" * 15 + "|"]
     for r in table:
         if "phi_deg" not in r:
             lines.append(f"| {r['r_ratio']:g} | {r['friction']:g} | {r['shear_to_normal']:g} | "
-                         + "- | " * 10 + f"0 ({r['runs_left_out']}) |")
+                         + "- | " * 11 + f"0 ({r['runs_left_out']}) |")
             continue
         k = ku.get((r["r_ratio"], r["shear_to_normal"])) if r["friction"] == ku_mu else None
         ref = f"{k[0]:.4f} ({k[1]:.4f})" if k else "-"
@@ -221,7 +222,8 @@ def markdown(table, ku, ku_mu, path):
             f"{r['phi_deg']:.2f} | {r['N_phi']:.3f} | {r['c_MPa']:.2f} | {r['q_MPa']:.2f} | "
             f"{r['R2']:.4f} | {r['phi_seed_sd_deg']:.2f}, {r['c_seed_sd_MPa']:.2f} | "
             f"{r['N_secant_low']:.2f} / {r['N_secant_high']:.2f} | {r['K_U0']:.4f} "
-            f"({r['K_U0_seed_sd']:.4f}) | {ref} | {r['shear_crack_share_unconfined']:.2f} / "
+            f"({r['K_U0_seed_sd']:.4f}) | {ref} | {r['K_E0']:.4f} | "
+            f"{r['shear_crack_share_unconfined']:.2f} / "
             f"{r['shear_crack_share_top']:.2f} | {r['runs']} ({r['runs_left_out']}) |")
     text = "\n".join(lines) + "\n"
     if path == "-":

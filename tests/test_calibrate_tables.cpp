@@ -959,8 +959,9 @@ const std::string kStrengthParameters =
 const std::string kHeadMohrCoulomb =
     "strategy = \"tables\"\n[targets]\nc_MPa = 10\nphi_deg = 25\n[tables]\nmc = \"mc.csv\"\n";
 
-// The rectangle's cell (ratio 2) answers sigma_u = K_U0(mu) sigma_cn with the mu its test runs at
-// (read from the uniaxial test's own text: what the DEM would be given).
+// The rectangle's cell (ratio 2) answers E = 0.5 E* (its K_E, at any mu) and sigma_u = K_U0(mu)
+// sigma_cn with the mu its test runs at (read from the uniaxial test's own text: what the DEM
+// would be given); parameters E*, sigma_cn, tau_cs.
 class MohrCoulombModel : public cdem::test::PointModel {
  public:
   explicit MohrCoulombModel(const CalibrationInput& input)
@@ -978,7 +979,8 @@ class MohrCoulombModel : public cdem::test::PointModel {
     SimulationOutcome o;
     o.ok = true;
     o.simulations = 1;
-    o.responses[static_cast<int>(CalibrationTarget::SigmaU)] = p.values[0] * cell_.at(friction_);
+    o.responses[static_cast<int>(CalibrationTarget::E)] = 0.5 * p.values[0];
+    o.responses[static_cast<int>(CalibrationTarget::SigmaU)] = p.values[1] * cell_.at(friction_);
     return o;
   }
 
@@ -992,8 +994,8 @@ TEST(CalibrateTables, CohesionAndFrictionAngleInOneRunWhenTheTablesAreExact) {
   // K_U0 = 1.05, and c 10 MPa with phi is sigma_u = 2 c sqrt(N_phi) = 31.39 MPa, so sigma_cn =
   // 31.39 / 1.05 and tau_cs twice that (the base's tau_cs / sigma_cn, the table's 2).
   Files f;
-  f.head = kHeadMohrCoulomb;
-  f.parameters = kStrengthParameters;
+  f.head = replace(kHeadMohrCoulomb, "phi_deg = 25\n[tables]\n",
+                   "phi_deg = 25\nE_GPa = 18\n[tables]\nke = \"ke.csv\"\n");
   const auto in = read_calibration_input(make_calibration("mc_exact", f));
   const double mu = 0.5 * std::sqrt(2.0), ucs = envelope_ucs(10, 25);
   EXPECT_NEAR(in.target_value(CalibrationTarget::SigmaU), ucs, 1e-9);
@@ -1008,8 +1010,10 @@ TEST(CalibrateTables, CohesionAndFrictionAngleInOneRunWhenTheTablesAreExact) {
   const auto r = calibrate(in, model);
   ASSERT_TRUE(r.success()) << r.stop_reason;
   ASSERT_EQ(r.iterations.size(), 1u);
-  EXPECT_NEAR(r.calibrated[0], ucs / 1.05, 1e-9);
-  EXPECT_NEAR(r.calibrated[1], 2 * ucs / 1.05, 1e-9);
+  // E* = 18 / K_E 0.5 (the K_E table, made at mu 0.5, read at mu 0.71: K_E is flat in mu).
+  EXPECT_NEAR(r.calibrated[0], 36, 1e-9);
+  EXPECT_NEAR(r.calibrated[1], ucs / 1.05, 1e-9);
+  EXPECT_NEAR(r.calibrated[2], 2 * ucs / 1.05, 1e-9);
   for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
   EXPECT_NE(r.lookup.find("mu = 0.7071"), std::string::npos) << r.lookup;
   // Without a phi target nothing is set: the base materials' mu 0.5 stays.
@@ -1043,11 +1047,11 @@ TEST(CalibrateTablesInput, RefusesWhatTheMohrCoulombTableDoesNotHold) {
            "targets.phi_deg", "drop sigma_t"},
       },
       mc);
-  // E with phi 25 deg: mu 0.71, and the K_E table was made at mu 0.5: refused, naming the phi.
-  Files e = mc;
-  e.parameters = kParameters;
-  e.head = replace(e.head, "phi_deg = 25\n[tables]\n",
-                   "phi_deg = 25\nE_GPa = 18\n[tables]\nke = \"ke.csv\"\n");
-  expect_input_error(make_calibration("mc_ke", e), "materials.mortar.friction",
+  // sigma_t and E with phi 25 deg: mu 0.71, and the K_B table was made at mu 0.5: refused,
+  // naming the phi (K_E, which the Mohr-Coulomb table measures flat in mu, is not asked).
+  Files t = mc;
+  t.parameters = kParameters;
+  t.head = replace(kHead, "E_GPa = 18\n", "E_GPa = 18\nphi_deg = 25\n") + "mc = \"mc.csv\"\n";
+  expect_input_error(make_calibration("mc_kb", t), "materials.mortar.friction",
                      "mu (set by the phi target, 25 deg) of the base materials is 0.7071");
 }
