@@ -149,6 +149,8 @@ const TableLayout kFrictionAngleTable{
     {"kratio", "emod_per_sigma_cn", "shear_to_normal", "width_mm", "height_mm"}};
 const TableLayout kUnconfinedStrengthTable{"K_U0", "friction", "mu",
                                            kFrictionAngleTable.conditions};
+const TableLayout kFrictionAngleErrorTable{"phi_se_deg", "friction", "mu",
+                                           kFrictionAngleTable.conditions};
 
 LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayout& layout,
                               const std::string& calibration_file, const std::string& key) {
@@ -464,13 +466,15 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
                        ", on the segments where K_U rises); no extrapolation: change the targets");
 }
 
-double solve_friction(const CellCoefficient& phi, double phi_deg, const std::string& table_file,
-                      const std::string& calibration_file) {
+double solve_friction(const CellCoefficient& phi, const CellCoefficient& phi_se, double phi_deg,
+                      const std::string& table_file, const std::string& calibration_file) {
   const auto& mu = phi.levels;
   const auto& p = phi.coefficients;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i + 1 < mu.size(); ++i) {
-    if (!(p[i + 1] > p[i])) continue;  // mu does not set phi where phi does not rise with it
+    // mu sets phi only where phi rises with it by more than the standard error of the rise.
+    const double se = std::hypot(phi_se.at(mu[i]), phi_se.at(mu[i + 1]));
+    if (!(p[i + 1] - p[i] > se)) continue;
     lo = std::min(lo, p[i]);
     hi = std::max(hi, p[i + 1]);
     if (phi_deg < p[i] || phi_deg > p[i + 1]) continue;
@@ -483,15 +487,15 @@ double solve_friction(const CellCoefficient& phi, double phi_deg, const std::str
   if (!(hi > lo)) {
     const auto [least, most] = std::minmax_element(p.begin(), p.end());
     throw InputError(calibration_file, "targets.phi_deg",
-                     "phi does not rise with mu on this packing: " + four(*least) + " to " +
-                         four(*most) + " deg" + range +
+                     "phi does not rise with mu beyond its seed scatter on this packing: " +
+                         four(*least) + " to " + four(*most) + " deg" + range +
                          ", so mu does not set it there (docs/lookup_tables.md \"Session 15\"); "
                          "no friction-angle target with this table");
   }
   throw InputError(calibration_file, "targets.phi_deg",
                    "phi = " + four(phi_deg) +
-                       " deg is outside what the Mohr-Coulomb table reaches "
-                       "on this packing where phi rises with mu: phi from " +
+                       " deg is outside what the Mohr-Coulomb table reaches on this packing "
+                       "where phi rises with mu beyond its seed scatter: phi from " +
                        four(lo) + " to " + four(hi) + " deg" + range +
                        "; no extrapolation: change the target or the table");
 }
@@ -650,7 +654,7 @@ void check_conditions(const CalibrationInput& input, const LookupTable& table,
 struct FrictionTables {
   std::string file;
   double shear_to_normal = 0, emod_per_sigma_cn = 0;  // the table's conditions
-  CellCoefficient phi, strength;                      // phi_deg and K_U0 against mu
+  CellCoefficient phi, phi_se, strength;  // phi_deg, its standard error and K_U0 against mu
 };
 
 FrictionTables read_friction_tables(const CalibrationInput& input) {
@@ -667,6 +671,8 @@ FrictionTables read_friction_tables(const CalibrationInput& input) {
                      "a uniaxial test and its specimens (a sigma_u, c or E target)");
   const LookupTable phi =
       read_lookup_table(input.tables.mc_file, kFrictionAngleTable, file, "tables.mc");
+  const LookupTable phi_se =
+      read_lookup_table(input.tables.mc_file, kFrictionAngleErrorTable, file, "tables.mc");
   const LookupTable strength =
       read_lookup_table(input.tables.mc_file, kUnconfinedStrengthTable, file, "tables.mc");
   const InputTable mortar =
@@ -687,8 +693,11 @@ FrictionTables read_friction_tables(const CalibrationInput& input) {
   const Packing packing = read_packing(*uniaxial, file, "specimen.generator");
   check_size(phi, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}}, file,
              "specimen.generator");
-  return {phi.file.string(), phi.condition("shear_to_normal"), phi.condition("emod_per_sigma_cn"),
+  return {phi.file.string(),
+          phi.condition("shear_to_normal"),
+          phi.condition("emod_per_sigma_cn"),
           interpolate_cell(phi, packing, file, "specimen.generator"),
+          interpolate_cell(phi_se, packing, file, "specimen.generator"),
           interpolate_cell(strength, packing, file, "specimen.generator")};
 }
 
@@ -1018,7 +1027,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
   double mu = 0;
   if (with_phi) {
     mc = read_friction_tables(input);
-    mu = solve_friction(mc->phi, input.mohr_coulomb.friction_angle_deg, mc->file, file);
+    mu = solve_friction(mc->phi, mc->phi_se, input.mohr_coulomb.friction_angle_deg, mc->file, file);
     md << "- phi: " << four(input.mohr_coulomb.friction_angle_deg) << " deg needs mu = " << four(mu)
        << " (phi against mu from " << mc->phi.cells << " of `" << mc->file
        << "`, measured at tau_cs / sigma_cn = " << four(mc->shear_to_normal)
@@ -1146,8 +1155,8 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
 CalibrationInput with_friction_target(const CalibrationInput& input) {
   if (!input.mohr_coulomb.has_friction_angle()) return input;
   const FrictionTables f = read_friction_tables(input);
-  const double mu =
-      solve_friction(f.phi, input.mohr_coulomb.friction_angle_deg, f.file, input.file.string());
+  const double mu = solve_friction(f.phi, f.phi_se, input.mohr_coulomb.friction_angle_deg, f.file,
+                                   input.file.string());
   return with_material_value(input, "materials.mortar.friction", mu, "targets.phi_deg");
 }
 

@@ -59,6 +59,8 @@ extern const TableLayout kBrazilianShearTable;
 // its unconfined runs (the uniaxial test bit for bit) in the same file: K_U at each mu.
 extern const TableLayout kFrictionAngleTable;
 extern const TableLayout kUnconfinedStrengthTable;
+// The standard error of phi per cell and mu (seed SD / sqrt(runs)), in the same file.
+extern const TableLayout kFrictionAngleErrorTable;
 
 // One row of a lookup table: a packing cell (R_max / R_min, R_min), the level of its second
 // dimension (E* / sigma_cn for K_B, tau_cs / sigma_cn for K_U; 0 without one), the coefficient.
@@ -180,12 +182,14 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
                             const std::string& calibration_file);
 
 // mu for a friction-angle target on a cell of the Mohr-Coulomb table: phi(mu) piecewise linear in
-// ln mu between the table's mu levels, inverted on the first segment where phi rises with mu and
-// crosses the target (where phi does not rise, mu does not set it: the tension-driven regime,
-// docs/lookup_tables.md "Session 15"). Refused (InputError on `targets.phi_deg`, naming the phi
-// the rising segments reach, or saying that none rises) when none does.
-double solve_friction(const CellCoefficient& phi, double phi_deg, const std::string& table_file,
-                      const std::string& calibration_file);
+// ln mu between the table's mu levels, inverted on the first segment that crosses the target
+// among those where phi rises with mu by more than the standard error of that rise (phi_se of the
+// two ends, the table's seed SD / sqrt(runs)): where it does not, mu does not set phi (on the
+// tension-driven side phi stays at 29-33 deg over mu 0.25-1, docs/lookup_tables.md "Session
+// 15"). Refused (InputError on `targets.phi_deg`, naming the phi the rising segments reach, or
+// saying that none rises) when none does.
+double solve_friction(const CellCoefficient& phi, const CellCoefficient& phi_se, double phi_deg,
+                      const std::string& table_file, const std::string& calibration_file);
 
 // The input with a phi target's mu (solve_friction on the Mohr-Coulomb table, [tables] mc, at the
 // uniaxial specimen's packing) set in the base materials of every test (materials.mortar.friction);

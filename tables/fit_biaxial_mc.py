@@ -10,7 +10,8 @@ Per cell, mu and rho (every counted series of every seed together):
   deviator, sigma_1 there), R2 = 1 - SS_res / SS_tot about the mean of sigma_1;
   phi = asin((N - 1) / (N + 1)), so N = (1 + sin phi) / (1 - sin phi); the intercept q is the
   envelope's uniaxial strength, and c = q / (2 sqrt N).
-  Seed scatter: the same fit on each seed's series alone, SD (n - 1) of phi, c and q (each
+  Seed scatter: the same fit on each seed's series alone, SD (n - 1) of phi, c and q, and the
+  standard error of phi, SD / sqrt(n), by which strategy "tables" judges where mu sets phi (each
   seed's fit is the code's own envelope, `friction_angle_deg` and `cohesion_MPa` of the series
   summary: checked here to 1e-9).
   The bend of the envelope: the secant slopes N of sigma_1 between the confinements (first two
@@ -47,7 +48,7 @@ CONFIRMED = "post_peak_drop"
 CODE_FIT_TOLERANCE = 1e-9
 
 TABLE_COLUMNS = ["r_ratio", "r_min_mm", "friction", "shear_to_normal", "phi_deg", "N_phi",
-                 "c_MPa", "q_MPa", "R2", "runs", "runs_left_out", "phi_seed_sd_deg",
+                 "c_MPa", "q_MPa", "R2", "runs", "runs_left_out", "phi_seed_sd_deg", "phi_se_deg",
                  "c_seed_sd_MPa", "q_seed_sd_MPa", "c_per_sigma_cn", "q_per_sigma_cn",
                  "K_U0", "K_U0_seed_sd", "K_E0", "N_secant_low", "N_secant_high",
                  "shear_crack_share_unconfined", "shear_crack_share_top", "emod_per_sigma_cn",
@@ -147,6 +148,7 @@ def fit(directory):
         row.update(phi_deg=round(phi, 4), N_phi=round(n_phi, 5), c_MPa=round(c, 4),
                    q_MPa=round(q, 4), R2=round(r2, 4),
                    phi_seed_sd_deg=round(sd([p[2] for p in per_seed]), 4),
+                   phi_se_deg=round(sd([p[2] for p in per_seed]) / math.sqrt(len(good)), 4),
                    c_seed_sd_MPa=round(sd([p[3] for p in per_seed]), 4),
                    q_seed_sd_MPa=round(sd([p[1] for p in per_seed]), 4),
                    c_per_sigma_cn=round(c / sigma_cn, 5), q_per_sigma_cn=round(q / sigma_cn, 5),

@@ -88,15 +88,16 @@ const std::string kKBTauLow = kb_tau_edited("", "");
 // The Mohr-Coulomb table at tau_cs / sigma_cn 2 on the rectangle's two cells: phi rising by 10
 // degrees per doubling of mu, and K_U0 of the unconfined runs by 0.1 (ratio 3 = their mean: phi
 // 12, 22, 32 and K_U0 0.85, 0.95, 1.05 at mu 0.25, 0.5, 1).
+// phi's standard error is 1 degree everywhere (a rise of 10 is resolved).
 const std::string kMC =
-    "r_ratio,r_min_mm,friction,phi_deg,K_U0,kratio,emod_per_sigma_cn,shear_to_normal,width_mm,"
-    "height_mm\n"
-    "2,0.2,0.25,10,0.9,2.5,600,2,20,40\n"
-    "2,0.2,0.5,20,1.0,2.5,600,2,20,40\n"
-    "2,0.2,1,30,1.1,2.5,600,2,20,40\n"
-    "4,0.2,0.25,14,0.8,2.5,600,2,20,40\n"
-    "4,0.2,0.5,24,0.9,2.5,600,2,20,40\n"
-    "4,0.2,1,34,1.0,2.5,600,2,20,40\n";
+    "r_ratio,r_min_mm,friction,phi_deg,K_U0,phi_se_deg,kratio,emod_per_sigma_cn,shear_to_normal,"
+    "width_mm,height_mm\n"
+    "2,0.2,0.25,10,0.9,1,2.5,600,2,20,40\n"
+    "2,0.2,0.5,20,1.0,1,2.5,600,2,20,40\n"
+    "2,0.2,1,30,1.1,1,2.5,600,2,20,40\n"
+    "4,0.2,0.25,14,0.8,1,2.5,600,2,20,40\n"
+    "4,0.2,0.5,24,0.9,1,2.5,600,2,20,40\n"
+    "4,0.2,1,34,1.0,1,2.5,600,2,20,40\n";
 
 const std::string kMaterials =
     "[materials.mortar]\nlaw = \"contact_bond\"\nemod_GPa = 30.0\nkratio = 2.5\nfriction = 0.5\n"
@@ -920,34 +921,46 @@ TEST(TablesLookup, InvertsTheFrictionAngle) {
   // At ratio 3 the cell is the mean of the two: phi 12, 22, 32 deg at mu 0.25, 0.5, 1. phi 27 is
   // half way between 22 and 32, so half way in ln mu between 0.5 and 1: mu = 0.5 sqrt 2.
   const auto cell = interpolate_cell(table("mc", kMC, kFrictionAngleTable), {3, 0.2}, "c", "k");
-  EXPECT_NEAR(solve_friction(cell, 27, "mc.csv", "cal.toml"), 0.5 * std::sqrt(2.0), 1e-12);
-  EXPECT_NEAR(solve_friction(cell, 12, "mc.csv", "cal.toml"), 0.25, 1e-12);
-  EXPECT_NEAR(solve_friction(cell, 32, "mc.csv", "cal.toml"), 1, 1e-12);
+  const auto se =
+      interpolate_cell(table("mc_se", kMC, kFrictionAngleErrorTable), {3, 0.2}, "c", "k");
+  EXPECT_NEAR(solve_friction(cell, se, 27, "mc.csv", "cal.toml"), 0.5 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(solve_friction(cell, se, 12, "mc.csv", "cal.toml"), 0.25, 1e-12);
+  EXPECT_NEAR(solve_friction(cell, se, 32, "mc.csv", "cal.toml"), 1, 1e-12);
   const auto ku0 =
       interpolate_cell(table("mc_ku0", kMC, kUnconfinedStrengthTable), {3, 0.2}, "c", "k");
   EXPECT_NEAR(ku0.at(0.5 * std::sqrt(2.0)), 1.0, 1e-12);
   for (const double target : {11.9, 32.1}) {
     try {
-      solve_friction(cell, target, "mc.csv", "cal.toml");
+      solve_friction(cell, se, target, "mc.csv", "cal.toml");
       ADD_FAILURE() << "phi " << target << " accepted";
     } catch (const cdem::InputError& e) {
       EXPECT_EQ(e.key(), "targets.phi_deg");
       EXPECT_NE(std::string(e.what()).find("phi from 12 to 32 deg"), std::string::npos) << e.what();
     }
   }
-  // A cell where phi falls with mu (31, 30, 29 deg; the tension-driven regime): mu does not set
-  // phi there, even for a phi it passes through.
-  CellCoefficient falling;
-  falling.levels = {0.25, 0.5, 1};
+  // A cell where phi falls with mu (31, 30, 29 deg; the tension-driven regime), and one where it
+  // rises by 2 and 2.5 deg, within the standard error of the rise (sqrt 2 x 2 = 2.83 deg): mu does
+  // not set phi there, even for a phi they pass through. With an error of 1 deg the second rises
+  // beyond it on both segments (2 and 2.5 > sqrt 2): phi 21 is half way up the first.
+  CellCoefficient falling, weak, wide_se, narrow_se;
+  falling.levels = weak.levels = wide_se.levels = narrow_se.levels = {0.25, 0.5, 1};
   falling.coefficients = {31, 30, 29};
-  try {
-    solve_friction(falling, 30, "mc.csv", "cal.toml");
-    ADD_FAILURE() << "phi 30 accepted on a falling cell";
-  } catch (const cdem::InputError& e) {
-    EXPECT_EQ(e.key(), "targets.phi_deg");
-    EXPECT_NE(std::string(e.what()).find("phi does not rise with mu"), std::string::npos)
-        << e.what();
+  weak.coefficients = {20, 22, 24.5};
+  wide_se.coefficients = {2, 2, 2};
+  narrow_se.coefficients = {1, 1, 1};
+  for (const auto& [c, e] : {std::pair{falling, narrow_se}, std::pair{weak, wide_se}}) {
+    try {
+      solve_friction(c, e, 21, "mc.csv", "cal.toml");
+      ADD_FAILURE() << "phi 21 accepted where mu does not set phi";
+    } catch (const cdem::InputError& err) {
+      EXPECT_EQ(err.key(), "targets.phi_deg");
+      EXPECT_NE(std::string(err.what()).find("phi does not rise with mu beyond its seed scatter"),
+                std::string::npos)
+          << err.what();
+    }
   }
+  EXPECT_NEAR(solve_friction(weak, narrow_se, 21, "mc.csv", "cal.toml"), 0.25 * std::sqrt(2.0),
+              1e-12);
 }
 
 // The two bond strengths free (no modulus: no E target).
