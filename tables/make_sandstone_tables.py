@@ -96,16 +96,17 @@ UCS_SCATTER = dict(ratios=[2.7], pairs=[(1.5, 750)], sizes_mm=[(20, 40), (30, 60
                    seeds=SCATTER["seeds"])
 MC_FRICTIONS = [0.25, 0.5, 1.0]           # mu of the biaxial table
 MC_SHEAR = [0.5, 2]                       # tau_cs / sigma_cn: below and above rho_c 1.23-1.28
-# The ratio-1.5 cell (3,370 discs, 2-4x a ratio-2.7 series) below rho_c only: where the
-# sandstone's lowest UCS at that packing is set (docs/lookup_tables.md "Session 15").
-MC_POINTS_R15 = ([0.25, 0.5, 1.0], [0.5])
+# The ratio-1.5 cell (3,370 discs) below rho_c only, where the sandstone's lowest UCS at that
+# packing is set: its series above (rho 2) took 1,080 s each at load 9-11 (docs/lookup_tables.md
+# "Session 15"); a further entry ([0.25, 0.5, 1.0], [2]) appended here keeps the runs' numbers.
+MC_POINTS_R15 = [([0.25, 0.5, 1.0], [0.5])]
 # A series is four runs (about six uniaxial runs of steps): the ratio-1.5 cell's at tau_cs /
 # sigma_cn 2 would pass the other campaigns' 600 s on a loaded machine.
 MC_TIMEOUT_S = 3600
-# The biaxial (Mohr-Coulomb) table: cells, mu and tau_cs / sigma_cn per cell (the costly
-# ratio-1.5 cell at fewer points), seeds; the confinements are the base's (biaxial_mc_base.toml).
-BIAXIAL_MC = dict(points={4: (MC_FRICTIONS, MC_SHEAR), 2.7: (MC_FRICTIONS, MC_SHEAR),
-                          1.5: MC_POINTS_R15}, level=600, seeds=[21, 22, 23])
+# The biaxial (Mohr-Coulomb) table: (cell, mu levels, rho levels) in run order (the costly
+# ratio-1.5 cell last), seeds; the confinements are the base's (biaxial_mc_base.toml).
+BIAXIAL_MC = dict(points=[(4, MC_FRICTIONS, MC_SHEAR), (2.7, MC_FRICTIONS, MC_SHEAR)]
+                  + [(1.5, mu, rho) for mu, rho in MC_POINTS_R15], level=600, seeds=[21, 22, 23])
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
@@ -135,10 +136,10 @@ def mc_gather(confinements):
 
 
 def mc_rows(points, level):
-    """Design rows (r_ratio, R_mean, sigma_cn, tau_cs, mu) of the biaxial table: per cell its
-    (mu levels, rho levels), mu-major within a cell."""
+    """Design rows (r_ratio, R_mean, sigma_cn, tau_cs, mu) of the biaxial table: per entry (cell,
+    mu levels, rho levels), mu-major within an entry."""
     out = []
-    for ratio, (frictions, shear) in points.items():
+    for ratio, frictions, shear in points:
         for mu in frictions:
             out += [r + [mu] for r in rows([ratio], R_MIN_MM, [level], shear)]
     return out
