@@ -31,15 +31,14 @@ Exit code 1 when a (cell, mu, rho) has no counted series.
 import argparse
 import csv
 import math
-import os
 import sys
-import tomllib
 from collections import defaultdict
 
 import numpy as np
 
 from fit_brazilian_kb import save_figure
-from fit_sandstone_tables import R_MEAN, RATIO, SIGMA_CN, TAU_CS, sd, write_table
+from fit_sandstone_tables import (R_MEAN, RATIO, SIGMA_CN, TAU_CS, read_campaign_files, sd,
+                                  write_table)
 
 FRICTION = "materials.mortar.friction"
 CONFIRMED = "post_peak_drop"
@@ -62,13 +61,7 @@ def fail(msg):
 
 def read_series(directory):
     """The base's conditions and confinements, and the series grouped by (ratio, R_min, mu, rho)."""
-    try:
-        with open(os.path.join(directory, "base.toml"), "rb") as f:
-            base = tomllib.load(f)
-        with open(os.path.join(directory, "results.csv"), newline="") as f:
-            rows = list(csv.DictReader(f))
-    except (OSError, tomllib.TOMLDecodeError) as e:
-        fail(f"{directory}: not a finished campaign directory ({e})")
+    base, rows = read_campaign_files(directory, fail)
     m, spec = base["materials"]["mortar"], base["specimen"]
     cond = dict(emod_GPa=float(m["emod_GPa"]), kratio=float(m["kratio"]),
                 width_mm=float(spec["width_mm"]), height_mm=float(spec["height_mm"]))
