@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "core/input_error.hpp"
 #include "core/units.hpp"
 #include "io/input_table.hpp"
+#include "lab/lab_analysis.hpp"
 #include "lab/material_table.hpp"
 #include "lab/run_summary.hpp"
 #include "lab/summary_fields.hpp"
@@ -325,10 +327,25 @@ CalibrationParameter read_parameter(const InputTable& t, const toml::table& mate
 
 void read_targets(const InputTable& root, CalibrationInput& in) {
   const InputTable t = root.table("targets");
-  t.reject_unknown_keys({"sigma_u", "E", "nu", "sigma_t", "G_F_N_per_m"});
+  t.reject_unknown_keys({"sigma_u", "E", "nu", "sigma_t", "G_F_N_per_m", "c", "phi_deg"});
   const auto positive_stress = [&](const char* key, double unit) {
     return t.quantity(key, Dimension::Stress, Range::positive()) / unit;
   };
+  if (t.has("phi_deg"))
+    in.mohr_coulomb.friction_angle_deg = t.number("phi_deg", Range::open(0, 90));
+  if (t.has("c")) {
+    if (!in.mohr_coulomb.has_friction_angle())
+      t.fail("c",
+             "needs phi_deg: c with phi sets the sigma_u target, sigma_u = 2 c sqrt(N_phi), "
+             "N_phi = (1 + sin phi) / (1 - sin phi)");
+    if (t.has("sigma_u"))
+      t.fail("c", "c with phi_deg sets sigma_u = 2 c sqrt(N_phi); give c or sigma_u, not both");
+    in.mohr_coulomb.cohesion_MPa = positive_stress("c", units::MPa);
+    const lab::MohrCoulomb envelope{in.mohr_coulomb.cohesion_MPa * units::MPa,
+                                    in.mohr_coulomb.friction_angle_deg * std::numbers::pi / 180};
+    in.targets.push_back(
+        {CalibrationTarget::SigmaU, lab::mohr_coulomb_uniaxial_strength(envelope) / units::MPa});
+  }
   if (t.has("sigma_u"))
     in.targets.push_back({CalibrationTarget::SigmaU, positive_stress("sigma_u", units::MPa)});
   if (t.has("E")) in.targets.push_back({CalibrationTarget::E, positive_stress("E", units::GPa)});
@@ -340,10 +357,31 @@ void read_targets(const InputTable& root, CalibrationInput& in) {
     in.targets.push_back({CalibrationTarget::GF, t.number("G_F_N_per_m", Range::positive())});
   if (in.targets.empty())
     root.fail("targets",
-              "give at least one of sigma_u, E, nu, sigma_t, G_F_N_per_m (e.g. sigma_u_MPa = 40)");
+              "give at least one of sigma_u, E, nu, sigma_t, G_F_N_per_m, c with phi_deg (e.g. "
+              "sigma_u_MPa = 40); phi_deg alone sets mu and measures nothing");
 }
 
 }  // namespace
+
+CalibrationInput with_material_value(const CalibrationInput& input, const std::string& dotted_key,
+                                     double value, const std::string& key) {
+  const std::vector<std::string> parts = split(dotted_key);
+  const std::string file = input.file.string();
+  const auto set = [&](const std::string& text) {
+    toml::table t = toml::parse(text, file);
+    const auto* materials = t["materials"].as_table();
+    const std::string changed = materials ? materials_with(*materials, parts, value) : "";
+    if (const auto problem = material_table_problem(changed, file); !problem.empty())
+      throw InputError(file, key,
+                       "sets " + dotted_key + " = " + shortest_number(value) + ": " + problem);
+    t.insert_or_assign("materials", *toml::parse(changed, file)["materials"].as_table());
+    return to_text(t);
+  };
+  CalibrationInput out = input;
+  out.materials = set(input.materials);
+  for (auto& test : out.tests) test.text = set(test.text);
+  return out;
+}
 
 CalibrationInput read_calibration_input(const std::filesystem::path& file,
                                         std::optional<CalibrationStrategy> strategy) {
@@ -506,6 +544,12 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
   }
   if (const auto tables = root.optional_table("tables")) read_tables_settings(*tables, file, in);
   if (strategy) in.strategy = *strategy;
+  if (in.strategy != CalibrationStrategy::Tables &&
+      (in.mohr_coulomb.has_friction_angle() || in.mohr_coulomb.has_cohesion()))
+    root.fail(in.mohr_coulomb.has_cohesion() ? "targets.c" : "targets.phi_deg",
+              "c and phi_deg are targets of strategy \"tables\" only (phi sets mu from its "
+              "Mohr-Coulomb table, [tables] mc); this file runs strategy \"" +
+                  std::string(strategy_name(in.strategy)) + "\"");
   if (in.strategy == CalibrationStrategy::Paper && in.calibration_seeds.size() > 1)
     specimen.fail("seeds",
                   "the paper strategy fits its surfaces on one calibration specimen; give one "
@@ -518,6 +562,7 @@ CalibrationInput read_calibration_input(const std::filesystem::path& file,
                                   " parameters with " + in.paper.screen + "; " + std::to_string(k) +
                                   " given");
   } else if (in.strategy == CalibrationStrategy::Tables) {
+    in = with_friction_target(in);
     check_tables_input(in);
   } else {
     check_fast_parameters(in);

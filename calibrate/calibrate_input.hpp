@@ -3,8 +3,10 @@
 // material keys set free with their bounds, the base lab tests, the specimen generator, the
 // strategy and the budgets. Read and checked once, at the input boundary: every problem is an
 // InputError naming the calibration file and the key.
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -105,7 +107,10 @@ struct TablesSettings {
   std::filesystem::path ke_file;  // K_E = E / E* against R_max/R_min, R_min
   std::filesystem::path ku_file;  // K_U = sigma_u / sigma_cn against R_max/R_min, R_min, tau/sigma
   std::filesystem::path kb_tau_file;  // K_B against R_max/R_min, R_min, tau/sigma (one E*/sigma)
-  double tolerance = 0.05;            // relative error per target on the calibration specimen
+  // The Mohr-Coulomb table: friction angle phi and cohesion against R_max/R_min, R_min, mu (one
+  // E*/sigma, one tau/sigma per file), read for a phi target.
+  std::filesystem::path mc_file;
+  double tolerance = 0.05;  // relative error per target on the calibration specimen
   int max_iterations = 2;   // runs on the calibration specimen: the lookup and a correction
   int max_refinements = 1;  // corrections on the verification mean
 };
@@ -127,11 +132,23 @@ struct CalibrationTest {
   std::vector<CalibrationTarget> targets;  // what it measures, in the order of input.targets
 };
 
+// The Mohr-Coulomb targets ([targets] c and phi_deg), strategy "tables" only: phi sets the
+// contacts' mu from the Mohr-Coulomb table, and c with phi sets the sigma_u target, sigma_u = 2 c
+// sqrt(N_phi) (lab::mohr_coulomb_uniaxial_strength), which then stands in `targets` like any
+// other. NaN when not given.
+struct MohrCoulombTargets {
+  double cohesion_MPa = std::numeric_limits<double>::quiet_NaN();
+  double friction_angle_deg = std::numeric_limits<double>::quiet_NaN();
+  bool has_cohesion() const { return !std::isnan(cohesion_MPa); }
+  bool has_friction_angle() const { return !std::isnan(friction_angle_deg); }
+};
+
 struct CalibrationInput {
   std::filesystem::path file;  // the calibration file, as given
   CalibrationStrategy strategy = CalibrationStrategy::Fast;
   std::filesystem::path output_dir;  // relative to the current directory
   std::vector<TargetValue> targets;
+  MohrCoulombTargets mohr_coulomb;  // c and phi (the sigma_u of c and phi is in `targets`)
   std::vector<CalibrationParameter> parameters;
 
   // The lab tests the targets need, in TestKind order (uniaxial, tension, bending); each point
@@ -161,6 +178,12 @@ struct CalibrationInput {
   bool needs(TestKind kind) const { return test(kind) != nullptr; }
   double target_value(CalibrationTarget target) const;  // NaN when not a target
 };
+
+// The input with the base materials' key `dotted_key` (materials.<class>.<key>) set to `value`, in
+// `materials` and in every test's text: a value a strategy fixes before it runs (the tables
+// strategy's mu for a phi target). Throws InputError on `key` when the material table refuses it.
+CalibrationInput with_material_value(const CalibrationInput& input, const std::string& dotted_key,
+                                     double value, const std::string& key);
 
 // `strategy`, when given, replaces the file's (`cdem calibrate --strategy`); the strategy's own
 // checks apply to it.

@@ -142,6 +142,16 @@ const TableLayout kBrazilianShearTable{"K_B",
                                        {"kratio", "friction", "emod_per_sigma_cn", "diameter_mm"},
                                        {"loading_arc_deg"}};
 
+const TableLayout kFrictionAngleTable{
+    "phi_deg",
+    "friction",
+    "mu",
+    {"kratio", "emod_per_sigma_cn", "shear_to_normal", "width_mm", "height_mm"}};
+const TableLayout kUnconfinedStrengthTable{"K_U0", "friction", "mu",
+                                           kFrictionAngleTable.conditions};
+const TableLayout kFrictionAngleErrorTable{"phi_se_deg", "friction", "mu",
+                                           kFrictionAngleTable.conditions};
+
 LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayout& layout,
                               const std::string& calibration_file, const std::string& key) {
   const auto fail = [&](const std::string& where, const std::string& why) {
@@ -456,10 +466,44 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
                        ", on the segments where K_U rises); no extrapolation: change the targets");
 }
 
+double solve_friction(const CellCoefficient& phi, const CellCoefficient& phi_se, double phi_deg,
+                      const std::string& table_file, const std::string& calibration_file) {
+  const auto& mu = phi.levels;
+  const auto& p = phi.coefficients;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i + 1 < mu.size(); ++i) {
+    // mu sets phi only where phi rises with it by more than the standard error of the rise.
+    const double se = std::hypot(phi_se.at(mu[i]), phi_se.at(mu[i + 1]));
+    if (!(p[i + 1] - p[i] > se)) continue;
+    lo = std::min(lo, p[i]);
+    hi = std::max(hi, p[i + 1]);
+    if (phi_deg < p[i] || phi_deg > p[i + 1]) continue;
+    // phi is linear in ln(mu) on the segment: mu = mu_i (mu_{i+1} / mu_i)^t.
+    const double t = (phi_deg - p[i]) / (p[i + 1] - p[i]);
+    return mu[i] * std::pow(mu[i + 1] / mu[i], t);
+  }
+  const std::string range =
+      " (mu from " + four(mu.front()) + " to " + four(mu.back()) + " in " + table_file + ")";
+  if (!(hi > lo)) {
+    const auto [least, most] = std::minmax_element(p.begin(), p.end());
+    throw InputError(calibration_file, "targets.phi_deg",
+                     "phi does not rise with mu beyond its seed scatter on this packing: " +
+                         four(*least) + " to " + four(*most) + " deg" + range +
+                         ", so mu does not set it there (docs/lookup_tables.md \"Session 15\"); "
+                         "no friction-angle target with this table");
+  }
+  throw InputError(calibration_file, "targets.phi_deg",
+                   "phi = " + four(phi_deg) +
+                       " deg is outside what the Mohr-Coulomb table reaches on this packing "
+                       "where phi rises with mu beyond its seed scatter: phi from " +
+                       four(lo) + " to " + four(hi) + " deg" + range +
+                       "; no extrapolation: change the target or the table");
+}
+
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
                           CalibrationInput& input) {
   t.reject_unknown_keys(
-      {"kb", "ke", "ku", "kb_tau", "tolerance", "max_iterations", "max_refinements"});
+      {"kb", "ke", "ku", "kb_tau", "mc", "tolerance", "max_iterations", "max_refinements"});
   const auto resolve = [&](const char* key) -> std::filesystem::path {
     if (!t.has(key)) return {};
     const std::filesystem::path p(t.string(key));
@@ -469,6 +513,7 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
   input.tables.ke_file = resolve("ke");
   input.tables.ku_file = resolve("ku");
   input.tables.kb_tau_file = resolve("kb_tau");
+  input.tables.mc_file = resolve("mc");
   input.tables.tolerance = t.number_or("tolerance", 0.05, Range::open(0, 0.5));
   input.tables.max_iterations = static_cast<int>(t.integer_or("max_iterations", 2, 1, 2));
   input.tables.max_refinements = static_cast<int>(t.integer_or("max_refinements", 1, 0, 10));
@@ -567,7 +612,8 @@ void check_size(const LookupTable& table, const std::string& what,
 // The base materials' mortar against a table's conditions; tau_cs / sigma_cn only when the
 // strategy does not set it (`shear_ratio_free`: a sigma_u target sets it from K_U).
 void check_conditions(const CalibrationInput& input, const LookupTable& table,
-                      const std::string& key, bool shear_ratio_free = false) {
+                      const std::string& key, bool shear_ratio_free = false,
+                      bool friction_free = false) {
   const InputTable mortar = InputTable::parse_string(input.materials, input.file.string())
                                 .table("materials")
                                 .table("mortar");
@@ -582,9 +628,14 @@ void check_conditions(const CalibrationInput& input, const LookupTable& table,
   const double shear = mortar.quantity(kShearKey, Dimension::Stress, Range::positive());
   std::vector<std::tuple<std::string, std::string, double, double>> conditions{
       {kRatioKey, "kratio", mortar.number_or(kRatioKey, 0, Range::any()),
-       table.condition("kratio")},
-      {"friction", "friction", mortar.number_or("friction", 0, Range::any()),
-       table.condition("friction")}};
+       table.condition("kratio")}};
+  if (!friction_free)
+    conditions.emplace_back(
+        "friction",
+        input.mohr_coulomb.has_friction_angle()
+            ? "mu (set by the phi target, " + four(input.mohr_coulomb.friction_angle_deg) + " deg)"
+            : std::string("friction"),
+        mortar.number_or("friction", 0, Range::any()), table.condition("friction"));
   if (table.conditions.count("shear_to_normal") && !shear_ratio_free)
     conditions.emplace_back(kShearKey, "tau_cs / sigma_cn", shear / tension,
                             table.condition("shear_to_normal"));
@@ -595,6 +646,59 @@ void check_conditions(const CalibrationInput& input, const LookupTable& table,
                            ", and the " + table.coefficient() + " table (" + key + ", " +
                            table.file.string() + ") was made at " + shortest_number(made) +
                            ": set it so, or make a table at that value (docs/lookup_tables.md)");
+}
+
+// The Mohr-Coulomb table's cells at the uniaxial specimen's packing: phi and K_U0 against mu,
+// after the checks of its conditions against the base materials (kn/ks, and tau_cs / sigma_cn:
+// one table holds one) and of its rectangle's size.
+struct FrictionTables {
+  std::string file;
+  double shear_to_normal = 0, emod_per_sigma_cn = 0;  // the table's conditions
+  CellCoefficient phi, phi_se, strength;  // phi_deg, its standard error and K_U0 against mu
+};
+
+FrictionTables read_friction_tables(const CalibrationInput& input) {
+  const std::string file = input.file.string();
+  if (input.tables.mc_file.empty())
+    throw InputError(file, "tables.mc",
+                     "missing: phi is a target, and the tables strategy reads mu for it from the "
+                     "Mohr-Coulomb table named here, e.g. mc = "
+                     "\"tables/biaxial_mc_rho0.5_table.csv\"");
+  const CalibrationTest* uniaxial = input.test(TestKind::Uniaxial);
+  if (!uniaxial)
+    throw InputError(file, "targets.phi_deg",
+                     "the Mohr-Coulomb table was made on the uniaxial test's rectangles: phi needs "
+                     "a uniaxial test and its specimens (a sigma_u, c or E target)");
+  const LookupTable phi =
+      read_lookup_table(input.tables.mc_file, kFrictionAngleTable, file, "tables.mc");
+  const LookupTable phi_se =
+      read_lookup_table(input.tables.mc_file, kFrictionAngleErrorTable, file, "tables.mc");
+  const LookupTable strength =
+      read_lookup_table(input.tables.mc_file, kUnconfinedStrengthTable, file, "tables.mc");
+  const InputTable mortar =
+      InputTable::parse_string(input.materials, file).table("materials").table("mortar");
+  const double rho = mortar.quantity(kShearKey, Dimension::Stress, Range::positive()) /
+                     mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
+  for (const auto& [name, words, value, made] :
+       std::vector<std::tuple<std::string, std::string, double, double>>{
+           {kRatioKey, "kratio", mortar.number_or(kRatioKey, 0, Range::any()),
+            phi.condition("kratio")},
+           {kShearKey, "tau_cs / sigma_cn", rho, phi.condition("shear_to_normal")}})
+    if (!same(value, made))
+      throw InputError(file, "materials.mortar." + name,
+                       words + " of the base materials is " + shortest_number(value) +
+                           ", and the Mohr-Coulomb table (tables.mc, " + phi.file.string() +
+                           ") was made at " + shortest_number(made) +
+                           ": set it so, or name the table made at it (docs/lookup_tables.md)");
+  const Packing packing = read_packing(*uniaxial, file, "specimen.generator");
+  check_size(phi, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}}, file,
+             "specimen.generator");
+  return {phi.file.string(),
+          phi.condition("shear_to_normal"),
+          phi.condition("emod_per_sigma_cn"),
+          interpolate_cell(phi, packing, file, "specimen.generator"),
+          interpolate_cell(phi_se, packing, file, "specimen.generator"),
+          interpolate_cell(strength, packing, file, "specimen.generator")};
 }
 
 // A tau_cs / sigma_cn (`what`) within the levels of a cell of `table`; refused on `key`
@@ -846,6 +950,12 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
   // and K_B tables' own tau_cs / sigma_cn is not required of the base materials (K_E moves by
   // 1.4-2.1 % from 0.25 to 2, docs/lookup_tables.md).
   m.both_strengths = m.has(m.gt) && m.has(m.gu);
+  const bool with_phi = input.mohr_coulomb.has_friction_angle();
+  if (with_phi && m.both_strengths)
+    throw InputError(file, "targets.phi_deg",
+                     "with sigma_t and sigma_u (or c) the tables set tau_cs / sigma_cn from K_U, "
+                     "and the Mohr-Coulomb table holds phi and K_U at one tau_cs / sigma_cn: drop "
+                     "sigma_t, or phi");
   m.with_kb_tau = m.has(m.gt) && !input.tables.kb_tau_file.empty();
   const bool shear_ratio_free = m.both_strengths || m.with_kb_tau;
   m.base_emod_GPa = mortar.quantity(kModulusKey, Dimension::Stress, Range::positive()) / units::GPa;
@@ -857,7 +967,12 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     const CalibrationTest& test = *input.test(TestKind::Uniaxial);
     const LookupTable ke =
         read_lookup_table(input.tables.ke_file, kModulusTable, file, "tables.ke");
-    check_conditions(input, ke, "tables.ke", shear_ratio_free);
+    // With a phi target mu is the Mohr-Coulomb table's to set, within its levels, and K_E does
+    // not follow it (the table's unconfined runs: K_E within 1.5 % over mu 0.25-1,
+    // docs/lookup_tables.md "Session 15"); without one, the base materials' mu must be K_E's.
+    // tau_cs / sigma_cn is then the Mohr-Coulomb table's, and K_E moves by 1.4-2.1 % from 0.25
+    // to 2 (the K_U table's runs), as with sigma_u and sigma_t.
+    check_conditions(input, ke, "tables.ke", shear_ratio_free || with_phi, with_phi);
     const Packing packing = read_packing(test, file, "specimen.generator");
     check_size(ke, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}},
                file, "specimen.generator");
@@ -910,7 +1025,30 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
                             "tau_cs / sigma_cn of the base materials");
     }
   }
-  if (m.has(m.gu)) {
+  std::optional<FrictionTables> mc;
+  double mu = 0;
+  if (with_phi) {
+    mc = read_friction_tables(input);
+    mu = solve_friction(mc->phi, mc->phi_se, input.mohr_coulomb.friction_angle_deg, mc->file, file);
+    md << "- phi: " << four(input.mohr_coulomb.friction_angle_deg) << " deg needs mu = " << four(mu)
+       << " (phi against mu from " << mc->phi.cells << " of `" << mc->file
+       << "`, measured at tau_cs / sigma_cn = " << four(mc->shear_to_normal)
+       << ", E* / sigma_cn = " << four(mc->emod_per_sigma_cn)
+       << "); every run has mu = " << four(mu) << "\n";
+    if (!mc->phi.note.empty()) md << "  - " << mc->phi.note << "\n";
+    if (input.mohr_coulomb.has_cohesion())
+      md << "- c: " << four(input.mohr_coulomb.cohesion_MPa)
+         << " MPa with phi is the sigma_u target 2 c sqrt(N_phi) = "
+         << four(input.target_value(CalibrationTarget::SigmaU)) << " MPa\n";
+  }
+  if (m.has(m.gu) && with_phi) {
+    // K_U at mu: the Mohr-Coulomb table's unconfined runs, at its (the base's) tau_cs / sigma_cn.
+    m.rectangle = read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
+    m.ku_cell.levels = {m.base_rho};
+    m.ku_cell.coefficients = {mc->strength.at(mu)};
+    m.ku_cell.cells = mc->strength.cells + " of `" + mc->file + "` (K_U0 at mu " + four(mu) + ")";
+    m.ku_cell.note = mc->strength.note;
+  } else if (m.has(m.gu)) {
     if (input.tables.ku_file.empty())
       throw InputError(file, "tables.ku",
                        "missing: sigma_u is a target, and the tables strategy reads K_U (sigma_u = "
@@ -977,9 +1115,13 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
   if (m.has(m.gu)) {
     md << "- sigma_u: uniaxial packing R_max/R_min " << four(m.rectangle.r_ratio) << ", R_min "
        << four(m.rectangle.r_min_mm) << " mm, " << four(m.rectangle.width_mm) << " x "
-       << four(m.rectangle.height_mm) << " mm; K_U from " << m.ku_cell.cells << " of `"
-       << ku->file.string()
-       << "` (measured at E* / sigma_cn = " << four(ku->condition("emod_per_sigma_cn")) << ")";
+       << four(m.rectangle.height_mm) << " mm; K_U from ";
+    if (with_phi)
+      md << m.ku_cell.cells << " (measured at E* / sigma_cn = " << four(mc->emod_per_sigma_cn)
+         << ")";
+    else
+      md << m.ku_cell.cells << " of `" << ku->file.string()
+         << "` (measured at E* / sigma_cn = " << four(ku->condition("emod_per_sigma_cn")) << ")";
     if (m.both_strengths) {
       md << "; at sigma_cn = " << four(s.point.sigma_cn_MPa)
          << " MPa (E* / sigma_cn = " << four(s.point.emod_GPa * 1e3 / s.point.sigma_cn_MPa)
@@ -1010,6 +1152,14 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     return correct_on_tables(*model, scales, measured, *corrections);
   };
   return plan;
+}
+
+CalibrationInput with_friction_target(const CalibrationInput& input) {
+  if (!input.mohr_coulomb.has_friction_angle()) return input;
+  const FrictionTables f = read_friction_tables(input);
+  const double mu = solve_friction(f.phi, f.phi_se, input.mohr_coulomb.friction_angle_deg, f.file,
+                                   input.file.string());
+  return with_material_value(input, "materials.mortar.friction", mu, "targets.phi_deg");
 }
 
 void check_tables_input(const CalibrationInput& input) {

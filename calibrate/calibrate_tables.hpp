@@ -54,6 +54,13 @@ extern const TableLayout kModulusTable;
 extern const TableLayout kUniaxialStrengthTable;
 // K_B per cell and tau_cs / sigma_cn, on D discs, at one E* / sigma_cn.
 extern const TableLayout kBrazilianShearTable;
+// The Mohr-Coulomb table (biaxial series): the friction angle phi_deg per cell and mu, on W x H
+// rectangles, at one E* / sigma_cn and one tau_cs / sigma_cn; and K_U0 = sigma_u / sigma_cn of
+// its unconfined runs (the uniaxial test bit for bit) in the same file: K_U at each mu.
+extern const TableLayout kFrictionAngleTable;
+extern const TableLayout kUnconfinedStrengthTable;
+// The standard error of phi per cell and mu (seed SD / sqrt(runs)), in the same file.
+extern const TableLayout kFrictionAngleErrorTable;
 
 // One row of a lookup table: a packing cell (R_max / R_min, R_min), the level of its second
 // dimension (E* / sigma_cn for K_B, tau_cs / sigma_cn for K_U; 0 without one), the coefficient.
@@ -173,6 +180,22 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
                             const CellCoefficient& ku, double r_ratio, double sigma_t_MPa,
                             double sigma_u_MPa, double emod_GPa,
                             const std::string& calibration_file);
+
+// mu for a friction-angle target on a cell of the Mohr-Coulomb table: phi(mu) piecewise linear in
+// ln mu between the table's mu levels, inverted on the first segment that crosses the target
+// among those where phi rises with mu by more than the standard error of that rise (phi_se of the
+// two ends, the table's seed SD / sqrt(runs)): where it does not, mu does not set phi (on the
+// tension-driven side phi stays at 29-33 deg over mu 0.25-1, docs/lookup_tables.md "Session
+// 15"). Refused (InputError on `targets.phi_deg`, naming the phi the rising segments reach, or
+// saying that none rises) when none does.
+double solve_friction(const CellCoefficient& phi, const CellCoefficient& phi_se, double phi_deg,
+                      const std::string& table_file, const std::string& calibration_file);
+
+// The input with a phi target's mu (solve_friction on the Mohr-Coulomb table, [tables] mc, at the
+// uniaxial specimen's packing) set in the base materials of every test (materials.mortar.friction);
+// the input itself without a phi target. read_calibration_input applies it for this strategy, so
+// every table the strategy reads is then checked against that mu.
+CalibrationInput with_friction_target(const CalibrationInput& input);
 
 // [tables] of the calibration file into input.tables (paths resolved against the file).
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,

@@ -90,4 +90,13 @@ MohrCoulomb fit_mohr_coulomb(const std::vector<double>& s3, const std::vector<do
   return mc;
 }
 
+double mohr_coulomb_slope(double friction_angle) {
+  const double s = std::sin(friction_angle);
+  return (1 + s) / (1 - s);
+}
+
+double mohr_coulomb_uniaxial_strength(const MohrCoulomb& envelope) {
+  return 2 * envelope.cohesion * std::sqrt(mohr_coulomb_slope(envelope.friction_angle));
+}
+
 }  // namespace cdem::lab

@@ -47,4 +47,11 @@ struct MohrCoulomb {
 // fewer than two distinct confinements or a slope below 1 (no friction angle exists).
 MohrCoulomb fit_mohr_coulomb(const std::vector<double>& sigma3, const std::vector<double>& sigma1);
 
+// N_phi = (1 + sin phi) / (1 - sin phi) for a friction angle phi (rad): the slope of sigma_1
+// against sigma_3 on the envelope.
+double mohr_coulomb_slope(double friction_angle);
+
+// The envelope's sigma_1 at sigma_3 = 0, 2 c sqrt(N_phi) (Pa): its uniaxial strength.
+double mohr_coulomb_uniaxial_strength(const MohrCoulomb& envelope);
+
 }  // namespace cdem::lab

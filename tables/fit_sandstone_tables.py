@@ -51,15 +51,22 @@ def fail(msg):
     sys.exit(f"fit_sandstone_tables: {msg}")
 
 
-def read_campaign(directory):
-    """The base input's conditions and the runs, grouped by (ratio, R_min, E*/sigma_cn)."""
+def read_campaign_files(directory, fail_with=None):
+    """The base input (parsed) and the result rows of a finished campaign directory; `fail_with`
+    (default: this script's fail) reports a directory that is not one."""
     try:
         with open(os.path.join(directory, "base.toml"), "rb") as f:
             base = tomllib.load(f)
         with open(os.path.join(directory, "results.csv"), newline="") as f:
             rows = list(csv.DictReader(f))
     except (OSError, tomllib.TOMLDecodeError) as e:
-        fail(f"{directory}: not a finished campaign directory ({e})")
+        (fail_with or fail)(f"{directory}: not a finished campaign directory ({e})")
+    return base, rows
+
+
+def read_campaign(directory):
+    """The base input's conditions and the runs, grouped by (ratio, R_min, E*/sigma_cn)."""
+    base, rows = read_campaign_files(directory)
     m = base["materials"]["mortar"]
     cond = dict(emod_GPa=float(m["emod_GPa"]), kratio=float(m["kratio"]),
                 friction=float(m["friction"]))

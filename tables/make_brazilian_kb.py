@@ -42,9 +42,10 @@ def fmt(x):
     return s[:-2] if s.endswith(".0") else s
 
 
-def write_campaign(base, output_dir, seeds, gather, keys, rows, header):
+def write_campaign(base, output_dir, seeds, gather, keys, rows, header, timeout_s=600):
     """An `explicit` campaign of `cdem run` jobs: one design row per entry of rows, the values
-    of keys (dotted keys of the base input) in that order."""
+    of keys (dotted keys of the base input) in that order; each run stopped after timeout_s of
+    wall time."""
     out = [header,
            f'base = "{base}"',
            f'output_dir = "{output_dir}"',
@@ -55,7 +56,7 @@ def write_campaign(base, output_dir, seeds, gather, keys, rows, header):
            'command = "run"',
            'args = ["{input}", "--summary", "{summary}", "--seed", "{seed}", "-q"]',
            'summary = "summary.json"',
-           "timeout_s = 600",
+           f"timeout_s = {timeout_s}",
            "",
            "[design]",
            'type = "explicit"',

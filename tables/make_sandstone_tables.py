@@ -37,6 +37,10 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   brazilian_arc25_r3.4.toml: the same discs at 900 with arcs of 25 degrees;
 - uniaxial_scatter_r2.7.toml (session 13): the three-target sample's rectangle (ratio 2.7) at
   tau_cs / sigma_cn 1.5, E* / sigma_cn 750, 20 x 40 and 30 x 60 mm, seeds 31-38.
+- biaxial_mc.toml (session 15): a biaxial series (sigma_3 = 0, 0.05, 0.1, 0.2 sigma_cn,
+  biaxial_mc_base.toml) on the K_U table's rectangles at E* / sigma_cn 600, over mu and tau_cs /
+  sigma_cn (0.5 and 2, both sides of the critical ratio 1.23-1.28), seeds 21-23 (neither the
+  tables' 11-13 nor the calibrations'): the friction angle and cohesion (fit_biaxial_mc.py).
 
     cd tables && python3 make_sandstone_tables.py            # writes both
     python3 make_sandstone_tables.py --reduced OUT_DIR        # the CI subset (tests/)
@@ -45,6 +49,7 @@ import argparse
 import itertools
 import os
 import sys
+import tomllib
 
 from make_brazilian_kb import SHEAR_TO_NORMAL, STRENGTH_KEYS, fmt, write_campaign  # noqa: F401
 
@@ -89,6 +94,19 @@ ARC25 = dict(SCATTER, pairs=[(2, 900)], arc_deg=25.0)
 # 20 x 40 mm rectangle of the K_U table and on 30 x 60 mm: does a larger rectangle narrow sigma_u?
 UCS_SCATTER = dict(ratios=[2.7], pairs=[(1.5, 750)], sizes_mm=[(20, 40), (30, 60)],
                    seeds=SCATTER["seeds"])
+MC_FRICTIONS = [0.25, 0.5, 1.0]           # mu of the biaxial table
+MC_SHEAR = [0.5, 2]                       # tau_cs / sigma_cn: below and above rho_c 1.23-1.28
+# The ratio-1.5 cell (3,370 discs) below rho_c only, where the sandstone's lowest UCS at that
+# packing is set: its series above (rho 2) took 1,080 s each at load 9-11 (docs/lookup_tables.md
+# "Session 15"); a further entry ([0.25, 0.5, 1.0], [2]) appended here keeps the runs' numbers.
+MC_POINTS_R15 = [([0.25, 0.5, 1.0], [0.5])]
+# A series is four runs (about six uniaxial runs of steps): the ratio-1.5 cell's at tau_cs /
+# sigma_cn 2 would pass the other campaigns' 600 s on a loaded machine.
+MC_TIMEOUT_S = 3600
+# The biaxial (Mohr-Coulomb) table: (cell, mu levels, rho levels) in run order (the costly
+# ratio-1.5 cell last), seeds; the confinements are the base's (biaxial_mc_base.toml).
+BIAXIAL_MC = dict(points=[(4, MC_FRICTIONS, MC_SHEAR), (2.7, MC_FRICTIONS, MC_SHEAR)]
+                  + [(1.5, mu, rho) for mu, rho in MC_POINTS_R15], level=600, seeds=[21, 22, 23])
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
@@ -103,6 +121,28 @@ KE_GATHER = ["young_modulus_GPa", "poisson_ratio", "peak_stress_MPa", "stop_reas
 KU_GATHER = KE_GATHER + ["cracks.tension.M", "cracks.shear.M"]
 KB_TAU_GATHER = KB_GATHER + ["cracks.tension.M", "cracks.shear.M"]
 KD_GATHER = KB_TAU_GATHER
+# Per biaxial series: the code's own envelope (cohesion, friction angle, R2) and per confinement
+# the peak state, the cracks by mode and the run's figures; the elastic part of the unconfined run.
+MC_RUN_GATHER = ["peak_stress_MPa", "sigma3_at_peak_MPa", "peak_deviator_MPa", "stop_reason",
+                 "steps", "cracks.total", "cracks.tension.M", "cracks.shear.M", "wall_time_s"]
+
+
+def mc_gather(confinements):
+    """The gather list of a biaxial series with `confinements` runs."""
+    return (["cohesion_MPa", "friction_angle_deg", "mohr_coulomb_r2", "steps", "wall_time_s"]
+            + [f"confinements.{k}.{f}" for k in range(confinements) for f in MC_RUN_GATHER]
+            + ["confinements.0.young_modulus_GPa", "confinements.0.poisson_ratio",
+               "confinements.0.genesis.discs"])
+
+
+def mc_rows(points, level):
+    """Design rows (r_ratio, R_mean, sigma_cn, tau_cs, mu) of the biaxial table: per entry (cell,
+    mu levels, rho levels), mu-major within an entry."""
+    out = []
+    for ratio, frictions, shear in points:
+        for mu in frictions:
+            out += [r + [mu] for r in rows([ratio], R_MIN_MM, [level], shear)]
+    return out
 
 
 def rows(ratios, r_min, levels, shear_to_normal=(SHEAR_TO_NORMAL,)):
@@ -202,17 +242,27 @@ def main():
              [r + [w, h] for w, h in UCS_SCATTER["sizes_mm"] for rho, x in UCS_SCATTER["pairs"]
               for r in rows(UCS_SCATTER["ratios"], R_MIN_MM, [x], [rho])],
              UCS_SCATTER["seeds"])]
+        with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "biaxial_mc_base.toml"),
+                  "rb") as f:
+            confinements = len(tomllib.load(f)["test"]["confining_stresses_MPa"])
+        campaigns += [
+            ("biaxial_mc", "Biaxial series (Mohr-Coulomb c, phi) against mu and tau_cs / sigma_cn",
+             "biaxial_mc_base.toml", mc_gather(confinements),
+             mc_rows(BIAXIAL_MC["points"], BIAXIAL_MC["level"]), BIAXIAL_MC["seeds"])]
     for name, what, base, gather, r, seeds in campaigns:
         if not r:
             continue
         extra = ("specimen.diameter_mm" if name.startswith(("brazilian_scatter", "brazilian_arc"))
                  else "materials.mortar.kratio")
-        if name.startswith("uniaxial_scatter"):
+        if name == "biaxial_mc":
+            keys = STRENGTH_KEYS + ["materials.mortar.friction"]
+        elif name.startswith("uniaxial_scatter"):
             keys = STRENGTH_KEYS + ["specimen.width_mm", "specimen.height_mm"]
         else:
             keys = (STRENGTH_KEYS + [extra, "test.loading_arc_deg"])[:len(r[0])]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
-                              gather, keys, r, header(what, len(r), seeds, name))
+                              gather, keys, r, header(what, len(r), seeds, name),
+                              MC_TIMEOUT_S if name == "biaxial_mc" else 600)
         write(os.path.join(out_dir, name + ".toml"), text)
     return 0
 

@@ -363,6 +363,11 @@ texpect tables_loading tests.brazilian 's#sandstone/brazilian.toml#sandstone/bra
 sed -e 's/^width_mm = .*/width_mm = 30/; s/^height_mm = .*/height_mm = 60/' \
   tables_case/samples/sandstone/rectangle_r2.7.toml > tables_case/samples/sandstone/rect_30x60.toml
 texpect tables_ke_size specimen.generator 's#sandstone/rectangle_r2.7.toml#sandstone/rect_30x60.toml#'
+# A friction-angle target (session 15) beyond the Mohr-Coulomb table (and c without phi).
+cp "$SRC/tables/biaxial_mc_rho2_table.csv" tables_case/tables/
+texpect tables_phi_outside targets.phi_deg \
+  's/^E_GPa = 18/&\nphi_deg = 80/; s#^ke = .*#&\nmc = "../tables/biaxial_mc_rho2_table.csv"#'
+texpect tables_c_without_phi targets.c 's/^E_GPa = 18/&\nc_MPa = 10/'
 
 echo "$passed passed, $failures failed"
 [ "$passed" -ge 40 ] || { echo "FAIL: fewer than 40 cases ran"; exit 1; }

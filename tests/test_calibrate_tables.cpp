@@ -85,6 +85,20 @@ std::string kb_tau_edited(const std::string& from, const std::string& to) {
 const std::string kKBTauD50 = kb_tau_edited(",30", ",50");
 const std::string kKBTauLow = kb_tau_edited("", "");
 
+// The Mohr-Coulomb table at tau_cs / sigma_cn 2 on the rectangle's two cells: phi rising by 10
+// degrees per doubling of mu, and K_U0 of the unconfined runs by 0.1 (ratio 3 = their mean: phi
+// 12, 22, 32 and K_U0 0.85, 0.95, 1.05 at mu 0.25, 0.5, 1).
+// phi's standard error is 1 degree everywhere (a rise of 10 is resolved).
+const std::string kMC =
+    "r_ratio,r_min_mm,friction,phi_deg,K_U0,phi_se_deg,kratio,emod_per_sigma_cn,shear_to_normal,"
+    "width_mm,height_mm\n"
+    "2,0.2,0.25,10,0.9,1,2.5,600,2,20,40\n"
+    "2,0.2,0.5,20,1.0,1,2.5,600,2,20,40\n"
+    "2,0.2,1,30,1.1,1,2.5,600,2,20,40\n"
+    "4,0.2,0.25,14,0.8,1,2.5,600,2,20,40\n"
+    "4,0.2,0.5,24,0.9,1,2.5,600,2,20,40\n"
+    "4,0.2,1,34,1.0,1,2.5,600,2,20,40\n";
+
 const std::string kMaterials =
     "[materials.mortar]\nlaw = \"contact_bond\"\nemod_GPa = 30.0\nkratio = 2.5\nfriction = 0.5\n"
     "cb_tensile_strength_MPa = 40.0\ncb_shear_strength_MPa = 80.0\n";
@@ -115,9 +129,9 @@ const std::string kHeadCoupled =
 const std::string kBrazilianTest = "[test]\ntype = \"brazilian\"\nplatens = \"curved_jaws\"\n";
 
 struct Files {
-  std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, kb_tau = kKBTau, materials = kMaterials,
-              disc = kDisc, rectangle = kRectangle, parameters = kParameters,
-              brazilian = kBrazilianTest;
+  std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, kb_tau = kKBTau, mc = kMC,
+              materials = kMaterials, disc = kDisc, rectangle = kRectangle,
+              parameters = kParameters, brazilian = kBrazilianTest;
 };
 
 // A calibration directory for the tables strategy: a uniaxial and a Brazilian test with the
@@ -133,6 +147,7 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
   write(dir / "ke.csv", f.ke);
   write(dir / "ku.csv", f.ku);
   write(dir / "kb_tau.csv", f.kb_tau);
+  write(dir / "mc.csv", f.mc);
   write(dir / "cal.toml", f.head +
                               "[tests]\nuniaxial = \"ucs.toml\"\nbrazilian = \"brazilian.toml\"\n"
                               "[specimen]\ngenerator = \"rectangle.toml\"\n"
@@ -894,3 +909,165 @@ TEST(CalibrateTables, AFailedLastRunIsReportedWithAReason) {
 }
 
 }  // namespace
+
+// N_phi = (1 + sin phi) / (1 - sin phi) and the envelope's sigma_1 at sigma_3 = 0, 2 c sqrt(N_phi)
+// (MPa), written here from the Mohr-Coulomb law, not taken from the code.
+double envelope_ucs(double c_MPa, double phi_deg) {
+  const double s = std::sin(phi_deg * std::acos(-1.0) / 180);
+  return 2 * c_MPa * std::sqrt((1 + s) / (1 - s));
+}
+
+TEST(TablesLookup, InvertsTheFrictionAngle) {
+  // At ratio 3 the cell is the mean of the two: phi 12, 22, 32 deg at mu 0.25, 0.5, 1. phi 27 is
+  // half way between 22 and 32, so half way in ln mu between 0.5 and 1: mu = 0.5 sqrt 2.
+  const auto cell = interpolate_cell(table("mc", kMC, kFrictionAngleTable), {3, 0.2}, "c", "k");
+  const auto se =
+      interpolate_cell(table("mc_se", kMC, kFrictionAngleErrorTable), {3, 0.2}, "c", "k");
+  EXPECT_NEAR(solve_friction(cell, se, 27, "mc.csv", "cal.toml"), 0.5 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(solve_friction(cell, se, 12, "mc.csv", "cal.toml"), 0.25, 1e-12);
+  EXPECT_NEAR(solve_friction(cell, se, 32, "mc.csv", "cal.toml"), 1, 1e-12);
+  const auto ku0 =
+      interpolate_cell(table("mc_ku0", kMC, kUnconfinedStrengthTable), {3, 0.2}, "c", "k");
+  EXPECT_NEAR(ku0.at(0.5 * std::sqrt(2.0)), 1.0, 1e-12);
+  for (const double target : {11.9, 32.1}) {
+    try {
+      solve_friction(cell, se, target, "mc.csv", "cal.toml");
+      ADD_FAILURE() << "phi " << target << " accepted";
+    } catch (const cdem::InputError& e) {
+      EXPECT_EQ(e.key(), "targets.phi_deg");
+      EXPECT_NE(std::string(e.what()).find("phi from 12 to 32 deg"), std::string::npos) << e.what();
+    }
+  }
+  // A cell where phi falls with mu (31, 30, 29 deg; the tension-driven regime), and one where it
+  // rises by 2 and 2.5 deg, within the standard error of the rise (sqrt 2 x 2 = 2.83 deg): mu does
+  // not set phi there, even for a phi they pass through. With an error of 1 deg the second rises
+  // beyond it on both segments (2 and 2.5 > sqrt 2): phi 21 is half way up the first.
+  CellCoefficient falling, weak, wide_se, narrow_se;
+  falling.levels = weak.levels = wide_se.levels = narrow_se.levels = {0.25, 0.5, 1};
+  falling.coefficients = {31, 30, 29};
+  weak.coefficients = {20, 22, 24.5};
+  wide_se.coefficients = {2, 2, 2};
+  narrow_se.coefficients = {1, 1, 1};
+  for (const auto& [c, e] : {std::pair{falling, narrow_se}, std::pair{weak, wide_se}}) {
+    try {
+      solve_friction(c, e, 21, "mc.csv", "cal.toml");
+      ADD_FAILURE() << "phi 21 accepted where mu does not set phi";
+    } catch (const cdem::InputError& err) {
+      EXPECT_EQ(err.key(), "targets.phi_deg");
+      EXPECT_NE(std::string(err.what()).find("phi does not rise with mu beyond its seed scatter"),
+                std::string::npos)
+          << err.what();
+    }
+  }
+  EXPECT_NEAR(solve_friction(weak, narrow_se, 21, "mc.csv", "cal.toml"), 0.25 * std::sqrt(2.0),
+              1e-12);
+}
+
+// The two bond strengths free (no modulus: no E target).
+const std::string kStrengthParameters =
+    "[[parameters]]\nkey = \"materials.mortar.cb_tensile_strength_MPa\"\nbounds = [5, 400]\n"
+    "[[parameters]]\nkey = \"materials.mortar.cb_shear_strength_MPa\"\nbounds = [10, 800]\n";
+
+// c and phi without sigma_t and E: the tables of K_B and K_E (made at mu 0.5) are not read.
+const std::string kHeadMohrCoulomb =
+    "strategy = \"tables\"\n[targets]\nc_MPa = 10\nphi_deg = 25\n[tables]\nmc = \"mc.csv\"\n";
+
+// The rectangle's cell (ratio 2) answers E = 0.5 E* (its K_E, at any mu) and sigma_u = K_U0(mu)
+// sigma_cn with the mu its test runs at (read from the uniaxial test's own text: what the DEM
+// would be given); parameters E*, sigma_cn, tau_cs.
+class MohrCoulombModel : public cdem::test::PointModel {
+ public:
+  explicit MohrCoulombModel(const CalibrationInput& input)
+      : cell_(interpolate_cell(
+            read_lookup_table(input.tables.mc_file, kUnconfinedStrengthTable, "c", "k"), {2, 0.2},
+            "c", "k")),
+        friction_(cdem::InputTable::parse_string(input.test(TestKind::Uniaxial)->text, "t")
+                      .table("materials")
+                      .table("mortar")
+                      .number("friction", cdem::Range::positive())) {}
+  double friction() const { return friction_; }
+
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 1;
+    o.responses[static_cast<int>(CalibrationTarget::E)] = 0.5 * p.values[0];
+    o.responses[static_cast<int>(CalibrationTarget::SigmaU)] = p.values[1] * cell_.at(friction_);
+    return o;
+  }
+
+ private:
+  CellCoefficient cell_;
+  double friction_;
+};
+
+TEST(CalibrateTables, CohesionAndFrictionAngleInOneRunWhenTheTablesAreExact) {
+  // phi 25 deg on the ratio-2 cell (phi 10, 20, 30 at mu 0.25, 0.5, 1): mu = 0.5 x 2^0.5; there
+  // K_U0 = 1.05, and c 10 MPa with phi is sigma_u = 2 c sqrt(N_phi) = 31.39 MPa, so sigma_cn =
+  // 31.39 / 1.05 and tau_cs twice that (the base's tau_cs / sigma_cn, the table's 2).
+  Files f;
+  f.head = replace(kHeadMohrCoulomb, "phi_deg = 25\n[tables]\n",
+                   "phi_deg = 25\nE_GPa = 18\n[tables]\nke = \"ke.csv\"\n");
+  // The K_E table made at tau_cs / sigma_cn 1 is read at the Mohr-Coulomb table's 2 (K_E moves by
+  // 1.4-2.1 % over 0.25-2).
+  f.ke = replace(replace(f.ke, "0.5,2,20,40", "0.5,1,20,40"), "0.5,2,20,40", "0.5,1,20,40");
+  const auto in = read_calibration_input(make_calibration("mc_exact", f));
+  const double mu = 0.5 * std::sqrt(2.0), ucs = envelope_ucs(10, 25);
+  EXPECT_NEAR(in.target_value(CalibrationTarget::SigmaU), ucs, 1e-9);
+  for (const auto& text : {in.materials, in.tests.front().text})
+    EXPECT_NEAR(cdem::InputTable::parse_string(text, "t")
+                    .table("materials")
+                    .table("mortar")
+                    .number("friction", cdem::Range::positive()),
+                mu, 1e-12);
+  MohrCoulombModel model(in);
+  EXPECT_NEAR(model.friction(), mu, 1e-12);
+  const auto r = calibrate(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  // E* = 18 / K_E 0.5 (the K_E table, made at mu 0.5, read at mu 0.71: K_E is flat in mu).
+  EXPECT_NEAR(r.calibrated[0], 36, 1e-9);
+  EXPECT_NEAR(r.calibrated[1], ucs / 1.05, 1e-9);
+  EXPECT_NEAR(r.calibrated[2], 2 * ucs / 1.05, 1e-9);
+  for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
+  EXPECT_NE(r.lookup.find("mu = 0.7071"), std::string::npos) << r.lookup;
+  // Without a phi target nothing is set: the base materials' mu 0.5 stays.
+  EXPECT_NE(read_calibration_input(make_calibration("mc_none")).materials.find("friction = 0.5"),
+            std::string::npos);
+}
+
+TEST(CalibrateTablesInput, RefusesWhatTheMohrCoulombTableDoesNotHold) {
+  Files mc;
+  mc.head = kHeadMohrCoulomb;
+  mc.parameters = kStrengthParameters;
+  expect_refusals(
+      {
+          {"mc_phi_high", &Files::head, "phi_deg = 25", "phi_deg = 31", "targets.phi_deg",
+           "phi from 10 to 30 deg"},
+          {"mc_phi_range", &Files::head, "phi_deg = 25", "phi_deg = 95", "targets.phi_deg",
+           "(0, 90)"},
+          {"mc_c_alone", &Files::head, "phi_deg = 25\n", "", "targets.c", "needs phi_deg"},
+          {"mc_c_and_ucs", &Files::head, "c_MPa = 10", "c_MPa = 10\nsigma_u_MPa = 30", "targets.c",
+           "not both"},
+          {"mc_fast", &Files::head, "strategy = \"tables\"", "strategy = \"fast\"", "targets.c",
+           "strategy \"tables\" only"},
+          {"mc_missing", &Files::head, "mc = \"mc.csv\"", "", "tables.mc", "missing"},
+          {"mc_rho", &Files::materials, "cb_shear_strength_MPa = 80.0",
+           "cb_shear_strength_MPa = 40.0", "materials.mortar.cb_shear_strength",
+           "Mohr-Coulomb table"},
+          {"mc_size", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
+           "20 x 40 mm"},
+          // sigma_t and c: tau_cs / sigma_cn would be K_U's to set.
+          {"mc_sigma_t", &Files::head, "phi_deg = 25\n", "phi_deg = 20\nsigma_t_MPa = 9\n",
+           "targets.phi_deg", "drop sigma_t"},
+      },
+      mc);
+  // sigma_t and E with phi 25 deg: mu 0.71, and the K_B table was made at mu 0.5: refused,
+  // naming the phi (K_E, which the Mohr-Coulomb table measures flat in mu, is not asked).
+  Files t = mc;
+  t.parameters = kParameters;
+  t.head = replace(kHead, "E_GPa = 18\n", "E_GPa = 18\nphi_deg = 25\n") + "mc = \"mc.csv\"\n";
+  expect_input_error(make_calibration("mc_kb", t), "materials.mortar.friction",
+                     "mu (set by the phi target, 25 deg) of the base materials is 0.7071");
+}
