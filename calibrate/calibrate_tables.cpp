@@ -675,21 +675,8 @@ FrictionTables read_friction_tables(const CalibrationInput& input) {
       read_lookup_table(input.tables.mc_file, kFrictionAngleErrorTable, file, "tables.mc");
   const LookupTable strength =
       read_lookup_table(input.tables.mc_file, kUnconfinedStrengthTable, file, "tables.mc");
-  const InputTable mortar =
-      InputTable::parse_string(input.materials, file).table("materials").table("mortar");
-  const double rho = mortar.quantity(kShearKey, Dimension::Stress, Range::positive()) /
-                     mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
-  for (const auto& [name, words, value, made] :
-       std::vector<std::tuple<std::string, std::string, double, double>>{
-           {kRatioKey, "kratio", mortar.number_or(kRatioKey, 0, Range::any()),
-            phi.condition("kratio")},
-           {kShearKey, "tau_cs / sigma_cn", rho, phi.condition("shear_to_normal")}})
-    if (!same(value, made))
-      throw InputError(file, "materials.mortar." + name,
-                       words + " of the base materials is " + shortest_number(value) +
-                           ", and the Mohr-Coulomb table (tables.mc, " + phi.file.string() +
-                           ") was made at " + shortest_number(made) +
-                           ": set it so, or name the table made at it (docs/lookup_tables.md)");
+  // kn/ks and tau_cs / sigma_cn (one table holds one) as every table's; mu is the table's to set.
+  check_conditions(input, phi, "tables.mc", false, true);
   const Packing packing = read_packing(*uniaxial, file, "specimen.generator");
   check_size(phi, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}}, file,
              "specimen.generator");

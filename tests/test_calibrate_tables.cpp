@@ -1055,7 +1055,7 @@ TEST(CalibrateTablesInput, RefusesWhatTheMohrCoulombTableDoesNotHold) {
           {"mc_missing", &Files::head, "mc = \"mc.csv\"", "", "tables.mc", "missing"},
           {"mc_rho", &Files::materials, "cb_shear_strength_MPa = 80.0",
            "cb_shear_strength_MPa = 40.0", "materials.mortar.cb_shear_strength",
-           "Mohr-Coulomb table"},
+           "table (tables.mc"},
           {"mc_size", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
            "20 x 40 mm"},
           // sigma_t and c: tau_cs / sigma_cn would be K_U's to set.
