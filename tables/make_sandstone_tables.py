@@ -19,8 +19,8 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   the sandstone sits), seeds 11-13; the cracks by mode (tension, shear) say which bonds fail;
 - uniaxial_ku_check.toml: the same at E* / sigma_cn 1200 on R_max / R_min 2.7, seed 11: does
   K_U depend on E* / sigma_cn?
-- brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 1.5, 4 (the K_B table
-  holds 2) on the K_B table's cells (R_max / R_min 1.5, 2, 3, 4) at E* / sigma_cn 600, seeds
+- brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 1.5, 4 and (appended in
+  session 16) 0.25 (the K_B table holds 2) on the K_B table's cells (R_max / R_min 1.5, 2, 3, 4) at E* / sigma_cn 600, seeds
   11-13: K_B against tau_cs / sigma_cn, which a sigma_u target moves (fit_kb_tau.py);
 - uniaxial_nu.toml: nu (and K_E) against kn / ks (1, 1.5, 2.5, 4) on the K_U table's rectangles
   and cells at E* / sigma_cn 3000 (the elastic part: cheap), seeds 11-12;
@@ -67,7 +67,10 @@ KU_CHECK = dict(ratios=[2.7], levels=[1200], seeds=[11])
 SHEAR_TO_NORMAL_LEVELS = [0.25, 0.5, 1, 1.5, 2, 3, 4, 8]   # tau_cs / sigma_cn of the K_U runs
 # The ratio-3 cell first, with its three first levels first: the runs of the first check (one
 # cell) keep their numbers, and the other cells of the K_B table follow.
-KB_TAU = dict(ratios=[3, 2, 4, 1.5], levels=[600], shear=[0.5, 1, 4, 1.5], seeds=SEEDS)
+# Session 16 appended the level 0.25 after those 16 points (a sigma_u target's lowest reach is set
+# at the table's lowest level), so the 48 runs before it keep their numbers.
+KB_TAU = dict(ratios=[3, 2, 4, 1.5], levels=[600], shear=[0.5, 1, 4, 1.5], seeds=SEEDS,
+              appended_shear=[0.25])
 NU_KRATIO = dict(ratios=KU_RADIUS_RATIOS, levels=[3000], kratio=[1, 1.5, 2.5, 4], seeds=[11, 12])
 KD = dict(ratios=[2.7], levels=[600], seeds=SEEDS)
 # The scatter campaign of the ratio-3.4 disc: (tau_cs / sigma_cn, E* / sigma_cn) pairs where
@@ -208,7 +211,8 @@ def main():
              KU_CHECK["seeds"]),
             ("brazilian_kb_tau", "Brazilian K_B against tau_cs / sigma_cn",
              "brazilian_kb_x_base.toml", KB_TAU_GATHER,
-             rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["shear"]),
+             rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["shear"])
+             + rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["appended_shear"]),
              KB_TAU["seeds"]),
             ("uniaxial_nu", "Uniaxial nu and K_E against kn / ks", "uniaxial_ke_base.toml",
              KE_GATHER,
