@@ -37,6 +37,8 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   brazilian_arc25_r3.4.toml: the same discs at 900 with arcs of 25 degrees;
 - uniaxial_scatter_r2.7.toml (session 13): the three-target sample's rectangle (ratio 2.7) at
   tau_cs / sigma_cn 1.5, E* / sigma_cn 750, 20 x 40 and 30 x 60 mm, seeds 31-38.
+- brazilian_kb_mu.toml (session 16): the Brazilian disc of the ratio-1.5 cell at mu 0.25, tau_cs /
+  sigma_cn 0.25, 0.5, 2, E* / sigma_cn 600, seeds 11-13: K_B against mu (fit_kb_mu.py).
 - biaxial_mc.toml (session 15): a biaxial series (sigma_3 = 0, 0.05, 0.1, 0.2 sigma_cn,
   biaxial_mc_base.toml) on the K_U table's rectangles at E* / sigma_cn 600, over mu and tau_cs /
   sigma_cn (0.5 and 2, both sides of the critical ratio 1.23-1.28), seeds 21-23 (neither the
@@ -110,6 +112,10 @@ MC_TIMEOUT_S = 3600
 # ratio-1.5 cell last), seeds; the confinements are the base's (biaxial_mc_base.toml).
 BIAXIAL_MC = dict(points=[(4, MC_FRICTIONS, MC_SHEAR), (2.7, MC_FRICTIONS, MC_SHEAR)]
                   + [(1.5, mu, rho) for mu, rho in MC_POINTS_R15], level=600, seeds=[21, 22, 23])
+# Session 16: the Brazilian disc of the ratio-1.5 cell at mu 0.25 (the K_B table's seeds, so the
+# discs of the kb_tau and K_B runs at mu 0.5): does K_B move with mu where the ratio-1.5 UCS reach
+# has its bottom (rho 0.25-0.5), and on the plateau (rho 2)? (fit_kb_mu.py)
+KB_MU = dict(points=[(1.5, [0.25], [0.25, 0.5, 2])], level=600, seeds=SEEDS)
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
@@ -246,6 +252,10 @@ def main():
              [r + [w, h] for w, h in UCS_SCATTER["sizes_mm"] for rho, x in UCS_SCATTER["pairs"]
               for r in rows(UCS_SCATTER["ratios"], R_MIN_MM, [x], [rho])],
              UCS_SCATTER["seeds"])]
+        campaigns += [
+            ("brazilian_kb_mu", "Brazilian K_B of the ratio-1.5 cell at mu 0.25",
+             "brazilian_kb_x_base.toml", KB_TAU_GATHER, mc_rows(KB_MU["points"], KB_MU["level"]),
+             KB_MU["seeds"])]
         with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "biaxial_mc_base.toml"),
                   "rb") as f:
             confinements = len(tomllib.load(f)["test"]["confining_stresses_MPa"])
@@ -258,7 +268,7 @@ def main():
             continue
         extra = ("specimen.diameter_mm" if name.startswith(("brazilian_scatter", "brazilian_arc"))
                  else "materials.mortar.kratio")
-        if name == "biaxial_mc":
+        if name in ("biaxial_mc", "brazilian_kb_mu"):
             keys = STRENGTH_KEYS + ["materials.mortar.friction"]
         elif name.startswith("uniaxial_scatter"):
             keys = STRENGTH_KEYS + ["specimen.width_mm", "specimen.height_mm"]
