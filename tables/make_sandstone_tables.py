@@ -37,6 +37,8 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   brazilian_arc25_r3.4.toml: the same discs at 900 with arcs of 25 degrees;
 - uniaxial_scatter_r2.7.toml (session 13): the three-target sample's rectangle (ratio 2.7) at
   tau_cs / sigma_cn 1.5, E* / sigma_cn 750, 20 x 40 and 30 x 60 mm, seeds 31-38.
+- brazilian_kb_x.toml's points 17 (session 16): E* / sigma_cn 150 on the ratio-1.5 cell;
+  brazilian_kb_tau_check150.toml: the same discs at tau_cs / sigma_cn 0.25 (F at 150).
 - brazilian_kb_mu.toml (session 16): the Brazilian disc of the ratio-1.5 cell at mu 0.25, tau_cs /
   sigma_cn 0.25, 0.5, 2, E* / sigma_cn 600, seeds 11-13: K_B against mu (fit_kb_mu.py).
 - biaxial_mc.toml (session 15): a biaxial series (sigma_3 = 0, 0.05, 0.1, 0.2 sigma_cn,
@@ -59,6 +61,11 @@ EMOD_GPA = 36.0                           # E* of every run (the base files)
 RADIUS_RATIOS = [1.5, 2, 3, 4]            # R_max / R_min
 R_MIN_MM = [0.2]
 KB_EMOD_PER_SIGMA = [300, 600, 1200, 3000]   # E* / sigma_cn levels of the Brazilian table
+# Session 16 appended E* / sigma_cn 150 on the ratio-1.5 cell after those 16 points (the cell's
+# UCS reach has its bottom where sigma_cn reaches E* / 300), so the 48 runs before keep their
+# numbers; the check: the same discs at 150 and tau_cs / sigma_cn 0.25 (is F the one at 600?).
+KB_X_APPENDED = dict(ratios=[1.5], levels=[150])
+KB_TAU_CHECK = dict(ratios=[1.5], levels=[150], shear=[0.25], seeds=[11, 12, 13])
 KE_EMOD_PER_SIGMA = [3000]                   # of the K_E runs
 KE_CHECK_EMOD_PER_SIGMA = [600]              # ... and of their check, on one seed
 SEEDS = [11, 12, 13]
@@ -189,9 +196,12 @@ def main():
     out_dir = "."
     if a.reduced:
         lv, out_dir = REDUCED, a.reduced
+    kb_x_rows = rows(lv["ratios"], lv["r_min"], lv["kb"])
+    if not a.reduced:
+        kb_x_rows += rows(KB_X_APPENDED["ratios"], R_MIN_MM, KB_X_APPENDED["levels"])
     campaigns = [
         ("brazilian_kb_x", "Brazilian K_B against E* / sigma_cn", "brazilian_kb_x_base.toml",
-         KB_GATHER, rows(lv["ratios"], lv["r_min"], lv["kb"]), lv["seeds"]),
+         KB_GATHER, kb_x_rows, lv["seeds"]),
         ("uniaxial_ke", "Uniaxial K_E = E / E* and nu", "uniaxial_ke_base.toml", KE_GATHER,
          rows(lv["ratios"], lv["r_min"], lv["ke"]), lv["seeds"]),
         ("uniaxial_ke_check", "Uniaxial K_E at a higher strength (check)",
@@ -253,6 +263,10 @@ def main():
               for r in rows(UCS_SCATTER["ratios"], R_MIN_MM, [x], [rho])],
              UCS_SCATTER["seeds"])]
         campaigns += [
+            ("brazilian_kb_tau_check150", "Brazilian K_B against tau_cs / sigma_cn at E* / "
+             "sigma_cn 150 (check)", "brazilian_kb_x_base.toml", KB_TAU_GATHER,
+             rows(KB_TAU_CHECK["ratios"], R_MIN_MM, KB_TAU_CHECK["levels"], KB_TAU_CHECK["shear"]),
+             KB_TAU_CHECK["seeds"]),
             ("brazilian_kb_mu", "Brazilian K_B of the ratio-1.5 cell at mu 0.25",
              "brazilian_kb_x_base.toml", KB_TAU_GATHER, mc_rows(KB_MU["points"], KB_MU["level"]),
              KB_MU["seeds"])]
