@@ -25,6 +25,7 @@ from collections import defaultdict
 
 import numpy as np
 
+from fit_brazilian_kb import write_atomic
 from fit_kb_tau import counted
 from fit_sandstone_tables import RATIO, R_MEAN, SIGMA_CN, TAU_CS, read_campaign_files, sd, \
     write_table
@@ -118,8 +119,7 @@ def main():
         if a.markdown == "-":
             sys.stdout.write(text)
         else:
-            with open(a.markdown, "w") as f:
-                f.write(text)
+            write_atomic(a.markdown, lambda f: f.write(text))
     return 0 if ok else 1
 
 
