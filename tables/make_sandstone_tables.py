@@ -20,8 +20,9 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
 - uniaxial_ku_check.toml: the same at E* / sigma_cn 1200 on R_max / R_min 2.7, seed 11: does
   K_U depend on E* / sigma_cn?
 - brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 1.5, 4 and (appended in
-  session 16) 0.25 (the K_B table holds 2) on the K_B table's cells (R_max / R_min 1.5, 2, 3, 4) at E* / sigma_cn 600, seeds
-  11-13: K_B against tau_cs / sigma_cn, which a sigma_u target moves (fit_kb_tau.py);
+  session 16) 0.25 (the K_B table holds 2) on the K_B table's cells (R_max / R_min 1.5, 2, 3,
+  4) at E* / sigma_cn 600, seeds 11-13: K_B against tau_cs / sigma_cn, which a sigma_u target
+  moves (fit_kb_tau.py);
 - uniaxial_nu.toml: nu (and K_E) against kn / ks (1, 1.5, 2.5, 4) on the K_U table's rectangles
   and cells at E* / sigma_cn 3000 (the elastic part: cheap), seeds 11-12;
 - direct_tension_kd.toml: direct tension of the same rectangles on R_max / R_min 2.7 at E* /
