@@ -19,9 +19,10 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   the sandstone sits), seeds 11-13; the cracks by mode (tension, shear) say which bonds fail;
 - uniaxial_ku_check.toml: the same at E* / sigma_cn 1200 on R_max / R_min 2.7, seed 11: does
   K_U depend on E* / sigma_cn?
-- brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 1.5, 4 (the K_B table
-  holds 2) on the K_B table's cells (R_max / R_min 1.5, 2, 3, 4) at E* / sigma_cn 600, seeds
-  11-13: K_B against tau_cs / sigma_cn, which a sigma_u target moves (fit_kb_tau.py);
+- brazilian_kb_tau.toml: the Brazilian disc at tau_cs / sigma_cn 0.5, 1, 1.5, 4 and (appended in
+  session 16) 0.25 (the K_B table holds 2) on the K_B table's cells (R_max / R_min 1.5, 2, 3,
+  4) at E* / sigma_cn 600, seeds 11-13: K_B against tau_cs / sigma_cn, which a sigma_u target
+  moves (fit_kb_tau.py);
 - uniaxial_nu.toml: nu (and K_E) against kn / ks (1, 1.5, 2.5, 4) on the K_U table's rectangles
   and cells at E* / sigma_cn 3000 (the elastic part: cheap), seeds 11-12;
 - direct_tension_kd.toml: direct tension of the same rectangles on R_max / R_min 2.7 at E* /
@@ -37,6 +38,10 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   brazilian_arc25_r3.4.toml: the same discs at 900 with arcs of 25 degrees;
 - uniaxial_scatter_r2.7.toml (session 13): the three-target sample's rectangle (ratio 2.7) at
   tau_cs / sigma_cn 1.5, E* / sigma_cn 750, 20 x 40 and 30 x 60 mm, seeds 31-38.
+- brazilian_kb_x.toml's points 17 (session 16): E* / sigma_cn 150 on the ratio-1.5 cell;
+  brazilian_kb_tau_check150.toml: the same discs at tau_cs / sigma_cn 0.25 (F at 150).
+- brazilian_kb_mu.toml (session 16): the Brazilian disc of the ratio-1.5 cell at mu 0.25, tau_cs /
+  sigma_cn 0.25, 0.5, 2, E* / sigma_cn 600, seeds 11-13: K_B against mu (fit_kb_mu.py).
 - biaxial_mc.toml (session 15): a biaxial series (sigma_3 = 0, 0.05, 0.1, 0.2 sigma_cn,
   biaxial_mc_base.toml) on the K_U table's rectangles at E* / sigma_cn 600, over mu and tau_cs /
   sigma_cn (0.5 and 2, both sides of the critical ratio 1.23-1.28), seeds 21-23 (neither the
@@ -57,6 +62,11 @@ EMOD_GPA = 36.0                           # E* of every run (the base files)
 RADIUS_RATIOS = [1.5, 2, 3, 4]            # R_max / R_min
 R_MIN_MM = [0.2]
 KB_EMOD_PER_SIGMA = [300, 600, 1200, 3000]   # E* / sigma_cn levels of the Brazilian table
+# Session 16 appended E* / sigma_cn 150 on the ratio-1.5 cell after those 16 points (the cell's
+# UCS reach has its bottom where sigma_cn reaches E* / 300), so the 48 runs before keep their
+# numbers; the check: the same discs at 150 and tau_cs / sigma_cn 0.25 (is F the one at 600?).
+KB_X_APPENDED = dict(ratios=[1.5], levels=[150])
+KB_TAU_CHECK = dict(ratios=[1.5], levels=[150], shear=[0.25], seeds=[11, 12, 13])
 KE_EMOD_PER_SIGMA = [3000]                   # of the K_E runs
 KE_CHECK_EMOD_PER_SIGMA = [600]              # ... and of their check, on one seed
 SEEDS = [11, 12, 13]
@@ -67,7 +77,10 @@ KU_CHECK = dict(ratios=[2.7], levels=[1200], seeds=[11])
 SHEAR_TO_NORMAL_LEVELS = [0.25, 0.5, 1, 1.5, 2, 3, 4, 8]   # tau_cs / sigma_cn of the K_U runs
 # The ratio-3 cell first, with its three first levels first: the runs of the first check (one
 # cell) keep their numbers, and the other cells of the K_B table follow.
-KB_TAU = dict(ratios=[3, 2, 4, 1.5], levels=[600], shear=[0.5, 1, 4, 1.5], seeds=SEEDS)
+# Session 16 appended the level 0.25 after those 16 points (a sigma_u target's lowest reach is set
+# at the table's lowest level), so the 48 runs before it keep their numbers.
+KB_TAU = dict(ratios=[3, 2, 4, 1.5], levels=[600], shear=[0.5, 1, 4, 1.5], seeds=SEEDS,
+              appended_shear=[0.25])
 NU_KRATIO = dict(ratios=KU_RADIUS_RATIOS, levels=[3000], kratio=[1, 1.5, 2.5, 4], seeds=[11, 12])
 KD = dict(ratios=[2.7], levels=[600], seeds=SEEDS)
 # The scatter campaign of the ratio-3.4 disc: (tau_cs / sigma_cn, E* / sigma_cn) pairs where
@@ -107,6 +120,10 @@ MC_TIMEOUT_S = 3600
 # ratio-1.5 cell last), seeds; the confinements are the base's (biaxial_mc_base.toml).
 BIAXIAL_MC = dict(points=[(4, MC_FRICTIONS, MC_SHEAR), (2.7, MC_FRICTIONS, MC_SHEAR)]
                   + [(1.5, mu, rho) for mu, rho in MC_POINTS_R15], level=600, seeds=[21, 22, 23])
+# Session 16: the Brazilian disc of the ratio-1.5 cell at mu 0.25 (the K_B table's seeds, so the
+# discs of the kb_tau and K_B runs at mu 0.5): does K_B move with mu where the ratio-1.5 UCS reach
+# has its bottom (rho 0.25-0.5), and on the plateau (rho 2)? (fit_kb_mu.py)
+KB_MU = dict(points=[(1.5, [0.25], [0.25, 0.5, 2])], level=600, seeds=SEEDS)
 REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], seeds=[11],
                check_seeds=[])
 # The CI subset of the K_U table: its cheapest run (R_max / R_min 4, tau_cs / sigma_cn 0.25).
@@ -180,9 +197,12 @@ def main():
     out_dir = "."
     if a.reduced:
         lv, out_dir = REDUCED, a.reduced
+    kb_x_rows = rows(lv["ratios"], lv["r_min"], lv["kb"])
+    if not a.reduced:
+        kb_x_rows += rows(KB_X_APPENDED["ratios"], R_MIN_MM, KB_X_APPENDED["levels"])
     campaigns = [
         ("brazilian_kb_x", "Brazilian K_B against E* / sigma_cn", "brazilian_kb_x_base.toml",
-         KB_GATHER, rows(lv["ratios"], lv["r_min"], lv["kb"]), lv["seeds"]),
+         KB_GATHER, kb_x_rows, lv["seeds"]),
         ("uniaxial_ke", "Uniaxial K_E = E / E* and nu", "uniaxial_ke_base.toml", KE_GATHER,
          rows(lv["ratios"], lv["r_min"], lv["ke"]), lv["seeds"]),
         ("uniaxial_ke_check", "Uniaxial K_E at a higher strength (check)",
@@ -208,7 +228,8 @@ def main():
              KU_CHECK["seeds"]),
             ("brazilian_kb_tau", "Brazilian K_B against tau_cs / sigma_cn",
              "brazilian_kb_x_base.toml", KB_TAU_GATHER,
-             rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["shear"]),
+             rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["shear"])
+             + rows(KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], KB_TAU["appended_shear"]),
              KB_TAU["seeds"]),
             ("uniaxial_nu", "Uniaxial nu and K_E against kn / ks", "uniaxial_ke_base.toml",
              KE_GATHER,
@@ -242,6 +263,14 @@ def main():
              [r + [w, h] for w, h in UCS_SCATTER["sizes_mm"] for rho, x in UCS_SCATTER["pairs"]
               for r in rows(UCS_SCATTER["ratios"], R_MIN_MM, [x], [rho])],
              UCS_SCATTER["seeds"])]
+        campaigns += [
+            ("brazilian_kb_tau_check150", "Brazilian K_B against tau_cs / sigma_cn at E* / "
+             "sigma_cn 150 (check)", "brazilian_kb_x_base.toml", KB_TAU_GATHER,
+             rows(KB_TAU_CHECK["ratios"], R_MIN_MM, KB_TAU_CHECK["levels"], KB_TAU_CHECK["shear"]),
+             KB_TAU_CHECK["seeds"]),
+            ("brazilian_kb_mu", "Brazilian K_B of the ratio-1.5 cell at mu 0.25",
+             "brazilian_kb_x_base.toml", KB_TAU_GATHER, mc_rows(KB_MU["points"], KB_MU["level"]),
+             KB_MU["seeds"])]
         with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "biaxial_mc_base.toml"),
                   "rb") as f:
             confinements = len(tomllib.load(f)["test"]["confining_stresses_MPa"])
@@ -254,7 +283,7 @@ def main():
             continue
         extra = ("specimen.diameter_mm" if name.startswith(("brazilian_scatter", "brazilian_arc"))
                  else "materials.mortar.kratio")
-        if name == "biaxial_mc":
+        if name in ("biaxial_mc", "brazilian_kb_mu"):
             keys = STRENGTH_KEYS + ["materials.mortar.friction"]
         elif name.startswith("uniaxial_scatter"):
             keys = STRENGTH_KEYS + ["specimen.width_mm", "specimen.height_mm"]
