@@ -833,7 +833,10 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   std::optional<CmodGauge> cmod;
   const StopRuleOptions stop_options = loading_stop_options(c, cleaned.container);
   std::optional<CmodServo> servo;
-  if (bending && c.cmod_control) servo = CmodServo{c.cmod_rate, kCmodServoSpeedCap * c.cmod_rate};
+  if (bending && c.cmod_control)
+    servo = CmodServo{.cmod_rate = c.cmod_rate,
+                      .max_velocity = kCmodServoSpeedCap * c.cmod_rate,
+                      .hold_fraction = c.stop.stop_fraction};
   if (bending) cmod.emplace(world, cleaned.container, e.ymin);
   PeakStopRule stop(stop_options, e.xmin, e.ymin, e.xmax, e.ymax, intact_bonds,
                     world.cracks().size());
@@ -890,9 +893,9 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   while (reason == StopReason::None) {
     if (confinement) confinement->update_targets(world);
     if (servo)
-      world.set_wall_velocity(
-          loading.top_wall, 0,
-          -servo->platen_velocity(cmod->opening(world), world.time() - time0, world.time_step()));
+      world.set_wall_velocity(loading.top_wall, 0,
+                              -servo->platen_velocity(cmod->opening(world), world.time() - time0,
+                                                      world.time_step(), loading.force(world)));
     world.step();
     boundary_work += loading.work(world, world.time_step());
     const long s = world.step_count() - step0;

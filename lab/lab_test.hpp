@@ -88,7 +88,8 @@ struct LabTestControls {
   double tensile_strength = 0;  // Pa
   double pin_friction = 0.5;    // friction coefficient of the pinned (left) support
   // Loading: the platen at platen_velocity, or driven so the CMOD grows at cmod_rate
-  // (lab/three_point_bending.hpp, CmodServo), never faster than kCmodServoSpeedCap x cmod_rate.
+  // (lab/three_point_bending.hpp, CmodServo), never faster than kCmodServoSpeedCap x cmod_rate
+  // and never retracting from a beam loaded below stop_load_fraction x its largest load.
   bool cmod_control = false;
   double cmod_rate = 0;  // m/s
   // The sieve of the fragment analysis after the run (m, increasing; dem/fragments.hpp).

@@ -66,9 +66,15 @@ double CmodGauge::mean_x(const World& world, const std::vector<std::int32_t>& di
   return sum / static_cast<double>(discs.size());
 }
 
-double CmodServo::platen_velocity(double cmod, double time, double dt) const {
-  const double v = relaxation * (cmod_rate * time - cmod) / dt;
-  return std::clamp(v, -max_velocity, max_velocity);
+double CmodServo::platen_velocity(double cmod, double time, double dt, double platen_force) {
+  peak_force = std::max(peak_force, platen_force);
+  const double behind = cmod_rate * time - cmod;  // m, the CMOD's lag behind its ramp
+  if (behind >= 0)
+    holding = false;
+  else if (platen_force < hold_fraction * peak_force)
+    holding = true;
+  if (holding) return 0;
+  return std::clamp(relaxation * behind / dt, -max_velocity, max_velocity);
 }
 
 double CmodGauge::opening(const World& world) const {

@@ -71,13 +71,29 @@ class CmodGauge {
 // a fraction `relaxation` of the lag closed per step (CMOD grows at about 0.75 x the deflection
 // before the peak); past the peak v turns negative where the beam snaps back, which keeps the
 // softening branch stable where displacement control runs through it dynamically.
+// The actuator may retract to follow the beam's elastic recovery, but it cannot pull the crack
+// closed: a burst of bond failures throws the CMOD ahead of its ramp within a few hundred steps,
+// faster than any servo the beam's lowest mode allows, and retracting at the cap until the CMOD
+// is back on its ramp unloads the beam and then leaves it (the servo has lost control, and the
+// platen must travel the gap back while the CMOD waits). So where the CMOD is ahead of its ramp
+// and the platen force has fallen below hold_fraction x the largest force so far (the stop
+// rule's stop_load_fraction, the load below which the test is over), the platen holds still
+// until the ramp has caught up with the CMOD: the servo unloads the beam down to the end of the
+// test, never off it. The hold lasts until the catch-up, not while the force is low: a beam
+// ringing after a burst crosses the hold level back and forth, and would set the platen moving
+// at every crossing.
 struct CmodServo {
   double cmod_rate = 0;      // m/s
   double max_velocity = 0;   // m/s, cap on the platen's speed either way
   double relaxation = 2e-4;  // fraction of the lag closed per step
+  double hold_fraction = 0;  // of the largest platen force, below which the platen never retracts
+  // The servo's state: the largest platen force so far (N/m), and whether the platen holds.
+  double peak_force = 0;
+  bool holding = false;
 
-  // Platen velocity, m/s, downward positive; `cmod` (m) at loading time `time` (s), step dt (s).
-  double platen_velocity(double cmod, double time, double dt) const;
+  // Platen velocity, m/s, downward positive; `cmod` (m) at loading time `time` (s), step dt (s),
+  // `platen_force` the platen's load on the beam now (N/m, compression positive).
+  double platen_velocity(double cmod, double time, double dt, double platen_force);
 };
 
 }  // namespace cdem::lab

@@ -217,9 +217,18 @@ TEST(SmallBeam, LoadedToFailure) {
   }
 }
 
-// The same beam under CMOD control (0.5 mm/s of crack-mouth opening): the servo keeps the
-// platen on the beam and the beam in equilibrium through the softening branch, and the CMOD
-// follows its ramp with the lag of a proportional servo (rate x dt / relaxation).
+// The same beam under CMOD control (0.5 mm/s of crack-mouth opening). What a CMOD-controlled
+// test guarantees on every realisation of the beam (docs/lab_tests.md "Session 16: the CMOD
+// servo", measured on the beams of generator seeds 1-10):
+// - the CMOD never falls behind its ramp by more than a few lags of the proportional servo
+//   (rate x dt / relaxation);
+// - a burst of bond failures may throw the CMOD ahead of its ramp (the crack runs faster than the
+//   beam's lowest mode lets a servo act); such an excursion starts at a bond failure, and while it
+//   lasts the platen retracts or holds, never pushes the crack further open;
+// - the platen stays on the beam while the beam carries load, and once the beam has failed (its
+//   load below the stop level to the end, the stop rule's confirmation) it holds there: it never
+//   retracts from the broken beam, whose own rebound may leave the platen;
+// - the supports balance the platen away from bond failures, through a softening branch.
 TEST(SmallBeam, CmodControlHoldsTheSofteningBranch) {
   const double rate = 0.5e-3;  // m/s
   const lab::LabTestResult result =
@@ -227,12 +236,22 @@ TEST(SmallBeam, CmodControlHoldsTheSofteningBranch) {
   const lab::BendingResult& b = result.bending;
   const lab::LabHistory& h = result.history;
   EXPECT_EQ(result.stop_reason, lab::StopReason::PostPeakDrop);
-  EXPECT_LT(b.final_load, lab::kDefaultStopLoadFraction * b.peak_load);
+  const double stop_load = lab::kDefaultStopLoadFraction * b.peak_load;  // N/m
+  EXPECT_LT(b.final_load, stop_load);
   const double lag = rate * result.time_step / lab::CmodServo{}.relaxation;  // m
+  // The beam's failure: the records from the last one at or above the stop level on.
+  std::size_t failed = h.size();
+  while (failed > 1 && h.platen_force[failed - 1] < stop_load) --failed;
+  EXPECT_GE(h.size() - failed, 5u) << "the stop rule confirms the drop over 5 records";
   std::size_t post_peak = 0, balanced = 0;
+  std::size_t passed = 0;  // the record at which the CMOD last passed its ramp (0: behind it now)
   for (std::size_t k = 1; k < h.size(); ++k) {
-    // The platen never leaves the beam (displacement control's snap-backs would need it to).
-    EXPECT_GT(h.platen_force[k], 0) << "record " << k;
+    if (k < failed) {
+      EXPECT_GT(h.platen_force[k], 0) << "record " << k << ": the platen left a loaded beam";
+    } else if (k > failed) {
+      EXPECT_GE(h.deflection[k], h.deflection[k - 1])
+          << "record " << k << ": the platen retracted from the failed beam";
+    }
     // Equilibrium away from the bond failures (each releases its energy dynamically; measured
     // up to 31 % off within the next records): no crack in the last 5 records (2,500 steps).
     const bool settled = k >= 5 && h.bonds_broken[k] == h.bonds_broken[k - 5];
@@ -240,8 +259,23 @@ TEST(SmallBeam, CmodControlHoldsTheSofteningBranch) {
       ++balanced;
       EXPECT_NEAR(h.support_reaction[k] / h.platen_force[k], 1.0, 0.06) << "record " << k;
     }
+    const double ahead = h.cmod[k] - rate * h.time[k];  // m, CMOD ahead of its ramp
+    const double ahead_before = h.cmod[k - 1] - rate * h.time[k - 1];
+    passed = ahead <= 0 ? 0 : ahead_before <= 0 ? k : passed;
     if (h.step[k] > h.step.back() / 10) {
-      EXPECT_NEAR(h.cmod[k], rate * h.time[k], 3 * lag) << "record " << k;
+      EXPECT_GT(ahead, -3 * lag) << "record " << k << ": the CMOD fell behind its ramp";
+      if (ahead > 3 * lag) {
+        // The servo keeps the CMOD about a lag behind its ramp: it passes the ramp only where
+        // bonds fail, in the record it does so or the one before.
+        ASSERT_GE(passed, 2u);
+        EXPECT_GT(h.bonds_broken[passed], h.bonds_broken[passed - 2])
+            << "record " << k << ": the CMOD ran ahead of its ramp from record " << passed
+            << " without a bond failure";
+        if (ahead_before > 0) {
+          EXPECT_LE(h.deflection[k], h.deflection[k - 1])
+              << "record " << k << ": the platen pushed a crack that runs ahead of its ramp";
+        }
+      }
     }
     if (h.deflection[k] > b.deflection_at_peak) ++post_peak;
   }
