@@ -58,6 +58,14 @@ struct MortarPackingControls {
   // twice as slow to keep the packing jammed (measured on the reference mould: 10,350 instead
   // of 6,350 cycles, and a slightly looser packing).
   double local_damping = 0.3;
+  // Fraction of the critical time step the packing cycles at, (0, 1] (`mortar.time_step_safety`).
+  // The decompression rates per cycle were tuned at 0.8 and are scaled by time_step_safety / 0.8:
+  // under density scaling a cycle at a higher safety relaxes the packing that much further, so
+  // the rate per unit of the packing's relaxation time stays the same (at 0.8 the factor is
+  // exactly 1). The key exists because shipped data (tables/, calibrated samples) were made at
+  // 0.8 and pin it in their inputs: a packing's bits depend on it (docs/generator.md). The FIRE
+  // relaxation's own stages always run at the critical step (relax_fire); this sets its expansion.
+  double time_step_safety = 0.8;
   // Threads of the DEM cycles, 1..kMaxMortarThreads (the result does not depend on it):
   // `mortar.threads`, or `cdem generate --threads`.
   int threads = 1;

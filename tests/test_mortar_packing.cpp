@@ -265,6 +265,41 @@ TEST(MortarPacking, RelaxationKeyIsReadAndChecked) {
   }
 }
 
+// mortar.time_step_safety: the packing's recipe, which inputs of shipped data pin (0.8); (0, 1]
+// as the engine's own check (dem/instability.cpp), refused by the reader and by pack_mortar.
+TEST(MortarPacking, TimeStepSafetyKeyIsReadAndChecked) {
+  const auto read = [](const std::string& mortar) {
+    return cdem::mesogen::read_generator_input(cdem::InputTable::parse_string(
+        "[specimen]\nshape = \"disc\"\ndiameter_mm = 30\n[mortar]\nr_mean_mm = 0.5\n" + mortar,
+        "safety key"));
+  };
+  EXPECT_EQ(read("").mortar.time_step_safety, MortarPackingControls{}.time_step_safety);
+  EXPECT_EQ(read("time_step_safety = 0.8\n").mortar.time_step_safety, 0.8);
+  EXPECT_EQ(read("time_step_safety = 1\n").mortar.time_step_safety, 1.0);
+  for (const char* bad : {"0", "-0.5", "1.01", "\"fast\""}) {
+    try {
+      (void)read(std::string("time_step_safety = ") + bad + "\n");
+      ADD_FAILURE() << "time_step_safety = " << bad << " was accepted";
+    } catch (const cdem::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("safety key"), std::string::npos) << what;
+      EXPECT_NE(what.find("mortar.time_step_safety"), std::string::npos) << what;
+    }
+  }
+  const Container square = rectangle(0.012, 0.012);
+  for (double bad : {0.0, 1.5}) {
+    MortarPackingControls c;
+    c.time_step_safety = bad;
+    cdem::Rng rng(1);
+    try {
+      (void)cdem::mesogen::pack_mortar(square, c, rng);
+      ADD_FAILURE() << "pack_mortar accepted time_step_safety = " << bad;
+    } catch (const cdem::InputError& e) {
+      EXPECT_EQ(e.key(), "time_step_safety") << e.what();
+    }
+  }
+}
+
 // mortar.threads (and `cdem generate --threads`): the packing's cycles on the thread team give
 // the same bits as on one thread. FIRE here (its drift correction and mixing run beside the
 // team's step); the damped default on 2 threads is compared byte for byte by generate_bitwise.sh.
