@@ -188,6 +188,10 @@ GeneratorInput read_generator_input(const InputTable& root) {
       m.number_or("time_step_safety", mc.time_step_safety, Range::left_open(0, 1));
   // Threads of the packing's DEM cycles; the packing is bitwise the same for any count.
   mc.threads = static_cast<int>(m.integer_or("threads", mc.threads, 1, kMaxMortarThreads));
+  if (mc.relaxation == MortarRelaxation::Fire && m.has("time_step_safety"))
+    m.fail("time_step_safety",
+           "applies to relaxation 'damped' only ('fire' expands at the safety its stages were "
+           "measured with, mesogen::kFireExpansionTimeStepSafety; docs/generator.md)");
   if (mc.relaxation == MortarRelaxation::Fire)
     if (const std::string why =
             fire_span_refusal(in.container.width, in.container.height, mc.r_mean);

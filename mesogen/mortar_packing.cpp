@@ -428,7 +428,8 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   settings.local_damping = c.local_damping;
   settings.density_scaling = true;
   settings.threads = c.threads;
-  settings.time_step_safety = c.time_step_safety;
+  settings.time_step_safety =
+      c.relaxation == MortarRelaxation::Fire ? kFireExpansionTimeStepSafety : c.time_step_safety;
   // Nothing here reads the energy ledger, and its bookkeeping is a few % of a cycle. Its
   // runaway check was idle anyway while the radii change (every scale_radii restarts the
   // reference); the overlap and non-finite guards still stop a bad expansion with their
@@ -447,6 +448,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   settings.skin = 0.5 * c.r_mean;
   const dem::LinearContact law{c.emod, 1.0, 0.0};
   settings.laws.fill(law);
+  out.time_step_safety = settings.time_step_safety;
   dem::World world(settings);
   for (std::size_t i : spatial_order(x, y, 2.0 * r_max))
     world.add_disc(x[i], y[i], half[i], c.density);
