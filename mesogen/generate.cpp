@@ -299,6 +299,7 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
                         {"initial_porosity", packing.initial_porosity},
                         {"expansion_factor", packing.expansion_factor},
                         {"expansion_steps", packing.expansion_steps},
+                        {"time_step_safety", packing.time_step_safety},
                         {"porosity", packing.porosity},
                         {"mean_overlap_mm", packing.mean_overlap / units::mm},
                         {"mean_overlap_ratio", packing.mean_overlap_ratio},

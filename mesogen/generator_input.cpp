@@ -168,7 +168,8 @@ GeneratorInput read_generator_input(const InputTable& root) {
 
   const InputTable m = root.table("mortar");
   m.reject_unknown_keys({"r_mean", "r_ratio", "porosity", "density", "sigma0", "stress_tolerance",
-                         "packing_emod", "max_steps", "expansion_steps", "relaxation", "threads"});
+                         "packing_emod", "max_steps", "expansion_steps", "relaxation", "threads",
+                         "time_step_safety"});
   auto& mc = in.mortar;
   mc.r_mean = m.quantity("r_mean", Dimension::Length, Range::open(0, 0.1));
   mc.r_ratio = m.number_or("r_ratio", 2.5, Range::closed(1, 20));
@@ -182,8 +183,15 @@ GeneratorInput read_generator_input(const InputTable& root) {
   mc.relaxation = m.string_or("relaxation", "damped", {"damped", "fire"}) == "fire"
                       ? MortarRelaxation::Fire
                       : MortarRelaxation::Damped;
+  // The packing's recipe (MortarPackingControls::time_step_safety): inputs of shipped data pin it.
+  mc.time_step_safety =
+      m.number_or("time_step_safety", mc.time_step_safety, Range::left_open(0, 1));
   // Threads of the packing's DEM cycles; the packing is bitwise the same for any count.
   mc.threads = static_cast<int>(m.integer_or("threads", mc.threads, 1, kMaxMortarThreads));
+  if (mc.relaxation == MortarRelaxation::Fire && m.has("time_step_safety"))
+    m.fail("time_step_safety",
+           "applies to relaxation 'damped' only ('fire' expands at the safety its stages were "
+           "measured with, mesogen::kFireExpansionTimeStepSafety; docs/generator.md)");
   if (mc.relaxation == MortarRelaxation::Fire)
     if (const std::string why =
             fire_span_refusal(in.container.width, in.container.height, mc.r_mean);

@@ -19,9 +19,13 @@ using std::numbers::pi;
 
 // Unbalanced-force ratio below which the expanded packing is considered calm.
 constexpr double kExpandedRatio = 2e-2;
-// Logarithmic decompression rates (fraction of the contact stress shed per cycle, affinely).
+// Logarithmic decompression rates (fraction of the contact stress shed per cycle, affinely), as
+// tuned at the time-step safety kRatesTimeStepSafety; a packing cycling at
+// MortarPackingControls::time_step_safety sheds them x time_step_safety / kRatesTimeStepSafety per
+// cycle (the same per unit of its relaxation time; exactly x1 at 0.8).
 constexpr double kFastDecompression = 4e-3;
 constexpr double kSlowDecompression = 2e-3;
+constexpr double kRatesTimeStepSafety = 0.8;
 constexpr double kFastDecompressionAbove = 100.0;  // x sigma0
 // The rates above were tuned on the 100 x 200 mm mould at R_mean 0.5 mm (200 mean diameters),
 // where one seed in three came out barely jammed (coordination 3.53 against 3.61-3.62). The
@@ -62,6 +66,8 @@ void check_controls(const Container& mould, const MortarPackingControls& c) {
   if (c.wall_segments < 3) bad("wall_segments", "must be >= 3");
   if (!(c.overlap_guard > 0)) bad("overlap_guard", "must be > 0 (x the smaller radius)");
   if (!(c.fire_stage_drop > 1)) bad("fire_stage_drop", "must be > 1");
+  if (!(c.time_step_safety > 0 && c.time_step_safety <= 1))
+    bad("time_step_safety", "must be in (0, 1] (fraction of the critical time step)");
   if (c.threads < 1 || c.threads > kMaxMortarThreads)
     bad("threads", "must be in [1, " + std::to_string(kMaxMortarThreads) + "]");
   if (c.relaxation == MortarRelaxation::Fire)
@@ -207,7 +213,8 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   //    correction on the wall stress (the reported figure) every check interval.
   const Eigen::Vector2d centre = mould.centre();
   const double span_diameters = mould_span_diameters(mould.width, mould.height, c.r_mean);
-  const double rate_scale = std::min(1.0, kRateSpanDiameters / span_diameters);
+  const double rate_scale = (c.time_step_safety / kRatesTimeStepSafety) *
+                            std::min(1.0, kRateSpanDiameters / span_diameters);
   const double band = 0.25 * c.stress_tolerance * c.sigma0;
   const double area = mould.area();
   double wall_sigma = 0, contact_sigma = 0, ratio = 1, stiffness = 0, hold_rate = 0;
@@ -421,6 +428,8 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   settings.local_damping = c.local_damping;
   settings.density_scaling = true;
   settings.threads = c.threads;
+  settings.time_step_safety =
+      c.relaxation == MortarRelaxation::Fire ? kFireExpansionTimeStepSafety : c.time_step_safety;
   // Nothing here reads the energy ledger, and its bookkeeping is a few % of a cycle. Its
   // runaway check was idle anyway while the radii change (every scale_radii restarts the
   // reference); the overlap and non-finite guards still stop a bad expansion with their
@@ -439,6 +448,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   settings.skin = 0.5 * c.r_mean;
   const dem::LinearContact law{c.emod, 1.0, 0.0};
   settings.laws.fill(law);
+  out.time_step_safety = settings.time_step_safety;
   dem::World world(settings);
   for (std::size_t i : spatial_order(x, y, 2.0 * r_max))
     world.add_disc(x[i], y[i], half[i], c.density);

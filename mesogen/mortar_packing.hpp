@@ -35,6 +35,12 @@ constexpr double kFireSpanDiameters = 500.0;
 // Why `relaxation = "fire"` is refused for this mould (empty: accepted).
 std::string fire_span_refusal(double width, double height, double r_mean);
 
+// Time-step safety of the expansion and calming cycles of a relaxation = "fire" packing: the
+// recipe its stage limit and jamming check were measured with. At 1.0 the 20 x 20 mm mould of
+// MortarPacking.FireRelaxationReachesSigma0 (448 discs) restored stages on 7 of 8 seeds (up to 4
+// restores, 1.4-6.6x the cycles) against 2 of 8 at 0.8 (docs/performance.md "Session 16").
+constexpr double kFireExpansionTimeStepSafety = 0.8;
+
 // Most threads a packing accepts (as `[test] threads`).
 constexpr int kMaxMortarThreads = 1024;
 
@@ -58,6 +64,18 @@ struct MortarPackingControls {
   // twice as slow to keep the packing jammed (measured on the reference mould: 10,350 instead
   // of 6,350 cycles, and a slightly looser packing).
   double local_damping = 0.3;
+  // Fraction of the critical time step the packing cycles at, (0, 1] (`mortar.time_step_safety`).
+  // The decompression rates per cycle were tuned at 0.8 and are scaled by time_step_safety / 0.8:
+  // under density scaling a cycle at a higher safety relaxes the packing that much further, so
+  // the rate per unit of the packing's relaxation time stays the same (at 0.8 the factor is
+  // exactly 1). The key exists because shipped data (tables/, calibrated samples) were made at
+  // 0.8 and pin it in their inputs: a packing's bits depend on it (docs/generator.md). The FIRE
+  // relaxation's own stages always run at the critical step (relax_fire), and its expansion and
+  // calming at kFireExpansionTimeStepSafety whatever this says (the reader refuses the key then).
+  // Default 1.0: stable, since the engine's step sums the stiffness of the candidate contacts and
+  // leapfrog is stable to sqrt(2) x it (Gershgorin, docs/dem_design.md); C30 generate 0.8x the CPU
+  // of 0.8 with the packing statistics kept (docs/performance.md "Session 16").
+  double time_step_safety = 1.0;
   // Threads of the DEM cycles, 1..kMaxMortarThreads (the result does not depend on it):
   // `mortar.threads`, or `cdem generate --threads`.
   int threads = 1;
@@ -104,6 +122,7 @@ struct MortarPacking {
   double initial_porosity = 0;     // n0, at half radius
   double expansion_factor = 0;     // m = sqrt((1 - n) / (1 - n0))
   long expansion_steps = 0;        // the cycles the expansion took (given or default)
+  double time_step_safety = 0;     // of the expansion and calming cycles (the recipe used)
   double porosity = 0;             // reached: 1 - sum(pi r^2) / A (overlaps not subtracted)
   double mean_overlap = 0;         // m, over disc-disc contacts
   double mean_overlap_ratio = 0;   // mean of overlap / min(R1, R2)

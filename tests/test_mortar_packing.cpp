@@ -198,12 +198,13 @@ namespace {
 // largest one against the mould and is squeezed past its own radius, by the force any large
 // disc carries at that stress: the engine's lab-test guard (1 x the smaller radius) stops the
 // packing, the packing's own guard (2: the smaller disc wholly inside the larger) lets it relax
-// to sigma0, jammed.
+// to sigma0, jammed. The table's base pins the packing's recipe (time_step_safety = 0.8), and so
+// does the case: on the default 1.0 the same disc is not squeezed past its radius (session 16).
 TEST(MortarPacking, SmallDiscSqueezedPastItsRadiusByTheExpansionIsNoInstability) {
   cdem::mesogen::GeneratorInput in =
       cdem::mesogen::read_generator_input(cdem::InputTable::parse_string(
           "[specimen]\nshape = \"disc\"\ndiameter_mm = 30\n"
-          "[mortar]\nr_mean_mm = 0.525\nr_ratio = 6.0\nporosity = 0.12\n",
+          "[mortar]\nr_mean_mm = 0.525\nr_ratio = 6.0\nporosity = 0.12\ntime_step_safety = 0.8\n",
           "ratio-6 table disc"));
   constexpr std::uint64_t kSeed = 4;
   in.mortar.overlap_guard = 1;  // the engine's default: the stop this case was filed for
@@ -262,6 +263,48 @@ TEST(MortarPacking, RelaxationKeyIsReadAndChecked) {
     const std::string what = e.what();
     EXPECT_NE(what.find("mortar.relaxation"), std::string::npos) << what;
     EXPECT_NE(what.find("'damped', 'fire'"), std::string::npos) << what;
+  }
+}
+
+// mortar.time_step_safety: the packing's recipe, which inputs of shipped data pin (0.8); (0, 1]
+// as the engine's own check (dem/instability.cpp), refused by the reader and by pack_mortar.
+TEST(MortarPacking, TimeStepSafetyKeyIsReadAndChecked) {
+  const auto read = [](const std::string& mortar) {
+    return cdem::mesogen::read_generator_input(cdem::InputTable::parse_string(
+        "[specimen]\nshape = \"disc\"\ndiameter_mm = 30\n[mortar]\nr_mean_mm = 0.5\n" + mortar,
+        "safety key"));
+  };
+  EXPECT_EQ(read("").mortar.time_step_safety, MortarPackingControls{}.time_step_safety);
+  EXPECT_EQ(read("time_step_safety = 0.8\n").mortar.time_step_safety, 0.8);
+  EXPECT_EQ(read("time_step_safety = 1\n").mortar.time_step_safety, 1.0);
+  for (const char* bad : {"0", "-0.5", "1.01", "\"fast\""}) {
+    try {
+      (void)read(std::string("time_step_safety = ") + bad + "\n");
+      ADD_FAILURE() << "time_step_safety = " << bad << " was accepted";
+    } catch (const cdem::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("safety key"), std::string::npos) << what;
+      EXPECT_NE(what.find("mortar.time_step_safety"), std::string::npos) << what;
+    }
+  }
+  // relaxation = "fire" expands at the safety its stages were measured with: the key is refused.
+  try {
+    (void)read("relaxation = \"fire\"\ntime_step_safety = 1\n");
+    ADD_FAILURE() << "time_step_safety was accepted with relaxation = \"fire\"";
+  } catch (const cdem::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mortar.time_step_safety"), std::string::npos) << e.what();
+  }
+  const Container square = rectangle(0.012, 0.012);
+  for (double bad : {0.0, 1.5}) {
+    MortarPackingControls c;
+    c.time_step_safety = bad;
+    cdem::Rng rng(1);
+    try {
+      (void)cdem::mesogen::pack_mortar(square, c, rng);
+      ADD_FAILURE() << "pack_mortar accepted time_step_safety = " << bad;
+    } catch (const cdem::InputError& e) {
+      EXPECT_EQ(e.key(), "time_step_safety") << e.what();
+    }
   }
 }
 
