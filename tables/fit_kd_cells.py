@@ -36,9 +36,11 @@ from fit_uniaxial_ku import write_csv
 HERE = os.path.dirname(os.path.abspath(__file__))
 KB_TABLE = os.path.join(HERE, "brazilian_kb_table.csv")
 KB_X_TABLE = os.path.join(HERE, "brazilian_kb_x_table.csv")
+KD_ONE_CELL = os.path.join(HERE, "direct_tension_kd_table.csv")  # the one-cell K_D
 COLUMNS = ["r_ratio", "r_min_mm", "K_D", "R2", "runs", "runs_left_out", "seeds", "K_D_seed_sd",
            "K_D_seed_cv", "sigma_cn_min_MPa", "sigma_cn_max_MPa", "ratio_at_min", "ratio_at_max",
            "shear_crack_share", "cracks_mean", "K_B", "K_D_per_K_B", "K_B_x_600", "K_B_x_1200",
+           "K_D_per_K_B_x_600", "K_D_per_K_B_x_1200",
            "emod_GPa", "kratio", "friction", "shear_to_normal", "width_mm", "height_mm",
            "discs_mean", "wall_s_total"]
 
@@ -80,8 +82,9 @@ def fit(directory):
             row.update(K_B=float(b["K_B"]), K_D_per_K_B=round(row["K_D"] / float(b["K_B"]), 3))
         for level in (600, 1200):
             bx = kb_x.get((round(ratio, 6), round(r_min, 6), float(level)))
-            if bx:
+            if bx and fitted:
                 row[f"K_B_x_{level}"] = float(bx["K_B"])
+                row[f"K_D_per_K_B_x_{level}"] = round(row["K_D"] / float(bx["K_B"]), 3)
         table.append(row)
     return table, ok
 
@@ -105,6 +108,10 @@ def plot(table, path):
         xs = [r for r in table if r.get(f"K_B_x_{level}", "") != ""]
         bx.plot([r["r_ratio"] for r in xs], [r[f"K_B_x_{level}"] for r in xs], style,
                 label=f"K_B, R_min 0.2 mm, E*/sigma_cn {level}")
+    for r in read_table(KD_ONE_CELL, ["r_ratio", "r_min_mm"]).values():
+        ax.errorbar([float(r["r_ratio"])], [float(r["K_D"])], yerr=[float(r["K_D_seed_sd"])],
+                    fmt="k*", ms=10, capsize=3, label=f"one cell (R_min {float(r['r_min_mm']):g}"
+                    f" mm, E*/sigma_cn {float(r['emod_per_sigma_cn']):g})")
     ax.set_title("Direct tension K_D, 20 x 40 mm, E*/sigma_cn 600 and 1,200")
     ax.set_ylabel("K  (sigma_t = sigma_cn K / (1 + R_max/R_min))")
     bx.set_title("Brazilian K_B (D 30 mm discs, jaws) on the same cells")
