@@ -15,7 +15,12 @@ A run counts when its status is `ok` and its stop reason `post_peak_drop` (fit_n
 the others are left out and counted.
 
   python3 tables/fit_kd_cells.py DIR -o tables/direct_tension_kd_cells_table.csv \
+      [--per-level-out tables/direct_tension_kd_cells_levels.csv] \
       [--plot docs/lookup_tables_kd.png] [--markdown kd.md]
+
+--per-level-out also writes K_D per cell and E* / sigma_cn (fit_nu_kd.fit_kd: the mean over the
+seeds at one strength), the layout of the Brazilian table that strategy `tables` reads
+(brazilian_kb_x_table.csv), for a strategy that would read K_D (docs/lookup_tables.md).
 
 DIR is the campaign's output directory (results.csv and base.toml). Exit code 1 when a cell has
 no fit (fewer than two strengths among its counted runs).
@@ -29,7 +34,7 @@ from collections import defaultdict
 import numpy as np
 
 from fit_brazilian_kb import fit_cell, save_figure, write_atomic
-from fit_nu_kd import counted
+from fit_nu_kd import KD_COLUMNS, counted, fit_kd
 from fit_sandstone_tables import RATIO, SIGMA_CN, read_campaign
 from fit_uniaxial_ku import write_csv
 
@@ -142,6 +147,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("campaign", help="output directory of tables/direct_tension_kd_cells.toml")
     ap.add_argument("-o", "--output", required=True, help="table to write (CSV)")
+    ap.add_argument("--per-level-out", help="K_D per cell and E* / sigma_cn (CSV)")
     ap.add_argument("--plot", help="PNG of K_D (and K_B) against R_max / R_min")
     ap.add_argument("--markdown", help="also write the table as markdown here")
     a = ap.parse_args()
@@ -149,6 +155,12 @@ def main():
     write_csv(a.output, "Direct tension K_D per packing cell, sigma_t = sigma_cn K_D / (1 + "
               "R_max/R_min), fitted through the origin over E*/sigma_cn 600 and 1,200, from "
               "tables/direct_tension_kd_cells.toml", COLUMNS, table)
+    if a.per_level_out:
+        levels, ok_levels = fit_kd(a.campaign)
+        ok &= ok_levels
+        write_csv(a.per_level_out, "Direct tension K_D = sigma_t (1 + R_max/R_min) / sigma_cn per "
+                  "packing cell and E*/sigma_cn, from tables/direct_tension_kd_cells.toml",
+                  KD_COLUMNS + ["shear_to_normal"], levels)
     if a.markdown:
         markdown(table, a.markdown)
     if a.plot:

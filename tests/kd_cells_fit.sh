@@ -7,6 +7,8 @@
 #  - cell (4, 0.2 mm): K_D 1.0 for seed 11, 1.5 for seed 12 (each exact at both sigma_cn): the
 #    fit through the origin of all four points gives the mean 1.25, the seed SD 0.5 / sqrt(2);
 #    shear share of the broken bonds 1 / 4 (3 shear, 9 tension per run);
+#  - per cell and E* / sigma_cn (--per-level-out; E* 36 GPa of the base): the same K_D at each
+#    level (the means of the seeds);
 #  - a cell with one sigma_cn only has no fit: exit code 1.
 # Run by CTest with SRC set.
 set -euo pipefail
@@ -44,7 +46,7 @@ with open("camp/results.csv", "w", newline="") as f:
     w.writeheader()
     w.writerows(rows)
 PY
-/usr/bin/python3 "$SRC/tables/fit_kd_cells.py" camp -o table.csv
+/usr/bin/python3 "$SRC/tables/fit_kd_cells.py" camp -o table.csv --per-level-out levels.csv
 /usr/bin/python3 - <<'PY'
 import csv, math, sys
 t = {float(r["r_ratio"]): r for r in csv.DictReader(l for l in open("table.csv")
@@ -62,6 +64,11 @@ check("runs left out at 2", t[2]["runs_left_out"], 1)
 check("K_D at 4", t[4]["K_D"], 1.25)
 check("seed SD at 4", t[4]["K_D_seed_sd"], 0.5 / math.sqrt(2))
 check("shear share at 4", t[4]["shear_crack_share"], 0.25)
+lv = {(float(r["r_ratio"]), float(r["emod_per_sigma_cn"])): r
+      for r in csv.DictReader(l for l in open("levels.csv") if not l.startswith("#"))}
+check("levels", len(lv), 4)
+check("K_D at 2, E*/sigma_cn 600 (sigma_cn 60 MPa)", lv[(2, 600)]["K_D"], 1.2)
+check("K_D at 4, E*/sigma_cn 1200 (sigma_cn 30 MPa)", lv[(4, 1200)]["K_D"], 1.25)
 sys.exit(0 if ok else 1)
 PY
 # One sigma_cn only: no fit, exit code 1.
