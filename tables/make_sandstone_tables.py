@@ -120,6 +120,8 @@ REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], 
 REDUCED_KU = dict(ratios=[4], shear=[0.25], seeds=[11])
 # ... and of the K_B table against tau_cs / sigma_cn: R_max / R_min 4 at 0.5 (about 10-20 s).
 REDUCED_KB_TAU = dict(ratios=[4], shear=[0.5], seeds=[11])
+# ... and of the K_D table: its cheapest cell (147 discs, under a second a run) at both levels.
+REDUCED_KD = dict(KD_CELLS, ratios=[8], r_min=[0.25], seeds=[11])
 
 KB_GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
              "wall_time_s"]
@@ -203,7 +205,11 @@ def main():
             ("brazilian_kb_tau", "Brazilian K_B against tau_cs / sigma_cn (CI subset)",
              "brazilian_kb_x_base.toml", KB_TAU_GATHER,
              rows(REDUCED_KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], REDUCED_KB_TAU["shear"]),
-             REDUCED_KB_TAU["seeds"])]
+             REDUCED_KB_TAU["seeds"]),
+            ("direct_tension_kd_cells", "Direct tension K_D per packing cell (CI subset)",
+             "direct_tension_kd_base.toml", KD_GATHER,
+             rows(REDUCED_KD["ratios"], REDUCED_KD["r_min"], REDUCED_KD["levels"]),
+             REDUCED_KD["seeds"])]
     else:
         campaigns += [
             ("uniaxial_ku", "Uniaxial K_U = sigma_u / sigma_cn against tau_cs / sigma_cn",

@@ -9,10 +9,16 @@
 #    shear share of the broken bonds 1 / 4 (3 shear, 9 tension per run);
 #  - per cell and E* / sigma_cn (--per-level-out; E* 36 GPa of the base): the same K_D at each
 #    level (the means of the seeds);
-#  - a cell with one sigma_cn only has no fit: exit code 1.
-# Run by CTest with SRC set.
+#  - a cell with one sigma_cn only has no fit: exit code 1;
+#  - the CI subset of tables/direct_tension_kd_cells.toml (make_sandstone_tables.py --reduced:
+#    R_max / R_min 8 at R_min 0.25 mm, sigma_cn 60 and 30 MPa, seed 11; two runs of about a
+#    second) run by `cdem campaign`: each run's sigma_t equals, to the last digit, the same run in
+#    the shipped tables/direct_tension_kd_cells_results.csv (same input + seed = same result; a
+#    change of the engine's results fails here: rerun the campaign and commit the new table), and
+#    the stronger bond gives the stronger specimen.
+# Run by CTest with CDEM and SRC set.
 set -euo pipefail
-: "${SRC:?}"
+: "${CDEM:?}" "${SRC:?}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -85,4 +91,26 @@ set +e
 code=$?
 set -e
 [ "$code" = 1 ] || { echo "FAIL: one sigma_cn per cell gave exit $code: $(cat out.txt)"; exit 1; }
+(cd "$SRC/tables" && /usr/bin/python3 make_sandstone_tables.py --reduced "$work" \
+  --base-dir "$SRC/tables")
+"$CDEM" campaign direct_tension_kd_cells.toml -o kd -j 2 -q
+/usr/bin/python3 - "$SRC/tables/direct_tension_kd_cells_results.csv" <<'PY'
+import csv, sys
+keys = ("specimen.mortar.r_ratio", "specimen.mortar.r_mean_mm",
+        "materials.mortar.cb_tensile_strength_MPa", "materials.mortar.cb_shear_strength_MPa",
+        "seed")
+shipped = {tuple(float(r[k]) for k in keys): r for r in csv.DictReader(open(sys.argv[1]))}
+rows = list(csv.DictReader(open("kd/results.csv")))
+ok = len(rows) == 2 or print(f"FAIL: {len(rows)} runs, 2 expected")
+for r in rows:
+    s = shipped.get(tuple(float(r[k]) for k in keys))
+    if r["status"] != "ok" or s is None or s["tensile_strength_MPa"] != r["tensile_strength_MPa"]:
+        print(f"FAIL: run {r['run']}: sigma_t {r['tensile_strength_MPa']} ({r['status']}), the "
+              f"shipped run's {None if s is None else s['tensile_strength_MPa']}"); ok = False
+st = sorted((float(r["materials.mortar.cb_tensile_strength_MPa"]),
+             float(r["tensile_strength_MPa"] or "nan")) for r in rows)
+if not st[0][1] < st[-1][1]:
+    print(f"FAIL: sigma_t does not rise with sigma_cn: {st}"); ok = False
+sys.exit(0 if ok else 1)
+PY
 echo "ok"
