@@ -27,6 +27,10 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   and cells at E* / sigma_cn 3000 (the elastic part: cheap), seeds 11-12;
 - direct_tension_kd.toml: direct tension of the same rectangles on R_max / R_min 2.7 at E* /
   sigma_cn 600, tau_cs = 2 sigma_cn, seeds 11-13: K_D on one cell.
+- direct_tension_kd_cells.toml (session 16): the same direct tension on the K_B table's cells
+  (R_max / R_min 1 (packed at 1.2), 1.5, 2, 3, 4, 6, 8 x R_min 0.15, 0.2, 0.25 mm) at two
+  strengths, E* / sigma_cn 600 and 1,200 (two sigma_cn per cell for the fit through the origin),
+  tau_cs = 2 sigma_cn, seeds 11-13: K_D per cell (fit_kd_cells.py).
 - brazilian_scatter_r3.4.toml (session 13): the seed scatter of the sandstone's ratio-3.4 disc
   where its calibration runs, against tau_cs / sigma_cn (0.5, 1, 1.5, 2) and the disc's size
   (D 30 and 50 mm): at each rho the E* / sigma_cn that the tables (K_B x F at 3.4) give for
@@ -83,6 +87,9 @@ KB_TAU = dict(ratios=[3, 2, 4, 1.5], levels=[600], shear=[0.5, 1, 4, 1.5], seeds
               appended_shear=[0.25])
 NU_KRATIO = dict(ratios=KU_RADIUS_RATIOS, levels=[3000], kratio=[1, 1.5, 2.5, 4], seeds=[11, 12])
 KD = dict(ratios=[2.7], levels=[600], seeds=SEEDS)
+# K_D per cell: the K_B table's packings (make_brazilian_kb.py), most discs first.
+KD_CELLS = dict(ratios=[1, 1.5, 2, 3, 4, 6, 8], r_min=[0.15, 0.2, 0.25], levels=[600, 1200],
+                seeds=SEEDS)
 # The scatter campaign of the ratio-3.4 disc: (tau_cs / sigma_cn, E* / sigma_cn) pairs where
 # the tables put sigma_t 9.08 MPa at E* 39.78 GPa (E 18 GPa / K_E 0.4524): K_B of the K_B table
 # at 3.4 (cells 3 and 4, weights 0.6, 0.4) times F of the kb_tau table, rounded to 10.
@@ -130,6 +137,8 @@ REDUCED = dict(ratios=[3], r_min=[0.2], kb=[600, 3000], ke=[3000], ke_check=[], 
 REDUCED_KU = dict(ratios=[4], shear=[0.25], seeds=[11])
 # ... and of the K_B table against tau_cs / sigma_cn: R_max / R_min 4 at 0.5 (about 10-20 s).
 REDUCED_KB_TAU = dict(ratios=[4], shear=[0.5], seeds=[11])
+# ... and of the K_D table: its cheapest cell (147 discs, under a second a run) at both levels.
+REDUCED_KD = dict(KD_CELLS, ratios=[8], r_min=[0.25], seeds=[11])
 
 KB_GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
              "wall_time_s"]
@@ -216,7 +225,11 @@ def main():
             ("brazilian_kb_tau", "Brazilian K_B against tau_cs / sigma_cn (CI subset)",
              "brazilian_kb_x_base.toml", KB_TAU_GATHER,
              rows(REDUCED_KB_TAU["ratios"], R_MIN_MM, KB_TAU["levels"], REDUCED_KB_TAU["shear"]),
-             REDUCED_KB_TAU["seeds"])]
+             REDUCED_KB_TAU["seeds"]),
+            ("direct_tension_kd_cells", "Direct tension K_D per packing cell (CI subset)",
+             "direct_tension_kd_base.toml", KD_GATHER,
+             rows(REDUCED_KD["ratios"], REDUCED_KD["r_min"], REDUCED_KD["levels"]),
+             REDUCED_KD["seeds"])]
     else:
         campaigns += [
             ("uniaxial_ku", "Uniaxial K_U = sigma_u / sigma_cn against tau_cs / sigma_cn",
@@ -237,7 +250,10 @@ def main():
               for k in NU_KRATIO["kratio"]], NU_KRATIO["seeds"]),
             ("direct_tension_kd", "Direct tension K_D on one cell", "direct_tension_kd_base.toml",
              KD_GATHER, rows(KD["ratios"], R_MIN_MM, KD["levels"]),
-             KD["seeds"])]
+             KD["seeds"]),
+            ("direct_tension_kd_cells", "Direct tension K_D per packing cell",
+             "direct_tension_kd_base.toml", KD_GATHER,
+             rows(KD_CELLS["ratios"], KD_CELLS["r_min"], KD_CELLS["levels"]), KD_CELLS["seeds"])]
         campaigns += [
             (name, f"Brazilian seed scatter of the ratio-3.4 disc (D {sc['diameter_mm']} mm) "
              "against tau_cs / sigma_cn", "brazilian_kb_x_base.toml", KB_TAU_GATHER,
