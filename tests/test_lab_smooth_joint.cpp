@@ -2,7 +2,7 @@
 // ranges, bad input is an InputError naming the file and the key, a set whose lines miss the
 // specimen stops the run before it loads, and (acceptance, issue 16) a jointed block under
 // uniaxial compression fails along the joint, below Jaeger's single-plane-of-weakness load, for
-// dips of 30, 45 and 60 degrees (the mean over packings at Jaeger's load: validation/).
+// dips of 30, 45 and 60 degrees (over packings, one fraction of Jaeger's load: validation/).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -125,8 +125,8 @@ TEST(LabSmoothJoint, JointsMissingTheSpecimenStopTheRun) {
 // of seeds 1-10 (main 78f1604's recipe) peak / Jaeger was 0.862-0.938 (mean 0.906, sd 0.022) at
 // 30 degrees, 0.841-0.979 (0.920, 0.039) at 45 and 0.852-0.941 (0.908, 0.025) at 60, so one
 // block fell outside 10 % of Jaeger on 4, 3 and 2 seeds of the 10 (docs/performance.md "Session
-// 15"). The 10 % claim is Jaeger's strength of the plane, i.e. the mean over packings: the
-// validation test JaegerRealisations (label `validation`, 10 blocks per dip) asserts it. What
+// 15"). Over packings the block reaches one fraction of Jaeger's load at every dip (0.90-0.92):
+// the validation test JaegerRealisations (label `validation`, 10 blocks per dip) asserts it. What
 // holds for every block is asserted here: the failure along the joint, and Jaeger's load as an
 // upper bound on the peak (jaeger_block.hpp says why).
 const cdem::Specimen& block_specimen() {
@@ -140,7 +140,7 @@ void expect_failure_along_the_joint(double dip_deg) {
                              "jaeger" + std::to_string(static_cast<int>(dip_deg)));
   EXPECT_LT(run.peak, run.analytic);
   // Not the progressive failure of a joint as stiff as the contacts (about 0.55 of the load).
-  EXPECT_GT(run.peak, 0.7 * run.analytic);
+  EXPECT_GT(run.peak, cdem::test::kProgressiveFailureFloor * run.analytic);
   cdem::test::expect_failure_along_the_joint(run, "dip " + std::to_string(dip_deg));
 }
 

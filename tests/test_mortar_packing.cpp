@@ -199,7 +199,7 @@ namespace {
 // disc carries at that stress: the engine's lab-test guard (1 x the smaller radius) stops the
 // packing, the packing's own guard (2: the smaller disc wholly inside the larger) lets it relax
 // to sigma0, jammed. The table's base pins the packing's recipe (time_step_safety = 0.8), and so
-// does the case: on the default 1.0 the same disc is not squeezed past its radius (session 16).
+// does the case: at 1.0 (opt-in) the same disc is not squeezed past its radius (session 16).
 TEST(MortarPacking, SmallDiscSqueezedPastItsRadiusByTheExpansionIsNoInstability) {
   cdem::mesogen::GeneratorInput in =
       cdem::mesogen::read_generator_input(cdem::InputTable::parse_string(

@@ -29,7 +29,6 @@
 namespace {
 
 constexpr int kRealisations = 10;
-constexpr double kProgressiveFailureFloor = 0.7;  // of Jaeger's load (docs/smooth_joint.md)
 
 struct Efficiency {
   double mean = 0, standard_error = 0;  // of peak / Jaeger over the blocks
@@ -64,7 +63,7 @@ TEST(JaegerRealisations, OneFractionOfJaegersLoadAtEveryDip) {
   Efficiency e[3];
   for (int i = 0; i < 3; ++i) {
     e[i] = jaeger_efficiency(dips[i]);
-    EXPECT_GT(e[i].mean, kProgressiveFailureFloor) << "dip " << dips[i];
+    EXPECT_GT(e[i].mean, cdem::test::kProgressiveFailureFloor) << "dip " << dips[i];
   }
   for (int i = 0; i < 3; ++i)
     for (int j = i + 1; j < 3; ++j)
