@@ -110,6 +110,9 @@ struct TablesSettings {
   // The Mohr-Coulomb table: friction angle phi and cohesion against R_max/R_min, R_min, mu (one
   // E*/sigma, one tau/sigma per file), read for a phi target.
   std::filesystem::path mc_file;
+  // nu and K_E against R_max/R_min, R_min, kn/ks (one E*/sigma, one tau/sigma), read for a nu
+  // target: nu sets kn/ks, and K_E at that kn/ks sets E*.
+  std::filesystem::path nu_file;
   double tolerance = 0.05;  // relative error per target on the calibration specimen
   int max_iterations = 2;   // runs on the calibration specimen: the lookup and a correction
   int max_refinements = 1;  // corrections on the verification mean

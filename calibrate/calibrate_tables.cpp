@@ -151,6 +151,9 @@ const TableLayout kUnconfinedStrengthTable{"K_U0", "friction", "mu",
                                            kFrictionAngleTable.conditions};
 const TableLayout kFrictionAngleErrorTable{"phi_se_deg", "friction", "mu",
                                            kFrictionAngleTable.conditions};
+const TableLayout kPoissonTable{
+    "nu", "kratio", "kn/ks", {"friction", "emod_per_sigma_cn", "width_mm", "height_mm"}};
+const TableLayout kModulusStiffnessTable{"K_E", "kratio", "kn/ks", kPoissonTable.conditions};
 
 LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayout& layout,
                               const std::string& calibration_file, const std::string& key) {
@@ -466,22 +469,47 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
                        ", on the segments where K_U rises); no extrapolation: change the targets");
 }
 
+namespace {
+
+// The level at which a cell's coefficient (piecewise linear in the logarithm of its level) equals
+// `value`, on the first segment that crosses it among the rising segments `admits` takes (the
+// segment from level i to i + 1 is `admits(i)`); `lo` and `hi` are the coefficients those
+// segments span (hi <= lo when none is admitted).
+struct RisingInverse {
+  std::optional<double> level;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+};
+
+template <class Admits>
+RisingInverse invert_rising(const CellCoefficient& cell, double value, Admits&& admits) {
+  const auto& x = cell.levels;
+  const auto& k = cell.coefficients;
+  RisingInverse out;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    if (!(k[i + 1] > k[i]) || !admits(i)) continue;
+    out.lo = std::min(out.lo, k[i]);
+    out.hi = std::max(out.hi, k[i + 1]);
+    if (value < k[i] || value > k[i + 1]) continue;
+    // Linear in ln(level) on the segment: level = x_i (x_{i+1} / x_i)^t.
+    const double t = (value - k[i]) / (k[i + 1] - k[i]);
+    out.level = x[i] * std::pow(x[i + 1] / x[i], t);
+    return out;
+  }
+  return out;
+}
+
+}  // namespace
+
 double solve_friction(const CellCoefficient& phi, const CellCoefficient& phi_se, double phi_deg,
                       const std::string& table_file, const std::string& calibration_file) {
   const auto& mu = phi.levels;
   const auto& p = phi.coefficients;
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (std::size_t i = 0; i + 1 < mu.size(); ++i) {
-    // mu sets phi only where phi rises with it by more than the standard error of the rise.
-    const double se = std::hypot(phi_se.at(mu[i]), phi_se.at(mu[i + 1]));
-    if (!(p[i + 1] - p[i] > se)) continue;
-    lo = std::min(lo, p[i]);
-    hi = std::max(hi, p[i + 1]);
-    if (phi_deg < p[i] || phi_deg > p[i + 1]) continue;
-    // phi is linear in ln(mu) on the segment: mu = mu_i (mu_{i+1} / mu_i)^t.
-    const double t = (phi_deg - p[i]) / (p[i + 1] - p[i]);
-    return mu[i] * std::pow(mu[i + 1] / mu[i], t);
-  }
+  // mu sets phi only where phi rises with it by more than the standard error of the rise.
+  const RisingInverse r = invert_rising(phi, phi_deg, [&](std::size_t i) {
+    return p[i + 1] - p[i] > std::hypot(phi_se.at(mu[i]), phi_se.at(mu[i + 1]));
+  });
+  if (r.level) return *r.level;
+  const double lo = r.lo, hi = r.hi;
   const std::string range =
       " (mu from " + four(mu.front()) + " to " + four(mu.back()) + " in " + table_file + ")";
   if (!(hi > lo)) {
@@ -500,10 +528,29 @@ double solve_friction(const CellCoefficient& phi, const CellCoefficient& phi_se,
                        "; no extrapolation: change the target or the table");
 }
 
+double solve_poisson(const CellCoefficient& nu, double nu_target, const std::string& table_file,
+                     const std::string& calibration_file) {
+  const RisingInverse r = invert_rising(nu, nu_target, [](std::size_t) { return true; });
+  if (r.level) return *r.level;
+  const std::string range = " (kn/ks from " + four(nu.levels.front()) + " to " +
+                            four(nu.levels.back()) + " in " + table_file + ")";
+  if (!(r.hi > r.lo))
+    throw InputError(calibration_file, "targets.nu",
+                     "nu does not rise with kn/ks on this packing" + range +
+                         ", so kn/ks does not set it there; no Poisson's ratio target with this "
+                         "table");
+  throw InputError(calibration_file, "targets.nu",
+                   "nu = " + four(nu_target) +
+                       " is outside what the Poisson table reaches on this packing: nu from " +
+                       four(r.lo) + " to " + four(r.hi) + range +
+                       "; no extrapolation: change the target or make a table over a wider "
+                       "kn/ks range (docs/lookup_tables.md)");
+}
+
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
                           CalibrationInput& input) {
   t.reject_unknown_keys(
-      {"kb", "ke", "ku", "kb_tau", "mc", "tolerance", "max_iterations", "max_refinements"});
+      {"kb", "ke", "ku", "kb_tau", "mc", "nu", "tolerance", "max_iterations", "max_refinements"});
   const auto resolve = [&](const char* key) -> std::filesystem::path {
     if (!t.has(key)) return {};
     const std::filesystem::path p(t.string(key));
@@ -514,6 +561,7 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
   input.tables.ku_file = resolve("ku");
   input.tables.kb_tau_file = resolve("kb_tau");
   input.tables.mc_file = resolve("mc");
+  input.tables.nu_file = resolve("nu");
   input.tables.tolerance = t.number_or("tolerance", 0.05, Range::open(0, 0.5));
   input.tables.max_iterations = static_cast<int>(t.integer_or("max_iterations", 2, 1, 2));
   input.tables.max_refinements = static_cast<int>(t.integer_or("max_refinements", 1, 0, 10));
@@ -610,10 +658,11 @@ void check_size(const LookupTable& table, const std::string& what,
 }
 
 // The base materials' mortar against a table's conditions; tau_cs / sigma_cn only when the
-// strategy does not set it (`shear_ratio_free`: a sigma_u target sets it from K_U).
+// strategy does not set it (`shear_ratio_free`: a sigma_u target sets it from K_U), mu and kn/ks
+// likewise (`friction_free`: a phi target sets mu; `kratio_free`: a nu target sets kn/ks).
 void check_conditions(const CalibrationInput& input, const LookupTable& table,
                       const std::string& key, bool shear_ratio_free = false,
-                      bool friction_free = false) {
+                      bool friction_free = false, bool kratio_free = false) {
   const InputTable mortar = InputTable::parse_string(input.materials, input.file.string())
                                 .table("materials")
                                 .table("mortar");
@@ -626,9 +675,10 @@ void check_conditions(const CalibrationInput& input, const LookupTable& table,
                          "tables were made with contact bonds)");
   const double tension = mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
   const double shear = mortar.quantity(kShearKey, Dimension::Stress, Range::positive());
-  std::vector<std::tuple<std::string, std::string, double, double>> conditions{
-      {kRatioKey, "kratio", mortar.number_or(kRatioKey, 0, Range::any()),
-       table.condition("kratio")}};
+  std::vector<std::tuple<std::string, std::string, double, double>> conditions;
+  if (!kratio_free)
+    conditions.emplace_back(kRatioKey, "kratio", mortar.number_or(kRatioKey, 0, Range::any()),
+                            table.condition("kratio"));
   if (!friction_free)
     conditions.emplace_back(
         "friction",
@@ -724,20 +774,25 @@ int key_in_group(const CalibrationInput& input, const FastGroup& group, const st
 struct TablesModel {
   const CalibrationInput* input = nullptr;
   std::vector<FastGroup> groups;
-  std::size_t ge = 0, gt = 0, gu = 0;  // the groups of E, sigma_t, sigma_u; groups.size(): none
-  bool both_strengths = false;         // sigma_t and sigma_u: tau_cs / sigma_cn set by K_U
-  bool with_kb_tau = false;            // K_B times F(tau_cs / sigma_cn)
-  double base_emod_GPa = 0, base_sigma_cn_MPa = 0, base_rho = 0;  // the base materials' mortar
-  double K_E = 0;
+  // The groups of E, sigma_t, sigma_u, nu; groups.size(): none.
+  std::size_t ge = 0, gt = 0, gu = 0, gn = 0;
+  bool both_strengths = false;  // sigma_t and sigma_u: tau_cs / sigma_cn set by K_U
+  bool with_kb_tau = false;     // K_B times F(tau_cs / sigma_cn)
+  // The base materials' mortar.
+  double base_emod_GPa = 0, base_sigma_cn_MPa = 0, base_rho = 0, base_kratio = 0;
+  double K_E = 0;  // of the K_E table (one kn/ks); with a nu target K_E follows kn/ks (ke_cell)
   Packing disc, rectangle;
   CellCoefficient kb_cell, ku_cell;
   ShearFactor factor;
+  std::string nu_file;
+  CellCoefficient nu_cell, ke_cell;  // nu and K_E against kn/ks (the Poisson table)
   bool has(std::size_t g) const { return g < groups.size(); }
+  double modulus_factor(double kratio) const { return has(gn) ? ke_cell.at(kratio) : K_E; }
 };
 
-// The contact values the strategy sets: E*, sigma_cn, tau_cs.
+// The contact values the strategy sets: E*, sigma_cn, tau_cs, kn/ks.
 struct ContactPoint {
-  double emod_GPa = 0, sigma_cn_MPa = 0, tau_cs_MPa = 0;
+  double emod_GPa = 0, sigma_cn_MPa = 0, tau_cs_MPa = 0, kratio = 0;
 };
 
 struct TablesSolution {
@@ -747,7 +802,8 @@ struct TablesSolution {
   double shear_factor = 1, shear_factor_slope = 0;  // F(rho), d ln F / d ln rho
 };
 
-// The tables solved for `wanted` (per group, in the groups' units): E* from K_E; then
+// The tables solved for `wanted` (per group, in the groups' units): kn/ks from nu; E* from K_E
+// (at that kn/ks with a nu target); then
 // (sigma_cn, rho) together when K_B depends on rho and a sigma_u target sets it; else sigma_cn
 // from the Brazilian relation at the rho it runs at, then rho from K_U. Throws InputError on
 // the target the tables do not reach.
@@ -755,7 +811,8 @@ TablesSolution solve_tables(const TablesModel& m, const std::vector<double>& wan
   const std::string file = m.input->file.string();
   TablesSolution s;
   auto& p = s.point;
-  p.emod_GPa = m.has(m.ge) ? wanted[m.ge] / m.K_E : m.base_emod_GPa;
+  p.kratio = m.has(m.gn) ? solve_poisson(m.nu_cell, wanted[m.gn], m.nu_file, file) : m.base_kratio;
+  p.emod_GPa = m.has(m.ge) ? wanted[m.ge] / m.modulus_factor(p.kratio) : m.base_emod_GPa;
   const double sigma_t = m.has(m.gt) ? wanted[m.gt] : 0;
   const double sigma_u = m.has(m.gu) ? wanted[m.gu] : 0;
   if (m.both_strengths && m.with_kb_tau) {
@@ -785,11 +842,13 @@ TablesSolution solve_tables(const TablesModel& m, const std::vector<double>& wan
 }
 
 // What the tables predict at a point, per group: E = K_E E*, sigma_t = sigma_cn K_B(E* /
-// sigma_cn) F(rho) / (1 + R_max / R_min), sigma_u = sigma_cn K_U(rho), rho = tau_cs / sigma_cn.
+// sigma_cn) F(rho) / (1 + R_max / R_min), sigma_u = sigma_cn K_U(rho), rho = tau_cs / sigma_cn,
+// nu = nu(kn/ks) (and K_E at that kn/ks with a nu target).
 std::vector<double> predict_tables(const TablesModel& m, const ContactPoint& p) {
   std::vector<double> out(m.groups.size(), std::nan(""));
   const double rho = p.tau_cs_MPa / p.sigma_cn_MPa;
-  if (m.has(m.ge)) out[m.ge] = m.K_E * p.emod_GPa;
+  if (m.has(m.ge)) out[m.ge] = m.modulus_factor(p.kratio) * p.emod_GPa;
+  if (m.has(m.gn)) out[m.gn] = m.nu_cell.at(p.kratio);
   if (m.has(m.gt))
     out[m.gt] = p.sigma_cn_MPa * m.kb_cell.at(p.emod_GPa * 1e3 / p.sigma_cn_MPa) *
                 (m.with_kb_tau ? m.factor.at(rho) : 1.0) / (1 + m.disc.r_ratio);
@@ -797,12 +856,13 @@ std::vector<double> predict_tables(const TablesModel& m, const ContactPoint& p) 
   return out;
 }
 
-// The contact key each group moves and the value a point puts there: E* for E, sigma_cn for
-// sigma_t (and for sigma_u without sigma_t: its group moves every strength), tau_cs for sigma_u
-// with sigma_t.
+// The contact key each group moves and the value a point puts there: E* for E, kn/ks for nu,
+// sigma_cn for sigma_t (and for sigma_u without sigma_t: its group moves every strength), tau_cs
+// for sigma_u with sigma_t.
 std::pair<std::string, double> group_key(const TablesModel& m, std::size_t g,
                                          const ContactPoint& p) {
   if (g == m.ge) return {kModulusKey, p.emod_GPa};
+  if (g == m.gn) return {kRatioKey, p.kratio};
   if (g == m.gu && m.both_strengths) return {kShearKey, p.tau_cs_MPa};
   return {kTensileKey, p.sigma_cn_MPa};
 }
@@ -824,20 +884,22 @@ double scale_to(const TablesModel& m, std::size_t g, const ContactPoint& p) {
 // The point that scales put the contact keys at (a key no group moves: the base materials').
 ContactPoint point_at(const TablesModel& m, const std::vector<double>& scales) {
   const Eigen::VectorXd values = fast_values(*m.input, m.groups, scales);
-  ContactPoint p{m.base_emod_GPa, m.base_sigma_cn_MPa, m.base_rho * m.base_sigma_cn_MPa};
+  ContactPoint p{m.base_emod_GPa, m.base_sigma_cn_MPa, m.base_rho * m.base_sigma_cn_MPa,
+                 m.base_kratio};
   for (std::size_t g = 0; g < m.groups.size(); ++g)
     for (const auto& [name, slot] :
          std::vector<std::pair<std::string, double*>>{{kModulusKey, &p.emod_GPa},
                                                       {kTensileKey, &p.sigma_cn_MPa},
-                                                      {kShearKey, &p.tau_cs_MPa}})
+                                                      {kShearKey, &p.tau_cs_MPa},
+                                                      {kRatioKey, &p.kratio}})
       if (const int i = key_in_group(*m.input, m.groups[g], name); i >= 0) *slot = values[i];
   return p;
 }
 
-std::string describe_point(const ContactPoint& p) {
+std::string describe_point(const TablesModel& m, const ContactPoint& p) {
   return "E* " + four(p.emod_GPa) + " GPa, sigma_cn " + four(p.sigma_cn_MPa) + " MPa, tau_cs " +
          four(p.tau_cs_MPa) + " MPa (tau_cs / sigma_cn " + four(p.tau_cs_MPa / p.sigma_cn_MPa) +
-         ")";
+         ")" + (m.has(m.gn) ? ", kn/ks " + four(p.kratio) : std::string());
 }
 
 // The reason of an InputError without its "file: key '...': " head.
@@ -866,7 +928,7 @@ ScaledCorrection correct_on_tables(const TablesModel& m, const std::vector<doubl
     aims += std::string(aims.empty() ? "" : ", ") + target_name(t) + " " + four(wanted[g]) + " " +
             target_unit(t);
   }
-  const std::string head = "at " + describe_point(at) + ", measured / tables: " + biases +
+  const std::string head = "at " + describe_point(m, at) + ", measured / tables: " + biases +
                            "; the tables solved for target / bias (" + aims + ")";
   ScaledCorrection out;
   const auto refuse = [&](std::size_t g, const std::string& why) {
@@ -882,7 +944,7 @@ ScaledCorrection correct_on_tables(const TablesModel& m, const std::vector<doubl
                       four(group_key(m, g, s.point).second) +
                       ", outside the bounds of its keys; widen the bounds");
     }
-    log += "- correction " + head + ": " + describe_point(s.point) + "\n";
+    log += "- correction " + head + ": " + describe_point(m, s.point) + "\n";
   } catch (const InputError& e) {
     for (std::size_t g = 0; g < m.groups.size(); ++g)
       if (e.key() == std::string("targets.") + target_name(m.groups[g].target))
@@ -904,10 +966,11 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
   const std::string file = input.file.string();
   for (const auto& t : input.targets)
     if (t.target != CalibrationTarget::SigmaT && t.target != CalibrationTarget::E &&
-        t.target != CalibrationTarget::SigmaU)
+        t.target != CalibrationTarget::SigmaU && t.target != CalibrationTarget::Nu)
       throw InputError(file, std::string("targets.") + target_name(t.target),
-                       "the tables strategy has tables for sigma_t (Brazilian, K_B), E (K_E) and "
-                       "sigma_u (K_U) only; use strategy \"fast\" or \"paper\" for " +
+                       "the tables strategy has tables for sigma_t (Brazilian, K_B), E (K_E), "
+                       "sigma_u (K_U) and nu (the Poisson table) only; use strategy \"fast\" or "
+                       "\"paper\" for " +
                            std::string(target_name(t.target)));
   check_fast_parameters(input);
   auto model = std::make_shared<TablesModel>();
@@ -932,6 +995,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
   m.ge = group_of(m.groups, CalibrationTarget::E);
   m.gt = group_of(m.groups, CalibrationTarget::SigmaT);
   m.gu = group_of(m.groups, CalibrationTarget::SigmaU);
+  m.gn = group_of(m.groups, CalibrationTarget::Nu);
   // With sigma_t and sigma_u targets, tau_cs / sigma_cn is the K_U table's to set; with a
   // sigma_t target and a kb_tau table it may be any of that table's levels. Either way the K_E
   // and K_B tables' own tau_cs / sigma_cn is not required of the base materials (K_E moves by
@@ -943,10 +1007,55 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
                      "with sigma_t and sigma_u (or c) the tables set tau_cs / sigma_cn from K_U, "
                      "and the Mohr-Coulomb table holds phi and K_U at one tau_cs / sigma_cn: drop "
                      "sigma_t, or phi");
+  // A nu target sets kn/ks, and the strength tables (K_B, K_U, kb_tau, Mohr-Coulomb) were each
+  // made at one kn/ks (2.5): how K_B and K_U move with kn/ks is not measured, so a nu target goes
+  // with E alone.
+  if (m.has(m.gn) && (m.has(m.gt) || m.has(m.gu) || with_phi))
+    throw InputError(file, "targets.nu",
+                     "a nu target sets kn/ks from the Poisson table, and the strength tables (K_B, "
+                     "K_U, Mohr-Coulomb) were made at one kn/ks: how they move with kn/ks is not "
+                     "measured, so the tables strategy calibrates nu with E only; calibrate the "
+                     "strengths at the strength tables' kn/ks, or use strategy \"fast\" "
+                     "(docs/lookup_tables.md \"Poisson's ratio\")");
   m.with_kb_tau = m.has(m.gt) && !input.tables.kb_tau_file.empty();
   const bool shear_ratio_free = m.both_strengths || m.with_kb_tau;
   m.base_emod_GPa = mortar.quantity(kModulusKey, Dimension::Stress, Range::positive()) / units::GPa;
-  if (m.has(m.ge)) {
+  m.base_kratio = mortar.number_or(kRatioKey, 0, Range::any());
+  if (m.has(m.gn)) {
+    // nu and K_E against kn/ks on the uniaxial specimen's cell; the K_E table (one kn/ks) is not
+    // read. tau_cs / sigma_cn is not a column of the Poisson table (its runs: 2, and nu moves by
+    // 0.2 % from 0.25 to 1, the K_U table's runs, docs/lookup_tables.md).
+    if (input.tables.nu_file.empty())
+      throw InputError(file, "tables.nu",
+                       "missing: nu is a target, and the tables strategy reads nu and K_E against "
+                       "kn/ks from the Poisson table named here, e.g. nu = "
+                       "\"tables/uniaxial_nu_table.csv\"");
+    const LookupTable nu =
+        read_lookup_table(input.tables.nu_file, kPoissonTable, file, "tables.nu");
+    const LookupTable ke_nu =
+        read_lookup_table(input.tables.nu_file, kModulusStiffnessTable, file, "tables.nu");
+    check_conditions(input, nu, "tables.nu", true, false, true);
+    const Packing packing =
+        read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
+    check_size(nu, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}},
+               file, "specimen.generator");
+    m.nu_file = nu.file.string();
+    m.nu_cell = interpolate_cell(nu, packing, file, "specimen.generator");
+    m.ke_cell = interpolate_cell(ke_nu, packing, file, "specimen.generator");
+    const double kratio =
+        solve_poisson(m.nu_cell, input.target_value(CalibrationTarget::Nu), m.nu_file, file);
+    md << "- nu: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
+       << four(packing.r_min_mm) << " mm; nu against kn/ks from " << m.nu_cell.cells << " of `"
+       << m.nu_file << "` (measured at E* / sigma_cn = " << four(nu.condition("emod_per_sigma_cn"))
+       << "); nu = " << four(input.target_value(CalibrationTarget::Nu))
+       << " needs kn/ks = " << four(kratio) << ", where K_E = " << four(m.ke_cell.at(kratio));
+    if (m.has(m.ge))
+      md << "; E* = E / K_E = "
+         << four(input.target_value(CalibrationTarget::E) / m.ke_cell.at(kratio)) << " GPa";
+    md << "\n";
+    if (!m.nu_cell.note.empty()) md << "  - " << m.nu_cell.note << "\n";
+  }
+  if (m.has(m.ge) && !m.has(m.gn)) {
     if (input.tables.ke_file.empty())
       throw InputError(file, "tables.ke",
                        "missing: E is a target, and the tables strategy reads K_E (E = K_E E*) "

@@ -10,6 +10,8 @@
 //                                                E* / sigma_cn level)
 //   sigma_u = sigma_cn K_U                      (uniaxial; K_U per packing cell and
 //                                                tau_cs / sigma_cn level)
+//   nu = nu(kn/ks), E = K_E(kn/ks) E*           (uniaxial; per packing cell and kn/ks level,
+//                                                the `nu` table, read for a nu target)
 // E* follows from the E target; sigma_cn then solves the Brazilian relation at that E* (K_B
 // depends on E* / sigma_cn, so the equation is implicit); tau_cs / sigma_cn then solves the
 // uniaxial relation at that sigma_cn (with no sigma_t target, sigma_cn solves it at the base
@@ -61,6 +63,10 @@ extern const TableLayout kFrictionAngleTable;
 extern const TableLayout kUnconfinedStrengthTable;
 // The standard error of phi per cell and mu (seed SD / sqrt(runs)), in the same file.
 extern const TableLayout kFrictionAngleErrorTable;
+// The Poisson table (uniaxial runs over kn/ks): nu per cell and kn/ks, on W x H rectangles, at
+// one E* / sigma_cn; and K_E = E / E* of the same runs in the same file: K_E at each kn/ks.
+extern const TableLayout kPoissonTable;
+extern const TableLayout kModulusStiffnessTable;
 
 // One row of a lookup table: a packing cell (R_max / R_min, R_min), the level of its second
 // dimension (E* / sigma_cn for K_B, tau_cs / sigma_cn for K_U; 0 without one), the coefficient.
@@ -190,6 +196,14 @@ CoupledLookup solve_coupled(const CellCoefficient& kb, const ShearFactor& factor
 // saying that none rises) when none does.
 double solve_friction(const CellCoefficient& phi, const CellCoefficient& phi_se, double phi_deg,
                       const std::string& table_file, const std::string& calibration_file);
+
+// kn/ks for a Poisson's ratio target on a cell of the Poisson table: nu(kn/ks) piecewise linear
+// in ln(kn/ks) between the table's levels, inverted on the first segment that crosses the target
+// among those where nu rises with kn/ks (it does over the whole measured range, 0.14 at kn/ks 1
+// to 0.38 at 4, docs/lookup_tables.md). Refused (InputError on `targets.nu`, naming the nu the
+// rising segments reach) when none crosses it: no extrapolation.
+double solve_poisson(const CellCoefficient& nu, double nu_target, const std::string& table_file,
+                     const std::string& calibration_file);
 
 // The input with a phi target's mu (solve_friction on the Mohr-Coulomb table, [tables] mc, at the
 // uniaxial specimen's packing) set in the base materials of every test (materials.mortar.friction);

@@ -99,6 +99,17 @@ const std::string kMC =
     "4,0.2,0.5,24,0.9,1,2.5,600,2,20,40\n"
     "4,0.2,1,34,1.0,1,2.5,600,2,20,40\n";
 
+// The Poisson table on the rectangle's two cells: nu rising by 0.1 per doubling of kn/ks and K_E
+// falling by 0.1 (ratio 2: nu = 0.15 + 0.1 log2(kn/ks), K_E = 0.6 - 0.1 log2(kn/ks)).
+const std::string kNu =
+    "r_ratio,r_min_mm,kratio,nu,K_E,friction,emod_per_sigma_cn,width_mm,height_mm\n"
+    "2,0.2,1,0.15,0.6,0.5,3000,20,40\n"
+    "2,0.2,2,0.25,0.5,0.5,3000,20,40\n"
+    "2,0.2,4,0.35,0.4,0.5,3000,20,40\n"
+    "4,0.2,1,0.17,0.5,0.5,3000,20,40\n"
+    "4,0.2,2,0.27,0.4,0.5,3000,20,40\n"
+    "4,0.2,4,0.37,0.3,0.5,3000,20,40\n";
+
 const std::string kMaterials =
     "[materials.mortar]\nlaw = \"contact_bond\"\nemod_GPa = 30.0\nkratio = 2.5\nfriction = 0.5\n"
     "cb_tensile_strength_MPa = 40.0\ncb_shear_strength_MPa = 80.0\n";
@@ -129,7 +140,7 @@ const std::string kHeadCoupled =
 const std::string kBrazilianTest = "[test]\ntype = \"brazilian\"\nplatens = \"curved_jaws\"\n";
 
 struct Files {
-  std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, kb_tau = kKBTau, mc = kMC,
+  std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, kb_tau = kKBTau, mc = kMC, nu = kNu,
               materials = kMaterials, disc = kDisc, rectangle = kRectangle,
               parameters = kParameters, brazilian = kBrazilianTest;
 };
@@ -148,6 +159,7 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
   write(dir / "ku.csv", f.ku);
   write(dir / "kb_tau.csv", f.kb_tau);
   write(dir / "mc.csv", f.mc);
+  write(dir / "nu.csv", f.nu);
   write(dir / "cal.toml", f.head +
                               "[tests]\nuniaxial = \"ucs.toml\"\nbrazilian = \"brazilian.toml\"\n"
                               "[specimen]\ngenerator = \"rectangle.toml\"\n"
@@ -363,8 +375,9 @@ TEST(CalibrateTablesInput, ReadsAndRefuses) {
   EXPECT_EQ(in.tables.max_iterations, 2);
   EXPECT_DOUBLE_EQ(in.tables.tolerance, 0.05);
   expect_refusals({
-      {"nu", &Files::head, "E_GPa = 18", "E_GPa = 18\nnu = 0.2", "targets.nu",
-       "sigma_t (Brazilian, K_B), E (K_E) and sigma_u (K_U)"},
+      // nu with sigma_t and E but no free kn/ks key: the fast groups' refusal.
+      {"nu", &Files::head, "E_GPa = 18", "E_GPa = 18\nnu = 0.2", "parameters",
+       "materials.mortar.kratio"},
       {"kratio", &Files::materials, "kratio = 2.5", "kratio = 3.0", "materials.mortar.kratio",
        "made at 2.5"},
       {"shear", &Files::materials, "cb_shear_strength_MPa = 80.0", "cb_shear_strength_MPa = 40.0",
@@ -1071,3 +1084,142 @@ TEST(CalibrateTablesInput, RefusesWhatTheMohrCoulombTableDoesNotHold) {
   expect_input_error(make_calibration("mc_kb", t), "materials.mortar.friction",
                      "mu (set by the phi target, 25 deg) of the base materials is 0.7071");
 }
+
+namespace {
+
+TEST(TablesLookup, InvertsThePoissonRatio) {
+  // At ratio 3 the cell is the mean of the two: nu 0.16, 0.26, 0.36 at kn/ks 1, 2, 4. nu 0.31 is
+  // half way between 0.26 and 0.36, so half way in ln(kn/ks) between 2 and 4: kn/ks = 2 sqrt 2.
+  const auto cell = interpolate_cell(table("nu", kNu, kPoissonTable), {3, 0.2}, "c", "k");
+  EXPECT_NEAR(solve_poisson(cell, 0.31, "nu.csv", "cal.toml"), 2 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(solve_poisson(cell, 0.16, "nu.csv", "cal.toml"), 1, 1e-12);
+  EXPECT_NEAR(solve_poisson(cell, 0.36, "nu.csv", "cal.toml"), 4, 1e-12);
+  // K_E of the same file against kn/ks: 0.55, 0.45, 0.35 at 1, 2, 4; at 2 sqrt 2 half way.
+  const auto ke = interpolate_cell(table("ke_nu", kNu, kModulusStiffnessTable), {3, 0.2}, "c", "k");
+  EXPECT_NEAR(ke.at(2 * std::sqrt(2.0)), 0.4, 1e-12);
+  for (const double target : {0.159, 0.361}) {
+    try {
+      solve_poisson(cell, target, "nu.csv", "cal.toml");
+      ADD_FAILURE() << "nu " << target << " accepted";
+    } catch (const cdem::InputError& e) {
+      EXPECT_EQ(e.key(), "targets.nu");
+      EXPECT_NE(std::string(e.what()).find("nu from 0.16 to 0.36"), std::string::npos) << e.what();
+    }
+  }
+  // A cell where nu does not rise with kn/ks: kn/ks does not set it.
+  CellCoefficient flat;
+  flat.levels = {1, 2, 4};
+  flat.coefficients = {0.3, 0.3, 0.29};
+  try {
+    solve_poisson(flat, 0.295, "nu.csv", "cal.toml");
+    ADD_FAILURE() << "nu 0.295 accepted where it does not rise";
+  } catch (const cdem::InputError& e) {
+    EXPECT_EQ(e.key(), "targets.nu");
+    EXPECT_NE(std::string(e.what()).find("does not rise"), std::string::npos) << e.what();
+  }
+}
+
+// E and nu: the Poisson table (nu.csv) sets kn/ks, and K_E at that kn/ks sets E*.
+const std::string kHeadPoisson =
+    "strategy = \"tables\"\n[targets]\nE_GPa = 18\nnu = 0.2\n[tables]\nnu = \"nu.csv\"\n";
+const std::string kElasticParameters =
+    "[[parameters]]\nkey = \"materials.mortar.emod_GPa\"\nbounds = [5, 100]\n"
+    "[[parameters]]\nkey = \"materials.mortar.kratio\"\nbounds = [0.5, 8]\n";
+
+// The rectangle's cell (ratio 2) of the Poisson table, off by known factors: nu = kn nu(kn/ks),
+// E = ke K_E(kn/ks) E*; parameters E*, kn/ks.
+class PoissonModel : public cdem::test::PointModel {
+ public:
+  PoissonModel(const CalibrationInput& input, double ke, double kn)
+      : nu_(interpolate_cell(read_lookup_table(input.tables.nu_file, kPoissonTable, "c", "k"),
+                             {2, 0.2}, "c", "k")),
+        ke_cell_(interpolate_cell(
+            read_lookup_table(input.tables.nu_file, kModulusStiffnessTable, "c", "k"), {2, 0.2},
+            "c", "k")),
+        ke_(ke),
+        kn_(kn) {}
+
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 1;
+    const double kratio = p.values[1];
+    o.responses[static_cast<int>(CalibrationTarget::E)] = ke_ * ke_cell_.at(kratio) * p.values[0];
+    o.responses[static_cast<int>(CalibrationTarget::Nu)] = kn_ * nu_.at(kratio);
+    return o;
+  }
+
+ private:
+  CellCoefficient nu_, ke_cell_;
+  double ke_, kn_;
+};
+
+CalibrationInput poisson_input(const std::string& name) {
+  Files f;
+  f.head = kHeadPoisson;
+  f.parameters = kElasticParameters;
+  return read_calibration_input(make_calibration(name, f));
+}
+
+TEST(CalibrateTables, PoissonRatioAndModulusInOneRunWhenTheTablesAreExact) {
+  // nu 0.2 on the ratio-2 cell: kn/ks = 2^0.5 (half way from 1 to 2 in ln), K_E there 0.55, so
+  // E* = 18 / 0.55 GPa.
+  const auto in = poisson_input("nu_exact");
+  PoissonModel model(in, 1, 1);
+  const auto r = calibrate(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  EXPECT_NEAR(r.calibrated[0], 18 / 0.55, 1e-9);
+  EXPECT_NEAR(r.calibrated[1], std::sqrt(2.0), 1e-12);
+  for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
+  EXPECT_NE(r.lookup.find("nu = 0.2 needs kn/ks = 1.414, where K_E = 0.55"), std::string::npos)
+      << r.lookup;
+}
+
+TEST(CalibrateTables, PoissonRatioAndModulusInOneCorrectionWhenTheTablesAreOff) {
+  // The material's nu 10 % above the table's and its K_E 5 % below: the correction solves the
+  // tables for nu 0.2 / 1.1 and E 18 / 0.95, which the material then gives exactly; kn/ks moves
+  // with nu, and E* with the K_E of the new kn/ks.
+  const auto in = poisson_input("nu_off");
+  PoissonModel model(in, 0.95, 1.1);
+  const auto r = calibrate(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 2u);
+  EXPECT_NEAR(r.iterations[0].errors[index_of(in, CalibrationTarget::Nu)], 0.1, 1e-9);
+  EXPECT_NEAR(r.iterations[0].errors[index_of(in, CalibrationTarget::E)], -0.05, 1e-9);
+  for (const double e : r.iterations[1].errors) EXPECT_NEAR(e, 0, 1e-9);
+  const double kratio = std::pow(2.0, (0.2 / 1.1 - 0.15) / 0.1);
+  EXPECT_NEAR(r.calibrated[1], kratio, 1e-9);
+  EXPECT_NEAR(r.calibrated[0], 18 / 0.95 / (0.6 - 0.1 * std::log2(kratio)), 1e-9);
+  EXPECT_NE(r.lookup.find("measured / tables: E 0.95, nu 1.1"), std::string::npos) << r.lookup;
+}
+
+TEST(CalibrateTablesInput, RefusesWhatThePoissonTableDoesNotHold) {
+  Files nu;
+  nu.head = kHeadPoisson;
+  nu.parameters = kElasticParameters;
+  expect_refusals(
+      {
+          {"nu_high", &Files::head, "nu = 0.2", "nu = 0.4", "targets.nu", "nu from 0.15 to 0.35"},
+          {"nu_missing", &Files::head, "nu = \"nu.csv\"", "", "tables.nu", "missing"},
+          {"nu_no_key", &Files::parameters,
+           "[[parameters]]\nkey = \"materials.mortar.kratio\"\nbounds = [0.5, 8]\n", "",
+           "parameters", "kratio"},
+          {"nu_friction", &Files::materials, "friction = 0.5", "friction = 0.3",
+           "materials.mortar.friction", "table (tables.nu"},
+          {"nu_size", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
+           "20 x 40 mm"},
+          {"nu_corrupt", &Files::nu, "2,0.2,2,0.25,0.5", "2,0.2,2,,0.5", "tables.nu",
+           "column 'nu'"},
+      },
+      nu);
+  // With a strength target (its keys free too): the strength tables hold one kn/ks.
+  Files t = nu;
+  t.head = replace(kHead, "E_GPa = 18\n", "E_GPa = 18\nnu = 0.2\n") + "nu = \"nu.csv\"\n";
+  t.parameters =
+      kParameters + "[[parameters]]\nkey = \"materials.mortar.kratio\"\nbounds = [0.5, 8]\n";
+  expect_input_error(make_calibration("nu_sigma_t", t), "targets.nu", "made at one kn/ks");
+}
+
+}  // namespace
