@@ -657,6 +657,24 @@ void check_size(const LookupTable& table, const std::string& what,
                          "specimen of that size or a table made for yours");
 }
 
+// The uniaxial rectangle's packing, after the check that `table` was made on its W x H.
+Packing rectangle_for(const CalibrationInput& input, const LookupTable& table) {
+  const std::string file = input.file.string();
+  const Packing p = read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
+  check_size(table, "W x H", {{"width_mm", p.width_mm}, {"height_mm", p.height_mm}}, file,
+             "specimen.generator");
+  return p;
+}
+
+// A table that a target needs: refused on `tables.<key>` when the calibration names none; `why`
+// says which target reads what from it.
+void require_table(const std::filesystem::path& path, const std::string& calibration_file,
+                   const std::string& key, const std::string& why, const std::string& example) {
+  if (path.empty())
+    throw InputError(calibration_file, "tables." + key,
+                     "missing: " + why + " named here, e.g. " + key + " = \"" + example + "\"");
+}
+
 // The base materials' mortar against a table's conditions; tau_cs / sigma_cn only when the
 // strategy does not set it (`shear_ratio_free`: a sigma_u target sets it from K_U), mu and kn/ks
 // likewise (`friction_free`: a phi target sets mu; `kratio_free`: a nu target sets kn/ks).
@@ -709,11 +727,10 @@ struct FrictionTables {
 
 FrictionTables read_friction_tables(const CalibrationInput& input) {
   const std::string file = input.file.string();
-  if (input.tables.mc_file.empty())
-    throw InputError(file, "tables.mc",
-                     "missing: phi is a target, and the tables strategy reads mu for it from the "
-                     "Mohr-Coulomb table named here, e.g. mc = "
-                     "\"tables/biaxial_mc_rho0.5_table.csv\"");
+  require_table(input.tables.mc_file, file, "mc",
+                "phi is a target, and the tables strategy reads mu for it from the Mohr-Coulomb "
+                "table",
+                "tables/biaxial_mc_rho0.5_table.csv");
   const CalibrationTest* uniaxial = input.test(TestKind::Uniaxial);
   if (!uniaxial)
     throw InputError(file, "targets.phi_deg",
@@ -727,9 +744,7 @@ FrictionTables read_friction_tables(const CalibrationInput& input) {
       read_lookup_table(input.tables.mc_file, kUnconfinedStrengthTable, file, "tables.mc");
   // kn/ks and tau_cs / sigma_cn (one table holds one) as every table's; mu is the table's to set.
   check_conditions(input, phi, "tables.mc", false, true);
-  const Packing packing = read_packing(*uniaxial, file, "specimen.generator");
-  check_size(phi, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}}, file,
-             "specimen.generator");
+  const Packing packing = rectangle_for(input, phi);
   return {phi.file.string(),
           phi.condition("shear_to_normal"),
           phi.condition("emod_per_sigma_cn"),
@@ -1025,20 +1040,16 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     // nu and K_E against kn/ks on the uniaxial specimen's cell; the K_E table (one kn/ks) is not
     // read. tau_cs / sigma_cn is not a column of the Poisson table (its runs: 2, and nu moves by
     // 0.2 % from 0.25 to 1, the K_U table's runs, docs/lookup_tables.md).
-    if (input.tables.nu_file.empty())
-      throw InputError(file, "tables.nu",
-                       "missing: nu is a target, and the tables strategy reads nu and K_E against "
-                       "kn/ks from the Poisson table named here, e.g. nu = "
-                       "\"tables/uniaxial_nu_table.csv\"");
+    require_table(input.tables.nu_file, file, "nu",
+                  "nu is a target, and the tables strategy reads nu and K_E against kn/ks from "
+                  "the Poisson table",
+                  "tables/uniaxial_nu_table.csv");
     const LookupTable nu =
         read_lookup_table(input.tables.nu_file, kPoissonTable, file, "tables.nu");
     const LookupTable ke_nu =
         read_lookup_table(input.tables.nu_file, kModulusStiffnessTable, file, "tables.nu");
     check_conditions(input, nu, "tables.nu", true, false, true);
-    const Packing packing =
-        read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
-    check_size(nu, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}},
-               file, "specimen.generator");
+    const Packing packing = rectangle_for(input, nu);
     m.nu_file = nu.file.string();
     m.nu_cell = interpolate_cell(nu, packing, file, "specimen.generator");
     m.ke_cell = interpolate_cell(ke_nu, packing, file, "specimen.generator");
@@ -1056,11 +1067,9 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     if (!m.nu_cell.note.empty()) md << "  - " << m.nu_cell.note << "\n";
   }
   if (m.has(m.ge) && !m.has(m.gn)) {
-    if (input.tables.ke_file.empty())
-      throw InputError(file, "tables.ke",
-                       "missing: E is a target, and the tables strategy reads K_E (E = K_E E*) "
-                       "from the table named here, e.g. ke = \"tables/uniaxial_ke_table.csv\"");
-    const CalibrationTest& test = *input.test(TestKind::Uniaxial);
+    require_table(input.tables.ke_file, file, "ke",
+                  "E is a target, and the tables strategy reads K_E (E = K_E E*) from the table",
+                  "tables/uniaxial_ke_table.csv");
     const LookupTable ke =
         read_lookup_table(input.tables.ke_file, kModulusTable, file, "tables.ke");
     // With a phi target mu is the Mohr-Coulomb table's to set, within its levels, and K_E does
@@ -1069,9 +1078,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     // tau_cs / sigma_cn is then the Mohr-Coulomb table's, and K_E moves by 1.4-2.1 % from 0.25
     // to 2 (the K_U table's runs), as with sigma_u and sigma_t.
     check_conditions(input, ke, "tables.ke", shear_ratio_free || with_phi, with_phi);
-    const Packing packing = read_packing(test, file, "specimen.generator");
-    check_size(ke, "W x H", {{"width_mm", packing.width_mm}, {"height_mm", packing.height_mm}},
-               file, "specimen.generator");
+    const Packing packing = rectangle_for(input, ke);
     const CellCoefficient k = interpolate_cell(ke, packing, file, "specimen.generator");
     m.K_E = k.at(0);
     md << "- E: uniaxial packing R_max/R_min " << four(packing.r_ratio) << ", R_min "
@@ -1093,10 +1100,9 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
       throw InputError(file, "tests.direct_tension",
                        "the tables strategy has a Brazilian table (K_B) only; name the sigma_t "
                        "test as brazilian = \"FILE\"");
-    if (input.tables.kb_file.empty())
-      throw InputError(file, "tables.kb",
-                       "missing: sigma_t is a target, and the tables strategy reads K_B from the "
-                       "table named here, e.g. kb = \"tables/brazilian_kb_x_table.csv\"");
+    require_table(input.tables.kb_file, file, "kb",
+                  "sigma_t is a target, and the tables strategy reads K_B from the table",
+                  "tables/brazilian_kb_x_table.csv");
     kb = read_lookup_table(input.tables.kb_file, kBrazilianTable, file, "tables.kb");
     check_conditions(input, *kb, "tables.kb", shear_ratio_free);
     m.disc = read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
@@ -1145,17 +1151,13 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     m.ku_cell.cells = mc->strength.cells + " of `" + mc->file + "` (K_U0 at mu " + four(mu) + ")";
     m.ku_cell.note = mc->strength.note;
   } else if (m.has(m.gu)) {
-    if (input.tables.ku_file.empty())
-      throw InputError(file, "tables.ku",
-                       "missing: sigma_u is a target, and the tables strategy reads K_U (sigma_u = "
-                       "K_U sigma_cn) from the table named here, e.g. ku = "
-                       "\"tables/uniaxial_ku_table.csv\"");
+    require_table(input.tables.ku_file, file, "ku",
+                  "sigma_u is a target, and the tables strategy reads K_U (sigma_u = K_U sigma_cn) "
+                  "from the table",
+                  "tables/uniaxial_ku_table.csv");
     ku = read_lookup_table(input.tables.ku_file, kUniaxialStrengthTable, file, "tables.ku");
     check_conditions(input, *ku, "tables.ku");
-    m.rectangle = read_packing(*input.test(TestKind::Uniaxial), file, "specimen.generator");
-    check_size(*ku, "W x H",
-               {{"width_mm", m.rectangle.width_mm}, {"height_mm", m.rectangle.height_mm}}, file,
-               "specimen.generator");
+    m.rectangle = rectangle_for(input, *ku);
     m.ku_cell = interpolate_cell(*ku, m.rectangle, file, "specimen.generator");
     if (!m.both_strengths)
       check_within_levels(m.base_rho, m.ku_cell, *ku, file, "materials.mortar." + kShearKey,
