@@ -31,6 +31,19 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   (R_max / R_min 1 (packed at 1.2), 1.5, 2, 3, 4, 6, 8 x R_min 0.15, 0.2, 0.25 mm) at two
   strengths, E* / sigma_cn 600 and 1,200 (two sigma_cn per cell for the fit through the origin),
   tau_cs = 2 sigma_cn, seeds 11-13: K_D per cell (fit_kd_cells.py).
+- uniaxial_ku_cells.toml (session 17): the K_U rectangles on the K_B table's cells (R_max / R_min
+  1, 1.5, 2, 3, 4, 6, 8 x R_min 0.15, 0.2, 0.25 mm) but the two the K_U table holds already
+  (1.5 and 4 at R_min 0.2), at E* / sigma_cn 600 and tau_cs / sigma_cn 0.5, 1, 2, 4 (both sides
+  of the critical ratio 1.23-1.28 of the three K_U cells), seeds 11-12: K_U, the critical ratio,
+  K_E and nu per cell (fit_uniaxial_cells.py).
+- uniaxial_nu_cells.toml (session 17): nu and K_E against kn / ks (1, 1.5, 2.5, 4) on the same
+  cells but the two uniaxial_nu holds (1.5 and 4 at R_min 0.2), at E* / sigma_cn 3000 (the
+  elastic part: cheap), seeds 11-12 (fit_uniaxial_cells.py).
+- brazilian_kb_kratio.toml, uniaxial_ku_kratio.toml (session 17): the Brazilian disc of the K_B
+  table's cells (1.5, 2, 3, 4) at tau_cs / sigma_cn 2, seeds 11-13, and the rectangle of the K_U
+  table's cells (1.5, 2.7, 4) at tau_cs / sigma_cn 0.5 and 2, seeds 11-12, both at E* / sigma_cn
+  600 and kn / ks 1.5 and 4 (the tables hold 2.5): how K_B and K_U move with kn / ks, which a
+  nu target sets (fit_kratio_factors.py).
 - brazilian_scatter_r3.4.toml (session 13): the seed scatter of the sandstone's ratio-3.4 disc
   where its calibration runs, against tau_cs / sigma_cn (0.5, 1, 1.5, 2) and the disc's size
   (D 30 and 50 mm): at each rho the E* / sigma_cn that the tables (K_B x F at 3.4) give for
@@ -90,6 +103,20 @@ KD = dict(ratios=[2.7], levels=[600], seeds=SEEDS)
 # K_D per cell: the K_B table's packings (make_brazilian_kb.py), most discs first.
 KD_CELLS = dict(ratios=[1, 1.5, 2, 3, 4, 6, 8], r_min=[0.15, 0.2, 0.25], levels=[600, 1200],
                 seeds=SEEDS)
+# K_U, K_E and nu per cell (session 17): the K_D cells, most discs first, at four strength ratios
+# and two seeds (19 cells x 4 x 2 = 152 runs); the cells the K_U table holds are left out.
+KU_CELLS = dict(ratios=KD_CELLS["ratios"], r_min=KD_CELLS["r_min"], levels=KU_EMOD_PER_SIGMA,
+                shear=[0.5, 1, 2, 4], seeds=[11, 12],
+                measured=[(r, m) for r in KU_RADIUS_RATIOS for m in R_MIN_MM])
+# nu and K_E against kn / ks per cell (session 17): uniaxial_nu's levels on the same cells.
+NU_CELLS = dict(KU_CELLS, levels=NU_KRATIO["levels"], kratio=NU_KRATIO["kratio"],
+                seeds=NU_KRATIO["seeds"])
+# K_B and K_U at other kn / ks (session 17): the tables' own cells, levels and seeds, kn / ks 1.5
+# and 4 around their 2.5.
+KB_KRATIO = dict(ratios=RADIUS_RATIOS, levels=[600], shear=[SHEAR_TO_NORMAL], kratio=[1.5, 4],
+                 seeds=SEEDS)
+KU_KRATIO = dict(ratios=KU_RADIUS_RATIOS, levels=KU_EMOD_PER_SIGMA, shear=[0.5, 2],
+                 kratio=[1.5, 4], seeds=[11, 12])
 # The scatter campaign of the ratio-3.4 disc: (tau_cs / sigma_cn, E* / sigma_cn) pairs where
 # the tables put sigma_t 9.08 MPa at E* 39.78 GPa (E 18 GPa / K_E 0.4524): K_B of the K_B table
 # at 3.4 (cells 3 and 4, weights 0.6, 0.4) times F of the kb_tau table, rounded to 10.
@@ -121,7 +148,8 @@ MC_SHEAR = [0.5, 2]                       # tau_cs / sigma_cn: below and above r
 # "Session 15"); a further entry ([0.25, 0.5, 1.0], [2]) appended here keeps the runs' numbers.
 MC_POINTS_R15 = [([0.25, 0.5, 1.0], [0.5])]
 # A series is four runs (about six uniaxial runs of steps): the ratio-1.5 cell's at tau_cs /
-# sigma_cn 2 would pass the other campaigns' 600 s on a loaded machine.
+# sigma_cn 2 would pass the other campaigns' 600 s on a loaded machine; so would a uniaxial run of
+# the K_U cells at R_min 0.15 mm (up to 9,400 discs, the cost growing as R_mean^-3).
 MC_TIMEOUT_S = 3600
 # The biaxial (Mohr-Coulomb) table: (cell, mu levels, rho levels) in run order (the costly
 # ratio-1.5 cell last), seeds; the confinements are the base's (biaxial_mc_base.toml).
@@ -139,6 +167,9 @@ REDUCED_KU = dict(ratios=[4], shear=[0.25], seeds=[11])
 REDUCED_KB_TAU = dict(ratios=[4], shear=[0.5], seeds=[11])
 # ... and of the K_D table: its cheapest cell (147 discs, under a second a run) at both levels.
 REDUCED_KD = dict(KD_CELLS, ratios=[8], r_min=[0.25], seeds=[11])
+# ... and of the K_U and nu cells: the same cell, one level each.
+REDUCED_KU_CELLS = dict(KU_CELLS, ratios=[8], r_min=[0.25], shear=[0.5], seeds=[11])
+REDUCED_NU_CELLS = dict(NU_CELLS, ratios=[8], r_min=[0.25], kratio=[1], seeds=[11])
 
 KB_GATHER = ["tensile_strength_MPa", "stop_reason", "steps", "cracks.total", "genesis.discs",
              "wall_time_s"]
@@ -179,6 +210,20 @@ def rows(ratios, r_min, levels, shear_to_normal=(SHEAR_TO_NORMAL,)):
         s = EMOD_GPA * 1e3 / x
         out.append([ratio, round(rmin * (1 + ratio) / 2, 12), round(s, 12), round(s * rho, 12)])
     return out
+
+
+def ku_cell_rows(c):
+    """Design rows of the K_U cells' campaign (or its CI subset): the cells but those measured."""
+    return [r for ratio, rmin in itertools.product(c["ratios"], c["r_min"])
+            if (ratio, rmin) not in c["measured"]
+            for r in rows([ratio], [rmin], c["levels"], c["shear"])]
+
+
+def nu_cell_rows(c):
+    """Design rows of the nu cells' campaign (or its CI subset): rows() plus kn / ks."""
+    return [r + [k] for ratio, rmin in itertools.product(c["ratios"], c["r_min"])
+            if (ratio, rmin) not in c["measured"]
+            for r in rows([ratio], [rmin], c["levels"]) for k in c["kratio"]]
 
 
 def header(what, n, seeds, name):
@@ -229,7 +274,13 @@ def main():
             ("direct_tension_kd_cells", "Direct tension K_D per packing cell (CI subset)",
              "direct_tension_kd_base.toml", KD_GATHER,
              rows(REDUCED_KD["ratios"], REDUCED_KD["r_min"], REDUCED_KD["levels"]),
-             REDUCED_KD["seeds"])]
+             REDUCED_KD["seeds"]),
+            ("uniaxial_ku_cells", "Uniaxial K_U, K_E and nu per packing cell (CI subset)",
+             "uniaxial_ke_base.toml", KU_GATHER, ku_cell_rows(REDUCED_KU_CELLS),
+             REDUCED_KU_CELLS["seeds"]),
+            ("uniaxial_nu_cells", "Uniaxial nu and K_E against kn / ks per packing cell (CI "
+             "subset)", "uniaxial_ke_base.toml", KE_GATHER, nu_cell_rows(REDUCED_NU_CELLS),
+             REDUCED_NU_CELLS["seeds"])]
     else:
         campaigns += [
             ("uniaxial_ku", "Uniaxial K_U = sigma_u / sigma_cn against tau_cs / sigma_cn",
@@ -253,7 +304,20 @@ def main():
              KD["seeds"]),
             ("direct_tension_kd_cells", "Direct tension K_D per packing cell",
              "direct_tension_kd_base.toml", KD_GATHER,
-             rows(KD_CELLS["ratios"], KD_CELLS["r_min"], KD_CELLS["levels"]), KD_CELLS["seeds"])]
+             rows(KD_CELLS["ratios"], KD_CELLS["r_min"], KD_CELLS["levels"]), KD_CELLS["seeds"]),
+            ("uniaxial_ku_cells", "Uniaxial K_U, K_E and nu per packing cell",
+             "uniaxial_ke_base.toml", KU_GATHER, ku_cell_rows(KU_CELLS), KU_CELLS["seeds"]),
+            ("uniaxial_nu_cells", "Uniaxial nu and K_E against kn / ks per packing cell",
+             "uniaxial_ke_base.toml", KE_GATHER, nu_cell_rows(NU_CELLS), NU_CELLS["seeds"])]
+        campaigns += [
+            (name, what, base, gather,
+             [r + [k] for r in rows(c["ratios"], R_MIN_MM, c["levels"], c["shear"])
+              for k in c["kratio"]], c["seeds"])
+            for name, what, base, gather, c in [
+                ("brazilian_kb_kratio", "Brazilian K_B at other kn / ks", "brazilian_kb_x_base.toml",
+                 KB_TAU_GATHER, KB_KRATIO),
+                ("uniaxial_ku_kratio", "Uniaxial K_U at other kn / ks", "uniaxial_ke_base.toml",
+                 KU_GATHER, KU_KRATIO)]]
         campaigns += [
             (name, f"Brazilian seed scatter of the ratio-3.4 disc (D {sc['diameter_mm']} mm) "
              "against tau_cs / sigma_cn", "brazilian_kb_x_base.toml", KB_TAU_GATHER,
@@ -307,7 +371,7 @@ def main():
             keys = (STRENGTH_KEYS + [extra, "test.loading_arc_deg"])[:len(r[0])]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
                               gather, keys, r, header(what, len(r), seeds, name),
-                              MC_TIMEOUT_S if name == "biaxial_mc" else 600)
+                              MC_TIMEOUT_S if name in ("biaxial_mc", "uniaxial_ku_cells") else 600)
         write(os.path.join(out_dir, name + ".toml"), text)
     return 0
 

@@ -345,7 +345,9 @@ texpect() {
   expect "calibrate_$1" 2 "$1.toml" "$2" "cal_out" -- \
     "$CDEM" calibrate "tables_case/samples/$1.toml" -o cal_out -q
 }
-texpect tables_nu targets.nu 's/^E_GPa = 18/&\nnu = 0.2/'
+# nu (its kn/ks key free) beside sigma_t: the strength tables hold one kn/ks.
+texpect tables_nu targets.nu 's/^E_GPa = 18/&\nnu = 0.2/
+$a [[parameters]]\nkey = "materials.mortar.kratio"\nbounds = [0.8, 6]'
 cp "$SRC/tables/uniaxial_ku_table.csv" tables_case/tables/
 texpect tables_ucs_outside targets.sigma_u \
   's/^E_GPa = 18/&\nsigma_u_MPa = 200/; s#^ke = .*#&\nku = "../tables/uniaxial_ku_table.csv"#'

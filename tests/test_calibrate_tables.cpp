@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -1220,6 +1221,37 @@ TEST(CalibrateTablesInput, RefusesWhatThePoissonTableDoesNotHold) {
   t.parameters =
       kParameters + "[[parameters]]\nkey = \"materials.mortar.kratio\"\nbounds = [0.5, 8]\n";
   expect_input_error(make_calibration("nu_sigma_t", t), "targets.nu", "made at one kn/ks");
+}
+
+}  // namespace
+
+namespace {
+
+// The shipped tables over every cell (docs/lookup_tables.md "Session 17") are read by the
+// strategy in their layouts: every row at one condition, no cell twice, R_max / R_min 1 to 8 at
+// three R_min, and a packing between two ratio cells interpolates.
+TEST(TablesLookup, TheShippedCellTablesReadInTheirLayouts) {
+  const std::filesystem::path dir = std::filesystem::path(CDEM_SOURCE_DIR) / "tables";
+  const std::vector<std::pair<std::string, const TableLayout*>> tables{
+      {"uniaxial_ku_cells_table.csv", &kUniaxialStrengthTable},
+      {"uniaxial_nu_cells_table.csv", &kPoissonTable},
+      {"uniaxial_nu_cells_table.csv", &kModulusStiffnessTable}};
+  for (const auto& [name, layout] : tables) {
+    const LookupTable t = read_lookup_table(dir / name, *layout, "cal.toml", "tables.x");
+    std::set<double> ratios, r_mins;
+    for (const auto& r : t.rows) {
+      ratios.insert(r.r_ratio);
+      r_mins.insert(r.r_min_mm);
+    }
+    EXPECT_EQ(*ratios.begin(), 1) << name;
+    EXPECT_EQ(*ratios.rbegin(), 8) << name;
+    EXPECT_EQ(r_mins, (std::set<double>{0.15, 0.2, 0.25})) << name;
+    const CellCoefficient c = interpolate_cell(t, {5, 0.2}, "cal.toml", "k");
+    EXPECT_NE(c.cells.find("R_max/R_min 4 at R_min 0.2 mm (weight 0.5)"), std::string::npos)
+        << name << ": " << c.cells;
+    EXPECT_NE(c.cells.find("R_max/R_min 6 at R_min 0.2 mm (weight 0.5)"), std::string::npos)
+        << name << ": " << c.cells;
+  }
 }
 
 }  // namespace
