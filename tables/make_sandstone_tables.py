@@ -44,6 +44,9 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   table's cells (1.5, 2.7, 4) at tau_cs / sigma_cn 0.5 and 2, seeds 11-12, both at E* / sigma_cn
   600 and kn / ks 1.5 and 4 (the tables hold 2.5): how K_B and K_U move with kn / ks, which a
   nu target sets (fit_kratio_factors.py).
+- biaxial_mc_cells.toml (session 17): the biaxial series of biaxial_mc.toml at mu 0.5 and tau_cs /
+  sigma_cn 0.5 on more cells: R_max / R_min 1, 2, 3, 6, 8 at R_min 0.2 mm and 3 at R_min 0.15
+  and 0.25 mm, seeds 21-22: c and phi against the packing (fit_biaxial_mc.py).
 - brazilian_scatter_r3.4.toml (session 13): the seed scatter of the sandstone's ratio-3.4 disc
   where its calibration runs, against tau_cs / sigma_cn (0.5, 1, 1.5, 2) and the disc's size
   (D 30 and 50 mm): at each rho the E* / sigma_cn that the tables (K_B x F at 3.4) give for
@@ -155,6 +158,10 @@ MC_TIMEOUT_S = 3600
 # ratio-1.5 cell last), seeds; the confinements are the base's (biaxial_mc_base.toml).
 BIAXIAL_MC = dict(points=[(4, MC_FRICTIONS, MC_SHEAR), (2.7, MC_FRICTIONS, MC_SHEAR)]
                   + [(1.5, mu, rho) for mu, rho in MC_POINTS_R15], level=600, seeds=[21, 22, 23])
+# Session 17: c and phi on more cells, at mu 0.5 and rho 0.5 (the shear-driven side, where mu
+# sets phi): the ratios at R_min 0.2 mm the Mohr-Coulomb table lacks, and R_min at ratio 3.
+MC_CELLS = dict(cells=[(1, 0.2), (2, 0.2), (3, 0.2), (6, 0.2), (8, 0.2), (3, 0.15), (3, 0.25)],
+                friction=0.5, shear=[0.5], level=600, seeds=[21, 22])
 # Session 16: the Brazilian disc of the ratio-1.5 cell at mu 0.25 (the K_B table's seeds, so the
 # discs of the kb_tau and K_B runs at mu 0.5): does K_B move with mu where the ratio-1.5 UCS reach
 # has its bottom (rho 0.25-0.5), and on the plateau (rho 2)? (fit_kb_mu.py)
@@ -357,13 +364,18 @@ def main():
         campaigns += [
             ("biaxial_mc", "Biaxial series (Mohr-Coulomb c, phi) against mu and tau_cs / sigma_cn",
              "biaxial_mc_base.toml", mc_gather(confinements),
-             mc_rows(BIAXIAL_MC["points"], BIAXIAL_MC["level"]), BIAXIAL_MC["seeds"])]
+             mc_rows(BIAXIAL_MC["points"], BIAXIAL_MC["level"]), BIAXIAL_MC["seeds"]),
+            ("biaxial_mc_cells", "Biaxial series (Mohr-Coulomb c, phi) on more packing cells",
+             "biaxial_mc_base.toml", mc_gather(confinements),
+             [r + [MC_CELLS["friction"]] for ratio, rmin in MC_CELLS["cells"]
+              for r in rows([ratio], [rmin], [MC_CELLS["level"]], MC_CELLS["shear"])],
+             MC_CELLS["seeds"])]
     for name, what, base, gather, r, seeds in campaigns:
         if not r:
             continue
         extra = ("specimen.diameter_mm" if name.startswith(("brazilian_scatter", "brazilian_arc"))
                  else "materials.mortar.kratio")
-        if name in ("biaxial_mc", "brazilian_kb_mu"):
+        if name in ("biaxial_mc", "biaxial_mc_cells", "brazilian_kb_mu"):
             keys = STRENGTH_KEYS + ["materials.mortar.friction"]
         elif name.startswith("uniaxial_scatter"):
             keys = STRENGTH_KEYS + ["specimen.width_mm", "specimen.height_mm"]
@@ -371,7 +383,8 @@ def main():
             keys = (STRENGTH_KEYS + [extra, "test.loading_arc_deg"])[:len(r[0])]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
                               gather, keys, r, header(what, len(r), seeds, name),
-                              MC_TIMEOUT_S if name in ("biaxial_mc", "uniaxial_ku_cells") else 600)
+                              MC_TIMEOUT_S if name in ("biaxial_mc", "biaxial_mc_cells",
+                                                       "uniaxial_ku_cells") else 600)
         write(os.path.join(out_dir, name + ".toml"), text)
     return 0
 
