@@ -157,11 +157,11 @@ def fit(directory):
 
 
 def read_ku(path):
-    """K_U per (R_max / R_min, tau_cs / sigma_cn) and the mu it was made at."""
+    """K_U per (R_max / R_min, R_min, tau_cs / sigma_cn) and the mu it was made at."""
     out, mu = {}, None
     with open(path, newline="") as f:
         for r in csv.DictReader(line for line in f if not line.startswith("#")):
-            out[(float(r["r_ratio"]), float(r["shear_to_normal"]))] = (
+            out[(float(r["r_ratio"]), float(r["r_min_mm"]), float(r["shear_to_normal"]))] = (
                 float(r["K_U"]), float(r["K_U_seed_sd"]), int(r["runs"]))
             mu = float(r["friction"])
     return out, mu
@@ -201,20 +201,22 @@ def plot(table, path):
 
 
 def markdown(table, ku, ku_mu, path):
-    lines = ["| R_max/R_min | mu | tau_cs/sigma_cn | phi (deg) | N | c (MPa) | q (MPa) | R2 | "
+    lines = ["| R_max/R_min | R_min (mm) | mu | tau_cs/sigma_cn | phi (deg) | N | c (MPa) | q (MPa) | R2 | "
              "seed SD phi, c (MPa) | N secant low / high | K_U0 (SD) | K_U table | K_E0 | "
              "shear share 0 / top | series (left out) |",
-             "|---" * 15 + "|"]
+             "|---" * 16 + "|"]
     for r in table:
         if "phi_deg" not in r:
-            lines.append(f"| {r['r_ratio']:g} | {r['friction']:g} | {r['shear_to_normal']:g} | "
-                         + "- | " * 11 + f"0 ({r['runs_left_out']}) |")
+            lines.append(f"| {r['r_ratio']:g} | {r['r_min_mm']:g} | {r['friction']:g} | "
+                         f"{r['shear_to_normal']:g} | " + "- | " * 11 +
+                         f"0 ({r['runs_left_out']}) |")
             continue
-        k = ku.get((r["r_ratio"], r["shear_to_normal"])) if r["friction"] == ku_mu else None
+        k = (ku.get((r["r_ratio"], r["r_min_mm"], r["shear_to_normal"]))
+             if r["friction"] == ku_mu else None)
         ref = f"{k[0]:.4f} ({k[1]:.4f})" if k else "-"
         lines.append(
-            f"| {r['r_ratio']:g} | {r['friction']:g} | {r['shear_to_normal']:g} | "
-            f"{r['phi_deg']:.2f} | {r['N_phi']:.3f} | {r['c_MPa']:.2f} | {r['q_MPa']:.2f} | "
+            f"| {r['r_ratio']:g} | {r['r_min_mm']:g} | {r['friction']:g} | "
+            f"{r['shear_to_normal']:g} | {r['phi_deg']:.2f} | {r['N_phi']:.3f} | {r['c_MPa']:.2f} | {r['q_MPa']:.2f} | "
             f"{r['R2']:.4f} | {r['phi_seed_sd_deg']:.2f}, {r['c_seed_sd_MPa']:.2f} | "
             f"{r['N_secant_low']:.2f} / {r['N_secant_high']:.2f} | {r['K_U0']:.4f} "
             f"({r['K_U0_seed_sd']:.4f}) | {ref} | {r['K_E0']:.4f} | "
