@@ -31,7 +31,7 @@ import sys
 
 import numpy as np
 
-from fit_brazilian_kb import save_figure
+from fit_brazilian_kb import save_figure, write_atomic
 from fit_nu_kd import NU_COLUMNS, fit_nu, log_fits
 from fit_sandstone_tables import read_campaign
 from fit_uniaxial_ku import FIT_COLUMNS, TABLE_COLUMNS, fit, markdown, write_csv
@@ -93,6 +93,22 @@ def against_ratio(ax, rows, level_key, column, err=None):
                             if r_min == 0.2 else None)
 
 
+def panel(rows, level_key, column, ylabel, err=None):
+    """A panel of figure(): column against R_max / R_min, a colour per level of level_key."""
+    def draw(ax):
+        against_ratio(ax, rows, level_key, column, err)
+        ax.set_ylabel(ylabel)
+    return draw
+
+
+def report(what, table, cells, ok):
+    """The closing line and the exit code: 1 when a cell and level had no counted run."""
+    print(f"{what}: {len(table)} rows, {cells} cells, {sum(t['runs'] for t in table)} runs "
+          f"counted, {sum(t['runs_left_out'] for t in table)} left out, run wall time "
+          f"{sum(t['wall_s_total'] for t in table):.0f} s")
+    return 0 if ok else 1
+
+
 def figure(path, title, panels):
     import matplotlib
 
@@ -126,21 +142,14 @@ def ku_main(a):
     fitted = [dict(f, level="rho_c") for f in fits if f.get("rho_c") not in (None, "")]
     if a.plot:
         figure(a.plot, "Uniaxial, 20 x 40 mm, E*/sigma_cn 600, kn/ks 2.5", [
-            lambda ax: (against_ratio(ax, [t for t in rows if t["shear_to_normal"] in common],
-                                      "shear_to_normal", "K_U", "K_U_seed_sd"),
-                        ax.set_ylabel("K_U = sigma_u / sigma_cn (colour: tau_cs / sigma_cn)")),
-            lambda ax: (against_ratio(ax, fitted, "level", "rho_c"),
-                        ax.set_ylabel("critical ratio rho_c (two-line fit)")),
-            lambda ax: (against_ratio(ax, at2, "shear_to_normal", "K_E"),
-                        ax.set_ylabel("K_E = E / E* at tau_cs / sigma_cn 2")),
-            lambda ax: (against_ratio(ax, at2, "shear_to_normal", "nu"),
-                        ax.set_ylabel("nu at tau_cs / sigma_cn 2"))])
+            panel([t for t in rows if t["shear_to_normal"] in common], "shear_to_normal", "K_U",
+                  "K_U = sigma_u / sigma_cn (colour: tau_cs / sigma_cn)", "K_U_seed_sd"),
+            panel(fitted, "level", "rho_c", "critical ratio rho_c (two-line fit)"),
+            panel(at2, "shear_to_normal", "K_E", "K_E = E / E* at tau_cs / sigma_cn 2"),
+            panel(at2, "shear_to_normal", "nu", "nu at tau_cs / sigma_cn 2")])
     if a.markdown:
         markdown(table, fits, [], a.markdown)
-    print(f"K_U: {len(table)} rows, {len(fits)} cells, {sum(t['runs'] for t in table)} runs "
-          f"counted, {sum(t['runs_left_out'] for t in table)} left out, run wall time "
-          f"{sum(t['wall_s_total'] for t in table):.0f} s")
-    return 0 if ok else 1
+    return report("K_U", table, len(fits), ok)
 
 
 def nu_main(a):
@@ -156,14 +165,10 @@ def nu_main(a):
     if a.plot:
         fit_rows = [dict(f, level="fit") for f in lines]
         figure(a.plot, "Uniaxial, 20 x 40 mm, E*/sigma_cn 3000", [
-            lambda ax: (against_ratio(ax, rows, "kratio", "nu", "nu_seed_sd"),
-                        ax.set_ylabel("nu (colour: kn / ks)")),
-            lambda ax: (against_ratio(ax, rows, "kratio", "K_E", "K_E_seed_sd"),
-                        ax.set_ylabel("K_E = E / E* (colour: kn / ks)")),
-            lambda ax: (against_ratio(ax, fit_rows, "level", "b"),
-                        ax.set_ylabel("b of nu = a + b ln(kn / ks)")),
-            lambda ax: (against_ratio(ax, fit_rows, "level", "R2"),
-                        ax.set_ylabel("R2 of nu = a + b ln(kn / ks)"))])
+            panel(rows, "kratio", "nu", "nu (colour: kn / ks)", "nu_seed_sd"),
+            panel(rows, "kratio", "K_E", "K_E = E / E* (colour: kn / ks)", "K_E_seed_sd"),
+            panel(fit_rows, "level", "b", "b of nu = a + b ln(kn / ks)"),
+            panel(fit_rows, "level", "R2", "R2 of nu = a + b ln(kn / ks)")])
     if a.markdown:
         def write(f):
             f.write("| R_max/R_min | R_min (mm) | kn/ks | nu | seed SD | K_E | seed SD | runs "
@@ -177,12 +182,8 @@ def nu_main(a):
             for x in lines:
                 f.write(f"| {x['r_ratio']:g} | {x['r_min_mm']:g} | {x['a']} | {x['b']} | "
                         f"{x['R2']} | {x['largest_residual']} |\n")
-        from fit_brazilian_kb import write_atomic
         write_atomic(a.markdown, write)
-    print(f"nu: {len(table)} rows, {len(lines)} cells, {sum(t['runs'] for t in table)} runs "
-          f"counted, {sum(t['runs_left_out'] for t in table)} left out, run wall time "
-          f"{sum(t['wall_s_total'] for t in table):.0f} s")
-    return 0 if ok else 1
+    return report("nu", table, len(lines), ok)
 
 
 def main():
