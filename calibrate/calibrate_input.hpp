@@ -113,6 +113,9 @@ struct TablesSettings {
   // nu and K_E against R_max/R_min, R_min, kn/ks (one E*/sigma, one tau/sigma), read for a nu
   // target: nu sets kn/ks, and K_E at that kn/ks sets E*.
   std::filesystem::path nu_file;
+  // K_B and K_U at other kn/ks against the strength tables' own (G = K(kn/ks) / K(reference)),
+  // read for a nu target beside sigma_t or sigma_u: the strength tables are read times G.
+  std::filesystem::path kratio_file;
   double tolerance = 0.05;  // relative error per target on the calibration specimen
   int max_iterations = 2;   // runs on the calibration specimen: the lookup and a correction
   int max_refinements = 1;  // corrections on the verification mean

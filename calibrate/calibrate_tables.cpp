@@ -75,6 +75,14 @@ std::vector<std::string> split_csv(const std::string& line) {
   return out;
 }
 
+// A table cell's text as a positive finite number; nothing when it is not one.
+std::optional<double> positive_number(const std::string& text) {
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(x) || !(x > 0)) return std::nullopt;
+  return x;
+}
+
 // Where a coefficient's packing sits among the levels of one dimension: the two levels around
 // it and the weight of the upper one.
 struct Bracket {
@@ -197,12 +205,11 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
     for (const auto& c : need) {
       const std::size_t i = column[c];
       const std::string text = i < cells.size() ? cells[i] : "";
-      char* end = nullptr;
-      const double x = std::strtod(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || !std::isfinite(x) || !(x > 0))
+      const std::optional<double> x = positive_number(text);
+      if (!x)
         fail(where, "column '" + c + "' is '" + text + "', not a positive number" +
                         (c == coefficient ? " (a cell without a fit?)" : ""));
-      v[c] = x;
+      v[c] = *x;
     }
     const LookupRow row{v["r_ratio"], v["r_min_mm"], layout.level.empty() ? 0 : v[layout.level],
                         v[coefficient]};
@@ -223,6 +230,123 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
   }
   if (table.rows.empty()) fail("", "no rows: not a " + coefficient + " table");
   return table;
+}
+
+const TableLayout kStiffnessRatioFactorTable{
+    "G", "kratio", "kn/ks", {"shear_to_normal", "emod_per_sigma_cn", "reference_kratio"}};
+
+StiffnessRatioTables read_stiffness_ratio_tables(const std::filesystem::path& path,
+                                                 const std::string& calibration_file,
+                                                 const std::string& key) {
+  const auto fail = [&](const std::string& where, const std::string& why) {
+    throw InputError(calibration_file, key, path.string() + where + ": " + why);
+  };
+  std::ifstream in(path);
+  if (!in)
+    fail("", "cannot read the kn/ks factor table (" + std::string(std::strerror(errno)) + ")");
+  const TableLayout& layout = kStiffnessRatioFactorTable;
+  const std::vector<std::string> numbers{"r_ratio",           "r_min_mm", "shear_to_normal",
+                                         "emod_per_sigma_cn", "kratio",   "G",
+                                         "reference_kratio"};
+  std::map<std::string, std::size_t> column;
+  // One table per test and tau_cs / sigma_cn (every Brazilian row in one), in ascending rho.
+  std::map<std::pair<std::string, double>, LookupTable> tables;
+  std::set<std::tuple<std::string, double, double, double, double>> seen;
+  StiffnessRatioTables out;
+  out.file = path;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos)
+      continue;
+    const auto cells = split_csv(line);
+    const std::string where = ", line " + std::to_string(line_number);
+    if (column.empty()) {
+      for (std::size_t i = 0; i < cells.size(); ++i) column[cells[i]] = i;
+      if (!column.count("test")) fail(where, "not a kn/ks factor table: no column 'test'");
+      for (const auto& c : numbers)
+        if (!column.count(c))
+          fail(where, "not a kn/ks factor table: no column '" + c +
+                          "' in the header (docs/lookup_tables.md lists the columns)");
+      continue;
+    }
+    const auto text = [&](const std::string& c) {
+      return column[c] < cells.size() ? cells[column[c]] : std::string();
+    };
+    const std::string test = text("test");
+    if (test != "brazilian" && test != "uniaxial")
+      fail(where, "column 'test' is '" + test + "', not brazilian or uniaxial");
+    std::map<std::string, double> v;
+    for (const auto& c : numbers) {
+      const std::optional<double> x = positive_number(text(c));
+      if (!x) fail(where, "column '" + c + "' is '" + text(c) + "', not a positive number");
+      v[c] = *x;
+    }
+    if (out.reference_kratio == 0) out.reference_kratio = v["reference_kratio"];
+    if (same(v["kratio"], out.reference_kratio))
+      fail(where, "a row at the reference kn/ks " + shortest_number(out.reference_kratio) +
+                      ", where G is 1 by definition");
+    const double rho = test == "brazilian" ? 0 : v["shear_to_normal"];
+    LookupTable& t = tables[{test, rho}];
+    t.file = path;
+    t.layout = layout;
+    for (const auto& c : layout.conditions) {
+      const auto [first, inserted] = t.conditions.emplace(c, v[c]);
+      if (!inserted && !same(v[c], first->second))
+        fail(where, "column '" + c + "' is " + shortest_number(v[c]) + ", the first " + test +
+                        " row's " + shortest_number(first->second) +
+                        ": one test's factors are made at one condition" +
+                        (c == "reference_kratio" ? "" : " (the uniaxial rows at one per rho)"));
+    }
+    if (!same(v["reference_kratio"], out.reference_kratio))
+      fail(where, "column 'reference_kratio' is " + shortest_number(v["reference_kratio"]) +
+                      ", the first row's " + shortest_number(out.reference_kratio) +
+                      ": every factor is against one kn/ks, the strength tables'");
+    if (!seen.insert({test, rho, v["r_ratio"], v["r_min_mm"], v["kratio"]}).second)
+      fail(where, "the " + test + " cell R_max/R_min " + shortest_number(v["r_ratio"]) +
+                      ", R_min " + shortest_number(v["r_min_mm"]) + " mm at kn/ks " +
+                      shortest_number(v["kratio"]) + " appears twice");
+    t.rows.push_back({v["r_ratio"], v["r_min_mm"], v["kratio"], v["G"]});
+  }
+  if (tables.empty()) fail("", "no rows: not a kn/ks factor table");
+  for (auto& [which, t] : tables) {
+    std::set<std::pair<double, double>> cells;
+    for (const auto& r : t.rows) cells.emplace(r.r_ratio, r.r_min_mm);
+    for (const auto& [ratio, r_min] : cells)
+      t.rows.push_back({ratio, r_min, out.reference_kratio, 1.0});
+    if (which.first == "brazilian") {
+      out.brazilian = t;
+    } else {
+      out.shear_ratios.push_back(which.second);
+      out.uniaxial.push_back(t);
+    }
+  }
+  return out;
+}
+
+double StiffnessRatioFactor::brazilian_at(double kratio) const {
+  return brazilian.levels.empty() ? 1.0 : brazilian.at(kratio);
+}
+
+double StiffnessRatioFactor::uniaxial_at(double rho, double kratio) const {
+  if (uniaxial.empty()) return 1.0;
+  std::vector<double> g;
+  for (const auto& c : uniaxial) g.push_back(c.at(kratio));
+  return piecewise_log_linear(shear_ratios, g,
+                              std::clamp(rho, shear_ratios.front(), shear_ratios.back()));
+}
+
+std::pair<double, double> StiffnessRatioFactor::kratio_range() const {
+  double lo = 0, hi = std::numeric_limits<double>::infinity();
+  std::vector<const CellCoefficient*> held;
+  if (!brazilian.levels.empty()) held.push_back(&brazilian);
+  for (const auto& c : uniaxial) held.push_back(&c);
+  for (const CellCoefficient* c : held) {
+    lo = std::max(lo, c->levels.front());
+    hi = std::min(hi, c->levels.back());
+  }
+  return {lo, hi};
 }
 
 double CellCoefficient::at(double level) const {
@@ -549,8 +673,8 @@ double solve_poisson(const CellCoefficient& nu, double nu_target, const std::str
 
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
                           CalibrationInput& input) {
-  t.reject_unknown_keys(
-      {"kb", "ke", "ku", "kb_tau", "mc", "nu", "tolerance", "max_iterations", "max_refinements"});
+  t.reject_unknown_keys({"kb", "ke", "ku", "kb_tau", "mc", "nu", "kratio", "tolerance",
+                         "max_iterations", "max_refinements"});
   const auto resolve = [&](const char* key) -> std::filesystem::path {
     if (!t.has(key)) return {};
     const std::filesystem::path p(t.string(key));
@@ -562,6 +686,7 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
   input.tables.kb_tau_file = resolve("kb_tau");
   input.tables.mc_file = resolve("mc");
   input.tables.nu_file = resolve("nu");
+  input.tables.kratio_file = resolve("kratio");
   input.tables.tolerance = t.number_or("tolerance", 0.05, Range::open(0, 0.5));
   input.tables.max_iterations = static_cast<int>(t.integer_or("max_iterations", 2, 1, 2));
   input.tables.max_refinements = static_cast<int>(t.integer_or("max_refinements", 1, 0, 10));
@@ -801,8 +926,23 @@ struct TablesModel {
   ShearFactor factor;
   std::string nu_file;
   CellCoefficient nu_cell, ke_cell;  // nu and K_E against kn/ks (the Poisson table)
+  // With a nu target beside a strength target, the strength tables (made at one kn/ks) are read
+  // times the kn/ks factors G_B(kn/ks) and G_U(rho, kn/ks); without, every G is 1.
+  StiffnessRatioFactor kratio_factor;
   bool has(std::size_t g) const { return g < groups.size(); }
   double modulus_factor(double kratio) const { return has(gn) ? ke_cell.at(kratio) : K_E; }
+  // K_B against E* / sigma_cn, and K_U against tau_cs / sigma_cn, at kn/ks.
+  CellCoefficient kb_at(double kratio) const {
+    CellCoefficient out = kb_cell;
+    for (double& k : out.coefficients) k *= kratio_factor.brazilian_at(kratio);
+    return out;
+  }
+  CellCoefficient ku_at(double kratio) const {
+    CellCoefficient out = ku_cell;
+    for (std::size_t i = 0; i < out.levels.size(); ++i)
+      out.coefficients[i] *= kratio_factor.uniaxial_at(out.levels[i], kratio);
+    return out;
+  }
 };
 
 // The contact values the strategy sets: E*, sigma_cn, tau_cs, kn/ks.
@@ -817,8 +957,21 @@ struct TablesSolution {
   double shear_factor = 1, shear_factor_slope = 0;  // F(rho), d ln F / d ln rho
 };
 
+// A kn/ks that a nu target sets beside a strength target within the levels of the kn/ks factors
+// (the strength tables are known there only); refused on targets.nu otherwise.
+void check_kratio_factor(const TablesModel& m, double kratio, const std::vector<double>& wanted) {
+  if (!m.has(m.gn) || !(m.has(m.gt) || m.has(m.gu))) return;
+  const auto [lo, hi] = m.kratio_factor.kratio_range();
+  if (kratio >= lo * (1 - kSameCondition) && kratio <= hi * (1 + kSameCondition)) return;
+  throw InputError(m.input->file.string(), "targets.nu",
+                   "nu = " + four(wanted[m.gn]) + " needs kn/ks = " + four(kratio) +
+                       ", outside the kn/ks factors' levels [" + four(lo) + ", " + four(hi) +
+                       "] (" + m.kratio_factor.file +
+                       "): the strength tables are not known there; no extrapolation");
+}
+
 // The tables solved for `wanted` (per group, in the groups' units): kn/ks from nu; E* from K_E
-// (at that kn/ks with a nu target); then
+// (at that kn/ks with a nu target); K_B and K_U at that kn/ks (times the kn/ks factors); then
 // (sigma_cn, rho) together when K_B depends on rho and a sigma_u target sets it; else sigma_cn
 // from the Brazilian relation at the rho it runs at, then rho from K_U. Throws InputError on
 // the target the tables do not reach.
@@ -827,12 +980,14 @@ TablesSolution solve_tables(const TablesModel& m, const std::vector<double>& wan
   TablesSolution s;
   auto& p = s.point;
   p.kratio = m.has(m.gn) ? solve_poisson(m.nu_cell, wanted[m.gn], m.nu_file, file) : m.base_kratio;
+  check_kratio_factor(m, p.kratio, wanted);
   p.emod_GPa = m.has(m.ge) ? wanted[m.ge] / m.modulus_factor(p.kratio) : m.base_emod_GPa;
   const double sigma_t = m.has(m.gt) ? wanted[m.gt] : 0;
   const double sigma_u = m.has(m.gu) ? wanted[m.gu] : 0;
+  const CellCoefficient kb = m.kb_at(p.kratio), ku = m.ku_at(p.kratio);
   if (m.both_strengths && m.with_kb_tau) {
-    const CoupledLookup c = solve_coupled(m.kb_cell, m.factor, m.ku_cell, m.disc.r_ratio, sigma_t,
-                                          sigma_u, p.emod_GPa, file);
+    const CoupledLookup c =
+        solve_coupled(kb, m.factor, ku, m.disc.r_ratio, sigma_t, sigma_u, p.emod_GPa, file);
     s.brazilian = c.brazilian;
     s.uniaxial = c.uniaxial;
     s.shear_factor = c.factor;
@@ -840,16 +995,14 @@ TablesSolution solve_tables(const TablesModel& m, const std::vector<double>& wan
   } else if (m.has(m.gt)) {
     // rho is the base materials' (sigma_t alone) or not known to K_B (no kb_tau: F = 1).
     if (m.with_kb_tau) s.shear_factor = m.factor.at(m.base_rho);
-    s.brazilian =
-        solve_brazilian(m.kb_cell, m.disc.r_ratio, sigma_t, p.emod_GPa, file, s.shear_factor);
-    if (m.both_strengths)
-      s.uniaxial = solve_uniaxial(m.ku_cell, s.brazilian.sigma_cn_MPa, sigma_u, file);
+    s.brazilian = solve_brazilian(kb, m.disc.r_ratio, sigma_t, p.emod_GPa, file, s.shear_factor);
+    if (m.both_strengths) s.uniaxial = solve_uniaxial(ku, s.brazilian.sigma_cn_MPa, sigma_u, file);
   }
   if (m.has(m.gt))
     p.sigma_cn_MPa = s.brazilian.sigma_cn_MPa;
   else if (m.has(m.gu))  // no sigma_t: sigma_cn (with tau_cs, one group) solves sigma_u = K_U
                          // sigma_cn
-    p.sigma_cn_MPa = sigma_u / m.ku_cell.at(m.base_rho);
+    p.sigma_cn_MPa = sigma_u / ku.at(m.base_rho);
   else
     p.sigma_cn_MPa = m.base_sigma_cn_MPa;
   p.tau_cs_MPa = (m.both_strengths ? s.uniaxial.shear_to_normal : m.base_rho) * p.sigma_cn_MPa;
@@ -857,7 +1010,8 @@ TablesSolution solve_tables(const TablesModel& m, const std::vector<double>& wan
 }
 
 // What the tables predict at a point, per group: E = K_E E*, sigma_t = sigma_cn K_B(E* /
-// sigma_cn) F(rho) / (1 + R_max / R_min), sigma_u = sigma_cn K_U(rho), rho = tau_cs / sigma_cn,
+// sigma_cn) F(rho) G_B / (1 + R_max / R_min), sigma_u = sigma_cn K_U(rho) G_U, rho = tau_cs /
+// sigma_cn, G the kn/ks factors at the point's kn/ks (1 without a nu target),
 // nu = nu(kn/ks) (and K_E at that kn/ks with a nu target).
 std::vector<double> predict_tables(const TablesModel& m, const ContactPoint& p) {
   std::vector<double> out(m.groups.size(), std::nan(""));
@@ -865,9 +1019,9 @@ std::vector<double> predict_tables(const TablesModel& m, const ContactPoint& p) 
   if (m.has(m.ge)) out[m.ge] = m.modulus_factor(p.kratio) * p.emod_GPa;
   if (m.has(m.gn)) out[m.gn] = m.nu_cell.at(p.kratio);
   if (m.has(m.gt))
-    out[m.gt] = p.sigma_cn_MPa * m.kb_cell.at(p.emod_GPa * 1e3 / p.sigma_cn_MPa) *
+    out[m.gt] = p.sigma_cn_MPa * m.kb_at(p.kratio).at(p.emod_GPa * 1e3 / p.sigma_cn_MPa) *
                 (m.with_kb_tau ? m.factor.at(rho) : 1.0) / (1 + m.disc.r_ratio);
-  if (m.has(m.gu)) out[m.gu] = p.sigma_cn_MPa * m.ku_cell.at(rho);
+  if (m.has(m.gu)) out[m.gu] = p.sigma_cn_MPa * m.ku_at(p.kratio).at(rho);
   return out;
 }
 
@@ -1023,15 +1177,21 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
                      "and the Mohr-Coulomb table holds phi and K_U at one tau_cs / sigma_cn: drop "
                      "sigma_t, or phi");
   // A nu target sets kn/ks, and the strength tables (K_B, K_U, kb_tau, Mohr-Coulomb) were each
-  // made at one kn/ks (2.5): how K_B and K_U move with kn/ks is not measured, so a nu target goes
-  // with E alone.
-  if (m.has(m.gn) && (m.has(m.gt) || m.has(m.gu) || with_phi))
+  // made at one kn/ks (2.5): beside sigma_t or sigma_u they are read times the kn/ks factors
+  // (tables.kratio); how phi moves with kn/ks is not measured.
+  const bool with_kratio = m.has(m.gn) && (m.has(m.gt) || m.has(m.gu));
+  if (m.has(m.gn) && with_phi)
     throw InputError(file, "targets.nu",
-                     "a nu target sets kn/ks from the Poisson table, and the strength tables (K_B, "
-                     "K_U, Mohr-Coulomb) were made at one kn/ks: how they move with kn/ks is not "
-                     "measured, so the tables strategy calibrates nu with E only; calibrate the "
-                     "strengths at the strength tables' kn/ks, or use strategy \"fast\" "
+                     "a nu target sets kn/ks from the Poisson table, and the Mohr-Coulomb table "
+                     "was made at one kn/ks: how phi moves with kn/ks is not measured; calibrate "
+                     "phi at the table's kn/ks, or use strategy \"fast\" "
                      "(docs/lookup_tables.md \"Poisson's ratio\")");
+  if (with_kratio)
+    require_table(input.tables.kratio_file, file, "kratio",
+                  "nu is a target beside a strength, and the strength tables were made at one "
+                  "kn/ks: the tables strategy reads how K_B and K_U move with kn/ks from the "
+                  "kn/ks factor table",
+                  "tables/kratio_factors.csv");
   m.with_kb_tau = m.has(m.gt) && !input.tables.kb_tau_file.empty();
   const bool shear_ratio_free = m.both_strengths || m.with_kb_tau;
   m.base_emod_GPa = mortar.quantity(kModulusKey, Dimension::Stress, Range::positive()) / units::GPa;
@@ -1104,7 +1264,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
                   "sigma_t is a target, and the tables strategy reads K_B from the table",
                   "tables/brazilian_kb_x_table.csv");
     kb = read_lookup_table(input.tables.kb_file, kBrazilianTable, file, "tables.kb");
-    check_conditions(input, *kb, "tables.kb", shear_ratio_free);
+    check_conditions(input, *kb, "tables.kb", shear_ratio_free, false, m.has(m.gn));
     m.disc = read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
     check_size(*kb, "D", {{"diameter_mm", m.disc.diameter_mm}}, file,
                "specimen.brazilian_generator");
@@ -1113,7 +1273,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     if (m.with_kb_tau) {
       kb_tau =
           read_lookup_table(input.tables.kb_tau_file, kBrazilianShearTable, file, "tables.kb_tau");
-      check_conditions(input, *kb_tau, "tables.kb_tau", true);
+      check_conditions(input, *kb_tau, "tables.kb_tau", true, false, m.has(m.gn));
       check_size(*kb_tau, "D", {{"diameter_mm", m.disc.diameter_mm}}, file,
                  "specimen.brazilian_generator");
       check_loading(*kb_tau, *input.test(TestKind::Tension), file);
@@ -1156,12 +1316,39 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
                   "from the table",
                   "tables/uniaxial_ku_table.csv");
     ku = read_lookup_table(input.tables.ku_file, kUniaxialStrengthTable, file, "tables.ku");
-    check_conditions(input, *ku, "tables.ku");
+    check_conditions(input, *ku, "tables.ku", false, false, m.has(m.gn));
     m.rectangle = rectangle_for(input, *ku);
     m.ku_cell = interpolate_cell(*ku, m.rectangle, file, "specimen.generator");
     if (!m.both_strengths)
       check_within_levels(m.base_rho, m.ku_cell, *ku, file, "materials.mortar." + kShearKey,
                           "tau_cs / sigma_cn of the base materials");
+  }
+
+  // The kn/ks factors on the disc's and the rectangle's cells, for the strengths that are targets.
+  std::optional<StiffnessRatioTables> kratio;
+  if (with_kratio) {
+    kratio = read_stiffness_ratio_tables(input.tables.kratio_file, file, "tables.kratio");
+    m.kratio_factor.file = kratio->file.string();
+    const auto refuse = [&](const std::string& why) {
+      throw InputError(file, "tables.kratio", m.kratio_factor.file + ": " + why);
+    };
+    for (const std::optional<LookupTable>* t : {&kb, &kb_tau, &ku})
+      if (*t && !same((*t)->condition("kratio"), kratio->reference_kratio))
+        refuse("its factors are against kn/ks " + shortest_number(kratio->reference_kratio) +
+               ", and the " + (*t)->coefficient() + " table (" + (*t)->file.string() +
+               ") was made at " + shortest_number((*t)->condition("kratio")));
+    if (m.has(m.gt)) {
+      if (!kratio->brazilian) refuse("no brazilian rows, and sigma_t is a target beside nu");
+      m.kratio_factor.brazilian =
+          interpolate_cell(*kratio->brazilian, m.disc, file, "specimen.brazilian_generator");
+    }
+    if (m.has(m.gu)) {
+      if (kratio->uniaxial.empty()) refuse("no uniaxial rows, and sigma_u is a target beside nu");
+      m.kratio_factor.shear_ratios = kratio->shear_ratios;
+      for (const auto& t : kratio->uniaxial)
+        m.kratio_factor.uniaxial.push_back(
+            interpolate_cell(t, m.rectangle, file, "specimen.generator"));
+    }
   }
 
   // The lookup: the tables solved for the targets themselves.
@@ -1184,6 +1371,25 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     }
   }
 
+  if (kratio) {
+    const StiffnessRatioFactor& g = m.kratio_factor;
+    const double kr = s.point.kratio;
+    md << "- kn/ks " << four(kr) << " (set by nu): the strength tables, made at kn/ks "
+       << four(kratio->reference_kratio) << ", read times G = K(kn/ks) / K("
+       << four(kratio->reference_kratio) << ") of `" << g.file << "`";
+    if (m.has(m.gt))
+      md << "; G_B = " << four(g.brazilian_at(kr)) << " on the disc (" << g.brazilian.cells
+         << ", measured at E* / sigma_cn = "
+         << four(kratio->brazilian->condition("emod_per_sigma_cn")) << ")";
+    if (m.has(m.gu)) {
+      const double rho = s.point.tau_cs_MPa / s.point.sigma_cn_MPa;
+      md << "; G_U = " << four(g.uniaxial_at(rho, kr)) << " on the rectangle at tau_cs / sigma_cn "
+         << four(rho) << " (" << g.uniaxial.front().cells << "; measured at tau_cs / sigma_cn";
+      for (const double r : g.shear_ratios) md << " " << four(r);
+      md << ", linear in ln(tau_cs / sigma_cn) between, the nearest outside)";
+    }
+    md << "\n";
+  }
   if (m.has(m.gt)) {
     md << "- sigma_t: Brazilian packing R_max/R_min " << four(m.disc.r_ratio) << ", R_min "
        << four(m.disc.r_min_mm) << " mm, D " << four(m.disc.diameter_mm) << " mm, "

@@ -20,12 +20,18 @@
 //   K_B(E* / sigma_cn, rho) = K_B(E* / sigma_cn, rho_ref) F(rho),  F = K_B^tau(rho) /
 //   K_B^tau(rho_ref)
 // (rho_ref the K_B table's tau_cs / sigma_cn, F measured at one E* / sigma_cn: separable), and
-// the two strength relations are solved together for (sigma_cn, rho). A packing, or a target,
+// the two strength relations are solved together for (sigma_cn, rho). With a nu target beside a
+// strength target, kn/ks is nu's, and the strength tables (made at one kn/ks, the reference) are
+// read times the kn/ks factors:
+//   K_B -> K_B G_B(kn/ks),  K_U(rho) -> K_U(rho) G_U(rho, kn/ks)   (`kratio` table)
+// measured on the same specimens at other kn/ks (separable: G_B does not depend on E* / sigma_cn
+// nor rho, assumed). A packing, or a target,
 // outside what the tables hold is refused (InputError, exit 2): there the coefficients were not
 // measured.
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -204,6 +210,45 @@ double solve_friction(const CellCoefficient& phi, const CellCoefficient& phi_se,
 // rising segments reach) when none crosses it: no extrapolation.
 double solve_poisson(const CellCoefficient& nu, double nu_target, const std::string& table_file,
                      const std::string& calibration_file);
+
+// The kn/ks factors (docs/lookup_tables.md "K_B and K_U against kn/ks"), read for a nu target
+// beside a strength target: per test and packing cell, G = K(kn/ks) / K(reference kn/ks), each
+// run against the same specimen at the strength tables' kn/ks (the reference). A CSV with the
+// columns test (brazilian or uniaxial), r_ratio, r_min_mm, shear_to_normal, emod_per_sigma_cn,
+// kratio, G and reference_kratio (tables/kratio_factors.csv, made by
+// tables/fit_kratio_factors.py); the Brazilian rows at one tau_cs / sigma_cn, the uniaxial rows
+// at one or more. Each cell gets the row G = 1 at the reference. Throws InputError naming the
+// calibration file, `key`, the table file and line: file missing, a column missing, a test that
+// is neither, a value that is not a positive finite number, references or conditions that differ
+// between rows, a row given twice, no rows.
+struct StiffnessRatioTables {
+  std::filesystem::path file;
+  double reference_kratio = 0;
+  std::optional<LookupTable> brazilian;  // G_B against kn/ks; none without Brazilian rows
+  std::vector<double> shear_ratios;      // the uniaxial rows' tau_cs / sigma_cn, ascending
+  std::vector<LookupTable> uniaxial;     // G_U against kn/ks at each
+};
+extern const TableLayout kStiffnessRatioFactorTable;
+StiffnessRatioTables read_stiffness_ratio_tables(const std::filesystem::path& path,
+                                                 const std::string& calibration_file,
+                                                 const std::string& key);
+
+// The kn/ks factors at the specimens' packings: G_B(kn/ks) on the disc's cell and G_U(rho,
+// kn/ks) on the rectangle's, each piecewise linear in ln(kn/ks) between the levels (the
+// reference at G = 1), known within the levels only; G_U linear in ln(rho) between the measured
+// tau_cs / sigma_cn and the nearest of them outside (they stand for the two failure modes,
+// shear-driven at 0.5 and tension-driven at 2, each flat in rho within its regime: assumed).
+// Without the table (`brazilian.levels` and `uniaxial` empty) every G is 1.
+struct StiffnessRatioFactor {
+  CellCoefficient brazilian;
+  std::vector<double> shear_ratios;
+  std::vector<CellCoefficient> uniaxial;
+  std::string file;
+  double brazilian_at(double kratio) const;
+  double uniaxial_at(double rho, double kratio) const;
+  // The kn/ks over which every factor held here is known: the levels every cell shares.
+  std::pair<double, double> kratio_range() const;
+};
 
 // The input with a phi target's mu (solve_friction on the Mohr-Coulomb table, [tables] mc, at the
 // uniaxial specimen's packing) set in the base materials of every test (materials.mortar.friction);

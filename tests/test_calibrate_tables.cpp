@@ -111,6 +111,26 @@ const std::string kNu =
     "4,0.2,2,0.27,0.4,0.5,3000,20,40\n"
     "4,0.2,4,0.37,0.3,0.5,3000,20,40\n";
 
+// The kn/ks factors against the strength tables' kn/ks 2.5: on the disc's two cells (ratio 3 =
+// their mean: G_B 0.9 at kn/ks 1.25 and 1.2 at 5) and on the rectangle's cell (ratio 2) at tau_cs
+// / sigma_cn 0.5 (G_U 0.9, 1.2) and 2 (1.1, 0.9): the shear-driven strength rises with kn/ks, the
+// tension-driven one falls, as measured (docs/lookup_tables.md).
+const std::string kKratio =
+    "# test factors\n"
+    "test,r_ratio,r_min_mm,shear_to_normal,emod_per_sigma_cn,kratio,G,reference_kratio\n"
+    "brazilian,2,0.2,2,600,1.25,0.8,2.5\n"
+    "brazilian,2,0.2,2,600,5,1.1,2.5\n"
+    "brazilian,4,0.2,2,600,1.25,1.0,2.5\n"
+    "brazilian,4,0.2,2,600,5,1.3,2.5\n"
+    "uniaxial,2,0.2,0.5,600,1.25,0.9,2.5\n"
+    "uniaxial,2,0.2,0.5,600,5,1.2,2.5\n"
+    "uniaxial,2,0.2,2,600,1.25,1.1,2.5\n"
+    "uniaxial,2,0.2,2,600,5,0.9,2.5\n"
+    "uniaxial,4,0.2,0.5,600,1.25,0.9,2.5\n"
+    "uniaxial,4,0.2,0.5,600,5,1.2,2.5\n"
+    "uniaxial,4,0.2,2,600,1.25,1.1,2.5\n"
+    "uniaxial,4,0.2,2,600,5,0.9,2.5\n";
+
 const std::string kMaterials =
     "[materials.mortar]\nlaw = \"contact_bond\"\nemod_GPa = 30.0\nkratio = 2.5\nfriction = 0.5\n"
     "cb_tensile_strength_MPa = 40.0\ncb_shear_strength_MPa = 80.0\n";
@@ -142,7 +162,7 @@ const std::string kBrazilianTest = "[test]\ntype = \"brazilian\"\nplatens = \"cu
 
 struct Files {
   std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, kb_tau = kKBTau, mc = kMC, nu = kNu,
-              materials = kMaterials, disc = kDisc, rectangle = kRectangle,
+              kratio = kKratio, materials = kMaterials, disc = kDisc, rectangle = kRectangle,
               parameters = kParameters, brazilian = kBrazilianTest;
 };
 
@@ -161,6 +181,7 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
   write(dir / "kb_tau.csv", f.kb_tau);
   write(dir / "mc.csv", f.mc);
   write(dir / "nu.csv", f.nu);
+  write(dir / "kratio.csv", f.kratio);
   write(dir / "cal.toml", f.head +
                               "[tests]\nuniaxial = \"ucs.toml\"\nbrazilian = \"brazilian.toml\"\n"
                               "[specimen]\ngenerator = \"rectangle.toml\"\n"
@@ -1215,12 +1236,194 @@ TEST(CalibrateTablesInput, RefusesWhatThePoissonTableDoesNotHold) {
            "column 'nu'"},
       },
       nu);
-  // With a strength target (its keys free too): the strength tables hold one kn/ks.
+  // With a strength target (its keys free too): the strength tables hold one kn/ks, and how
+  // they move with it is the kn/ks factor table's to say.
   Files t = nu;
   t.head = replace(kHead, "E_GPa = 18\n", "E_GPa = 18\nnu = 0.2\n") + "nu = \"nu.csv\"\n";
   t.parameters =
       kParameters + "[[parameters]]\nkey = \"materials.mortar.kratio\"\nbounds = [0.5, 8]\n";
-  expect_input_error(make_calibration("nu_sigma_t", t), "targets.nu", "made at one kn/ks");
+  expect_input_error(make_calibration("nu_sigma_t", t), "tables.kratio", "missing");
+}
+
+// E, nu, sigma_t and sigma_u: nu sets kn/ks, and K_B and K_U are read times the kn/ks factors.
+const std::string kHeadFour =
+    replace(replace(kHeadUcs, "E_GPa = 18\n", "E_GPa = 18\nnu = 0.2\n"), "ke = \"ke.csv\"\n",
+            "nu = \"nu.csv\"\nkratio = \"kratio.csv\"\n");
+
+Files four_target_files() {
+  Files f;
+  f.head = kHeadFour;
+  f.parameters =
+      kParameters + "[[parameters]]\nkey = \"materials.mortar.kratio\"\nbounds = [0.5, 8]\n";
+  return f;
+}
+
+// The DEM replaced by the four relations, off by constant factors: E = ke K_E(kn/ks) E*, nu = kn
+// nu(kn/ks) (the Poisson table's ratio-2 cell), sigma_t = kb sigma_cn K_B(E* / sigma_cn) G_B /
+// 4 (the disc's cell, ratio 3), sigma_u = ku sigma_cn K_U(rho, kn/ks) (ratio 2), K_U at kn/ks
+// the table's K_U at each of its levels times G_U there, piecewise linear in ln rho between the
+// levels as the table. G_B and G_U from the test's factor table, written out here: piecewise
+// linear in ln(kn/ks) through G = 1 at 2.5, G_U linear in ln rho from 0.5 to 2 and flat outside.
+class FourTargetModel : public cdem::test::PointModel {
+ public:
+  FourTargetModel(const CalibrationInput& in, double ke, double kn, double kb, double ku)
+      : nu_(interpolate_cell(read_lookup_table(in.tables.nu_file, kPoissonTable, "c", "k"),
+                             {2, 0.2}, "c", "k")),
+        ke_cell_(
+            interpolate_cell(read_lookup_table(in.tables.nu_file, kModulusStiffnessTable, "c", "k"),
+                             {2, 0.2}, "c", "k")),
+        kb_cell_(interpolate_cell(read_lookup_table(in.tables.kb_file, kBrazilianTable, "c", "k"),
+                                  {3, 0.2, 30}, "c", "k")),
+        ku_cell_(
+            interpolate_cell(read_lookup_table(in.tables.ku_file, kUniaxialStrengthTable, "c", "k"),
+                             {2, 0.2}, "c", "k")),
+        ke_(ke),
+        kn_(kn),
+        kb_(kb),
+        ku_(ku) {}
+  // G through (1.25, lo), (2.5, 1), (5, hi), linear in ln(kn/ks).
+  static double g(double kratio, double lo, double hi) {
+    const double t = std::log(kratio / 2.5) / std::log(2.0);
+    return t < 0 ? 1 + t * (1 - lo) : 1 + t * (hi - 1);
+  }
+  static double g_b(double kratio) { return g(kratio, 0.9, 1.2); }  // the mean of ratios 2, 4
+  static double g_u(double rho, double kratio) {
+    const double w = std::clamp(std::log(rho / 0.5) / std::log(4.0), 0.0, 1.0);
+    return (1 - w) * g(kratio, 0.9, 1.2) + w * g(kratio, 1.1, 0.9);
+  }
+
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    const double emod = p.values[0], sigma = p.values[1], kratio = p.values[3];
+    const double x = std::clamp(emod * 1000 / sigma, 300.0, 3000.0);
+    const double rho = std::clamp(p.values[2] / sigma, 0.25, 4.0);
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 2;
+    o.responses[static_cast<int>(CalibrationTarget::E)] = ke_ * ke_cell_.at(kratio) * emod;
+    o.responses[static_cast<int>(CalibrationTarget::Nu)] = kn_ * nu_.at(kratio);
+    o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
+        kb_ * sigma * kb_cell_.at(x) * g_b(kratio) / 4;
+    CellCoefficient ku = ku_cell_;
+    for (std::size_t i = 0; i < ku.levels.size(); ++i)
+      ku.coefficients[i] *= g_u(ku.levels[i], kratio);
+    o.responses[static_cast<int>(CalibrationTarget::SigmaU)] = ku_ * sigma * ku.at(rho);
+    return o;
+  }
+
+ private:
+  CellCoefficient nu_, ke_cell_, kb_cell_, ku_cell_;
+  double ke_, kn_, kb_, ku_;
+};
+
+TEST(CalibrateTables, FourTargetsInOneRunWhenTheTablesAreExact) {
+  // nu 0.2 sets kn/ks = 2^0.5 (the Poisson table's ratio-2 cell), E* = 18 / 0.55 GPa; there G_B
+  // = 1 - 0.1 ln(2.5 / 2^0.5) / ln 2 = 0.9178, and sigma_t and sigma_u are solved on K_B G_B and
+  // K_U G_U: one run lands every target.
+  const auto in = read_calibration_input(make_calibration("four_exact", four_target_files()));
+  FourTargetModel model(in, 1, 1, 1, 1);
+  const auto r = calibrate(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  for (std::size_t i = 0; i < in.targets.size(); ++i)
+    EXPECT_NEAR(r.iterations[0].errors[i], 0, 1e-9) << target_name(in.targets[i].target);
+  EXPECT_NEAR(r.calibrated[3], std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(r.calibrated[0], 18 / 0.55, 1e-9);
+  EXPECT_NEAR(FourTargetModel::g_b(std::sqrt(2.0)), 0.9178, 1e-4);
+  EXPECT_NE(r.lookup.find("G_B = 0.9178 on the disc"), std::string::npos) << r.lookup;
+  EXPECT_NE(r.lookup.find("G_U = "), std::string::npos) << r.lookup;
+
+  // The same targets read at the strength tables' own kn/ks (every G = 1) miss sigma_t by G_B -
+  // 1 at that kn/ks: what the factors are for.
+  Files f = four_target_files();
+  f.kratio =
+      "test,r_ratio,r_min_mm,shear_to_normal,emod_per_sigma_cn,kratio,G,reference_kratio\n"
+      "brazilian,2,0.2,2,600,1.25,1,2.5\nbrazilian,4,0.2,2,600,1.25,1,2.5\n"
+      "brazilian,2,0.2,2,600,5,1,2.5\nbrazilian,4,0.2,2,600,5,1,2.5\n"
+      "uniaxial,2,0.2,1,600,1.25,1,2.5\nuniaxial,2,0.2,1,600,5,1,2.5\n";
+  const auto in_flat = read_calibration_input(make_calibration("four_flat", f));
+  FourTargetModel flat(in_flat, 1, 1, 1, 1);
+  const auto rf = calibrate(in_flat, flat);
+  ASSERT_GE(rf.iterations.size(), 1u);
+  EXPECT_NEAR(rf.iterations[0].errors[index_of(in_flat, CalibrationTarget::SigmaT)],
+              FourTargetModel::g_b(std::sqrt(2.0)) - 1, 1e-9);
+}
+
+TEST(CalibrateTables, FourTargetsInOneCorrectionWhenTheTablesAreOff) {
+  // nu 10 % below the table's, K_E 5 % below, K_B 12 % below, K_U 10 % below: the correction
+  // moves kn/ks with nu (from 2^0.5 to 2^0.722), and with it G_B and G_U, and lands every target.
+  const auto in = read_calibration_input(make_calibration("four_off", four_target_files()));
+  FourTargetModel model(in, 0.95, 0.9, 0.88, 0.9);
+  const auto r = calibrate(in, model);
+  ASSERT_EQ(r.iterations.size(), 2u) << r.stop_reason << "\n" << r.lookup;
+  EXPECT_NEAR(r.iterations[0].errors[index_of(in, CalibrationTarget::Nu)], -0.1, 1e-9);
+  for (std::size_t i = 0; i < in.targets.size(); ++i)
+    EXPECT_NEAR(r.iterations[1].errors[i], 0, 1e-9) << target_name(in.targets[i].target);
+  EXPECT_NEAR(r.calibrated[3], std::pow(2.0, (0.2 / 0.9 - 0.15) / 0.1), 1e-9);
+  EXPECT_TRUE(r.success()) << r.stop_reason;
+}
+
+TEST(CalibrateTablesInput, RefusesWhatTheKnKsFactorsDoNotHold) {
+  expect_refusals(
+      {
+          {"kr_missing", &Files::head, "kratio = \"kratio.csv\"\n", "", "tables.kratio", "missing"},
+          // nu 0.16 needs kn/ks 2^0.1 = 1.07, below the factors' 1.25.
+          {"kr_low", &Files::head, "nu = 0.2", "nu = 0.16", "targets.nu",
+           "outside the kn/ks factors' levels [1.25, 5]"},
+          {"kr_corrupt", &Files::kratio, "brazilian,2,0.2,2,600,5,1.1", "brazilian,2,0.2,2,600,5,",
+           "tables.kratio", "column 'G'"},
+          {"kr_test", &Files::kratio, "brazilian,4,0.2,2,600,5", "tension,4,0.2,2,600,5",
+           "tables.kratio", "not brazilian or uniaxial"},
+          {"kr_at_reference", &Files::kratio, "brazilian,4,0.2,2,600,5",
+           "brazilian,4,0.2,2,600,2.5", "tables.kratio", "G is 1 by definition"},
+          {"kr_twice", &Files::kratio, "brazilian,4,0.2,2,600,5,1.3",
+           "brazilian,4,0.2,2,600,1.25,1.3", "tables.kratio", "appears twice"},
+          {"kr_column", &Files::kratio, "reference_kratio", "ref", "tables.kratio",
+           "no column 'reference_kratio'"},
+          {"kr_file", &Files::head, "kratio = \"kratio.csv\"", "kratio = \"none.csv\"",
+           "tables.kratio", "cannot read"},
+      },
+      four_target_files());
+  // The lines of a table without those that start with `head`.
+  const auto without = [](const std::string& text, const std::string& head) {
+    std::istringstream in(text);
+    std::string out;
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind(head, 0) != 0) out += line + "\n";
+    return out;
+  };
+  Files f = four_target_files();
+  f.kratio = without(kKratio, "brazilian,");
+  expect_input_error(make_calibration("kr_no_brazilian", f), "tables.kratio", "no brazilian rows");
+  // Factors against kn/ks 2 (every row), and strength tables made at 2.5.
+  f = four_target_files();
+  f.kratio.clear();
+  std::istringstream rows(kKratio);
+  for (std::string line; std::getline(rows, line);)
+    f.kratio += (line.size() > 4 && line.substr(line.size() - 4) == ",2.5"
+                     ? line.substr(0, line.size() - 4) + ",2"
+                     : line) +
+                "\n";
+  expect_input_error(make_calibration("kr_reference", f), "tables.kratio", "made at 2.5");
+  // A disc between the K_B table's cells 2 and 6, outside the factors' Brazilian cells (2 to 4).
+  f = four_target_files();
+  f.disc = replace(f.disc, "r_ratio = 3.0", "r_ratio = 5.0");
+  std::string kb_wide;
+  for (const char* ratio : {"2,", "6,"}) {
+    std::istringstream in(kKB);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("2,", 0) == 0) kb_wide += ratio + line.substr(2) + "\n";
+  }
+  f.kb = kKB.substr(0, kKB.find("2,0.2")) + kb_wide;
+  expect_input_error(make_calibration("kr_cell", f), "specimen.brazilian_generator",
+                     "outside the G table's cells");
+  // phi beside nu: the Mohr-Coulomb table holds one kn/ks, and no factor for it is measured.
+  Files phi;
+  phi.head = replace(replace(kHeadPoisson, "nu = 0.2\n", "nu = 0.2\nphi_deg = 20\n"),
+                     "nu = \"nu.csv\"\n", "nu = \"nu.csv\"\nmc = \"mc.csv\"\n");
+  phi.parameters = kElasticParameters;
+  expect_input_error(make_calibration("kr_phi", phi), "targets.nu",
+                     "how phi moves with kn/ks is not measured");
 }
 
 }  // namespace
