@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Fit the Mohr-Coulomb table: friction angle and cohesion against mu and tau_cs / sigma_cn (issue 17).
 
-Input: the output directory of tables/biaxial_mc.toml: contact-bonded mortar-only 20 x 40 mm
+Input: the output directory of tables/biaxial_mc.toml (or several campaigns of the same base:
+biaxial_mc_cells.toml, biaxial_mc_cells_mu.toml; a series given twice is refused): contact-bonded mortar-only 20 x 40 mm
 rectangles (the K_U table's), one biaxial series per run (sigma_3 at the fractions of sigma_cn
 the base names), per packing cell (R_max / R_min, R_min), mu and rho = tau_cs / sigma_cn.
 
@@ -59,19 +60,33 @@ def fail(msg):
     sys.exit(f"fit_biaxial_mc: {msg}")
 
 
-def read_series(directory):
-    """The base's conditions and confinements, and the series grouped by (ratio, R_min, mu, rho)."""
-    base, rows = read_campaign_files(directory, fail)
-    m, spec = base["materials"]["mortar"], base["specimen"]
-    cond = dict(emod_GPa=float(m["emod_GPa"]), kratio=float(m["kratio"]),
-                width_mm=float(spec["width_mm"]), height_mm=float(spec["height_mm"]))
-    confinements = [float(s) for s in base["test"]["confining_stresses_MPa"]]
+def read_series(directories):
+    """The bases' conditions and confinements (one for every directory), and the series of the
+    directories in the order given, grouped by (ratio, R_min, mu, rho)."""
+    cond = confinements = None
     points = defaultdict(list)
-    for r in rows:
-        ratio = float(r[RATIO])
-        r_min = round(2 * float(r[R_MEAN]) / (1 + ratio), 9)
-        rho = round(float(r[TAU_CS]) / float(r[SIGMA_CN]), 9)
-        points[(ratio, r_min, float(r[FRICTION]), rho)].append(r)
+    seen = set()
+    for directory in directories:
+        base, rows = read_campaign_files(directory, fail)
+        m, spec = base["materials"]["mortar"], base["specimen"]
+        c = dict(emod_GPa=float(m["emod_GPa"]), kratio=float(m["kratio"]),
+                 width_mm=float(spec["width_mm"]), height_mm=float(spec["height_mm"]))
+        conf = [float(s) for s in base["test"]["confining_stresses_MPa"]]
+        if cond is not None and (c, conf) != (cond, confinements):
+            fail(f"{directory}: its base ({c}, confinements {conf} MPa) is not the first "
+                 f"directory's ({cond}, {confinements} MPa): one table is made at one condition")
+        cond, confinements = c, conf
+        for r in rows:
+            ratio = float(r[RATIO])
+            r_min = round(2 * float(r[R_MEAN]) / (1 + ratio), 9)
+            rho = round(float(r[TAU_CS]) / float(r[SIGMA_CN]), 9)
+            key = (ratio, r_min, float(r[FRICTION]), rho)
+            if (key, r["seed"]) in seen:
+                fail(f"{directory}: run {r['run']} repeats a series of an earlier run (R_max / R_min "
+                     f"{ratio:g}, R_min {r_min:g} mm, mu {key[2]:g}, tau_cs / sigma_cn {rho:g}, "
+                     f"seed {r['seed']})")
+            seen.add((key, r["seed"]))
+            points[key].append(r)
     return cond, confinements, points
 
 
@@ -109,8 +124,8 @@ def share(runs, k, key):
     return round(float(np.mean(out)), 4) if out else float("nan")
 
 
-def fit(directory):
-    cond, conf, points = read_series(directory)
+def fit(directories):
+    cond, conf, points = read_series(directories)
     n = len(conf)
     table, ok = [], True
     for (ratio, r_min, mu, rho), runs in sorted(points.items()):
@@ -175,24 +190,28 @@ def plot(table, path):
 
     rhos = sorted({r["shear_to_normal"] for r in table})
     fig, axes = plt.subplots(2, len(rhos), figsize=(5 * len(rhos), 7.5), squeeze=False)
+    r_mins = {r["r_min_mm"] for r in table}
     for j, rho in enumerate(rhos):
-        for ratio in sorted({r["r_ratio"] for r in table}):
-            pts = [r for r in table if r["r_ratio"] == ratio and r["shear_to_normal"] == rho
-                   and "phi_deg" in r]
+        # One line per packing cell at this rho (R_min named when the table holds several).
+        for ratio, r_min in sorted({(r["r_ratio"], r["r_min_mm"]) for r in table
+                                    if r["shear_to_normal"] == rho}):
+            pts = [r for r in table if (r["r_ratio"], r["r_min_mm"]) == (ratio, r_min)
+                   and r["shear_to_normal"] == rho and "phi_deg" in r]
             mu = [r["friction"] for r in pts]
+            label = f"R_max/R_min {ratio:g}" + (f", R_min {r_min:g}" if len(r_mins) > 1 else "")
             axes[0][j].errorbar(mu, [r["phi_deg"] for r in pts],
                                 yerr=[r["phi_seed_sd_deg"] for r in pts], marker="o", capsize=3,
-                                label=f"R_max/R_min {ratio:g}")
+                                label=label)
             axes[1][j].errorbar(mu, [r["c_per_sigma_cn"] for r in pts],
                                 yerr=[r["c_seed_sd_MPa"] / r["sigma_cn_MPa"] for r in pts],
-                                marker="o", capsize=3, label=f"R_max/R_min {ratio:g}")
+                                marker="o", capsize=3, label=label)
         axes[0][j].set_title(f"tau_cs / sigma_cn = {rho:g}")
         axes[0][j].set_ylabel("friction angle phi (deg)")
         axes[1][j].set_ylabel("cohesion c / sigma_cn")
         for a in (axes[0][j], axes[1][j]):
             a.set_xlabel("mu (contact friction after a bond breaks)")
             a.grid(alpha=0.3)
-            a.legend(fontsize=8)
+            a.legend(fontsize=7, ncol=2)
     fig.suptitle("Mohr-Coulomb envelope of the 20 x 40 mm rectangles, E*/sigma_cn 600 "
                  "(seed SD as error bars)")
     fig.tight_layout()
@@ -232,7 +251,9 @@ def markdown(table, ku, ku_mu, path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("directory", help="output directory of tables/biaxial_mc.toml")
+    ap.add_argument("directory", nargs="+",
+                    help="output directories of tables/biaxial_mc.toml (or biaxial_mc_cells*.toml: "
+                    "one base, their series together)")
     ap.add_argument("-o", "--out", required=True, help="the table (CSV)")
     ap.add_argument("--ku", help="the K_U table, to check the unconfined runs against")
     ap.add_argument("--plot", help="phi and c against mu per cell (PNG)")

@@ -47,6 +47,8 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
 - biaxial_mc_cells.toml (session 17): the biaxial series of biaxial_mc.toml at mu 0.5 and tau_cs /
   sigma_cn 0.5 on more cells: R_max / R_min 1, 2, 3, 6, 8 at R_min 0.2 mm and 3 at R_min 0.15
   and 0.25 mm, seeds 21-22: c and phi against the packing (fit_biaxial_mc.py).
+- biaxial_mc_cells_mu.toml (session 18): the same series at mu 0.25 and 1: phi against mu on
+  those cells (fit_biaxial_mc.py over both campaigns).
 - brazilian_scatter_r3.4.toml (session 13): the seed scatter of the sandstone's ratio-3.4 disc
   where its calibration runs, against tau_cs / sigma_cn (0.5, 1, 1.5, 2) and the disc's size
   (D 30 and 50 mm): at each rho the E* / sigma_cn that the tables (K_B x F at 3.4) give for
@@ -162,6 +164,10 @@ BIAXIAL_MC = dict(points=[(4, MC_FRICTIONS, MC_SHEAR), (2.7, MC_FRICTIONS, MC_SH
 # sets phi): the ratios at R_min 0.2 mm the Mohr-Coulomb table lacks, and R_min at ratio 3.
 MC_CELLS = dict(cells=[(1, 0.2), (2, 0.2), (3, 0.2), (6, 0.2), (8, 0.2), (3, 0.15), (3, 0.25)],
                 friction=0.5, shear=[0.5], level=600, seeds=[21, 22])
+# Session 18: phi against mu on the same cells: mu 0.25 and 1 (with biaxial_mc_cells' 0.5, the
+# Mohr-Coulomb table's three levels), the costly ratio-1 cell last.
+MC_CELLS_MU = dict(MC_CELLS, frictions=[0.25, 1.0],
+                   cells=MC_CELLS["cells"][1:] + MC_CELLS["cells"][:1])
 # Session 16: the Brazilian disc of the ratio-1.5 cell at mu 0.25 (the K_B table's seeds, so the
 # discs of the kb_tau and K_B runs at mu 0.5): does K_B move with mu where the ratio-1.5 UCS reach
 # has its bottom (rho 0.25-0.5), and on the plateau (rho 2)? (fit_kb_mu.py)
@@ -369,13 +375,18 @@ def main():
              "biaxial_mc_base.toml", mc_gather(confinements),
              [r + [MC_CELLS["friction"]] for ratio, rmin in MC_CELLS["cells"]
               for r in rows([ratio], [rmin], [MC_CELLS["level"]], MC_CELLS["shear"])],
-             MC_CELLS["seeds"])]
+             MC_CELLS["seeds"]),
+            ("biaxial_mc_cells_mu", "Biaxial series (Mohr-Coulomb c, phi) on more packing cells at "
+             "mu 0.25 and 1", "biaxial_mc_base.toml", mc_gather(confinements),
+             [r + [mu] for ratio, rmin in MC_CELLS_MU["cells"] for mu in MC_CELLS_MU["frictions"]
+              for r in rows([ratio], [rmin], [MC_CELLS_MU["level"]], MC_CELLS_MU["shear"])],
+             MC_CELLS_MU["seeds"])]
     for name, what, base, gather, r, seeds in campaigns:
         if not r:
             continue
         extra = ("specimen.diameter_mm" if name.startswith(("brazilian_scatter", "brazilian_arc"))
                  else "materials.mortar.kratio")
-        if name in ("biaxial_mc", "biaxial_mc_cells", "brazilian_kb_mu"):
+        if name.startswith("biaxial_mc") or name == "brazilian_kb_mu":
             keys = STRENGTH_KEYS + ["materials.mortar.friction"]
         elif name.startswith("uniaxial_scatter"):
             keys = STRENGTH_KEYS + ["specimen.width_mm", "specimen.height_mm"]
@@ -383,8 +394,8 @@ def main():
             keys = (STRENGTH_KEYS + [extra, "test.loading_arc_deg"])[:len(r[0])]
         text = write_campaign(os.path.normpath(os.path.join(a.base_dir, base)), name, seeds,
                               gather, keys, r, header(what, len(r), seeds, name),
-                              MC_TIMEOUT_S if name in ("biaxial_mc", "biaxial_mc_cells",
-                                                       "uniaxial_ku_cells") else 600)
+                              MC_TIMEOUT_S if name.startswith("biaxial_mc")
+                              or name == "uniaxial_ku_cells" else 600)
         write(os.path.join(out_dir, name + ".toml"), text)
     return 0
 
