@@ -1430,15 +1430,19 @@ TEST(CalibrateTablesInput, RefusesWhatTheKnKsFactorsDoNotHold) {
 
 namespace {
 
-// The shipped tables over every cell (docs/lookup_tables.md "Session 17") are read by the
-// strategy in their layouts: every row at one condition, no cell twice, R_max / R_min 1 to 8 at
-// three R_min, and a packing between two ratio cells interpolates.
+// The shipped tables over every cell (docs/lookup_tables.md "Session 17"; the Mohr-Coulomb
+// table's, "Session 18") are read by the strategy in their layouts: every row at one condition,
+// no cell twice, R_max / R_min 1 to 8 at three R_min, and a packing between two ratio cells
+// interpolates.
 TEST(TablesLookup, TheShippedCellTablesReadInTheirLayouts) {
   const std::filesystem::path dir = std::filesystem::path(CDEM_SOURCE_DIR) / "tables";
   const std::vector<std::pair<std::string, const TableLayout*>> tables{
       {"uniaxial_ku_cells_table.csv", &kUniaxialStrengthTable},
       {"uniaxial_nu_cells_table.csv", &kPoissonTable},
-      {"uniaxial_nu_cells_table.csv", &kModulusStiffnessTable}};
+      {"uniaxial_nu_cells_table.csv", &kModulusStiffnessTable},
+      {"biaxial_mc_cells_rho0.5_table.csv", &kFrictionAngleTable},
+      {"biaxial_mc_cells_rho0.5_table.csv", &kUnconfinedStrengthTable},
+      {"biaxial_mc_cells_rho0.5_table.csv", &kFrictionAngleErrorTable}};
   for (const auto& [name, layout] : tables) {
     const LookupTable t = read_lookup_table(dir / name, *layout, "cal.toml", "tables.x");
     std::set<double> ratios, r_mins;
