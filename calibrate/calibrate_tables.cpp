@@ -89,10 +89,16 @@ struct Bracket {
   double lo = 0, hi = 0, weight = 0;
 };
 
+// A packing within kSameCondition of a level is at that level (R_min = 2 R_mean / (1 + R_max /
+// R_min) of an input lands a rounding off the level it names, and a corner of weight 1e-16
+// would need a cell the table may not hold).
 Bracket bracket(const std::set<double>& levels, double x) {
   const auto above = levels.lower_bound(x);
+  if (above != levels.end() && same(*above, x)) return {*above, *above, 0};
+  if (above != levels.begin() && same(*std::prev(above), x))
+    return {*std::prev(above), *std::prev(above), 0};
   if (above == levels.end()) return {*levels.rbegin(), *levels.rbegin(), 0};
-  if (*above == x || above == levels.begin()) return {*above, *above, 0};
+  if (above == levels.begin()) return {*above, *above, 0};
   const double lo = *std::prev(above);
   return {lo, *above, (x - lo) / (*above - lo)};
 }

@@ -1458,6 +1458,14 @@ TEST(TablesLookup, TheShippedCellTablesReadInTheirLayouts) {
         << name << ": " << c.cells;
     EXPECT_NE(c.cells.find("R_max/R_min 6 at R_min 0.2 mm (weight 0.5)"), std::string::npos)
         << name << ": " << c.cells;
+    // R_min as a generator gives it, 2 R_mean / (1 + R_max / R_min) = 0.19999999999999998 mm
+    // for R_mean 0.3 mm at ratio 2: the level 0.2 mm alone (the Mohr-Coulomb table has no cell
+    // at ratio 2 and R_min 0.15 mm for a corner of weight 1e-16).
+    const double r_min = 2 * 0.3 / (1 + 2.0);
+    ASSERT_NE(r_min, 0.2);
+    EXPECT_EQ(interpolate_cell(t, {2, r_min}, "cal.toml", "k").cells,
+              "R_max/R_min 2 at R_min 0.2 mm (weight 1)")
+        << name;
   }
 }
 
