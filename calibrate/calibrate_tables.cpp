@@ -75,6 +75,52 @@ std::vector<std::string> split_csv(const std::string& line) {
   return out;
 }
 
+// A table file's data lines (lines starting with '#' and blank lines skipped), split at commas:
+// the header's columns, then the rows with their line numbers. `fail(where, why)` is called when
+// the file cannot be read.
+struct CsvFile {
+  std::map<std::string, std::size_t> column;
+  int header_line = 0;  // 0: no header (no data line at all)
+  std::vector<std::pair<int, std::vector<std::string>>> rows;
+  // The text of column `c` (a header column) in `row`; "" where the row is short.
+  std::string text(const std::vector<std::string>& row, const std::string& c) const {
+    const std::size_t i = column.at(c);
+    return i < row.size() ? row[i] : "";
+  }
+};
+
+template <class Fail>
+CsvFile read_csv(const std::filesystem::path& path, const std::string& what, const Fail& fail) {
+  std::ifstream in(path);
+  if (!in) fail("", "cannot read the " + what + " (" + std::string(std::strerror(errno)) + ")");
+  CsvFile out;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos)
+      continue;
+    auto cells = split_csv(line);
+    if (out.header_line > 0) {
+      out.rows.emplace_back(number, std::move(cells));
+      continue;
+    }
+    out.header_line = number;
+    for (std::size_t i = 0; i < cells.size(); ++i) out.column[cells[i]] = i;
+  }
+  return out;
+}
+
+// Each of `columns` in the header of a CSV read as a `what` ("K_B table"), or `fail`.
+template <class Fail>
+void require_columns(const CsvFile& csv, const std::vector<std::string>& columns,
+                     const std::string& what, const Fail& fail) {
+  if (csv.header_line == 0) fail("", "no rows: not a " + what);
+  for (const auto& c : columns)
+    if (!csv.column.count(c))
+      fail(", line " + std::to_string(csv.header_line),
+           "not a " + what + ": no column '" + c +
+               "' in the header (docs/lookup_tables.md lists the columns)");
+}
+
 // A table cell's text as a positive finite number; nothing when it is not one.
 std::optional<double> positive_number(const std::string& text) {
   char* end = nullptr;
@@ -174,8 +220,7 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
   const auto fail = [&](const std::string& where, const std::string& why) {
     throw InputError(calibration_file, key, path.string() + where + ": " + why);
   };
-  std::ifstream in(path);
-  if (!in) fail("", "cannot read the lookup table (" + std::string(std::strerror(errno)) + ")");
+  const CsvFile csv = read_csv(path, "lookup table", fail);
   LookupTable table;
   table.file = path;
   table.layout = layout;
@@ -183,34 +228,19 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
   std::vector<std::string> need{"r_ratio", "r_min_mm", coefficient};
   if (!layout.level.empty()) need.push_back(layout.level);
   need.insert(need.end(), layout.conditions.begin(), layout.conditions.end());
-  std::map<std::string, std::size_t> column;
-  std::string line;
-  int line_number = 0;
-  std::set<std::tuple<double, double, double>> seen;
+  require_columns(csv, need, coefficient + " table", fail);
   std::vector<std::string> held = layout.conditions;  // and the optional ones the header has
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos)
-      continue;
-    const auto cells = split_csv(line);
-    const std::string where = ", line " + std::to_string(line_number);
-    if (column.empty()) {
-      for (std::size_t i = 0; i < cells.size(); ++i) column[cells[i]] = i;
-      for (const auto& c : need)
-        if (!column.count(c))
-          fail(where, "not a " + coefficient + " table: no column '" + c +
-                          "' in the header (docs/lookup_tables.md lists the columns)");
-      for (const auto& c : layout.optional_conditions)
-        if (column.count(c)) {
-          need.push_back(c);
-          held.push_back(c);
-        }
-      continue;
+  for (const auto& c : layout.optional_conditions)
+    if (csv.column.count(c)) {
+      need.push_back(c);
+      held.push_back(c);
     }
+  std::set<std::tuple<double, double, double>> seen;
+  for (const auto& [line_number, cells] : csv.rows) {
+    const std::string where = ", line " + std::to_string(line_number);
     std::map<std::string, double> v;
     for (const auto& c : need) {
-      const std::size_t i = column[c];
-      const std::string text = i < cells.size() ? cells[i] : "";
+      const std::string text = csv.text(cells, c);
       const std::optional<double> x = positive_number(text);
       if (!x)
         fail(where, "column '" + c + "' is '" + text + "', not a positive number" +
@@ -247,39 +277,21 @@ StiffnessRatioTables read_stiffness_ratio_tables(const std::filesystem::path& pa
   const auto fail = [&](const std::string& where, const std::string& why) {
     throw InputError(calibration_file, key, path.string() + where + ": " + why);
   };
-  std::ifstream in(path);
-  if (!in)
-    fail("", "cannot read the kn/ks factor table (" + std::string(std::strerror(errno)) + ")");
+  const CsvFile csv = read_csv(path, "kn/ks factor table", fail);
   const TableLayout& layout = kStiffnessRatioFactorTable;
   const std::vector<std::string> numbers{"r_ratio",           "r_min_mm", "shear_to_normal",
                                          "emod_per_sigma_cn", "kratio",   "G",
                                          "reference_kratio"};
-  std::map<std::string, std::size_t> column;
+  require_columns(csv, {"test"}, "kn/ks factor table", fail);
+  require_columns(csv, numbers, "kn/ks factor table", fail);
   // One table per test and tau_cs / sigma_cn (every Brazilian row in one), in ascending rho.
   std::map<std::pair<std::string, double>, LookupTable> tables;
   std::set<std::tuple<std::string, double, double, double, double>> seen;
   StiffnessRatioTables out;
   out.file = path;
-  std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos)
-      continue;
-    const auto cells = split_csv(line);
+  for (const auto& [line_number, cells] : csv.rows) {
     const std::string where = ", line " + std::to_string(line_number);
-    if (column.empty()) {
-      for (std::size_t i = 0; i < cells.size(); ++i) column[cells[i]] = i;
-      if (!column.count("test")) fail(where, "not a kn/ks factor table: no column 'test'");
-      for (const auto& c : numbers)
-        if (!column.count(c))
-          fail(where, "not a kn/ks factor table: no column '" + c +
-                          "' in the header (docs/lookup_tables.md lists the columns)");
-      continue;
-    }
-    const auto text = [&](const std::string& c) {
-      return column[c] < cells.size() ? cells[column[c]] : std::string();
-    };
+    const auto text = [&](const std::string& c) { return csv.text(cells, c); };
     const std::string test = text("test");
     if (test != "brazilian" && test != "uniaxial")
       fail(where, "column 'test' is '" + test + "', not brazilian or uniaxial");
