@@ -107,6 +107,8 @@ struct TablesSettings {
   std::filesystem::path ke_file;  // K_E = E / E* against R_max/R_min, R_min
   std::filesystem::path ku_file;  // K_U = sigma_u / sigma_cn against R_max/R_min, R_min, tau/sigma
   std::filesystem::path kb_tau_file;  // K_B against R_max/R_min, R_min, tau/sigma (one E*/sigma)
+  // K_D (direct tension) against R_max/R_min, R_min, E*/sigma, read for sigma_t by direct tension.
+  std::filesystem::path kd_file;
   // The Mohr-Coulomb table: friction angle phi and cohesion against R_max/R_min, R_min, mu (one
   // E*/sigma, one tau/sigma per file), read for a phi target.
   std::filesystem::path mc_file;

@@ -196,6 +196,11 @@ const TableLayout kUniaxialStrengthTable{
     "shear_to_normal",
     "tau_cs / sigma_cn",
     {"kratio", "friction", "emod_per_sigma_cn", "width_mm", "height_mm"}};
+const TableLayout kDirectTensionTable{
+    "K_D",
+    "emod_per_sigma_cn",
+    "E* / sigma_cn",
+    {"kratio", "friction", "shear_to_normal", "width_mm", "height_mm"}};
 const TableLayout kBrazilianShearTable{"K_B",
                                        "shear_to_normal",
                                        "tau_cs / sigma_cn",
@@ -409,6 +414,7 @@ CellCoefficient interpolate_cell(const LookupTable& table, const Packing& packin
   const Bracket a = bracket(ratios, packing.r_ratio);
   const Bracket b = bracket(r_mins, packing.r_min_mm);
   CellCoefficient out;
+  out.coefficient = table.coefficient();
   if (packing.r_min_mm < *r_mins.begin() * (1 - kSameCondition) ||
       packing.r_min_mm > *r_mins.rbegin() * (1 + kSameCondition))
     out.note = "R_min = " + shortest_number(packing.r_min_mm) + " mm is outside the " +
@@ -517,8 +523,8 @@ BrazilianLookup solve_brazilian(const CellCoefficient& kb, double r_ratio, doubl
     hi = std::max(hi, brazilian_strength(kb, r_ratio, emod_GPa * 1e3, level, factor));
   }
   throw InputError(calibration_file, "targets.sigma_t",
-                   "sigma_t = " + four(sigma_t_MPa) +
-                       " MPa is outside what the K_B table reaches at E* = " + four(emod_GPa) +
+                   "sigma_t = " + four(sigma_t_MPa) + " MPa is outside what the " + kb.coefficient +
+                       " table reaches at E* = " + four(emod_GPa) +
                        " GPa on this packing: " + four(lo) + " to " + four(hi) +
                        " MPa (E* / sigma_cn from " + four(x.front()) + " to " + four(x.back()) +
                        "); no extrapolation: change the target, E*, or the table");
@@ -691,7 +697,7 @@ double solve_poisson(const CellCoefficient& nu, double nu_target, const std::str
 
 void read_tables_settings(const InputTable& t, const std::filesystem::path& file,
                           CalibrationInput& input) {
-  t.reject_unknown_keys({"kb", "ke", "ku", "kb_tau", "mc", "nu", "kratio", "tolerance",
+  t.reject_unknown_keys({"kb", "kd", "ke", "ku", "kb_tau", "mc", "nu", "kratio", "tolerance",
                          "max_iterations", "max_refinements"});
   const auto resolve = [&](const char* key) -> std::filesystem::path {
     if (!t.has(key)) return {};
@@ -699,6 +705,7 @@ void read_tables_settings(const InputTable& t, const std::filesystem::path& file
     return p.is_absolute() ? p : file.parent_path() / p;
   };
   input.tables.kb_file = resolve("kb");
+  input.tables.kd_file = resolve("kd");
   input.tables.ke_file = resolve("ke");
   input.tables.ku_file = resolve("ku");
   input.tables.kb_tau_file = resolve("kb_tau");
@@ -939,7 +946,10 @@ struct TablesModel {
   // The base materials' mortar.
   double base_emod_GPa = 0, base_sigma_cn_MPa = 0, base_rho = 0, base_kratio = 0;
   double K_E = 0;  // of the K_E table (one kn/ks); with a nu target K_E follows kn/ks (ke_cell)
-  Packing disc, rectangle;
+  // The packing of the tension test's specimen (the Brazilian disc, or the direct-tension
+  // rectangle) and of the uniaxial one.
+  Packing tension, rectangle;
+  bool direct_tension = false;  // sigma_t by direct tension: K_D in kb_cell
   CellCoefficient kb_cell, ku_cell;
   ShearFactor factor;
   std::string nu_file;
@@ -1005,7 +1015,7 @@ TablesSolution solve_tables(const TablesModel& m, const std::vector<double>& wan
   const CellCoefficient kb = m.kb_at(p.kratio), ku = m.ku_at(p.kratio);
   if (m.both_strengths && m.with_kb_tau) {
     const CoupledLookup c =
-        solve_coupled(kb, m.factor, ku, m.disc.r_ratio, sigma_t, sigma_u, p.emod_GPa, file);
+        solve_coupled(kb, m.factor, ku, m.tension.r_ratio, sigma_t, sigma_u, p.emod_GPa, file);
     s.brazilian = c.brazilian;
     s.uniaxial = c.uniaxial;
     s.shear_factor = c.factor;
@@ -1013,7 +1023,7 @@ TablesSolution solve_tables(const TablesModel& m, const std::vector<double>& wan
   } else if (m.has(m.gt)) {
     // rho is the base materials' (sigma_t alone) or not known to K_B (no kb_tau: F = 1).
     if (m.with_kb_tau) s.shear_factor = m.factor.at(m.base_rho);
-    s.brazilian = solve_brazilian(kb, m.disc.r_ratio, sigma_t, p.emod_GPa, file, s.shear_factor);
+    s.brazilian = solve_brazilian(kb, m.tension.r_ratio, sigma_t, p.emod_GPa, file, s.shear_factor);
     if (m.both_strengths) s.uniaxial = solve_uniaxial(ku, s.brazilian.sigma_cn_MPa, sigma_u, file);
   }
   if (m.has(m.gt))
@@ -1038,7 +1048,7 @@ std::vector<double> predict_tables(const TablesModel& m, const ContactPoint& p) 
   if (m.has(m.gn)) out[m.gn] = m.nu_cell.at(p.kratio);
   if (m.has(m.gt))
     out[m.gt] = p.sigma_cn_MPa * m.kb_at(p.kratio).at(p.emod_GPa * 1e3 / p.sigma_cn_MPa) *
-                (m.with_kb_tau ? m.factor.at(rho) : 1.0) / (1 + m.disc.r_ratio);
+                (m.with_kb_tau ? m.factor.at(rho) : 1.0) / (1 + m.tension.r_ratio);
   if (m.has(m.gu)) out[m.gu] = p.sigma_cn_MPa * m.ku_at(p.kratio).at(rho);
   return out;
 }
@@ -1271,31 +1281,46 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
       mortar.quantity(kTensileKey, Dimension::Stress, Range::positive()) / units::MPa;
   m.base_rho = mortar.quantity(kShearKey, Dimension::Stress, Range::positive()) /
                mortar.quantity(kTensileKey, Dimension::Stress, Range::positive());
-  // The Brazilian side: K_B's cell at the disc's packing and, with a kb_tau table, F(rho).
+  // The tension side: K_B's cell at the disc's packing and, with a kb_tau table, F(rho); or by
+  // direct tension K_D's cell at the rectangle's packing (the same relation; no table of K_D
+  // against tau_cs / sigma_cn, so K_D is read at its own, as K_B without kb_tau).
   std::optional<LookupTable> kb, ku, kb_tau;
-  if (m.has(m.gt)) {
-    if (input.test(TestKind::Tension)->name != "brazilian")
-      throw InputError(file, "tests.direct_tension",
-                       "the tables strategy has a Brazilian table (K_B) only; name the sigma_t "
-                       "test as brazilian = \"FILE\"");
+  m.direct_tension = m.has(m.gt) && input.test(TestKind::Tension)->name != "brazilian";
+  if (m.direct_tension) {
+    if (m.with_kb_tau)
+      throw InputError(file, "tables.kb_tau",
+                       "K_B against tau_cs / sigma_cn is the Brazilian disc's, and sigma_t is "
+                       "measured by direct tension: drop kb_tau (K_D is read at its own tau_cs / "
+                       "sigma_cn)");
+    require_table(input.tables.kd_file, file, "kd",
+                  "sigma_t is a target by direct tension, and the tables strategy reads K_D from "
+                  "the table",
+                  "tables/direct_tension_kd_cells_levels.csv");
+    kb = read_lookup_table(input.tables.kd_file, kDirectTensionTable, file, "tables.kd");
+    check_conditions(input, *kb, "tables.kd", shear_ratio_free, false, m.has(m.gn));
+    m.tension = read_packing(*input.test(TestKind::Tension), file, "specimen.generator");
+    check_size(*kb, "W x H", {{"width_mm", m.tension.width_mm}, {"height_mm", m.tension.height_mm}},
+               file, "specimen.generator");
+    m.kb_cell = interpolate_cell(*kb, m.tension, file, "specimen.generator");
+  } else if (m.has(m.gt)) {
     require_table(input.tables.kb_file, file, "kb",
                   "sigma_t is a target, and the tables strategy reads K_B from the table",
                   "tables/brazilian_kb_x_table.csv");
     kb = read_lookup_table(input.tables.kb_file, kBrazilianTable, file, "tables.kb");
     check_conditions(input, *kb, "tables.kb", shear_ratio_free, false, m.has(m.gn));
-    m.disc = read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
-    check_size(*kb, "D", {{"diameter_mm", m.disc.diameter_mm}}, file,
+    m.tension = read_packing(*input.test(TestKind::Tension), file, "specimen.brazilian_generator");
+    check_size(*kb, "D", {{"diameter_mm", m.tension.diameter_mm}}, file,
                "specimen.brazilian_generator");
     check_loading(*kb, *input.test(TestKind::Tension), file);
-    m.kb_cell = interpolate_cell(*kb, m.disc, file, "specimen.brazilian_generator");
+    m.kb_cell = interpolate_cell(*kb, m.tension, file, "specimen.brazilian_generator");
     if (m.with_kb_tau) {
       kb_tau =
           read_lookup_table(input.tables.kb_tau_file, kBrazilianShearTable, file, "tables.kb_tau");
       check_conditions(input, *kb_tau, "tables.kb_tau", true, false, m.has(m.gn));
-      check_size(*kb_tau, "D", {{"diameter_mm", m.disc.diameter_mm}}, file,
+      check_size(*kb_tau, "D", {{"diameter_mm", m.tension.diameter_mm}}, file,
                  "specimen.brazilian_generator");
       check_loading(*kb_tau, *input.test(TestKind::Tension), file);
-      m.factor.kb_tau = interpolate_cell(*kb_tau, m.disc, file, "specimen.brazilian_generator");
+      m.factor.kb_tau = interpolate_cell(*kb_tau, m.tension, file, "specimen.brazilian_generator");
       m.factor.reference = kb->condition("shear_to_normal");
       check_within_levels(m.factor.reference, m.factor.kb_tau, *kb_tau, file, "tables.kb_tau",
                           "the K_B table's tau_cs / sigma_cn (" + kb->file.string() + ")");
@@ -1355,10 +1380,14 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
         refuse("its factors are against kn/ks " + shortest_number(kratio->reference_kratio) +
                ", and the " + (*t)->coefficient() + " table (" + (*t)->file.string() +
                ") was made at " + shortest_number((*t)->condition("kratio")));
+    if (m.direct_tension)
+      refuse(
+          "its factors are the Brazilian disc's and the uniaxial rectangle's, and sigma_t by "
+          "direct tension is a target beside nu: K_D against kn/ks is not measured");
     if (m.has(m.gt)) {
       if (!kratio->brazilian) refuse("no brazilian rows, and sigma_t is a target beside nu");
       m.kratio_factor.brazilian =
-          interpolate_cell(*kratio->brazilian, m.disc, file, "specimen.brazilian_generator");
+          interpolate_cell(*kratio->brazilian, m.tension, file, "specimen.brazilian_generator");
     }
     if (m.has(m.gu)) {
       if (kratio->uniaxial.empty()) refuse("no uniaxial rows, and sigma_u is a target beside nu");
@@ -1409,15 +1438,21 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     md << "\n";
   }
   if (m.has(m.gt)) {
-    md << "- sigma_t: Brazilian packing R_max/R_min " << four(m.disc.r_ratio) << ", R_min "
-       << four(m.disc.r_min_mm) << " mm, D " << four(m.disc.diameter_mm) << " mm, "
-       << (kb->has_condition("loading_arc_deg")
-               ? "loading arcs of " + four(kb->condition("loading_arc_deg")) + " degrees"
-               : std::string("curved jaws"))
-       << "; K_B from " << m.kb_cell.cells << " of `" << kb->file.string()
+    const std::string& k = kb->coefficient();
+    md << "- sigma_t: " << (m.direct_tension ? "direct-tension" : "Brazilian")
+       << " packing R_max/R_min " << four(m.tension.r_ratio) << ", R_min "
+       << four(m.tension.r_min_mm) << " mm, ";
+    if (m.direct_tension)
+      md << four(m.tension.width_mm) << " x " << four(m.tension.height_mm) << " mm";
+    else
+      md << "D " << four(m.tension.diameter_mm) << " mm, "
+         << (kb->has_condition("loading_arc_deg")
+                 ? "loading arcs of " + four(kb->condition("loading_arc_deg")) + " degrees"
+                 : std::string("curved jaws"));
+    md << "; " << k << " from " << m.kb_cell.cells << " of `" << kb->file.string()
        << "`; at E* = " << four(s.point.emod_GPa)
-       << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength)
-       << ", K_B = " << four(b.K_B)
+       << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength) << ", " << k
+       << " = " << four(b.K_B)
        << " (measured at tau_cs = " << four(kb->condition("shear_to_normal")) << " sigma_cn)";
     if (m.with_kb_tau)
       md << " x F(tau_cs / sigma_cn = " << four(m.both_strengths ? u.shear_to_normal : m.base_rho)
@@ -1426,7 +1461,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
          << "`, measured at E* / sigma_cn = " << four(kb_tau->condition("emod_per_sigma_cn"))
          << ")";
     md << ", sigma_cn = " << four(b.sigma_cn_MPa) << " MPa\n"
-       << "  - d ln K_B / d ln(E* / sigma_cn) = " << four(b.slope);
+       << "  - d ln " << k << " / d ln(E* / sigma_cn) = " << four(b.slope);
     if (m.both_strengths && m.with_kb_tau)
       md << ", d ln F / d ln(tau_cs / sigma_cn) = " << four(s.shear_factor_slope);
     md << " there\n";
@@ -1455,8 +1490,9 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
          << "\n"
          << "  - d ln K_U / d ln(tau_cs / sigma_cn) = " << four(u.slope) << " there"
          << (m.with_kb_tau ? std::string()
-                           : "; K_B is read at its own tau_cs / sigma_cn (no kb_tau table; "
-                             "docs/lookup_tables.md \"K_B against tau_cs / sigma_cn\")")
+                           : "; " + m.kb_cell.coefficient +
+                                 " is read at its own tau_cs / sigma_cn (no kb_tau table; "
+                                 "docs/lookup_tables.md \"K_B against tau_cs / sigma_cn\")")
          << "\n";
     } else {
       md << "; at the base materials' tau_cs / sigma_cn = " << four(m.base_rho)

@@ -7,7 +7,8 @@
 // like every strategy's.
 //   E = K_E E*                                  (uniaxial; K_E per packing cell)
 //   sigma_t = sigma_cn K_B / (1 + R_max/R_min)  (Brazilian, SPEC 7; K_B per packing cell and
-//                                                E* / sigma_cn level)
+//                                                E* / sigma_cn level; by direct tension K_D,
+//                                                the `kd` table, in its place)
 //   sigma_u = sigma_cn K_U                      (uniaxial; K_U per packing cell and
 //                                                tau_cs / sigma_cn level)
 //   nu = nu(kn/ks), E = K_E(kn/ks) E*           (uniaxial; per packing cell and kn/ks level,
@@ -60,6 +61,9 @@ extern const TableLayout kModulusTable;
 // K_U = sigma_u / sigma_cn per cell and tau_cs / sigma_cn, on W x H rectangles, at one E* /
 // sigma_cn.
 extern const TableLayout kUniaxialStrengthTable;
+// K_D = sigma_t (1 + R_max/R_min) / sigma_cn of direct tension per cell and E* / sigma_cn, on W x
+// H rectangles, at one tau_cs / sigma_cn (the Brazilian relation with K_D for K_B).
+extern const TableLayout kDirectTensionTable;
 // K_B per cell and tau_cs / sigma_cn, on D discs, at one E* / sigma_cn.
 extern const TableLayout kBrazilianShearTable;
 // The Mohr-Coulomb table (biaxial series): the friction angle phi_deg per cell and mu, on W x H
@@ -127,6 +131,7 @@ struct Packing {
 struct CellCoefficient {
   std::vector<double> levels;        // ascending ({0} without the dimension)
   std::vector<double> coefficients;  // at each level
+  std::string coefficient;           // the table's coefficient ("K_B", "K_D", ...)
   std::string cells;                 // the cells used, in words
   std::string note;                  // R_min outside the levels: the nearest was used
   double at(double level) const;     // within [levels.front(), levels.back()]

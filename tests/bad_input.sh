@@ -376,6 +376,13 @@ cp "$SRC/tables/biaxial_mc_rho2_table.csv" tables_case/tables/
 texpect tables_phi_outside targets.phi_deg \
   's/^E_GPa = 18/&\nphi_deg = 80/; s#^ke = .*#&\nmc = "../tables/biaxial_mc_rho2_table.csv"#'
 texpect tables_c_without_phi targets.c 's/^E_GPa = 18/&\nc_MPa = 10/'
+# sigma_t 9.08 MPa by direct tension (session 18): below what K_D reaches at E 18 GPa on cell 2.7
+# (9.64 to 19.33 MPa: E* / sigma_cn would pass the table's 1,200); and the K_D table not named.
+cp "$SRC/samples/sandstone/direct_tension.toml" tables_case/samples/sandstone/
+cp "$SRC/tables/direct_tension_kd_cells_levels.csv" tables_case/tables/
+texpect tables_dt_outside targets.sigma_t \
+  's#^brazilian = .*#direct_tension = "sandstone/direct_tension.toml"#; s#^kb = .*#kd = "../tables/direct_tension_kd_cells_levels.csv"#'
+texpect tables_dt_no_kd tables.kd 's#^brazilian = .*#direct_tension = "sandstone/direct_tension.toml"#'
 
 echo "$passed passed, $failures failed"
 [ "$passed" -ge 40 ] || { echo "FAIL: fewer than 40 cases ran"; exit 1; }

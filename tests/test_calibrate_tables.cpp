@@ -131,6 +131,17 @@ const std::string kKratio =
     "uniaxial,4,0.2,2,600,1.25,1.1,2.5\n"
     "uniaxial,4,0.2,2,600,5,0.9,2.5\n";
 
+// K_D of direct tension on the rectangle's packings (ratios 2 and 4), three E* / sigma_cn levels:
+// sigma_t = sigma_cn K_D / (1 + R_max / R_min), as K_B.
+const std::string kKD =
+    "r_ratio,r_min_mm,emod_per_sigma_cn,K_D,kratio,friction,shear_to_normal,width_mm,height_mm\n"
+    "2,0.2,300,1.5,2.5,0.5,2,20,40\n"
+    "2,0.2,1000,1.2,2.5,0.5,2,20,40\n"
+    "2,0.2,3000,1.0,2.5,0.5,2,20,40\n"
+    "4,0.2,300,1.8,2.5,0.5,2,20,40\n"
+    "4,0.2,1000,1.4,2.5,0.5,2,20,40\n"
+    "4,0.2,3000,1.2,2.5,0.5,2,20,40\n";
+
 const std::string kMaterials =
     "[materials.mortar]\nlaw = \"contact_bond\"\nemod_GPa = 30.0\nkratio = 2.5\nfriction = 0.5\n"
     "cb_tensile_strength_MPa = 40.0\ncb_shear_strength_MPa = 80.0\n";
@@ -162,8 +173,9 @@ const std::string kBrazilianTest = "[test]\ntype = \"brazilian\"\nplatens = \"cu
 
 struct Files {
   std::string head = kHead, kb = kKB, ke = kKE, ku = kKU, kb_tau = kKBTau, mc = kMC, nu = kNu,
-              kratio = kKratio, materials = kMaterials, disc = kDisc, rectangle = kRectangle,
-              parameters = kParameters, brazilian = kBrazilianTest;
+              kratio = kKratio, kd = kKD, materials = kMaterials, disc = kDisc,
+              rectangle = kRectangle, parameters = kParameters, brazilian = kBrazilianTest,
+              tension = "brazilian = \"brazilian.toml\"\n";
 };
 
 // A calibration directory for the tables strategy: a uniaxial and a Brazilian test with the
@@ -182,8 +194,10 @@ std::filesystem::path make_calibration(const std::string& test, const Files& f =
   write(dir / "mc.csv", f.mc);
   write(dir / "nu.csv", f.nu);
   write(dir / "kratio.csv", f.kratio);
-  write(dir / "cal.toml", f.head +
-                              "[tests]\nuniaxial = \"ucs.toml\"\nbrazilian = \"brazilian.toml\"\n"
+  write(dir / "kd.csv", f.kd);
+  write(dir / "tension.toml",
+        "specimen = \"none.h5\"\n" + f.materials + "[test]\ntype = \"direct_tension\"\n");
+  write(dir / "cal.toml", f.head + "[tests]\nuniaxial = \"ucs.toml\"\n" + f.tension +
                               "[specimen]\ngenerator = \"rectangle.toml\"\n"
                               "brazilian_generator = \"disc.toml\"\n" +
                               f.parameters);
@@ -1361,6 +1375,108 @@ TEST(CalibrateTables, FourTargetsInOneCorrectionWhenTheTablesAreOff) {
     EXPECT_NEAR(r.iterations[1].errors[i], 0, 1e-9) << target_name(in.targets[i].target);
   EXPECT_NEAR(r.calibrated[3], std::pow(2.0, (0.2 / 0.9 - 0.15) / 0.1), 1e-9);
   EXPECT_TRUE(r.success()) << r.stop_reason;
+}
+
+// sigma_t by direct tension and E: K_D (kd.csv) on the direct-tension rectangle (the uniaxial
+// generator's, ratio 2) in place of K_B on the disc.
+Files direct_tension_files() {
+  Files f;
+  f.head = replace(kHead, "kb = \"kb.csv\"", "kd = \"kd.csv\"");
+  f.tension = "direct_tension = \"tension.toml\"\n";
+  return f;
+}
+
+// The DEM replaced by E = ke K_E E* (K_E 0.5 on the ratio-2 cell) and sigma_t = kd sigma_cn
+// K_D(E* / sigma_cn) / 3 (the test's K_D table on that cell).
+class DirectTensionModel : public cdem::test::PointModel {
+ public:
+  DirectTensionModel(const CalibrationInput& in, double ke, double kd)
+      : kd_cell_(
+            interpolate_cell(read_lookup_table(in.tables.kd_file, kDirectTensionTable, "c", "k"),
+                             {2, 0.2}, "c", "k")),
+        ke_(ke),
+        kd_(kd) {}
+
+ protected:
+  SimulationOutcome respond(const SimulationPoint& p) override {
+    const double emod = p.values[0], sigma = p.values[1];
+    SimulationOutcome o;
+    o.ok = true;
+    o.simulations = 2;
+    o.responses[static_cast<int>(CalibrationTarget::E)] = ke_ * 0.5 * emod;
+    o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
+        kd_ * sigma * kd_cell_.at(std::clamp(emod * 1000 / sigma, 300.0, 3000.0)) / 3;
+    return o;
+  }
+
+ private:
+  CellCoefficient kd_cell_;
+  double ke_, kd_;
+};
+
+TEST(CalibrateTables, DirectTensionInOneRunWhenTheTablesAreExact) {
+  // E* = 18 / 0.5 = 36 GPa; sigma_t 9 MPa = sigma_cn K_D(36,000 / sigma_cn) / 3 on the ratio-2
+  // cell's segment 1,000 -> 3,000 (K_D 1.2 -> 1.0: sigma_t 14.4 -> 4 MPa there).
+  const auto in = read_calibration_input(make_calibration("dt_exact", direct_tension_files()));
+  DirectTensionModel model(in, 1, 1);
+  const auto r = calibrate(in, model);
+  ASSERT_TRUE(r.success()) << r.stop_reason;
+  ASSERT_EQ(r.iterations.size(), 1u);
+  for (const double e : r.iterations[0].errors) EXPECT_NEAR(e, 0, 1e-9);
+  EXPECT_NEAR(r.calibrated[0], 36, 1e-9);
+  const double x = 36000 / r.calibrated[1];
+  EXPECT_GT(x, 1000);
+  EXPECT_LT(x, 3000);
+  // K_D linear in ln x on the segment: 9 = (36,000 / x) K_D(x) / 3.
+  const double k = 1.2 - 0.2 * std::log(x / 1000) / std::log(3.0);
+  EXPECT_NEAR(36000 / x * k / 3, 9, 1e-9);
+  EXPECT_NE(r.lookup.find("sigma_t: direct-tension packing R_max/R_min 2"), std::string::npos)
+      << r.lookup;
+  EXPECT_NE(r.lookup.find("K_D from R_max/R_min 2"), std::string::npos) << r.lookup;
+}
+
+TEST(CalibrateTables, DirectTensionInOneCorrectionWhenTheTablesAreOff) {
+  // The material's K_E 8 % above the table's, its K_D 15 % below: exact at the second run.
+  const auto in = read_calibration_input(make_calibration("dt_off", direct_tension_files()));
+  DirectTensionModel model(in, 1.08, 0.85);
+  const auto r = calibrate(in, model);
+  ASSERT_EQ(r.iterations.size(), 2u) << r.stop_reason;
+  EXPECT_NEAR(r.iterations[0].errors[1], -0.15, 1e-9);
+  for (const double e : r.iterations[1].errors) EXPECT_NEAR(e, 0, 1e-9);
+  EXPECT_TRUE(r.success()) << r.stop_reason;
+}
+
+TEST(CalibrateTablesInput, RefusesWhatTheDirectTensionTableDoesNotHold) {
+  expect_refusals(
+      {
+          {"dt_missing", &Files::head, "kd = \"kd.csv\"\n", "", "tables.kd", "missing"},
+          {"dt_size", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
+           "20 x 40 mm"},
+          {"dt_kb_tau", &Files::head, "kd = \"kd.csv\"", "kd = \"kd.csv\"\nkb_tau = \"kb_tau.csv\"",
+           "tables.kb_tau", "measured by direct tension"},
+          {"dt_corrupt", &Files::kd, "2,0.2,1000,1.2", "2,0.2,1000,x", "tables.kd", "column 'K_D'"},
+          {"dt_target", &Files::head, "sigma_t_MPa = 9", "sigma_t_MPa = 80", "targets.sigma_t",
+           "outside what the K_D table reaches"},
+      },
+      direct_tension_files());
+  // A K_D table made at tau_cs = sigma_cn, and base materials at 2 sigma_cn.
+  Files f = direct_tension_files();
+  std::string kd_rho1;
+  std::istringstream rows(kKD);
+  for (std::string line; std::getline(rows, line);) {
+    const auto at = line.find(",2,20,40");
+    kd_rho1 += (at == std::string::npos ? line : line.substr(0, at) + ",1,20,40") + "\n";
+  }
+  f.kd = kd_rho1;
+  expect_input_error(make_calibration("dt_rho", f), "materials.mortar.cb_shear_strength",
+                     "K_D table (tables.kd");
+  // nu beside sigma_t by direct tension: no kn/ks factors for K_D.
+  f = direct_tension_files();
+  f.head = replace(f.head, "E_GPa = 18\n", "E_GPa = 18\nnu = 0.2\n") +
+           "nu = \"nu.csv\"\nkratio = \"kratio.csv\"\n";
+  f.parameters =
+      kParameters + "[[parameters]]\nkey = \"materials.mortar.kratio\"\nbounds = [0.5, 8]\n";
+  expect_input_error(make_calibration("dt_nu", f), "tables.kratio", "K_D against kn/ks");
 }
 
 TEST(CalibrateTablesInput, RefusesWhatTheKnKsFactorsDoNotHold) {
