@@ -129,6 +129,37 @@ std::optional<double> positive_number(const std::string& text) {
   return x;
 }
 
+// The `columns` of a row as positive finite numbers, or `fail` naming the first that is not
+// (`coefficient`: the column whose gap is a cell without a fit).
+template <class Fail>
+std::map<std::string, double> positive_columns(const CsvFile& csv,
+                                               const std::vector<std::string>& row,
+                                               const std::vector<std::string>& columns,
+                                               const std::string& where,
+                                               const std::string& coefficient, const Fail& fail) {
+  std::map<std::string, double> v;
+  for (const auto& c : columns) {
+    const std::string text = csv.text(row, c);
+    const std::optional<double> x = positive_number(text);
+    if (!x)
+      fail(where, "column '" + c + "' is '" + text + "', not a positive number" +
+                      (c == coefficient ? " (a cell without a fit?)" : ""));
+    v[c] = *x;
+  }
+  return v;
+}
+
+// A condition of `table` at `value` in this row: the first row sets it, every other must agree
+// (`whose`: the words for the first row, "the first row's").
+template <class Fail>
+void hold_condition(LookupTable& table, const std::string& column, double value,
+                    const std::string& where, const std::string& whose, const Fail& fail) {
+  const auto [first, inserted] = table.conditions.emplace(column, value);
+  if (!inserted && !same(value, first->second))
+    fail(where, "column '" + column + "' is " + shortest_number(value) + ", " + whose + " " +
+                    shortest_number(first->second) + ": one table is made at one condition");
+}
+
 // Where a coefficient's packing sits among the levels of one dimension: the two levels around
 // it and the weight of the upper one.
 struct Bracket {
@@ -243,23 +274,10 @@ LookupTable read_lookup_table(const std::filesystem::path& path, const TableLayo
   std::set<std::tuple<double, double, double>> seen;
   for (const auto& [line_number, cells] : csv.rows) {
     const std::string where = ", line " + std::to_string(line_number);
-    std::map<std::string, double> v;
-    for (const auto& c : need) {
-      const std::string text = csv.text(cells, c);
-      const std::optional<double> x = positive_number(text);
-      if (!x)
-        fail(where, "column '" + c + "' is '" + text + "', not a positive number" +
-                        (c == coefficient ? " (a cell without a fit?)" : ""));
-      v[c] = *x;
-    }
+    auto v = positive_columns(csv, cells, need, where, coefficient, fail);
     const LookupRow row{v["r_ratio"], v["r_min_mm"], layout.level.empty() ? 0 : v[layout.level],
                         v[coefficient]};
-    for (const auto& c : held) {
-      const auto [first, inserted] = table.conditions.emplace(c, v[c]);
-      if (!inserted && !same(v[c], first->second))
-        fail(where, "column '" + c + "' is " + shortest_number(v[c]) + ", the first row's " +
-                        shortest_number(first->second) + ": one table is made at one condition");
-    }
+    for (const auto& c : held) hold_condition(table, c, v[c], where, "the first row's", fail);
     if (!seen.insert({row.r_ratio, row.r_min_mm, row.level}).second)
       fail(where, "the cell R_max/R_min " + shortest_number(row.r_ratio) + ", R_min " +
                       shortest_number(row.r_min_mm) + " mm" +
@@ -296,32 +314,23 @@ StiffnessRatioTables read_stiffness_ratio_tables(const std::filesystem::path& pa
   out.file = path;
   for (const auto& [line_number, cells] : csv.rows) {
     const std::string where = ", line " + std::to_string(line_number);
-    const auto text = [&](const std::string& c) { return csv.text(cells, c); };
-    const std::string test = text("test");
+    const std::string test = csv.text(cells, "test");
     if (test != "brazilian" && test != "uniaxial")
       fail(where, "column 'test' is '" + test + "', not brazilian or uniaxial");
-    std::map<std::string, double> v;
-    for (const auto& c : numbers) {
-      const std::optional<double> x = positive_number(text(c));
-      if (!x) fail(where, "column '" + c + "' is '" + text(c) + "', not a positive number");
-      v[c] = *x;
-    }
+    auto v = positive_columns(csv, cells, numbers, where, "G", fail);
     if (out.reference_kratio == 0) out.reference_kratio = v["reference_kratio"];
     if (same(v["kratio"], out.reference_kratio))
       fail(where, "a row at the reference kn/ks " + shortest_number(out.reference_kratio) +
                       ", where G is 1 by definition");
-    const double rho = test == "brazilian" ? 0 : v["shear_to_normal"];
+    // The uniaxial rows group by tau_cs / sigma_cn (within kSameCondition: one level).
+    double rho = test == "brazilian" ? 0 : v["shear_to_normal"];
+    for (const auto& [which, t] : tables)
+      if (which.first == test && same(which.second, rho)) rho = which.second;
     LookupTable& t = tables[{test, rho}];
     t.file = path;
     t.layout = layout;
-    for (const auto& c : layout.conditions) {
-      const auto [first, inserted] = t.conditions.emplace(c, v[c]);
-      if (!inserted && !same(v[c], first->second))
-        fail(where, "column '" + c + "' is " + shortest_number(v[c]) + ", the first " + test +
-                        " row's " + shortest_number(first->second) +
-                        ": one test's factors are made at one condition" +
-                        (c == "reference_kratio" ? "" : " (the uniaxial rows at one per rho)"));
-    }
+    for (const auto& c : layout.conditions)
+      hold_condition(t, c, v[c], where, "the first " + test + " row's", fail);
     if (!same(v["reference_kratio"], out.reference_kratio))
       fail(where, "column 'reference_kratio' is " + shortest_number(v["reference_kratio"]) +
                       ", the first row's " + shortest_number(out.reference_kratio) +
@@ -1165,7 +1174,8 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     if (t.target != CalibrationTarget::SigmaT && t.target != CalibrationTarget::E &&
         t.target != CalibrationTarget::SigmaU && t.target != CalibrationTarget::Nu)
       throw InputError(file, std::string("targets.") + target_name(t.target),
-                       "the tables strategy has tables for sigma_t (Brazilian, K_B), E (K_E), "
+                       "the tables strategy has tables for sigma_t (Brazilian K_B, direct "
+                       "tension K_D), E (K_E), "
                        "sigma_u (K_U) and nu (the Poisson table) only; use strategy \"fast\" or "
                        "\"paper\" for " +
                            std::string(target_name(t.target)));
@@ -1208,6 +1218,13 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
   // made at one kn/ks (2.5): beside sigma_t or sigma_u they are read times the kn/ks factors
   // (tables.kratio); how phi moves with kn/ks is not measured.
   const bool with_kratio = m.has(m.gn) && (m.has(m.gt) || m.has(m.gu));
+  m.direct_tension = m.has(m.gt) && input.test(TestKind::Tension)->name != "brazilian";
+  if (m.has(m.gn) && m.direct_tension)
+    throw InputError(file, "targets.nu",
+                     "a nu target sets kn/ks from the Poisson table, and the K_D table of direct "
+                     "tension was made at one kn/ks: K_D against kn/ks is not measured (the kn/ks "
+                     "factors are the Brazilian disc's and the uniaxial rectangle's); calibrate "
+                     "sigma_t by direct tension at the table's kn/ks, or use strategy \"fast\"");
   if (m.has(m.gn) && with_phi)
     throw InputError(file, "targets.nu",
                      "a nu target sets kn/ks from the Poisson table, and the Mohr-Coulomb table "
@@ -1285,7 +1302,6 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
   // direct tension K_D's cell at the rectangle's packing (the same relation; no table of K_D
   // against tau_cs / sigma_cn, so K_D is read at its own, as K_B without kb_tau).
   std::optional<LookupTable> kb, ku, kb_tau;
-  m.direct_tension = m.has(m.gt) && input.test(TestKind::Tension)->name != "brazilian";
   if (m.direct_tension) {
     if (m.with_kb_tau)
       throw InputError(file, "tables.kb_tau",
@@ -1380,10 +1396,6 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
         refuse("its factors are against kn/ks " + shortest_number(kratio->reference_kratio) +
                ", and the " + (*t)->coefficient() + " table (" + (*t)->file.string() +
                ") was made at " + shortest_number((*t)->condition("kratio")));
-    if (m.direct_tension)
-      refuse(
-          "its factors are the Brazilian disc's and the uniaxial rectangle's, and sigma_t by "
-          "direct tension is a target beside nu: K_D against kn/ks is not measured");
     if (m.has(m.gt)) {
       if (!kratio->brazilian) refuse("no brazilian rows, and sigma_t is a target beside nu");
       m.kratio_factor.brazilian =
@@ -1430,12 +1442,17 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
          << four(kratio->brazilian->condition("emod_per_sigma_cn")) << ")";
     if (m.has(m.gu)) {
       const double rho = s.point.tau_cs_MPa / s.point.sigma_cn_MPa;
-      md << "; G_U = " << four(g.uniaxial_at(rho, kr)) << " on the rectangle at tau_cs / sigma_cn "
-         << four(rho) << " (" << g.uniaxial.front().cells << "; measured at tau_cs / sigma_cn";
+      md << "; G_U = " << four(m.ku_at(kr).at(rho) / m.ku_cell.at(rho))
+         << " on the rectangle at tau_cs / sigma_cn " << four(rho) << " ("
+         << g.uniaxial.front().cells << "; measured at tau_cs / sigma_cn";
       for (const double r : g.shear_ratios) md << " " << four(r);
-      md << ", linear in ln(tau_cs / sigma_cn) between, the nearest outside)";
+      md << ", linear in ln(tau_cs / sigma_cn) between, the nearest outside; K_U times G_U at "
+            "each of its levels)";
     }
     md << "\n";
+    if (m.has(m.gt) && !g.brazilian.note.empty()) md << "  - " << g.brazilian.note << "\n";
+    if (m.has(m.gu) && !g.uniaxial.front().note.empty())
+      md << "  - " << g.uniaxial.front().note << "\n";
   }
   if (m.has(m.gt)) {
     const std::string& k = kb->coefficient();
@@ -1452,7 +1469,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
     md << "; " << k << " from " << m.kb_cell.cells << " of `" << kb->file.string()
        << "`; at E* = " << four(s.point.emod_GPa)
        << " GPa the target needs E* / sigma_cn = " << four(b.emod_per_strength) << ", " << k
-       << " = " << four(b.K_B)
+       << (kratio ? " G_B" : "") << " = " << four(b.K_B)
        << " (measured at tau_cs = " << four(kb->condition("shear_to_normal")) << " sigma_cn)";
     if (m.with_kb_tau)
       md << " x F(tau_cs / sigma_cn = " << four(m.both_strengths ? u.shear_to_normal : m.base_rho)
@@ -1496,7 +1513,7 @@ ScaledPlan tables_plan(const CalibrationInput& input, std::string* lookup,
          << "\n";
     } else {
       md << "; at the base materials' tau_cs / sigma_cn = " << four(m.base_rho)
-         << ", K_U = " << four(m.ku_cell.at(m.base_rho))
+         << ", K_U = " << four(m.ku_at(s.point.kratio).at(m.base_rho))
          << ", sigma_cn = " << four(s.point.sigma_cn_MPa) << " MPa (tau_cs / sigma_cn kept)\n";
     }
     if (!m.ku_cell.note.empty()) md << "  - " << m.ku_cell.note << "\n";

@@ -131,7 +131,7 @@ struct Packing {
 struct CellCoefficient {
   std::vector<double> levels;        // ascending ({0} without the dimension)
   std::vector<double> coefficients;  // at each level
-  std::string coefficient;           // the table's coefficient ("K_B", "K_D", ...)
+  std::string coefficient = "K_B";   // the table's ("K_B", "K_D", ...); K_B for one built by hand
   std::string cells;                 // the cells used, in words
   std::string note;                  // R_min outside the levels: the nearest was used
   double at(double level) const;     // within [levels.front(), levels.back()]

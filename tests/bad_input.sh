@@ -351,7 +351,7 @@ texpect() {
 texpect tables_nu tables.kratio 's/^E_GPa = 18/&\nnu = 0.2/
 $a [[parameters]]\nkey = "materials.mortar.kratio"\nbounds = [0.8, 6]'
 cp "$SRC/tables/uniaxial_nu_table.csv" "$SRC/tables/kratio_factors.csv" tables_case/tables/
-texpect tables_nu_kratio_outside targets.nu 's/^E_GPa = 18/&\nnu = 0.17/
+texpect tables_nu_kratio_outside "targets.nu': nu = 0.17 needs kn/ks" 's/^E_GPa = 18/&\nnu = 0.17/
 s#^ke = .*#\nnu = "../tables/uniaxial_nu_table.csv"\nkratio = "../tables/kratio_factors.csv"#
 $a [[parameters]]\nkey = "materials.mortar.kratio"\nbounds = [0.8, 6]'
 cp "$SRC/tables/uniaxial_ku_table.csv" tables_case/tables/

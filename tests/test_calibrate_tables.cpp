@@ -1305,6 +1305,13 @@ class FourTargetModel : public cdem::test::PointModel {
     const double w = std::clamp(std::log(rho / 0.5) / std::log(4.0), 0.0, 1.0);
     return (1 - w) * g(kratio, 0.9, 1.2) + w * g(kratio, 1.1, 0.9);
   }
+  // When set, sigma_t also follows K_B against tau_cs / sigma_cn (the test's kb_tau table on the
+  // disc's cell, F = 1 at rho 2), as TableModel::follow_shear_ratio.
+  void follow_shear_ratio(const std::filesystem::path& kb_tau) {
+    factor_.kb_tau = interpolate_cell(read_lookup_table(kb_tau, kBrazilianShearTable, "c", "k"),
+                                      {3, 0.2, 30}, "c", "k");
+    factor_.reference = 2;
+  }
 
  protected:
   SimulationOutcome respond(const SimulationPoint& p) override {
@@ -1316,8 +1323,9 @@ class FourTargetModel : public cdem::test::PointModel {
     o.simulations = 2;
     o.responses[static_cast<int>(CalibrationTarget::E)] = ke_ * ke_cell_.at(kratio) * emod;
     o.responses[static_cast<int>(CalibrationTarget::Nu)] = kn_ * nu_.at(kratio);
+    const double shear = factor_.kb_tau.levels.empty() ? 1 : factor_.at(std::clamp(rho, 0.5, 4.0));
     o.responses[static_cast<int>(CalibrationTarget::SigmaT)] =
-        kb_ * sigma * kb_cell_.at(x) * g_b(kratio) / 4;
+        kb_ * sigma * kb_cell_.at(x) * g_b(kratio) * shear / 4;
     CellCoefficient ku = ku_cell_;
     for (std::size_t i = 0; i < ku.levels.size(); ++i)
       ku.coefficients[i] *= g_u(ku.levels[i], kratio);
@@ -1327,6 +1335,7 @@ class FourTargetModel : public cdem::test::PointModel {
 
  private:
   CellCoefficient nu_, ke_cell_, kb_cell_, ku_cell_;
+  ShearFactor factor_;
   double ke_, kn_, kb_, ku_;
 };
 
@@ -1450,8 +1459,6 @@ TEST(CalibrateTablesInput, RefusesWhatTheDirectTensionTableDoesNotHold) {
   expect_refusals(
       {
           {"dt_missing", &Files::head, "kd = \"kd.csv\"\n", "", "tables.kd", "missing"},
-          {"dt_size", &Files::rectangle, "height_mm = 40", "height_mm = 60", "specimen.generator",
-           "20 x 40 mm"},
           {"dt_kb_tau", &Files::head, "kd = \"kd.csv\"", "kd = \"kd.csv\"\nkb_tau = \"kb_tau.csv\"",
            "tables.kb_tau", "measured by direct tension"},
           {"dt_corrupt", &Files::kd, "2,0.2,1000,1.2", "2,0.2,1000,x", "tables.kd", "column 'K_D'"},
@@ -1459,24 +1466,50 @@ TEST(CalibrateTablesInput, RefusesWhatTheDirectTensionTableDoesNotHold) {
            "outside what the K_D table reaches"},
       },
       direct_tension_files());
-  // A K_D table made at tau_cs = sigma_cn, and base materials at 2 sigma_cn.
+  // K_D tables made at tau_cs = sigma_cn (base materials at 2 sigma_cn), and on 20 x 60 mm
+  // rectangles (the K_E table's 20 x 40 mm, so only K_D's size check can refuse it).
+  const auto kd_with = [](const std::string& to) {
+    std::string out;
+    std::istringstream rows(kKD);
+    for (std::string line; std::getline(rows, line);) {
+      const auto at = line.find(",2,20,40");
+      out += (at == std::string::npos ? line : line.substr(0, at) + to) + "\n";
+    }
+    return out;
+  };
   Files f = direct_tension_files();
-  std::string kd_rho1;
-  std::istringstream rows(kKD);
-  for (std::string line; std::getline(rows, line);) {
-    const auto at = line.find(",2,20,40");
-    kd_rho1 += (at == std::string::npos ? line : line.substr(0, at) + ",1,20,40") + "\n";
-  }
-  f.kd = kd_rho1;
+  f.kd = kd_with(",1,20,40");
   expect_input_error(make_calibration("dt_rho", f), "materials.mortar.cb_shear_strength",
                      "K_D table (tables.kd");
-  // nu beside sigma_t by direct tension: no kn/ks factors for K_D.
+  f.kd = kd_with(",2,20,60");
+  expect_input_error(make_calibration("dt_size", f), "specimen.generator",
+                     "was made on W x H 20 x 60 mm specimens: K_D depends");
+  // nu beside sigma_t by direct tension, with or without the kn/ks factors: none for K_D.
   f = direct_tension_files();
-  f.head = replace(f.head, "E_GPa = 18\n", "E_GPa = 18\nnu = 0.2\n") +
-           "nu = \"nu.csv\"\nkratio = \"kratio.csv\"\n";
+  f.head = replace(f.head, "E_GPa = 18\n", "E_GPa = 18\nnu = 0.2\n") + "nu = \"nu.csv\"\n";
   f.parameters =
       kParameters + "[[parameters]]\nkey = \"materials.mortar.kratio\"\nbounds = [0.5, 8]\n";
-  expect_input_error(make_calibration("dt_nu", f), "tables.kratio", "K_D against kn/ks");
+  expect_input_error(make_calibration("dt_nu", f), "targets.nu", "K_D against kn/ks");
+  f.head += "kratio = \"kratio.csv\"\n";
+  expect_input_error(make_calibration("dt_nu_kratio", f), "targets.nu", "K_D against kn/ks");
+}
+
+TEST(CalibrateTables, FourTargetsWithKbTauInOneCorrectionWhenTheTablesAreOff) {
+  // The four targets with the kb_tau table (the path of the four-target sandstone): sigma_t and
+  // sigma_u solved together on K_B G_B F(rho) and K_U G_U; the material off by the same
+  // factors as above and following F: exact at the second run.
+  Files f = four_target_files();
+  f.head += "kb_tau = \"kb_tau.csv\"\n";
+  const auto in = read_calibration_input(make_calibration("four_kb_tau", f));
+  FourTargetModel model(in, 0.95, 0.9, 0.88, 0.9);
+  model.follow_shear_ratio(in.tables.kb_tau_file);
+  const auto r = calibrate(in, model);
+  ASSERT_EQ(r.iterations.size(), 2u) << r.stop_reason << "\n" << r.lookup;
+  for (std::size_t i = 0; i < in.targets.size(); ++i)
+    EXPECT_NEAR(r.iterations[1].errors[i], 0, 1e-9) << target_name(in.targets[i].target);
+  EXPECT_TRUE(r.success()) << r.stop_reason;
+  EXPECT_NE(r.lookup.find("solved together with sigma_t"), std::string::npos) << r.lookup;
+  EXPECT_NE(r.lookup.find("K_B G_B = "), std::string::npos) << r.lookup;
 }
 
 TEST(CalibrateTablesInput, RefusesWhatTheKnKsFactorsDoNotHold) {
