@@ -48,7 +48,8 @@ E* / sigma_cn (docs/lab_tests.md "E* / sigma_cn decides"). So:
   sigma_cn 0.5 on more cells: R_max / R_min 1, 2, 3, 6, 8 at R_min 0.2 mm and 3 at R_min 0.15
   and 0.25 mm, seeds 21-22: c and phi against the packing (fit_biaxial_mc.py).
 - biaxial_mc_cells_mu.toml (session 18): the same series at mu 0.25 and 1: phi against mu on
-  those cells (fit_biaxial_mc.py over both campaigns).
+  those cells (fit_biaxial_mc.py over both campaigns); biaxial_mc_cells_rho2.toml: the same cells
+  and 1.5 at tau_cs / sigma_cn 2 (the tension-driven side), mu 0.5.
 - brazilian_scatter_r3.4.toml (session 13): the seed scatter of the sandstone's ratio-3.4 disc
   where its calibration runs, against tau_cs / sigma_cn (0.5, 1, 1.5, 2) and the disc's size
   (D 30 and 50 mm): at each rho the E* / sigma_cn that the tables (K_B x F at 3.4) give for
@@ -168,6 +169,9 @@ MC_CELLS = dict(cells=[(1, 0.2), (2, 0.2), (3, 0.2), (6, 0.2), (8, 0.2), (3, 0.1
 # Mohr-Coulomb table's three levels), the costly ratio-1 cell last.
 MC_CELLS_MU = dict(MC_CELLS, frictions=[0.25, 1.0],
                    cells=MC_CELLS["cells"][1:] + MC_CELLS["cells"][:1])
+# ... and the tension-driven side (tau_cs / sigma_cn 2) at mu 0.5 on those cells and on 1.5 (the
+# Mohr-Coulomb table holds rho 2 on 2.7 and 4 only): c and phi against the contact strengths.
+MC_CELLS_RHO2 = dict(MC_CELLS, shear=[2], cells=[(1.5, 0.2)] + MC_CELLS_MU["cells"])
 # Session 16: the Brazilian disc of the ratio-1.5 cell at mu 0.25 (the K_B table's seeds, so the
 # discs of the kb_tau and K_B runs at mu 0.5): does K_B move with mu where the ratio-1.5 UCS reach
 # has its bottom (rho 0.25-0.5), and on the plateau (rho 2)? (fit_kb_mu.py)
@@ -380,7 +384,12 @@ def main():
              "mu 0.25 and 1", "biaxial_mc_base.toml", mc_gather(confinements),
              [r + [mu] for ratio, rmin in MC_CELLS_MU["cells"] for mu in MC_CELLS_MU["frictions"]
               for r in rows([ratio], [rmin], [MC_CELLS_MU["level"]], MC_CELLS_MU["shear"])],
-             MC_CELLS_MU["seeds"])]
+             MC_CELLS_MU["seeds"]),
+            ("biaxial_mc_cells_rho2", "Biaxial series (Mohr-Coulomb c, phi) on more packing cells "
+             "at tau_cs / sigma_cn 2", "biaxial_mc_base.toml", mc_gather(confinements),
+             [r + [MC_CELLS_RHO2["friction"]] for ratio, rmin in MC_CELLS_RHO2["cells"]
+              for r in rows([ratio], [rmin], [MC_CELLS_RHO2["level"]], MC_CELLS_RHO2["shear"])],
+             MC_CELLS_RHO2["seeds"])]
     for name, what, base, gather, r, seeds in campaigns:
         if not r:
             continue

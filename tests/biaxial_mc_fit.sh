@@ -9,9 +9,9 @@
 #  - a series given twice (the first directory again) and a second base at other confinements:
 #    refused, exit 1;
 #  - the shipped tables/biaxial_mc_table.csv (and its rho 0.5 and 2 splits) are the fit of
-#    tables/biaxial_mc_results.csv, and tables/biaxial_mc_cells_table.csv (and its rho 0.5
-#    split) the fit of that campaign with biaxial_mc_cells and biaxial_mc_cells_mu, to the last
-#    digit.
+#    tables/biaxial_mc_results.csv, and tables/biaxial_mc_cells_table.csv (and its rho 0.5 and
+#    2 splits) the fit of that campaign with biaxial_mc_cells, biaxial_mc_cells_mu and
+#    biaxial_mc_cells_rho2, to the last digit.
 # Run by CTest with SRC set.
 set -euo pipefail
 : "${SRC:?}"
@@ -77,15 +77,16 @@ grep -q "repeats a series" dup.err
 if fit a other -o other_table.csv 2> other.err; then echo "FAIL: two bases fitted"; exit 1; fi
 grep -q "one table is made at one condition" other.err
 # The shipped tables from the shipped raw runs.
-mkdir mc cells cells_mu shipped
-for d in mc cells cells_mu; do cp "$SRC/tables/biaxial_mc_base.toml" "$d/base.toml"; done
+mkdir mc cells cells_mu cells_rho2 shipped
+for d in mc cells cells_mu cells_rho2; do cp "$SRC/tables/biaxial_mc_base.toml" "$d/base.toml"; done
 cp "$SRC/tables/biaxial_mc_results.csv" mc/results.csv
 cp "$SRC/tables/biaxial_mc_cells_results.csv" cells/results.csv
 cp "$SRC/tables/biaxial_mc_cells_mu_results.csv" cells_mu/results.csv
+cp "$SRC/tables/biaxial_mc_cells_rho2_results.csv" cells_rho2/results.csv
 fit mc -o shipped/biaxial_mc_table.csv > /dev/null
-fit mc cells cells_mu -o shipped/biaxial_mc_cells_table.csv > /dev/null
+fit mc cells cells_mu cells_rho2 -o shipped/biaxial_mc_cells_table.csv > /dev/null
 for t in biaxial_mc_table biaxial_mc_rho0.5_table biaxial_mc_rho2_table biaxial_mc_cells_table \
-    biaxial_mc_cells_rho0.5_table; do
+    biaxial_mc_cells_rho0.5_table biaxial_mc_cells_rho2_table; do
   cmp "shipped/$t.csv" "$SRC/tables/$t.csv"
 done
 echo "the shipped Mohr-Coulomb tables are the fit of the shipped raw runs"

@@ -1591,7 +1591,9 @@ TEST(TablesLookup, TheShippedCellTablesReadInTheirLayouts) {
       {"uniaxial_nu_cells_table.csv", &kModulusStiffnessTable},
       {"biaxial_mc_cells_rho0.5_table.csv", &kFrictionAngleTable},
       {"biaxial_mc_cells_rho0.5_table.csv", &kUnconfinedStrengthTable},
-      {"biaxial_mc_cells_rho0.5_table.csv", &kFrictionAngleErrorTable}};
+      {"biaxial_mc_cells_rho0.5_table.csv", &kFrictionAngleErrorTable},
+      {"biaxial_mc_cells_rho2_table.csv", &kFrictionAngleTable},
+      {"biaxial_mc_cells_rho2_table.csv", &kUnconfinedStrengthTable}};
   for (const auto& [name, layout] : tables) {
     const LookupTable t = read_lookup_table(dir / name, *layout, "cal.toml", "tables.x");
     std::set<double> ratios, r_mins;
