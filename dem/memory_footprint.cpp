@@ -42,7 +42,8 @@ MemoryFootprint memory_footprint(const World& world) {
   const NeighborList& n = world.neighbors_;
   m.neighbor_list =
       capacity_bytes(n.x0_, n.y0_, n.r0_, n.wall_ax0_, n.wall_ay0_, n.cell_start_, n.cell_discs_,
-                     n.disc_cell_, n.pair_keys_, n.wall_keys_, n.scratch_);
+                     n.disc_cell_, n.pair_keys_, n.wall_keys_, n.scratch_, n.member_keys_);
+  for (const auto& keys : n.member_keys_) m.neighbor_list += capacity_bytes(keys);
   const ThreadedCycle& t = world.threaded_;
   m.thread_plan = capacity_bytes(t.first_start_, t.wall_start_, t.cuts_, t.body_cuts_, t.pair_work_,
                                  t.body_work_, t.shared_, t.shared_discs_, t.special_pairs_,

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "dem/linear_contact.hpp"
+#include "dem/worker_team.hpp"
 
 namespace cdem::dem {
 
@@ -90,19 +91,16 @@ void NeighborList::build_grid(const Discs& discs) {
     if (disc_cell_[i] >= 0) cell_discs_[scratch_[disc_cell_[i]]++] = static_cast<std::int32_t>(i);
 }
 
-void NeighborList::build(const Discs& discs, const Walls& walls) {
-  const std::size_t n = discs.size();
-  build_grid(discs);
-
-  // Disc-disc: for each disc i (ascending) the partners j > i of the 3x3 block, sorted, so the
+void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t end,
+                              std::vector<std::uint64_t>& keys) const {
+  // For each disc i (ascending) the partners j > i of the 3x3 block, sorted, so the
   // concatenation is sorted without a global sort.
-  pair_keys_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     if (disc_cell_[i] < 0) continue;
     const int cx = disc_cell_[i] % nx_, cy = disc_cell_[i] / nx_;
     const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + skin;
     const std::int32_t bi = discs.body[i];
-    const std::size_t start = pair_keys_.size();
+    const std::size_t start = keys.size();
     for (int gy = std::max(cy - 1, 0); gy <= std::min(cy + 1, ny_ - 1); ++gy) {
       for (int gx = std::max(cx - 1, 0); gx <= std::min(cx + 1, nx_ - 1); ++gx) {
         const int c = gy * nx_ + gx;
@@ -111,12 +109,37 @@ void NeighborList::build(const Discs& discs, const Walls& walls) {
           if (static_cast<std::size_t>(j) <= i || discs.body[j] == bi) continue;
           const double dx = discs.x[j] - xi, dy = discs.y[j] - yi, reach = ri + discs.r[j];
           if (dx * dx + dy * dy < reach * reach)
-            pair_keys_.push_back(
-                pair_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)));
+            keys.push_back(pair_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)));
         }
       }
     }
-    std::sort(pair_keys_.begin() + static_cast<std::ptrdiff_t>(start), pair_keys_.end());
+    std::sort(keys.begin() + static_cast<std::ptrdiff_t>(start), keys.end());
+  }
+}
+
+void NeighborList::build(const Discs& discs, const Walls& walls, WorkerTeam* team) {
+  const std::size_t n = discs.size();
+  build_grid(discs);
+
+  // Disc-disc: member t searches discs [n t / T, n (t + 1) / T); its keys all follow those of
+  // member t - 1 (their first disc is larger), so joining the lists in member order keeps the
+  // whole sorted. Member 0 writes straight into pair_keys_.
+  pair_keys_.clear();
+  const int members = team ? team->size() : 1;
+  if (members > 1) {
+    member_keys_.resize(static_cast<std::size_t>(members - 1));
+    auto job = [&](int t) {
+      const std::size_t begin = n * static_cast<std::size_t>(t) / members;
+      const std::size_t end = n * static_cast<std::size_t>(t + 1) / members;
+      auto& keys = t == 0 ? pair_keys_ : member_keys_[static_cast<std::size_t>(t - 1)];
+      keys.clear();
+      find_pairs(discs, begin, end, keys);
+    };
+    team->run(job);
+    for (const auto& keys : member_keys_)
+      pair_keys_.insert(pair_keys_.end(), keys.begin(), keys.end());
+  } else {
+    find_pairs(discs, 0, n, pair_keys_);
   }
 
   // Disc-wall: the cells under each wall's box widened by the contact range.

@@ -14,6 +14,7 @@
 namespace cdem::dem {
 
 class World;
+class WorkerTeam;
 struct MemoryFootprint;  // dem/memory_footprint.hpp
 
 class NeighborList {
@@ -26,12 +27,15 @@ class NeighborList {
   // that plus the largest wall displacement > skin for disc-wall pairs. Walls only translate.
   bool needs_rebuild(const Discs& discs, const Walls& walls) const;
   // The same answer, given `moved_bound`, a bound on the largest disc displacement since the
-  // last build (m), finite only if no radius has changed since: while the bound alone rules a
+  // last build (m), finite only if no radius has grown since: while the bound alone rules a
   // rebuild out (with a margin of 1e-6 of the skin for rounding), the pass over every disc is
   // skipped; when the pass runs, a finite bound is tightened to the measured displacement.
   bool needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound) const;
-  // Finds the candidates of the current positions (pair_candidates, wall_candidates).
-  void build(const Discs& discs, const Walls& walls);
+  // Finds the candidates of the current positions (pair_candidates, wall_candidates). With a
+  // team of more than one thread, each member searches the partners of a contiguous range of
+  // discs into its own list and the lists are joined in range order: the keys are a sorted
+  // set either way, so the result is the same for any team.
+  void build(const Discs& discs, const Walls& walls, WorkerTeam* team = nullptr);
   // The candidates of the last build, keys sorted ascending (the contact store merges them).
   const std::vector<std::uint64_t>& pair_candidates() const { return pair_keys_; }
   const std::vector<std::uint64_t>& wall_candidates() const { return wall_keys_; }
@@ -40,6 +44,9 @@ class NeighborList {
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
   friend MemoryFootprint memory_footprint(const World& world);
   void build_grid(const Discs& discs);
+  // Appends to `keys` the disc-disc candidates of discs [begin, end), sorted.
+  void find_pairs(const Discs& discs, std::size_t begin, std::size_t end,
+                  std::vector<std::uint64_t>& keys) const;
   // Reference positions and radii of the last build (walls: first end point).
   std::vector<double> x0_, y0_, r0_, wall_ax0_, wall_ay0_;
   // Cell grid (counting sort of the active discs by cell).
@@ -48,6 +55,7 @@ class NeighborList {
   std::vector<std::int32_t> cell_start_, cell_discs_, disc_cell_;
   // The candidates, kept between builds so a rebuild allocates only when the lists grow.
   std::vector<std::uint64_t> pair_keys_, wall_keys_;
+  std::vector<std::vector<std::uint64_t>> member_keys_;  // per team member but the first
   std::vector<std::int32_t> scratch_;
 };
 

@@ -60,6 +60,9 @@ class ThreadedCycle {
  public:
   ThreadedStep step(Bodies& bodies, Discs& discs, Walls& walls, ContactStore& list,
                     ContactForces& pair, ContactForces& wall_pair, const ThreadedStepSettings& s);
+  // The team of the steps (started on first use), for the other work of a cycle that can be
+  // shared out: the neighbour search.
+  WorkerTeam& team(int threads) { return team_.get(threads); }
 
  private:
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).

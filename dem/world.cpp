@@ -129,7 +129,9 @@ void World::remove_wall_servos(int wall) {
 
 void World::scale_radii(double factor) {
   for (double& r : discs_.r) r *= factor;
-  moved_bound_ = std::numeric_limits<double>::infinity();
+  // A shrink opens every gap, so the displacement bound alone still rules a rebuild out (the
+  // check counts growth only: dem/neighbor_list.hpp); a growth needs the pass over the discs.
+  if (!(factor <= 1)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
   const double f2 = factor * factor;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
@@ -187,7 +189,8 @@ void World::rebuild() {
       neighbors_.skin = discs_.size() ? 0.2 * sum / static_cast<double>(discs_.size()) : 0.0;
     }
   }
-  neighbors_.build(discs_, walls_);
+  neighbors_.build(discs_, walls_,
+                   settings_.threads > 1 ? &threaded_.team(settings_.threads) : nullptr);
   contacts_.merge(neighbors_.pair_candidates(), neighbors_.wall_candidates(), discs_);
   moved_bound_ = 0;
   update_time_step();
@@ -234,6 +237,7 @@ void World::update_time_step() {
   const double k_floor = std::max(kn_wall, ks_wall);
   double dt_min = std::numeric_limits<double>::infinity();
   const double safety = settings_.time_step_safety;
+  const double tau2 = std::pow(settings_.scaled_time_step / safety, 2);  // s^2, density scaling
   for (std::size_t b = 0; b < nb; ++b) {
     const double kt = std::max(stiffness_[b], k_floor);
     double kr = rot_stiffness_[b];
@@ -242,7 +246,6 @@ void World::update_time_step() {
       kr = ks_wall * a * a;
     }
     if (settings_.density_scaling) {
-      const double tau2 = std::pow(settings_.scaled_time_step / safety, 2);
       bodies_.inv_mass_dyn[b] = 1.0 / (kt * tau2);
       bodies_.inv_inertia_dyn[b] = 1.0 / (kr * tau2);
       continue;
