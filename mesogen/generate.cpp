@@ -228,7 +228,13 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
   }
 
   log.begin("mortar_packing");
-  MortarPacking packing = pack_mortar(in.container, in.mortar, mortar_rng);
+  MortarPackingControls mortar = in.mortar;
+  if (report.verbose)
+    mortar.progress = [](long cycles, double contact_stress) {
+      std::cerr << "[generate] mortar_packing: cycle " << cycles << ", contact stress "
+                << PhaseLog::fixed(contact_stress / units::MPa, 4) << " MPa\n";
+    };
+  MortarPacking packing = pack_mortar(in.container, mortar, mortar_rng);
   log.end(std::to_string(packing.x.size()) + " discs, porosity " +
           PhaseLog::fixed(packing.porosity, 4) + ", residual stress " +
           PhaseLog::fixed(packing.residual_stress / units::MPa, 4) + " MPa, " +

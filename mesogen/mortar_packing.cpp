@@ -222,6 +222,8 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   while (world.step_count() < c.max_steps) {
     world.step();
     const double sigma = world.last_force_pass().virial / (2.0 * area);
+    if (c.progress && world.step_count() % kPackingProgressEvery == 0)
+      c.progress(world.step_count(), sigma);
     if (!holding) holding = sigma <= c.sigma0 + band;
     if (!holding) {
       if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
@@ -294,6 +296,8 @@ RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarP
   const auto relax = [&](double limit) {
     while (world.step_count() < c.max_steps) {
       fire.step();
+      if (c.progress && world.step_count() % kPackingProgressEvery == 0)
+        c.progress(world.step_count(), world.last_force_pass().virial / (2.0 * area));
       if (world.step_count() % kFireCheckEvery) continue;
       ratio = dem::unbalanced_force_ratio(world);
       if (ratio <= limit) return true;

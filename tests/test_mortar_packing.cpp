@@ -382,3 +382,28 @@ TEST(MortarPacking, FireStageLimitScalesWithTheSpan) {
 }
 
 }  // namespace
+
+// The progress callback (`cdem generate` prints it) is called every kPackingProgressEvery cycles
+// of the relaxation with the contact stress of that cycle, and only reads: the packing is the
+// same bits without it.
+TEST(MortarPacking, ProgressIsReportedAndChangesNothing) {
+  const Container mould = rectangle(0.03, 0.03);
+  MortarPackingControls c;
+  c.r_mean = 0.3e-3;
+  const MortarPacking quiet = pack(mould, c, 4);
+  std::vector<std::pair<long, double>> calls;
+  c.progress = [&calls](long cycles, double sigma) { calls.emplace_back(cycles, sigma); };
+  const MortarPacking told = pack(mould, c, 4);
+  EXPECT_EQ(told.x, quiet.x);
+  EXPECT_EQ(told.r, quiet.r);
+  EXPECT_EQ(told.steps, quiet.steps);
+  ASSERT_GE(quiet.steps, cdem::mesogen::kPackingProgressEvery) << "mould packs too fast";
+  // The relaxation starts after the expansion and calming (well below 5,000 cycles here), so
+  // every multiple of the interval up to the last cycle is reported, once, in order.
+  ASSERT_EQ(static_cast<long>(calls.size()), quiet.steps / cdem::mesogen::kPackingProgressEvery);
+  for (std::size_t k = 0; k < calls.size(); ++k) {
+    EXPECT_EQ(calls[k].first, static_cast<long>(k + 1) * cdem::mesogen::kPackingProgressEvery);
+    EXPECT_GT(calls[k].second, 0.5 * c.sigma0);  // a jammed packing on its way down to sigma0
+    EXPECT_LT(calls[k].second, 1e3 * c.sigma0);  // past the expansion's hundreds of MPa
+  }
+}
