@@ -230,9 +230,10 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
   log.begin("mortar_packing");
   MortarPackingControls mortar = in.mortar;
   if (report.verbose)
-    mortar.progress = [](long cycles, double contact_stress) {
+    mortar.progress = [](long cycles, double contact_stress, long rebuilds) {
       std::cerr << "[generate] mortar_packing: cycle " << cycles << ", contact stress "
-                << PhaseLog::fixed(contact_stress / units::MPa, 4) << " MPa\n";
+                << PhaseLog::fixed(contact_stress / units::MPa, 4) << " MPa, " << rebuilds
+                << " neighbour rebuilds\n";
     };
   MortarPacking packing = pack_mortar(in.container, mortar, mortar_rng);
   log.end(std::to_string(packing.x.size()) + " discs, porosity " +
@@ -315,6 +316,9 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
                         {"coordination_number", packing.coordination_number},
                         {"floating_discs", packing.floating_discs},
                         {"steps", packing.steps},
+                        {"expansion_and_calming_steps", packing.expansion_and_calming_steps},
+                        {"neighbour_rebuilds", packing.neighbour_rebuilds},
+                        {"expansion_and_calming_rebuilds", packing.expansion_and_calming_rebuilds},
                         {"converged", packing.converged}};
 
   summary["warnings"] = warnings;

@@ -223,7 +223,7 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
     world.step();
     const double sigma = world.last_force_pass().virial / (2.0 * area);
     if (c.progress && world.step_count() % kPackingProgressEvery == 0)
-      c.progress(world.step_count(), sigma);
+      c.progress(world.step_count(), sigma, world.neighbors().build_count);
     if (!holding) holding = sigma <= c.sigma0 + band;
     if (!holding) {
       if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
@@ -297,7 +297,8 @@ RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarP
     while (world.step_count() < c.max_steps) {
       fire.step();
       if (c.progress && world.step_count() % kPackingProgressEvery == 0)
-        c.progress(world.step_count(), world.last_force_pass().virial / (2.0 * area));
+        c.progress(world.step_count(), world.last_force_pass().virial / (2.0 * area),
+                   world.neighbors().build_count);
       if (world.step_count() % kFireCheckEvery) continue;
       ratio = dem::unbalanced_force_ratio(world);
       if (ratio <= limit) return true;
@@ -488,6 +489,8 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
     throw RunError(msg.str());
   }
 
+  out.expansion_and_calming_steps = world.step_count();
+  out.expansion_and_calming_rebuilds = world.neighbors().build_count;
   world.set_neighbor_skin(0.2 * r_min);
   int restored_stages = 0;
   const RelaxedState end = c.relaxation == MortarRelaxation::Fire
@@ -498,6 +501,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
                ratio = end.unbalanced_ratio;
   out.converged = end.converged;
   out.steps = world.step_count();
+  out.neighbour_rebuilds = world.neighbors().build_count;
   if (!out.converged && restored_stages > kFireMaxRestores) {
     std::ostringstream msg;
     msg << "mortar packing, relaxation 'fire' (mortar.relaxation): the packing unjammed "

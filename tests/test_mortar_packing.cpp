@@ -392,7 +392,7 @@ TEST(MortarPacking, ProgressIsReportedAndChangesNothing) {
   c.r_mean = 0.3e-3;
   const MortarPacking quiet = pack(mould, c, 4);
   std::vector<std::pair<long, double>> calls;
-  c.progress = [&calls](long cycles, double sigma) { calls.emplace_back(cycles, sigma); };
+  c.progress = [&calls](long cycles, double sigma, long) { calls.emplace_back(cycles, sigma); };
   const MortarPacking told = pack(mould, c, 4);
   EXPECT_EQ(told.x, quiet.x);
   EXPECT_EQ(told.r, quiet.r);
