@@ -94,25 +94,36 @@ void NeighborList::build_grid(const Discs& discs) {
 void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t end,
                               std::vector<std::uint64_t>& keys) const {
   // For each disc i (ascending) the partners j > i of the 3x3 block, sorted, so the
-  // concatenation is sorted without a global sort.
+  // concatenation is sorted without a global sort. The three cells of a block row are
+  // consecutive in cell_discs_. The test of a partner is branch-free (every key of the block is
+  // written, the count advances only for a partner): about half the block precedes i and a third
+  // of the rest is out of reach, in no order a branch predictor could learn.
   for (std::size_t i = begin; i < end; ++i) {
     if (disc_cell_[i] < 0) continue;
     const int cx = disc_cell_[i] % nx_, cy = disc_cell_[i] / nx_;
+    const int gx0 = std::max(cx - 1, 0), gx1 = std::min(cx + 1, nx_ - 1);
+    const int gy0 = std::max(cy - 1, 0), gy1 = std::min(cy + 1, ny_ - 1);
     const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + skin;
     const std::int32_t bi = discs.body[i];
+    std::size_t block = 0;
+    for (int gy = gy0; gy <= gy1; ++gy)
+      block +=
+          static_cast<std::size_t>(cell_start_[gy * nx_ + gx1 + 1] - cell_start_[gy * nx_ + gx0]);
     const std::size_t start = keys.size();
-    for (int gy = std::max(cy - 1, 0); gy <= std::min(cy + 1, ny_ - 1); ++gy) {
-      for (int gx = std::max(cx - 1, 0); gx <= std::min(cx + 1, nx_ - 1); ++gx) {
-        const int c = gy * nx_ + gx;
-        for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-          const std::int32_t j = cell_discs_[k];
-          if (static_cast<std::size_t>(j) <= i || discs.body[j] == bi) continue;
-          const double dx = discs.x[j] - xi, dy = discs.y[j] - yi, reach = ri + discs.r[j];
-          if (dx * dx + dy * dy < reach * reach)
-            keys.push_back(pair_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)));
-        }
+    keys.resize(start + block);
+    std::uint64_t* out = keys.data() + start;
+    std::size_t found = 0;
+    for (int gy = gy0; gy <= gy1; ++gy) {
+      for (int k = cell_start_[gy * nx_ + gx0]; k < cell_start_[gy * nx_ + gx1 + 1]; ++k) {
+        const std::int32_t j = cell_discs_[k];
+        const double dx = discs.x[j] - xi, dy = discs.y[j] - yi, reach = ri + discs.r[j];
+        const bool partner = (static_cast<std::size_t>(j) > i) & (discs.body[j] != bi) &
+                             (dx * dx + dy * dy < reach * reach);
+        out[found] = pair_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+        found += partner;
       }
     }
+    keys.resize(start + found);
     std::sort(keys.begin() + static_cast<std::ptrdiff_t>(start), keys.end());
   }
 }
