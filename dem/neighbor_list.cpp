@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 #include "dem/linear_contact.hpp"
@@ -105,16 +106,20 @@ void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t
     const int gy0 = std::max(cy - 1, 0), gy1 = std::min(cy + 1, ny_ - 1);
     const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + skin;
     const std::int32_t bi = discs.body[i];
+    // The discs of block row gy are cell_discs_[row_begin[gy - gy0], row_end[gy - gy0]).
+    int row_begin[3], row_end[3];
     std::size_t block = 0;
-    for (int gy = gy0; gy <= gy1; ++gy)
-      block +=
-          static_cast<std::size_t>(cell_start_[gy * nx_ + gx1 + 1] - cell_start_[gy * nx_ + gx0]);
+    for (int gy = gy0; gy <= gy1; ++gy) {
+      row_begin[gy - gy0] = cell_start_[gy * nx_ + gx0];
+      row_end[gy - gy0] = cell_start_[gy * nx_ + gx1 + 1];
+      block += static_cast<std::size_t>(row_end[gy - gy0] - row_begin[gy - gy0]);
+    }
     const std::size_t start = keys.size();
     keys.resize(start + block);
     std::uint64_t* out = keys.data() + start;
     std::size_t found = 0;
-    for (int gy = gy0; gy <= gy1; ++gy) {
-      for (int k = cell_start_[gy * nx_ + gx0]; k < cell_start_[gy * nx_ + gx1 + 1]; ++k) {
+    for (int row = 0; row <= gy1 - gy0; ++row) {
+      for (int k = row_begin[row]; k < row_end[row]; ++k) {
         const std::int32_t j = cell_discs_[k];
         const double dx = discs.x[j] - xi, dy = discs.y[j] - yi, reach = ri + discs.r[j];
         const bool partner = (static_cast<std::size_t>(j) > i) & (discs.body[j] != bi) &
@@ -139,14 +144,22 @@ void NeighborList::build(const Discs& discs, const Walls& walls, WorkerTeam* tea
   const int members = team ? team->size() : 1;
   if (members > 1) {
     member_keys_.resize(static_cast<std::size_t>(members - 1));
+    // A team's job must not throw: a failed allocation is carried out of it and rethrown.
+    std::vector<std::exception_ptr> failed(static_cast<std::size_t>(members));
     auto job = [&](int t) {
       const std::size_t begin = n * static_cast<std::size_t>(t) / members;
       const std::size_t end = n * static_cast<std::size_t>(t + 1) / members;
       auto& keys = t == 0 ? pair_keys_ : member_keys_[static_cast<std::size_t>(t - 1)];
-      keys.clear();
-      find_pairs(discs, begin, end, keys);
+      try {
+        keys.clear();
+        find_pairs(discs, begin, end, keys);
+      } catch (...) {
+        failed[static_cast<std::size_t>(t)] = std::current_exception();
+      }
     };
     team->run(job);
+    for (const auto& e : failed)
+      if (e) std::rethrow_exception(e);
     for (const auto& keys : member_keys_)
       pair_keys_.insert(pair_keys_.end(), keys.begin(), keys.end());
   } else {

@@ -237,10 +237,9 @@ void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_
 
 ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, ContactStore& list,
                                  ContactForces& pair, ContactForces& wall_pair,
-                                 const ThreadedStepSettings& s) {
+                                 const ThreadedStepSettings& s, WorkerTeam& team) {
   using Geometry = DiscPairKernel::Geometry;
   prepare_force_results(pair, wall_pair, list);
-  WorkerTeam& team = team_.get(s.threads);
   const int nt = team.size();
   plan(bodies, discs, list, nt);
   if (lanes_.size() < static_cast<std::size_t>(nt)) lanes_.resize(static_cast<std::size_t>(nt));

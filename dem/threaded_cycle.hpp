@@ -53,16 +53,14 @@ struct ThreadedStepSettings {
   double guard = 0;          // max overlap / radius
   double alpha = 0;          // local damping
   bool book_energy = false;  // form the integration's energy terms
-  int threads = 2;
 };
 
 class ThreadedCycle {
  public:
+  // One step on `team` (the world's, which also runs the neighbour search).
   ThreadedStep step(Bodies& bodies, Discs& discs, Walls& walls, ContactStore& list,
-                    ContactForces& pair, ContactForces& wall_pair, const ThreadedStepSettings& s);
-  // The team of the steps (started on first use), for the other work of a cycle that can be
-  // shared out: the neighbour search.
-  WorkerTeam& team(int threads) { return team_.get(threads); }
+                    ContactForces& pair, ContactForces& wall_pair, const ThreadedStepSettings& s,
+                    WorkerTeam& team);
 
  private:
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
@@ -141,7 +139,6 @@ class ThreadedCycle {
   std::vector<BodyStepEnergy> body_energy_;
   std::vector<double> wall_slip_;  // J, per disc-wall pair
   std::vector<Lane> lanes_;
-  WorkerTeamHandle team_;
 };
 
 }  // namespace cdem::dem

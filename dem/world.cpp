@@ -131,7 +131,7 @@ void World::scale_radii(double factor) {
   for (double& r : discs_.r) r *= factor;
   // A shrink opens every gap, so the displacement bound alone still rules a rebuild out (the
   // check counts growth only: dem/neighbor_list.hpp); a growth needs the pass over the discs.
-  if (!(factor <= 1)) moved_bound_ = std::numeric_limits<double>::infinity();
+  if (factor > 1 || std::isnan(factor)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
   const double f2 = factor * factor;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
@@ -189,8 +189,7 @@ void World::rebuild() {
       neighbors_.skin = discs_.size() ? 0.2 * sum / static_cast<double>(discs_.size()) : 0.0;
     }
   }
-  neighbors_.build(discs_, walls_,
-                   settings_.threads > 1 ? &threaded_.team(settings_.threads) : nullptr);
+  neighbors_.build(discs_, walls_, settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr);
   contacts_.merge(neighbors_.pair_candidates(), neighbors_.wall_candidates(), discs_);
   moved_bound_ = 0;
   update_time_step();
@@ -330,8 +329,8 @@ void World::step() {
     ts.guard = settings_.max_overlap_ratio;
     ts.alpha = settings_.local_damping;
     ts.book_energy = book;
-    ts.threads = settings_.threads;
-    threaded = threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts);
+    threaded = threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts,
+                              team_.get(settings_.threads));
     last_pass_ = threaded.pass;
   } else {
     last_pass_ =

@@ -23,6 +23,7 @@
 #include "dem/servo.hpp"
 #include "dem/threaded_cycle.hpp"
 #include "dem/wall.hpp"
+#include "dem/worker_team.hpp"
 
 namespace cdem::dem {
 
@@ -47,7 +48,8 @@ struct WorldSettings {
   // install_bonds (dem/bond_installation.hpp) put them; a pair's bond breaks for good.
   BondModels bonds{};
   // Threads of a cycle (> 1: force pass and integration in one job of a thread team per step,
-  // dem/threaded_cycle.hpp). Every sum runs in the order of the one-thread cycle whatever the
+  // dem/threaded_cycle.hpp, and the neighbour search shared out on rebuilds,
+  // dem/neighbor_list.hpp). Every sum runs in the order of the one-thread cycle whatever the
   // count, so results are bitwise the same for any value.
   int threads = 1;
   // Runaway kinetic energy guard, checked every `energy_check_interval` steps: the run stops
@@ -254,11 +256,12 @@ class World {
   long steps_ = 0;
   bool rebuild_pending_ = true;
   // m, bound on the largest disc displacement since the last neighbour build, summed from the
-  // integration's speeds; infinite until the first build and after a radius change. Lets the
+  // integration's speeds; infinite until the first build and after a radius growth. Lets the
   // rebuild check skip its pass over every disc while the bound alone rules a rebuild out.
   double moved_bound_ = std::numeric_limits<double>::infinity();
   ForcePassResult last_pass_;
-  ThreadedCycle threaded_;                         // plan and scratch of the multi-thread cycle
+  ThreadedCycle threaded_;  // plan and scratch of the multi-thread cycle
+  WorkerTeamHandle team_;   // threads > 1: runs the threaded cycle and the neighbour search
   std::vector<double> stiffness_, rot_stiffness_;  // per body, scratch of update_time_step
 };
 

@@ -230,10 +230,10 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
   log.begin("mortar_packing");
   MortarPackingControls mortar = in.mortar;
   if (report.verbose)
-    mortar.progress = [](long cycles, double contact_stress, long rebuilds) {
+    mortar.progress = [](long cycles, double contact_stress, long builds) {
       std::cerr << "[generate] mortar_packing: cycle " << cycles << ", contact stress "
-                << PhaseLog::fixed(contact_stress / units::MPa, 4) << " MPa, " << rebuilds
-                << " neighbour rebuilds\n";
+                << PhaseLog::fixed(contact_stress / units::MPa, 4) << " MPa, " << builds
+                << " neighbour builds\n";
     };
   MortarPacking packing = pack_mortar(in.container, mortar, mortar_rng);
   log.end(std::to_string(packing.x.size()) + " discs, porosity " +
@@ -317,8 +317,8 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
                         {"floating_discs", packing.floating_discs},
                         {"steps", packing.steps},
                         {"expansion_and_calming_steps", packing.expansion_and_calming_steps},
-                        {"neighbour_rebuilds", packing.neighbour_rebuilds},
-                        {"expansion_and_calming_rebuilds", packing.expansion_and_calming_rebuilds},
+                        {"neighbour_builds", packing.neighbour_builds},
+                        {"expansion_and_calming_builds", packing.expansion_and_calming_builds},
                         {"converged", packing.converged}};
 
   summary["warnings"] = warnings;

@@ -200,6 +200,13 @@ bool at_sigma0(double wall_sigma, double contact_sigma, double ratio,
          std::abs(contact_sigma - c.sigma0) <= tolerance && ratio <= c.unbalanced_limit;
 }
 
+// Calls controls.progress, if set, on every kPackingProgressEvery-th cycle (area in m^2).
+void report_progress(const dem::World& world, double area, const MortarPackingControls& c) {
+  if (c.progress && world.step_count() % kPackingProgressEvery == 0)
+    c.progress(world.step_count(), world.last_force_pass().virial / (2.0 * area),
+               world.neighbors().build_count);
+}
+
 // relaxation = "damped": the radius servo in locally damped cycles.
 RelaxedState relax_damped(dem::World& world, const Container& mould,
                           const MortarPackingControls& c) {
@@ -222,8 +229,7 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   while (world.step_count() < c.max_steps) {
     world.step();
     const double sigma = world.last_force_pass().virial / (2.0 * area);
-    if (c.progress && world.step_count() % kPackingProgressEvery == 0)
-      c.progress(world.step_count(), sigma, world.neighbors().build_count);
+    report_progress(world, area, c);
     if (!holding) holding = sigma <= c.sigma0 + band;
     if (!holding) {
       if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
@@ -296,9 +302,7 @@ RelaxedState relax_fire(dem::World& world, const Container& mould, const MortarP
   const auto relax = [&](double limit) {
     while (world.step_count() < c.max_steps) {
       fire.step();
-      if (c.progress && world.step_count() % kPackingProgressEvery == 0)
-        c.progress(world.step_count(), world.last_force_pass().virial / (2.0 * area),
-                   world.neighbors().build_count);
+      report_progress(world, area, c);
       if (world.step_count() % kFireCheckEvery) continue;
       ratio = dem::unbalanced_force_ratio(world);
       if (ratio <= limit) return true;
@@ -473,9 +477,11 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
     for (long s = 0; s < ramp && world.step_count() < c.max_steps; ++s) {
       world.scale_radii(growth);
       world.step();
+      report_progress(world, area, c);
     }
     while (world.step_count() < c.max_steps) {
       world.step();
+      report_progress(world, area, c);
       if (world.step_count() % kCheckEvery == 0 &&
           dem::unbalanced_force_ratio(world) < kExpandedRatio)
         break;
@@ -490,7 +496,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   }
 
   out.expansion_and_calming_steps = world.step_count();
-  out.expansion_and_calming_rebuilds = world.neighbors().build_count;
+  out.expansion_and_calming_builds = world.neighbors().build_count;
   world.set_neighbor_skin(0.2 * r_min);
   int restored_stages = 0;
   const RelaxedState end = c.relaxation == MortarRelaxation::Fire
@@ -501,7 +507,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
                ratio = end.unbalanced_ratio;
   out.converged = end.converged;
   out.steps = world.step_count();
-  out.neighbour_rebuilds = world.neighbors().build_count;
+  out.neighbour_builds = world.neighbors().build_count;
   if (!out.converged && restored_stages > kFireMaxRestores) {
     std::ostringstream msg;
     msg << "mortar packing, relaxation 'fire' (mortar.relaxation): the packing unjammed "

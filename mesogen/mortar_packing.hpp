@@ -93,11 +93,11 @@ struct MortarPackingControls {
   // 0.37 MPa); halving, with every stage relaxed to the packing's own unbalanced limit, keeps it
   // jammed (3.64 at 0.22 MPa). Not an input key (tests make a packing unjam with it).
   double fire_stage_drop = 2.0;
-  // When set, called every kPackingProgressEvery cycles of the relaxation with the cycles so far,
-  // the contact stress (Pa) and the neighbour rebuilds so far: `cdem generate` prints it, since
-  // a 10^6-disc packing runs for tens of minutes. It only reads; the packing is the same with or
-  // without it.
-  std::function<void(long cycles, double contact_stress, long rebuilds)> progress;
+  // When set, called every kPackingProgressEvery cycles (expansion, calming and relaxation alike)
+  // with the cycles so far, the contact stress (Pa) and the neighbour-list builds so far (the
+  // first included): `cdem generate` prints it, since a 10^6-disc packing runs for about an
+  // hour. It only reads; the packing is the same with or without it.
+  std::function<void(long cycles, double contact_stress, long builds)> progress;
 };
 
 // Cycles between two calls of MortarPackingControls::progress.
@@ -143,11 +143,11 @@ struct MortarPacking {
   double coordination_number = 0;  // mean disc-disc contacts per disc
   long floating_discs = 0;         // discs with fewer than 3 contacts
   long steps = 0;                  // DEM steps used
-  long expansion_and_calming_steps = 0;     // of which the expansion and the calming after it
-  long neighbour_rebuilds = 0;              // neighbour-list builds over all the steps
-  long expansion_and_calming_rebuilds = 0;  // of which in the expansion and the calming
-  bool converged = false;                   // stress within tolerance and forces balanced
-  int fire_restored_stages = 0;  // relaxation = "fire": stages undone by the jamming check
+  long expansion_and_calming_steps = 0;   // of which the expansion and the calming after it
+  long neighbour_builds = 0;              // neighbour-list builds over all the steps, the first too
+  long expansion_and_calming_builds = 0;  // of which in the expansion and the calming
+  bool converged = false;                 // stress within tolerance and forces balanced
+  int fire_restored_stages = 0;           // relaxation = "fire": stages undone by the jamming check
 };
 
 // Throws RunError if the effort bound is reached without convergence (with the figures).

@@ -2,6 +2,7 @@
 // per-pair state carried across rebuilds.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include <gtest/gtest.h>
 
@@ -90,11 +91,11 @@ TEST(NeighborList, ShearStateSurvivesRebuilds) {
   EXPECT_NEAR(w.bodies().fy[1], fs, 1e-12 * fs);
 }
 
-// The rebuild check skips its pass over the discs while the integration's displacement bound
-// rules a rebuild out (dem/neighbor_list.hpp). Free discs crossing each other at random and a
-// fast-spinning clump (its pebbles move on arcs, faster than any free disc) must still never touch
-// a disc outside the list, through many rebuilds.
-TEST(NeighborList, NoTouchingPairIsMissedBetweenRebuilds) {
+// Free discs crossing each other at random and a fast-spinning clump (its pebbles move on arcs,
+// faster than any free disc), 600 steps; before step n the radii are scaled by
+// radius_factor(n). Checks by brute force after every step that no touching pair is missing
+// from the list, and returns the neighbour builds.
+long expect_no_touching_pair_missed(const std::function<double(int)>& radius_factor) {
   WorldSettings s;
   s.fixed_time_step = 1e-6;
   s.local_damping = 0;
@@ -115,19 +116,35 @@ TEST(NeighborList, NoTouchingPairIsMissedBetweenRebuilds) {
   const auto& d = w.discs();
   long checked = 0;
   for (int n = 0; n < 600; ++n) {
+    w.scale_radii(radius_factor(n));
     w.step();
     for (std::size_t i = 0; i < d.size(); ++i)
       for (std::size_t j = i + 1; j < d.size(); ++j) {
         if (d.body[i] == d.body[j]) continue;
         if (std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) >= d.r[i] + d.r[j]) continue;
         ++checked;
-        ASSERT_TRUE(std::binary_search(w.contacts().keys.begin(), w.contacts().keys.end(),
+        EXPECT_TRUE(std::binary_search(w.contacts().keys.begin(), w.contacts().keys.end(),
                                        cdem::dem::pair_key(i, j)))
             << "step " << n << " pair " << i << ' ' << j;
       }
   }
   EXPECT_GT(checked, 1000);
-  EXPECT_GT(w.neighbors().build_count, 10);  // a rebuild every ~20 steps
+  return w.neighbors().build_count;
+}
+
+// The rebuild check skips its pass over the discs while the integration's displacement bound
+// rules a rebuild out (dem/neighbor_list.hpp): no touching pair may be missed through many
+// rebuilds.
+TEST(NeighborList, NoTouchingPairIsMissedBetweenRebuilds) {
+  EXPECT_GT(expect_no_touching_pair_missed([](int) { return 1.0; }), 10);  // every ~20 steps
+}
+
+// A radius shrink keeps the bound (gaps only open), a growth drops it (World::scale_radii): the
+// same with every radius shrinking by 1e-4 per step, and growing by 10 % every 97th step (more
+// than the skin of the smallest discs: a growth the bound alone would miss).
+TEST(NeighborList, NoTouchingPairIsMissedWhileRadiiShrinkAndGrow) {
+  EXPECT_GT(expect_no_touching_pair_missed([](int n) { return n % 97 == 96 ? 1.1 : 1 - 1e-4; }),
+            10);
 }
 
 TEST(NeighborList, OpeningContactForgetsItsShear) {
@@ -144,8 +161,6 @@ TEST(NeighborList, OpeningContactForgetsItsShear) {
   for (int n = 0; n < 1000; ++n) w.step();
   EXPECT_EQ(w.contacts().state.shear_force[0], 0.0);
 }
-
-}  // namespace
 
 // The neighbour search shared out over a team (dem/neighbor_list.hpp) finds the same sorted
 // candidates as one thread, with teams larger than some of the worlds (empty ranges) and with
@@ -175,3 +190,5 @@ TEST(NeighborList, TeamFindsTheCandidatesOfOneThread) {
       EXPECT_EQ(keys[t], keys[0]) << count << " discs, " << t + 1 << " threads";
   }
 }
+
+}  // namespace

@@ -381,29 +381,46 @@ TEST(MortarPacking, FireStageLimitScalesWithTheSpan) {
   EXPECT_THROW(pack(rectangle(0.02, 0.02), c, 1), cdem::InputError);
 }
 
-}  // namespace
-
-// The progress callback (`cdem generate` prints it) is called every kPackingProgressEvery cycles
-// of the relaxation with the contact stress of that cycle, and only reads: the packing is the
-// same bits without it.
+// The progress callback (`cdem generate` prints it) is called every kPackingProgressEvery cycles,
+// expansion and calming included, with the contact stress and the neighbour-list builds of that
+// cycle, and only reads: the packing is the same bits without it. The build counters of the
+// result never run backwards.
 TEST(MortarPacking, ProgressIsReportedAndChangesNothing) {
+  using cdem::mesogen::kPackingProgressEvery;
   const Container mould = rectangle(0.03, 0.03);
   MortarPackingControls c;
   c.r_mean = 0.3e-3;
   const MortarPacking quiet = pack(mould, c, 4);
-  std::vector<std::pair<long, double>> calls;
-  c.progress = [&calls](long cycles, double sigma, long) { calls.emplace_back(cycles, sigma); };
+  struct Call {
+    long cycles;
+    double sigma;
+    long builds;
+  };
+  std::vector<Call> calls;
+  c.progress = [&calls](long cycles, double sigma, long builds) {
+    calls.push_back({cycles, sigma, builds});
+  };
   const MortarPacking told = pack(mould, c, 4);
   EXPECT_EQ(told.x, quiet.x);
   EXPECT_EQ(told.r, quiet.r);
   EXPECT_EQ(told.steps, quiet.steps);
-  ASSERT_GE(quiet.steps, cdem::mesogen::kPackingProgressEvery) << "mould packs too fast";
-  // The relaxation starts after the expansion and calming (well below 5,000 cycles here), so
-  // every multiple of the interval up to the last cycle is reported, once, in order.
-  ASSERT_EQ(static_cast<long>(calls.size()), quiet.steps / cdem::mesogen::kPackingProgressEvery);
+  EXPECT_EQ(told.neighbour_builds, quiet.neighbour_builds);
+  ASSERT_GE(quiet.steps, kPackingProgressEvery) << "mould packs too fast";
+  // Every multiple of the interval up to the last cycle is reported, once, in order.
+  ASSERT_EQ(static_cast<long>(calls.size()), quiet.steps / kPackingProgressEvery);
+  long builds = 0;
   for (std::size_t k = 0; k < calls.size(); ++k) {
-    EXPECT_EQ(calls[k].first, static_cast<long>(k + 1) * cdem::mesogen::kPackingProgressEvery);
-    EXPECT_GT(calls[k].second, 0.5 * c.sigma0);  // a jammed packing on its way down to sigma0
-    EXPECT_LT(calls[k].second, 1e3 * c.sigma0);  // past the expansion's hundreds of MPa
+    EXPECT_EQ(calls[k].cycles, static_cast<long>(k + 1) * kPackingProgressEvery);
+    EXPECT_GT(calls[k].sigma, 0.5 * c.sigma0);  // a jammed packing on its way down to sigma0
+    EXPECT_LT(calls[k].sigma, 1e4 * c.sigma0);  // E* / 16 at most: the expansion's order
+    EXPECT_GE(calls[k].builds, builds);
+    builds = calls[k].builds;
   }
+  EXPECT_LE(builds, quiet.neighbour_builds);
+  EXPECT_GE(quiet.expansion_and_calming_builds, 1);  // the first build is one of them
+  EXPECT_LE(quiet.expansion_and_calming_builds, quiet.neighbour_builds);
+  EXPECT_GE(quiet.expansion_and_calming_steps, quiet.expansion_steps);
+  EXPECT_LT(quiet.expansion_and_calming_steps, quiet.steps);
 }
+
+}  // namespace
