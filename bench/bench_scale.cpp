@@ -11,11 +11,12 @@
 // while timing: `bonds_broken` says so), and at 10^6 discs it would cost more than the timing.
 //
 //   build/bin/bench_scale SPECIMEN.h5 [--steps N] [--repeats R] [--warmup N] [--threads T]
-//                         [--law 0|1] [--tile NX NY]
+//                         [--law 0|1] [--tile NX NY] [--order auto|specimen|spatial]
 //
 // --tile NX NY places NX x NY copies of the specimen side by side (clumps and all) before the
 // world is built: a large world from a small generated section, for when generating the large
-// one would take longer than the benchmark (docs/performance.md "Scale").
+// one would take longer than the benchmark (docs/performance.md "Scale"). --order numbers the
+// world's bodies as dem/world_from_specimen.hpp's BodyOrder (default auto, as a lab test does).
 #include <malloc.h>
 
 #include <algorithm>
@@ -58,13 +59,14 @@ struct Options {
   int threads = 1;
   int law = 0;  // 0 = parallel bonds, 1 = flat joints (kMaterials)
   int tile_x = 1, tile_y = 1;
+  cdem::dem::BodyOrder order = cdem::dem::BodyOrder::Automatic;
 };
 
 [[noreturn]] void usage_error(const std::string& what) {
   std::fprintf(stderr,
                "bench_scale: %s\nusage: bench_scale SPECIMEN.h5 [--steps N >= 1] [--repeats R "
                ">= 1] [--warmup N >= 1] [--threads 1..64] [--law 0|1] [--tile NX NY, 1..100 "
-               "each]\n",
+               "each] [--order auto|specimen|spatial]\n",
                what.c_str());
   std::exit(2);
 }
@@ -98,6 +100,17 @@ Options parse(int argc, char** argv) {
     else if (a == "--tile") {
       o.tile_x = static_cast<int>(integer_argument(a, argc, argv, i, 1, 100));
       o.tile_y = static_cast<int>(integer_argument(a, argc, argv, i, 1, 100));
+    } else if (a == "--order") {
+      if (i + 1 >= argc) usage_error(a + " needs a value");
+      const std::string v = argv[++i];
+      if (v == "auto")
+        o.order = cdem::dem::BodyOrder::Automatic;
+      else if (v == "specimen")
+        o.order = cdem::dem::BodyOrder::Specimen;
+      else if (v == "spatial")
+        o.order = cdem::dem::BodyOrder::Spatial;
+      else
+        usage_error(a + " = '" + v + "': auto, specimen or spatial");
     } else if (a.rfind("--", 0) == 0)
       usage_error("unknown option " + a);
     else if (o.specimen.empty())
@@ -268,7 +281,7 @@ int run(const Options& o) {
   malloc_trim(0);
   const double resident_before = cdem::resident_bytes();
   const double cpu_build = cpu_seconds();
-  World w = world_from_specimen(cleaned, settings);
+  World w = world_from_specimen(cleaned, settings, nullptr, o.order);
   BondInstallation installation;
   installation.gap_ratio = genesis.bond_gap_ratio;
   const long bonds = install_bonds(w, installation).total();
@@ -332,9 +345,10 @@ int run(const Options& o) {
   std::printf("load average at end: %s\n", load_average().c_str());
   std::printf(
       "RESULT discs %.0f pairs_per_disc %.3f ns_cpu %.2f ns_wall %.2f "
-      "resident_B_per_disc %.1f accounted_B_per_disc %.1f\n",
+      "resident_B_per_disc %.1f accounted_B_per_disc %.1f order %s\n",
       discs, pairs / discs, median(cpu_ns), median(wall_ns), resident_growth / discs,
-      static_cast<double>(footprint.total()) / discs);
+      static_cast<double>(footprint.total()) / discs,
+      resolve_body_order(specimen, o.order) == BodyOrder::Spatial ? "spatial" : "specimen");
   return 0;
 }
 

@@ -92,12 +92,12 @@ Fragments find_fragments(const World& world, double clump_density,
   return f;
 }
 
-void add_clump_outlines(Fragments& f, const World& world, const Specimen& specimen) {
+void add_clump_outlines(Fragments& f, const World& world, const Specimen& specimen,
+                        const std::vector<std::int32_t>& clump_body) {
   const Bodies& bodies = world.bodies();
-  std::size_t c = 0;
-  for (std::size_t b = 0; b < bodies.size() && c < specimen.clumps.size(); ++b) {
-    if (!bodies.is_clump[b]) continue;
-    const Clump& clump = specimen.clumps[c++];
+  for (std::size_t c = 0; c < specimen.clumps.size() && c < clump_body.size(); ++c) {
+    const Clump& clump = specimen.clumps[c];
+    const auto b = static_cast<std::size_t>(clump_body[c]);
     // Bodies start at theta = 0 on the specimen's centroid.
     const Eigen::Rotation2Dd turn(bodies.theta[b]);
     const Eigen::Vector2d now(bodies.x[b], bodies.y[b]);

@@ -44,9 +44,11 @@ struct Fragments {
 Fragments find_fragments(const World& world, double clump_density,
                          const std::vector<double>& sieve);
 
-// Adds the aggregates' outlines: `specimen` is the one the world was built from
-// (dem/world_from_specimen.hpp: its clumps are the world's clump bodies, in order), each polygon
-// carried by its body's translation and rotation since then.
-void add_clump_outlines(Fragments& fragments, const World& world, const Specimen& specimen);
+// Adds the aggregates' outlines: `specimen` is the one the world was built from and
+// `clump_body` the world body of each of its clumps (WorldIndex::clump_body,
+// dem/world_from_specimen.hpp), each polygon carried by its body's translation and rotation
+// since then.
+void add_clump_outlines(Fragments& fragments, const World& world, const Specimen& specimen,
+                        const std::vector<std::int32_t>& clump_body);
 
 }  // namespace cdem::dem

@@ -3,6 +3,7 @@
 // density), every aggregate a rigid clump of its pebbles with the polygon's mass, centroid and
 // inertia; pebbles the specimen marks as out of reach ride along outside contact detection.
 // No walls are added: a lab test adds the ones it needs (e.g. add_container_walls).
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -11,11 +12,48 @@
 
 namespace cdem::dem {
 
-// World disc order: the mortar discs in specimen order, then the pebbles of clump 0, 1, ...
-// each in specimen order. `world_disc_of`, if given, receives the world disc index of every
-// specimen disc. Throws std::invalid_argument for an inconsistent specimen (array sizes, clump
-// index out of range, a clump without pebbles or with mass / inertia <= 0).
+// The order the world numbers its bodies (and so its discs and contact pairs) in. The order
+// decides which arrays a step reads close together and the order of every force sum, so the
+// two orders give the same physics with different last bits.
+enum class BodyOrder {
+  // Specimen below kSpatialOrderAboveDiscs discs, Spatial from there on.
+  Automatic,
+  // The mortar discs in specimen order, then the pebbles of clump 0, 1, ... each in specimen
+  // order. The generator writes the mortar along serpentine rows of cells across the mould's
+  // width and numbers the clumps in placement order (largest first, anywhere in the mould).
+  Specimen,
+  // The mortar discs along serpentine rows of cells (2 R_max of the mortar) laid across the
+  // specimen's shorter side, so a row holds as few discs as the specimen allows and neighbours
+  // in space are near in memory; then the clumps along the same rows of cells as wide as the
+  // widest clump, so the clumps a row of mortar touches lie together. Measured on the 10^6-disc
+  // section (docs/performance.md "Session 20"): each clump among the mortar at its centroid's
+  // cell, or the clumps on the mortar's fine cells, cost 10-20 % more per step than this: a
+  // clump's pebbles touch mortar up to half its width away, and the coarse cells keep the
+  // clumps of one stretch of rows together.
+  Spatial,
+};
+
+// Disc count above which BodyOrder::Automatic picks Spatial. Measured with bench_scale (one
+// thread, parallel bonds, 5 alternated rounds; docs/performance.md "Session 20"): on the
+// generated 10^6-disc section (1,000 x 500 mm) the spatial order cut the step to 0.89x (1.91x
+// the C30 cost per disc-step before, 1.67x after); on 133,000 discs (250 x 500 mm) no gain
+// showed through the host's noise (0.87-1.14x), and C30 (21,000 discs) fits the L3. Below this
+// count the specimen order keeps the bits of every shipped result (tables/).
+inline constexpr std::size_t kSpatialOrderAboveDiscs = 250000;
+
+// The order Automatic stands for on this specimen.
+BodyOrder resolve_body_order(const Specimen& specimen, BodyOrder order);
+
+// Where the specimen's discs and clumps went in the world.
+struct WorldIndex {
+  std::vector<std::int32_t> disc;        // world disc of each specimen disc
+  std::vector<std::int32_t> clump_body;  // world body of each specimen clump
+};
+
+// Throws std::invalid_argument for an inconsistent specimen (array sizes, clump index out of
+// range, a clump without pebbles or with mass / inertia <= 0). `index`, if given, receives where
+// each specimen disc and clump went.
 World world_from_specimen(const Specimen& specimen, const WorldSettings& settings,
-                          std::vector<std::int32_t>* world_disc_of = nullptr);
+                          WorldIndex* index = nullptr, BodyOrder order = BodyOrder::Automatic);
 
 }  // namespace cdem::dem

@@ -716,10 +716,11 @@ StopRuleOptions loading_stop_options(const LabTestControls& c, const Container& 
 namespace {
 
 // The fragments of the world at the end of a run, with the aggregates' outlines for the picture
-// (`specimen`: the one the world was built from).
-Fragments fragments_at_end(const World& world, const Specimen& specimen, const LabTestControls& c) {
+// (`specimen`: the one the world was built from, `index` where its parts went).
+Fragments fragments_at_end(const World& world, const Specimen& specimen, const WorldIndex& index,
+                           const LabTestControls& c) {
   Fragments f = find_fragments(world, specimen.aggregate_density, c.fragment_sieve);
-  add_clump_outlines(f, world, specimen);
+  add_clump_outlines(f, world, specimen, index.clump_body);
   return f;
 }
 
@@ -759,7 +760,8 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   LabTestResult res;
   res.type = c.type;
   const Specimen cleaned = remove_floating_discs(specimen, settings, c.genesis, res.genesis);
-  World world = world_from_specimen(cleaned, settings);
+  WorldIndex index;
+  World world = world_from_specimen(cleaned, settings, &index);
   install_test_bonds(world, c.genesis, res.genesis);
   res.joints = install_test_joints(world, c.joints, c.genesis.bond_gap_ratio, input.file);
   // The relaxed state is the reference: displacements, strains, time and steps count from here.
@@ -768,7 +770,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   if (c.type == LabTestType::Shpb) {
     run_shpb_test(world, Box{e.xmin, e.ymin, e.xmax, e.ymax},
                   specimen.container.shape == ContainerShape::Disc, input, hooks, res);
-    res.fragments = fragments_at_end(world, cleaned, c);
+    res.fragments = fragments_at_end(world, cleaned, index, c);
     res.joint_states = joint_states(world, res.cracks, 0);
     res.wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -955,7 +957,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
 
   res.steps = world.step_count() - step0;
   tally_cracks(res, world.cracks(), time0);
-  res.fragments = fragments_at_end(world, cleaned, c);
+  res.fragments = fragments_at_end(world, cleaned, index, c);
   res.joint_states = joint_states(world, res.cracks, 0);
   const auto peak_at = std::max_element(h.axial_stress.begin(), h.axial_stress.end());
   res.peak_stress = *peak_at;

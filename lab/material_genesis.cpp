@@ -71,8 +71,10 @@ void check_genesis_damage(const WorldSettings& settings, const GenesisOptions& o
 Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& settings,
                                const GenesisOptions& options, GenesisReport& report) {
   report.discs_in_specimen = static_cast<long>(specimen.disc_count());
-  std::vector<std::int32_t> world_disc_of;
-  World world = world_from_specimen(specimen, settings, &world_disc_of);
+  // Only counts are taken here, so the specimen's order serves at any size.
+  WorldIndex index;
+  World world = world_from_specimen(specimen, settings, &index, BodyOrder::Specimen);
+  const std::vector<std::int32_t>& world_disc_of = index.disc;
   world.refresh_neighbors();
   const ContactStore& list = world.contacts();
   const Discs& d = world.discs();

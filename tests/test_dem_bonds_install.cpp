@@ -8,6 +8,7 @@
 #include <numbers>
 #include <set>
 
+#include "core/rng.hpp"
 #include "dem/bond_installation.hpp"
 #include "dem/world_from_specimen.hpp"
 
@@ -82,36 +83,85 @@ WorldSettings concrete_settings() {
 
 TEST(WorldFromSpecimen, MortarDiscsAndClumps) {
   const cdem::Specimen s = synthetic_specimen();
-  std::vector<std::int32_t> map;
-  const World w = world_from_specimen(s, concrete_settings(), &map);
-  ASSERT_EQ(w.discs().size(), s.disc_count());
-  EXPECT_EQ(w.bodies().size(), 6u + 2u);  // 6 mortar discs, 2 clumps
-  for (std::size_t i = 0; i < s.disc_count(); ++i) {
-    const std::int32_t d = map[i];
-    EXPECT_EQ(w.discs().x[d], s.x[i]);
-    EXPECT_EQ(w.discs().r[d], s.r[i]);
-    EXPECT_EQ(w.discs().active[d], s.contact_active[i]);
-    EXPECT_EQ(w.discs().material[d],
-              s.clump[i] < 0 ? DiscMaterial::Mortar : DiscMaterial::Aggregate);
-    const std::int32_t b = w.discs().body[d];
-    if (s.clump[i] < 0) {
-      EXPECT_DOUBLE_EQ(w.bodies().mass[b], s.mortar_density * std::numbers::pi * s.r[i] * s.r[i]);
-    } else {
-      const cdem::Clump& c = s.clumps[s.clump[i]];
-      EXPECT_EQ(w.bodies().mass[b], c.mass);
-      EXPECT_EQ(w.bodies().inertia[b], c.inertia);
-      EXPECT_EQ(w.bodies().x[b], c.centroid.x());
+  for (const BodyOrder order : {BodyOrder::Specimen, BodyOrder::Spatial}) {
+    WorldIndex index;
+    const World w = world_from_specimen(s, concrete_settings(), &index, order);
+    ASSERT_EQ(w.discs().size(), s.disc_count());
+    EXPECT_EQ(w.bodies().size(), 6u + 2u);  // 6 mortar discs, 2 clumps
+    ASSERT_EQ(index.clump_body.size(), s.clumps.size());
+    std::set<std::int32_t> taken;  // every world disc is some specimen disc's, once
+    for (std::size_t i = 0; i < s.disc_count(); ++i) {
+      const std::int32_t d = index.disc[i];
+      ASSERT_GE(d, 0);
+      EXPECT_TRUE(taken.insert(d).second);
+      EXPECT_EQ(w.discs().x[d], s.x[i]);
+      EXPECT_EQ(w.discs().r[d], s.r[i]);
+      EXPECT_EQ(w.discs().active[d], s.contact_active[i]);
+      EXPECT_EQ(w.discs().material[d],
+                s.clump[i] < 0 ? DiscMaterial::Mortar : DiscMaterial::Aggregate);
+      const std::int32_t b = w.discs().body[d];
+      if (s.clump[i] < 0) {
+        EXPECT_DOUBLE_EQ(w.bodies().mass[b], s.mortar_density * std::numbers::pi * s.r[i] * s.r[i]);
+      } else {
+        EXPECT_EQ(b, index.clump_body[static_cast<std::size_t>(s.clump[i])]);
+        const cdem::Clump& c = s.clumps[s.clump[i]];
+        EXPECT_EQ(w.bodies().mass[b], c.mass);
+        EXPECT_EQ(w.bodies().inertia[b], c.inertia);
+        EXPECT_EQ(w.bodies().x[b], c.centroid.x());
+      }
     }
   }
+  // The specimen order: the mortar discs first, in the specimen's order, then the clumps.
+  WorldIndex index;
+  const World w = world_from_specimen(s, concrete_settings(), &index, BodyOrder::Specimen);
+  for (std::size_t i = 7; i < s.disc_count(); ++i)
+    EXPECT_EQ(index.disc[i], static_cast<std::int32_t>(i - 7));
+  EXPECT_EQ(index.clump_body, (std::vector<std::int32_t>{6, 7}));
   cdem::Specimen bad = s;
   bad.clump[0] = 5;
   EXPECT_THROW(world_from_specimen(bad, concrete_settings()), std::invalid_argument);
 }
 
+// On a specimen ten times wider than high whose mortar discs are written in random order, the
+// spatial order makes every pair of near mortar discs near in memory: the rows run across the
+// short side, so a row of 1 mm cells holds about 10 discs and discs within 2 mm of each other (at
+// most three rows apart) lie within about 30 indices. Rows along the long side (100 discs each)
+// would put such pairs up to about 300 apart; the specimen's random order, up to about 2,000.
+// The clumps come after the mortar, in the same rows (of cells as wide as the widest clump).
+TEST(WorldFromSpecimen, SpatialOrderKeepsNearDiscsNearInMemory) {
+  cdem::Specimen s;
+  s.container = {cdem::ContainerShape::Rectangle, 200e-3, 20e-3};
+  cdem::Rng rng(7);
+  constexpr int kMortar = 2000;
+  for (int i = 0; i < kMortar; ++i)
+    add_disc(s, rng.uniform(0, 200e-3), rng.uniform(0, 20e-3), kRm, -1);
+  add_clump(s, 150e-3, 10e-3);  // clump 0 right of clump 1
+  add_clump(s, 50e-3, 10e-3);
+  for (const double x : {148e-3, 152e-3, 48e-3, 52e-3}) add_disc(s, x, 10e-3, kRa, x > 0.1 ? 0 : 1);
+  const auto widest_near_gap = [&](BodyOrder order) {
+    const World w = world_from_specimen(s, concrete_settings(), nullptr, order);
+    const Discs& d = w.discs();
+    long widest = 0;
+    for (std::size_t i = 0; i < d.size(); ++i)
+      for (std::size_t j = i + 1; j < d.size(); ++j)
+        if (d.material[i] == DiscMaterial::Mortar && d.material[j] == DiscMaterial::Mortar &&
+            std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]) < 2e-3)
+          widest = std::max(widest, static_cast<long>(j - i));
+    return widest;
+  };
+  EXPECT_LT(widest_near_gap(BodyOrder::Spatial), 80);
+  EXPECT_GT(widest_near_gap(BodyOrder::Specimen), 1000);
+  WorldIndex index;
+  const World w = world_from_specimen(s, concrete_settings(), &index, BodyOrder::Spatial);
+  EXPECT_EQ(index.clump_body, (std::vector<std::int32_t>{kMortar + 1, kMortar}));
+  EXPECT_EQ(resolve_body_order(s, BodyOrder::Automatic), BodyOrder::Specimen);
+}
+
 TEST(BondInstallation, BondsExactlyWithinToleranceWithTheirClass) {
   const cdem::Specimen s = synthetic_specimen();
-  std::vector<std::int32_t> map;
-  World w = world_from_specimen(s, concrete_settings(), &map);
+  WorldIndex index;
+  World w = world_from_specimen(s, concrete_settings(), &index);
+  const std::vector<std::int32_t>& map = index.disc;
   const BondInstallation options;  // default gap ratio
   const InstalledBonds installed = install_bonds(w, options);
 

@@ -121,7 +121,7 @@ TEST(Fragments, ClumpOutlinesFollowTheirBody) {
   bodies.y[body] = 0.03;
   bodies.theta[body] = std::numbers::pi / 2;
   Fragments f = find_fragments(w, kClumpDensity, {1e-3});
-  add_clump_outlines(f, w, s);
+  add_clump_outlines(f, w, s, {body});
   ASSERT_EQ(f.clump_outline.size(), 1u);
   ASSERT_EQ(f.clump_outline[0].size(), 3u);
   EXPECT_NEAR(f.clump_outline[0][0].x(), 0.05, 1e-15);
