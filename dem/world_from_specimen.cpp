@@ -6,25 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "dem/serpentine_order.hpp"
+
 namespace cdem::dem {
-
-namespace {
-
-// The spatial order's key of a point (m): serpentine rows of square cells (side `cell`, m)
-// across the shorter side of a width x height specimen, so a row holds as few cells as it can.
-struct SerpentineRows {
-  double cell;
-  bool rows_along_y;  // the specimen is wider than high: the rows run along y
-  std::int64_t key(double x, double y) const {
-    constexpr std::int64_t kRowCells = std::int64_t{1} << 30;
-    auto along = static_cast<std::int64_t>(std::floor(x / cell)),
-         across = static_cast<std::int64_t>(std::floor(y / cell));
-    if (rows_along_y) std::swap(along, across);
-    return across * kRowCells + ((across & 1) ? kRowCells - 1 - along : along);
-  }
-};
-
-}  // namespace
 
 BodyOrder resolve_body_order(const Specimen& s, BodyOrder order) {
   if (order != BodyOrder::Automatic) return order;

@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <sstream>
 
 #include "core/input_error.hpp"
 #include "dem/measure.hpp"
+#include "dem/serpentine_order.hpp"
 #include "dem/world.hpp"
+#include "dem/world_from_specimen.hpp"
 #include "mesogen/fire_relaxation.hpp"
 
 namespace cdem::mesogen {
@@ -136,23 +137,6 @@ void place_half_radius(const Container& mould, std::vector<double>& x, std::vect
       throw RunError(out.str());
     }
   }
-}
-
-// Orders the discs along rows of cells so that neighbours in space are near in memory (the
-// contact loop then walks the position arrays almost sequentially). Deterministic.
-std::vector<std::size_t> spatial_order(const std::vector<double>& x, const std::vector<double>& y,
-                                       double cell) {
-  std::vector<std::int64_t> key(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const auto gx = static_cast<std::int64_t>(x[i] / cell);
-    const auto gy = static_cast<std::int64_t>(y[i] / cell);
-    key[i] = gy * (1 << 20) + ((gy & 1) ? (1 << 20) - 1 - gx : gx);  // serpentine rows
-  }
-  std::vector<std::size_t> order(x.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
-  return order;
 }
 
 // The contacts an affine stiffness counts: those touching, or every candidate pair (touching or
@@ -459,7 +443,12 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   settings.laws.fill(law);
   out.time_step_safety = settings.time_step_safety;
   dem::World world(settings);
-  for (std::size_t i : spatial_order(x, y, 2.0 * r_max))
+  // The discs along serpentine rows of cells (neighbours in space near in memory), the rows
+  // across the mould's width; on a mould of more than dem::kSpatialOrderAboveDiscs discs that is
+  // wider than high, across its height, so a row holds as few discs as it can (the order the
+  // engine gives a specimen that large, dem/world_from_specimen.hpp). Deterministic.
+  const bool rows_along_y = n > dem::kSpatialOrderAboveDiscs && mould.width > mould.height;
+  for (std::size_t i : dem::SerpentineRows{2.0 * r_max, rows_along_y}.order(x, y))
     world.add_disc(x[i], y[i], half[i], c.density);
   world.add_container_walls(mould, c.wall_segments);
 
