@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -95,9 +97,16 @@ Fragments find_fragments(const World& world, double clump_density,
 void add_clump_outlines(Fragments& f, const World& world, const Specimen& specimen,
                         const std::vector<std::int32_t>& clump_body) {
   const Bodies& bodies = world.bodies();
-  for (std::size_t c = 0; c < specimen.clumps.size() && c < clump_body.size(); ++c) {
+  if (clump_body.size() != specimen.clumps.size())
+    throw std::invalid_argument("add_clump_outlines: " + std::to_string(clump_body.size()) +
+                                " clump bodies for " + std::to_string(specimen.clumps.size()) +
+                                " clumps");
+  for (std::size_t c = 0; c < specimen.clumps.size(); ++c) {
     const Clump& clump = specimen.clumps[c];
     const auto b = static_cast<std::size_t>(clump_body[c]);
+    if (clump_body[c] < 0 || b >= bodies.size() || !bodies.is_clump[b])
+      throw std::invalid_argument("add_clump_outlines: clump " + std::to_string(c) + " has body " +
+                                  std::to_string(clump_body[c]) + ", not a clump of the world");
     // Bodies start at theta = 0 on the specimen's centroid.
     const Eigen::Rotation2Dd turn(bodies.theta[b]);
     const Eigen::Vector2d now(bodies.x[b], bodies.y[b]);

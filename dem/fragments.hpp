@@ -47,7 +47,7 @@ Fragments find_fragments(const World& world, double clump_density,
 // Adds the aggregates' outlines: `specimen` is the one the world was built from and
 // `clump_body` the world body of each of its clumps (WorldIndex::clump_body,
 // dem/world_from_specimen.hpp), each polygon carried by its body's translation and rotation
-// since then.
+// since then. Throws std::invalid_argument if clump_body does not name a clump body for each.
 void add_clump_outlines(Fragments& fragments, const World& world, const Specimen& specimen,
                         const std::vector<std::int32_t>& clump_body);
 

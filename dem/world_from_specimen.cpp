@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
-
-#include "dem/serpentine_order.hpp"
 
 namespace cdem::dem {
 
@@ -42,49 +41,53 @@ World world_from_specimen(const Specimen& s, const WorldSettings& settings, Worl
       throw std::invalid_argument("specimen: clump " + std::to_string(c) +
                                   " has no pebbles or a mass / inertia <= 0");
 
-  // The bodies in the order they are added: b < mortar.size() is mortar disc mortar[b], any
-  // other the clump b - mortar.size(). The spatial order sorts the mortar and the clumps apart,
-  // each on its own cells, and keeps the clumps after the mortar (BodyOrder::Spatial says why).
-  std::vector<std::size_t> bodies(mortar.size() + clumps);
-  std::iota(bodies.begin(), bodies.end(), std::size_t{0});
+  // The order the bodies are added in: the mortar discs mortar[mortar_slots[0]], ..., then the
+  // clumps clump_slots[0], .... The spatial order sorts the mortar and the clumps apart, each on
+  // its own cells, and keeps the clumps after the mortar (BodyOrder::Spatial says why).
+  std::vector<std::size_t> mortar_slots(mortar.size()), clump_slots(clumps);
+  std::iota(mortar_slots.begin(), mortar_slots.end(), std::size_t{0});
+  std::iota(clump_slots.begin(), clump_slots.end(), std::size_t{0});
   if (resolve_body_order(s, order) == BodyOrder::Spatial) {
-    const bool rows_along_y = s.container.width > s.container.height;
-    double clump_size = 0;  // m, the widest clump's diameter about its centroid
-    for (std::size_t c = 0; c < clumps; ++c)
-      for (const std::int32_t i : pebbles[c])
-        clump_size = std::max(clump_size, 2.0 * (std::hypot(s.x[i] - s.clumps[c].centroid.x(),
-                                                            s.y[i] - s.clumps[c].centroid.y()) +
-                                                 s.r[i]));
-    const SerpentineRows mortar_rows{2.0 * r_max, rows_along_y};
-    const SerpentineRows clump_rows{clump_size, rows_along_y};
-    std::vector<std::int64_t> key(bodies.size());
-    for (std::size_t b = 0; b < mortar.size(); ++b) {
-      const auto i = static_cast<std::size_t>(mortar[b]);
-      key[b] = mortar_rows.key(s.x[i], s.y[i]);
+    std::vector<double> mx(mortar.size()), my(mortar.size()), cx(clumps), cy(clumps);  // m
+    for (std::size_t k = 0; k < mortar.size(); ++k) {
+      mx[k] = s.x[static_cast<std::size_t>(mortar[k])];
+      my[k] = s.y[static_cast<std::size_t>(mortar[k])];
     }
-    for (std::size_t c = 0; c < clumps; ++c)
-      key[mortar.size() + c] = clump_rows.key(s.clumps[c].centroid.x(), s.clumps[c].centroid.y());
-    const auto by_key = [&](std::size_t a, std::size_t b) { return key[a] < key[b]; };
-    if (r_max > 0) std::stable_sort(bodies.begin(), bodies.begin() + mortar.size(), by_key);
-    if (clump_size > 0) std::stable_sort(bodies.begin() + mortar.size(), bodies.end(), by_key);
+    double clump_size = 0;  // m, the widest clump's diameter about its centroid
+    for (std::size_t c = 0; c < clumps; ++c) {
+      cx[c] = s.clumps[c].centroid.x();
+      cy[c] = s.clumps[c].centroid.y();
+      for (const std::int32_t i : pebbles[c])
+        clump_size =
+            std::max(clump_size, 2.0 * (std::hypot(s.x[i] - cx[c], s.y[i] - cy[c]) + s.r[i]));
+    }
+    // Cells count from the lowest point, so every cell index is >= 0 (SerpentineRows::key).
+    const auto lowest = [&](const std::vector<double>& a, const std::vector<double>& b) {
+      double low = std::numeric_limits<double>::infinity();
+      for (const double v : a) low = std::min(low, v);
+      for (const double v : b) low = std::min(low, v);
+      return low;
+    };
+    const double x0 = lowest(mx, cx), y0 = lowest(my, cy);
+    const bool rows_along_y = s.container.width > s.container.height;
+    if (r_max > 0) mortar_slots = SerpentineRows{2.0 * r_max, rows_along_y, x0, y0}.order(mx, my);
+    if (clump_size > 0)
+      clump_slots = SerpentineRows{clump_size, rows_along_y, x0, y0}.order(cx, cy);
   }
 
   World world(settings);
-  world.reserve(bodies.size(), n);
+  world.reserve(mortar.size() + clumps, n);
   std::vector<std::int32_t> disc_of(n, -1), body_of_clump(clumps, -1);
+  for (const std::size_t slot : mortar_slots) {
+    const auto i = static_cast<std::size_t>(mortar[slot]);
+    const int body = world.add_disc(s.x[i], s.y[i], s.r[i], s.mortar_density, DiscMaterial::Mortar);
+    const std::int32_t disc = world.bodies().first_disc[body];
+    world.set_contact_active(disc, s.contact_active[i] != 0);
+    disc_of[i] = disc;
+  }
   std::vector<double> px, py, pr;
   std::vector<std::uint8_t> active;
-  for (const std::size_t b : bodies) {
-    if (b < mortar.size()) {
-      const auto i = static_cast<std::size_t>(mortar[b]);
-      const int body =
-          world.add_disc(s.x[i], s.y[i], s.r[i], s.mortar_density, DiscMaterial::Mortar);
-      const std::int32_t disc = world.bodies().first_disc[body];
-      world.set_contact_active(disc, s.contact_active[i] != 0);
-      disc_of[i] = disc;
-      continue;
-    }
-    const std::size_t c = b - mortar.size();
+  for (const std::size_t c : clump_slots) {
     const Clump& clump = s.clumps[c];
     px.clear();
     py.clear();

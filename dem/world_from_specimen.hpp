@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/specimen.hpp"
+#include "dem/serpentine_order.hpp"
 #include "dem/world.hpp"
 
 namespace cdem::dem {
@@ -16,11 +17,13 @@ namespace cdem::dem {
 // decides which arrays a step reads close together and the order of every force sum, so the
 // two orders give the same physics with different last bits.
 enum class BodyOrder {
-  // Specimen below kSpatialOrderAboveDiscs discs, Spatial from there on.
+  // Specimen up to kSpatialOrderAboveDiscs discs (dem/serpentine_order.hpp, counted in the
+  // specimen given: a lab test's, after the floating discs are removed), Spatial above.
   Automatic,
   // The mortar discs in specimen order, then the pebbles of clump 0, 1, ... each in specimen
-  // order. The generator writes the mortar along serpentine rows of cells across the mould's
-  // width and numbers the clumps in placement order (largest first, anywhere in the mould).
+  // order. The generator writes the mortar along serpentine rows of cells (the packing's order,
+  // mesogen/mortar_packing.cpp) and numbers the clumps in placement order (largest first,
+  // anywhere in the mould).
   Specimen,
   // The mortar discs along serpentine rows of cells (2 R_max of the mortar) laid across the
   // specimen's shorter side, so a row holds as few discs as the specimen allows and neighbours
@@ -32,14 +35,6 @@ enum class BodyOrder {
   // clumps of one stretch of rows together.
   Spatial,
 };
-
-// Disc count above which BodyOrder::Automatic picks Spatial. Measured with bench_scale (one
-// thread, parallel bonds, 5 alternated rounds; docs/performance.md "Session 20"): on the
-// generated 10^6-disc section (1,000 x 500 mm) the spatial order cut the step to 0.89x (1.91x
-// the C30 cost per disc-step before, 1.67x after); on 133,000 discs (250 x 500 mm) no gain
-// showed through the host's noise (0.87-1.14x), and C30 (21,000 discs) fits the L3. Below this
-// count the specimen order keeps the bits of every shipped result (tables/).
-inline constexpr std::size_t kSpatialOrderAboveDiscs = 250000;
 
 // The order Automatic stands for on this specimen.
 BodyOrder resolve_body_order(const Specimen& specimen, BodyOrder order);

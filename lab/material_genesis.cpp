@@ -71,7 +71,8 @@ void check_genesis_damage(const WorldSettings& settings, const GenesisOptions& o
 Specimen remove_floating_discs(const Specimen& specimen, const WorldSettings& settings,
                                const GenesisOptions& options, GenesisReport& report) {
   report.discs_in_specimen = static_cast<long>(specimen.disc_count());
-  // Only counts are taken here, so the specimen's order serves at any size.
+  // Which discs the removal takes does not depend on the world's order (contact counts), so
+  // the specimen's order serves at any size.
   WorldIndex index;
   World world = world_from_specimen(specimen, settings, &index, BodyOrder::Specimen);
   const std::vector<std::int32_t>& world_disc_of = index.disc;

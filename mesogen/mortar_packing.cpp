@@ -9,7 +9,6 @@
 #include "dem/measure.hpp"
 #include "dem/serpentine_order.hpp"
 #include "dem/world.hpp"
-#include "dem/world_from_specimen.hpp"
 #include "mesogen/fire_relaxation.hpp"
 
 namespace cdem::mesogen {
@@ -444,9 +443,11 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   out.time_step_safety = settings.time_step_safety;
   dem::World world(settings);
   // The discs along serpentine rows of cells (neighbours in space near in memory), the rows
-  // across the mould's width; on a mould of more than dem::kSpatialOrderAboveDiscs discs that is
-  // wider than high, across its height, so a row holds as few discs as it can (the order the
-  // engine gives a specimen that large, dem/world_from_specimen.hpp). Deterministic.
+  // along x; on a mould of more than dem::kSpatialOrderAboveDiscs discs that is wider than high,
+  // along y, so a row holds as few discs as it can. This is the packing's own order (its cycles'
+  // speed and its bits); the world of a lab test numbers the specimen's discs again
+  // (dem/world_from_specimen.hpp), counting them after clumping and the floating removal.
+  // Deterministic.
   const bool rows_along_y = n > dem::kSpatialOrderAboveDiscs && mould.width > mould.height;
   for (std::size_t i : dem::SerpentineRows{2.0 * r_max, rows_along_y}.order(x, y))
     world.add_disc(x[i], y[i], half[i], c.density);

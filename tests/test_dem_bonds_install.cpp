@@ -114,8 +114,7 @@ TEST(WorldFromSpecimen, MortarDiscsAndClumps) {
   // The specimen order: the mortar discs first, in the specimen's order, then the clumps.
   WorldIndex index;
   const World w = world_from_specimen(s, concrete_settings(), &index, BodyOrder::Specimen);
-  for (std::size_t i = 7; i < s.disc_count(); ++i)
-    EXPECT_EQ(index.disc[i], static_cast<std::int32_t>(i - 7));
+  EXPECT_EQ(index.disc, (std::vector<std::int32_t>{6, 7, 8, 9, 10, 11, 12, 0, 1, 2, 3, 4, 5}));
   EXPECT_EQ(index.clump_body, (std::vector<std::int32_t>{6, 7}));
   cdem::Specimen bad = s;
   bad.clump[0] = 5;
@@ -154,7 +153,18 @@ TEST(WorldFromSpecimen, SpatialOrderKeepsNearDiscsNearInMemory) {
   WorldIndex index;
   const World w = world_from_specimen(s, concrete_settings(), &index, BodyOrder::Spatial);
   EXPECT_EQ(index.clump_body, (std::vector<std::int32_t>{kMortar + 1, kMortar}));
+}
+
+// Automatic is the specimen's order up to kSpatialOrderAboveDiscs discs and the spatial one
+// above (only the disc count decides: the rule is the same on every machine).
+TEST(WorldFromSpecimen, AutomaticOrderTurnsSpatialAboveTheThreshold) {
+  cdem::Specimen s;
+  s.r.assign(kSpatialOrderAboveDiscs, kRm);
   EXPECT_EQ(resolve_body_order(s, BodyOrder::Automatic), BodyOrder::Specimen);
+  EXPECT_EQ(resolve_body_order(s, BodyOrder::Spatial), BodyOrder::Spatial);
+  s.r.push_back(kRm);
+  EXPECT_EQ(resolve_body_order(s, BodyOrder::Automatic), BodyOrder::Spatial);
+  EXPECT_EQ(resolve_body_order(s, BodyOrder::Specimen), BodyOrder::Specimen);
 }
 
 TEST(BondInstallation, BondsExactlyWithinToleranceWithTheirClass) {

@@ -106,31 +106,46 @@ TEST(Fragments, ABrokenBondSplitsTheRow) {
 
 TEST(Fragments, ClumpOutlinesFollowTheirBody) {
   World w = row_world();
-  // The specimen's clump: a triangle about the clump's centroid (0.04, 0.04). Its body moves to
-  // (0.05, 0.03) and turns a quarter turn: the vertex 5 mm to the right of the centroid goes to
-  // 5 mm above the new centre.
+  const int moved = static_cast<int>(w.bodies().size()) - 1;
+  ASSERT_TRUE(w.bodies().is_clump[moved]);
+  // A second clump, left where it is; the specimen lists it first (clump 0), so the outlines
+  // must follow clump_body, not the world's order of clump bodies.
+  const int still = w.add_clump(0.08, 0.04, kClumpMass, 1e-9, {0.0795, 0.0805}, {0.04, 0.04},
+                                {0.6e-3, 0.6e-3}, {1, 1});
+  // Specimen clump 1 (the moved body): a triangle about its centroid (0.04, 0.04). Its body
+  // moves to (0.05, 0.03) and turns a quarter turn: the vertex 5 mm to the right of the
+  // centroid goes to 5 mm above the new centre.
   cdem::Specimen s;
   cdem::Clump c;
   c.centroid = {0.04, 0.04};
   c.vertices = {{0.045, 0.04}, {0.04, 0.042}, {0.038, 0.038}};
-  s.clumps = {c};
-  const int body = static_cast<int>(w.bodies().size()) - 1;
-  ASSERT_TRUE(w.bodies().is_clump[body]);
+  cdem::Clump unmoved;
+  unmoved.centroid = {0.08, 0.04};
+  unmoved.vertices = {{0.081, 0.04}, {0.08, 0.041}, {0.079, 0.039}};
+  s.clumps = {unmoved, c};
   Bodies& bodies = WorldTestAccess::bodies(w);  // the outline follows the body alone
-  bodies.x[body] = 0.05;
-  bodies.y[body] = 0.03;
-  bodies.theta[body] = std::numbers::pi / 2;
+  bodies.x[moved] = 0.05;
+  bodies.y[moved] = 0.03;
+  bodies.theta[moved] = std::numbers::pi / 2;
   Fragments f = find_fragments(w, kClumpDensity, {1e-3});
-  add_clump_outlines(f, w, s, {body});
-  ASSERT_EQ(f.clump_outline.size(), 1u);
-  ASSERT_EQ(f.clump_outline[0].size(), 3u);
-  EXPECT_NEAR(f.clump_outline[0][0].x(), 0.05, 1e-15);
-  EXPECT_NEAR(f.clump_outline[0][0].y(), 0.035, 1e-15);
-  EXPECT_NEAR(f.clump_outline[0][1].x(), 0.048, 1e-15);  // 2 mm above -> 2 mm to the left
-  EXPECT_NEAR(f.clump_outline[0][1].y(), 0.03, 1e-15);
-  EXPECT_NEAR(f.clump_outline[0][2].x(), 0.052, 1e-15);  // (-2, -2) mm -> (2, -2) mm
-  EXPECT_NEAR(f.clump_outline[0][2].y(), 0.028, 1e-15);
-  EXPECT_EQ(f.clump_fragment[0], f.fragment_of_disc[5]);
+  add_clump_outlines(f, w, s, {still, moved});
+  ASSERT_EQ(f.clump_outline.size(), 2u);
+  ASSERT_EQ(f.clump_outline[1].size(), 3u);
+  EXPECT_NEAR(f.clump_outline[1][0].x(), 0.05, 1e-15);
+  EXPECT_NEAR(f.clump_outline[1][0].y(), 0.035, 1e-15);
+  EXPECT_NEAR(f.clump_outline[1][1].x(), 0.048, 1e-15);  // 2 mm above -> 2 mm to the left
+  EXPECT_NEAR(f.clump_outline[1][1].y(), 0.03, 1e-15);
+  EXPECT_NEAR(f.clump_outline[1][2].x(), 0.052, 1e-15);  // (-2, -2) mm -> (2, -2) mm
+  EXPECT_NEAR(f.clump_outline[1][2].y(), 0.028, 1e-15);
+  EXPECT_EQ(f.clump_fragment[1], f.fragment_of_disc[5]);
+  EXPECT_NEAR(f.clump_outline[0][0].x(), 0.081, 1e-15);  // the still clump stays put
+  EXPECT_NEAR(f.clump_outline[0][0].y(), 0.04, 1e-15);
+  EXPECT_EQ(f.clump_fragment[0], f.fragment_of_disc[7]);
+  // A map that does not name a clump body for each clump is refused.
+  Fragments g = find_fragments(w, kClumpDensity, {1e-3});
+  EXPECT_THROW(add_clump_outlines(g, w, s, {moved}), std::invalid_argument);
+  EXPECT_THROW(add_clump_outlines(g, w, s, {still, 0}), std::invalid_argument);  // a free disc
+  EXPECT_THROW(add_clump_outlines(g, w, s, {still, -1}), std::invalid_argument);
 }
 
 }  // namespace
