@@ -265,8 +265,10 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
     throw RunError(std::to_string(clumping.empty_clumps) +
                    " aggregates captured no mortar disc: the mortar discs are too coarse for "
                    "the smallest aggregates (reduce mortar.r_mean or raise gradation.d_min)");
-  // The interfaces the test will bond: touching pairs per class (M, ITZ, A).
-  dem::World census_world = dem::world_from_specimen(s, dem::WorldSettings{});
+  // The interfaces the test will bond: touching pairs per class (M, ITZ, A). A count does not
+  // depend on the world's order, so the specimen's serves at any size (no sort, no sort memory).
+  dem::World census_world =
+      dem::world_from_specimen(s, dem::WorldSettings{}, nullptr, dem::BodyOrder::Specimen);
   census_world.refresh_neighbors();
   const auto census = dem::contact_census(census_world);
   const auto contacts = [&census](dem::ContactClass c) { return census[static_cast<int>(c)]; };
