@@ -14,8 +14,7 @@
 namespace cdem::dem {
 
 // Disc count above which the bodies of a world are numbered in serpentine rows across the
-// specimen's shorter side (BodyOrder::Automatic, dem/world_from_specimen.hpp) and the mortar
-// packing's rows run across its mould's shorter side (mesogen/mortar_packing.cpp). Measured
+// specimen's shorter side (BodyOrder::Automatic, dem/world_from_specimen.hpp). Measured
 // with bench_scale (one thread, parallel bonds, 5 alternated rounds; docs/performance.md
 // "Session 20"): on the generated 10^6-disc section (1,000 x 500 mm) that order cut the step to
 // 0.89x (1.91x the C30 cost per disc-step before, 1.67x after); on 133,000 discs (250 x 500 mm)

@@ -442,14 +442,12 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   settings.laws.fill(law);
   out.time_step_safety = settings.time_step_safety;
   dem::World world(settings);
-  // The discs along serpentine rows of cells (neighbours in space near in memory), the rows
-  // along x; on a mould of more than dem::kSpatialOrderAboveDiscs discs that is wider than high,
-  // along y, so a row holds as few discs as it can. This is the packing's own order (its cycles'
-  // speed and its bits); the world of a lab test numbers the specimen's discs again
-  // (dem/world_from_specimen.hpp), counting them after clumping and the floating removal.
-  // Deterministic.
-  const bool rows_along_y = n > dem::kSpatialOrderAboveDiscs && mould.width > mould.height;
-  for (std::size_t i : dem::SerpentineRows{2.0 * r_max, rows_along_y}.order(x, y))
+  // The discs along serpentine rows of cells along x (neighbours in space near in memory).
+  // Deterministic. Rows across a wide mould's shorter side (as the world numbers a specimen of
+  // more than dem::kSpatialOrderAboveDiscs discs) were measured and did not pay: no difference
+  // in alternated runs (cycles 5,000-10,000 of a 343,000-disc packing, the first 3,000 of the
+  // 1,143,317-disc one; docs/performance.md "Session 20").
+  for (std::size_t i : dem::SerpentineRows{2.0 * r_max, false}.order(x, y))
     world.add_disc(x[i], y[i], half[i], c.density);
   world.add_container_walls(mould, c.wall_segments);
 
