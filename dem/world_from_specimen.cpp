@@ -41,12 +41,11 @@ World world_from_specimen(const Specimen& s, const WorldSettings& settings, Worl
       throw std::invalid_argument("specimen: clump " + std::to_string(c) +
                                   " has no pebbles or a mass / inertia <= 0");
 
-  // The order the bodies are added in: the mortar discs mortar[mortar_slots[0]], ..., then the
-  // clumps clump_slots[0], .... The spatial order sorts the mortar and the clumps apart, each on
-  // its own cells, and keeps the clumps after the mortar (BodyOrder::Spatial says why).
-  std::vector<std::size_t> mortar_slots(mortar.size()), clump_slots(clumps);
-  std::iota(mortar_slots.begin(), mortar_slots.end(), std::size_t{0});
-  std::iota(clump_slots.begin(), clump_slots.end(), std::size_t{0});
+  // The bodies are added as the mortar discs `mortar` (specimen indices), then the clumps
+  // `clump_order`. The spatial order sorts the mortar and the clumps apart, each on its own
+  // cells, and keeps the clumps after the mortar (BodyOrder::Spatial says why).
+  std::vector<std::size_t> clump_order(clumps);
+  std::iota(clump_order.begin(), clump_order.end(), std::size_t{0});
   if (resolve_body_order(s, order) == BodyOrder::Spatial) {
     std::vector<double> mx(mortar.size()), my(mortar.size()), cx(clumps), cy(clumps);  // m
     for (std::size_t k = 0; k < mortar.size(); ++k) {
@@ -62,7 +61,7 @@ World world_from_specimen(const Specimen& s, const WorldSettings& settings, Worl
             std::max(clump_size, 2.0 * (std::hypot(s.x[i] - cx[c], s.y[i] - cy[c]) + s.r[i]));
     }
     // Cells count from the lowest point, so every cell index is >= 0 (SerpentineRows::key).
-    const auto lowest = [&](const std::vector<double>& a, const std::vector<double>& b) {
+    const auto lowest = [](const std::vector<double>& a, const std::vector<double>& b) {
       double low = std::numeric_limits<double>::infinity();
       for (const double v : a) low = std::min(low, v);
       for (const double v : b) low = std::min(low, v);
@@ -70,16 +69,22 @@ World world_from_specimen(const Specimen& s, const WorldSettings& settings, Worl
     };
     const double x0 = lowest(mx, cx), y0 = lowest(my, cy);
     const bool rows_along_y = s.container.width > s.container.height;
-    if (r_max > 0) mortar_slots = SerpentineRows{2.0 * r_max, rows_along_y, x0, y0}.order(mx, my);
+    if (r_max > 0) {
+      const std::vector<std::size_t> by_rows =
+          SerpentineRows{2.0 * r_max, rows_along_y, x0, y0}.order(mx, my);
+      std::vector<std::int32_t> sorted(mortar.size());
+      for (std::size_t k = 0; k < mortar.size(); ++k) sorted[k] = mortar[by_rows[k]];
+      mortar.swap(sorted);
+    }
     if (clump_size > 0)
-      clump_slots = SerpentineRows{clump_size, rows_along_y, x0, y0}.order(cx, cy);
+      clump_order = SerpentineRows{clump_size, rows_along_y, x0, y0}.order(cx, cy);
   }
 
   World world(settings);
   world.reserve(mortar.size() + clumps, n);
   std::vector<std::int32_t> disc_of(n, -1), body_of_clump(clumps, -1);
-  for (const std::size_t slot : mortar_slots) {
-    const auto i = static_cast<std::size_t>(mortar[slot]);
+  for (const std::int32_t m : mortar) {
+    const auto i = static_cast<std::size_t>(m);
     const int body = world.add_disc(s.x[i], s.y[i], s.r[i], s.mortar_density, DiscMaterial::Mortar);
     const std::int32_t disc = world.bodies().first_disc[body];
     world.set_contact_active(disc, s.contact_active[i] != 0);
@@ -87,7 +92,7 @@ World world_from_specimen(const Specimen& s, const WorldSettings& settings, Worl
   }
   std::vector<double> px, py, pr;
   std::vector<std::uint8_t> active;
-  for (const std::size_t c : clump_slots) {
+  for (const std::size_t c : clump_order) {
     const Clump& clump = s.clumps[c];
     px.clear();
     py.clear();
