@@ -8,6 +8,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/job_input_check.hpp"
+#include "core/heap_policy.hpp"
 #include "core/input_error.hpp"
 #include "core/version.hpp"
 #include "io/atomic_output.hpp"
@@ -30,6 +31,7 @@ std::string command_line(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cdem::keep_large_arrays_out_of_the_heap();
   cdem::install_output_cleanup_on_signals();
   // HDF5 would print its error stack on stderr for every failed call; errors are reported once,
   // below, from the exception.
