@@ -19,8 +19,10 @@
 
 namespace cdem {
 
-// Arrays of 128 KiB or more get their own mapping, freed back to the system, for the life of
-// the process.
+// For the life of the process, an array of 128 KiB or more that no free block of the heap can
+// hold gets its own mapping, freed back to the system (glibc looks in the heap first: the reason
+// tests/test_heap_policy.cpp measures in a fresh child and in the parent before either freed a
+// heap block).
 inline void keep_large_arrays_out_of_the_heap() {
 #if defined(__GLIBC__)
   mallopt(M_MMAP_THRESHOLD, 128 * 1024);
