@@ -134,18 +134,39 @@ void World::scale_radii(double factor) {
   if (factor > 1 || std::isnan(factor)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
   const double f2 = factor * factor;
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    if (bodies_.is_clump[b]) continue;
-    bodies_.mass[b] *= f2;
-    bodies_.inertia[b] *= f2 * f2;
-    if (!settings_.density_scaling) {
-      bodies_.inv_mass_dyn[b] /= f2;
-      bodies_.inv_inertia_dyn[b] /= f2 * f2;
-    }
-  }
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    if (!bodies_.is_clump[b]) scale_free_body_mass(b, f2);
   // Uniform scaling leaves every kn unchanged (kn depends on the radius ratio only), so the
   // critical step scales with sqrt(m) ~ factor.
   if (!settings_.density_scaling && settings_.fixed_time_step <= 0 && factor < 1) dt_ *= factor;
+}
+
+void World::scale_radii(const std::vector<double>& factor) {
+  if (factor.size() != discs_.r.size())
+    throw std::invalid_argument("World::scale_radii: one factor per disc expected");
+  bool grew = false;
+  for (std::size_t i = 0; i < factor.size(); ++i) {
+    discs_.r[i] *= factor[i];
+    grew = grew || !(factor[i] <= 1);
+  }
+  if (grew) moved_bound_ = std::numeric_limits<double>::infinity();  // as for a uniform growth
+  energy_.reference_pending = true;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (bodies_.is_clump[b]) continue;
+    const double f = factor[bodies_.first_disc[b]];
+    scale_free_body_mass(b, f * f);
+  }
+  // The automatic step follows the masses (under density scaling it does not), set at a rebuild.
+  if (!settings_.density_scaling && settings_.fixed_time_step <= 0) rebuild_pending_ = true;
+}
+
+void World::scale_free_body_mass(std::size_t b, double f2) {
+  bodies_.mass[b] *= f2;
+  bodies_.inertia[b] *= f2 * f2;
+  if (!settings_.density_scaling) {
+    bodies_.inv_mass_dyn[b] /= f2;
+    bodies_.inv_inertia_dyn[b] /= f2 * f2;
+  }
 }
 
 void World::translate_bodies(const std::vector<double>& dx, const std::vector<double>& dy) {

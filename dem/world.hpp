@@ -110,6 +110,11 @@ class World {
   // packings); the mass and inertia of free discs follow (r^2, r^4). Clump pebble offsets and
   // clump inertias are left alone.
   void scale_radii(double factor);
+  // Multiplies disc i's radius by factor[i] (one entry per disc; the packing's cell-by-cell
+  // decompression, mesogen/decompression_cells.hpp), with the masses and inertias of free discs
+  // as above. The automatic step (no density scaling, no fixed step) changes disc by disc, so the
+  // next step rebuilds, which sets it.
+  void scale_radii(const std::vector<double>& factor);
   // Translates body b and its discs by (dx[b], dy[b]) (m; one entry per body, velocities left
   // alone), so the next force pass sees the new positions; the neighbour list's rebuild check
   // counts the move. For a relaxation that must change the drift the last step() made with a
@@ -238,6 +243,8 @@ class World {
   void rebuild();
   void update_time_step();
   void account_wall_work();
+  // Scales free body b's mass by f2 and inertia by f2^2 (a radius change by sqrt(f2)).
+  void scale_free_body_mass(std::size_t b, double f2);
   void check_energy();
   [[noreturn]] void fail(const std::string& what, long disc) const;
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -92,10 +93,12 @@ TEST(NeighborList, ShearStateSurvivesRebuilds) {
 }
 
 // Free discs crossing each other at random and a fast-spinning clump (its pebbles move on arcs,
-// faster than any free disc), 600 steps; before step n the radii are scaled by
-// radius_factor(n). Checks by brute force after every step that no touching pair is missing
-// from the list, and returns the neighbour builds.
-long expect_no_touching_pair_missed(const std::function<double(int)>& radius_factor) {
+// faster than any free disc), 600 steps; before step n disc i's radius is scaled by
+// radius_factor(n, i), through the per-disc World::scale_radii if `each`, else through the
+// uniform one with radius_factor(n, 0). Checks by brute force after every step that no touching
+// pair is missing from the list, and returns the neighbour builds.
+long expect_no_touching_pair_missed(const std::function<double(int, std::size_t)>& radius_factor,
+                                    bool each = false) {
   WorldSettings s;
   s.fixed_time_step = 1e-6;
   s.local_damping = 0;
@@ -115,8 +118,14 @@ long expect_no_touching_pair_missed(const std::function<double(int)>& radius_fac
   w.set_body_velocity(clump, 0, 0, 1000.0);
   const auto& d = w.discs();
   long checked = 0;
+  std::vector<double> factor(d.size());
   for (int n = 0; n < 600; ++n) {
-    w.scale_radii(radius_factor(n));
+    if (each) {
+      for (std::size_t i = 0; i < d.size(); ++i) factor[i] = radius_factor(n, i);
+      w.scale_radii(factor);
+    } else {
+      w.scale_radii(radius_factor(n, 0));
+    }
     w.step();
     for (std::size_t i = 0; i < d.size(); ++i)
       for (std::size_t j = i + 1; j < d.size(); ++j) {
@@ -136,14 +145,29 @@ long expect_no_touching_pair_missed(const std::function<double(int)>& radius_fac
 // rules a rebuild out (dem/neighbor_list.hpp): no touching pair may be missed through many
 // rebuilds.
 TEST(NeighborList, NoTouchingPairIsMissedBetweenRebuilds) {
-  EXPECT_GT(expect_no_touching_pair_missed([](int) { return 1.0; }), 10);  // every ~20 steps
+  EXPECT_GT(expect_no_touching_pair_missed([](int, std::size_t) { return 1.0; }),
+            10);  // every ~20 steps
 }
 
 // A radius shrink keeps the bound (gaps only open), a growth drops it (World::scale_radii): the
 // same with every radius shrinking by 1e-4 per step, and growing by 10 % every 97th step (more
 // than the skin of the smallest discs: a growth the bound alone would miss).
 TEST(NeighborList, NoTouchingPairIsMissedWhileRadiiShrinkAndGrow) {
-  EXPECT_GT(expect_no_touching_pair_missed([](int n) { return n % 97 == 96 ? 1.1 : 1 - 1e-4; }),
+  EXPECT_GT(expect_no_touching_pair_missed(
+                [](int n, std::size_t) { return n % 97 == 96 ? 1.1 : 1 - 1e-4; }),
+            10);
+}
+
+// The same disc by disc (the packing's decompression by cells): every disc shrinks by its own
+// factor each step, and every 97th step only the even discs grow by 10 %: one disc's growth
+// must drop the bound as a uniform one does.
+TEST(NeighborList, NoTouchingPairIsMissedWhileRadiiShrinkAndGrowDiscByDisc) {
+  EXPECT_GT(expect_no_touching_pair_missed(
+                [](int n, std::size_t i) {
+                  if (n % 97 == 96) return i % 2 == 0 ? 1.1 : 1.0;
+                  return 1 - 1e-4 * static_cast<double>(1 + i % 3);
+                },
+                true),
             10);
 }
 

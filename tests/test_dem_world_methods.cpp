@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -29,16 +31,21 @@ static_assert(std::is_same_v<decltype(std::declval<World&>().settings()), const 
 constexpr double kR = 1e-3;  // m, disc radius
 
 // 3 x 3 discs of radius kR touching their neighbours in a 6 kR square box, at rest: no contact
-// force anywhere, so nothing moves and every rebuild sees the same pairs.
-World resting_square() {
+// force anywhere, so nothing moves and every rebuild sees the same pairs. With `factor`, disc i
+// (in the order added) has radius kR factor[i] instead (at most 1: still no force).
+World resting_square(const std::vector<double>& factor = {}) {
   WorldSettings s;
   s.laws.fill(LinearContact{1e9, 1.0, 0.5});
+  s.skin = 0.2 * kR;  // the default for radius kR, fixed so scaled radii keep it
   World w(s);
   cdem::Container box;
   box.width = box.height = 6 * kR;
   w.add_container_walls(box);
   for (int iy = 0; iy < 3; ++iy)
-    for (int ix = 0; ix < 3; ++ix) w.add_disc((2 * ix + 1) * kR, (2 * iy + 1) * kR, kR, 2500);
+    for (int ix = 0; ix < 3; ++ix) {
+      const auto i = static_cast<std::size_t>(3 * iy + ix);
+      w.add_disc((2 * ix + 1) * kR, (2 * iy + 1) * kR, factor.empty() ? kR : kR * factor[i], 2500);
+    }
   return w;
 }
 
@@ -65,6 +72,36 @@ TEST(WorldMethods, DensityScalingSetsTheStepAtTheNextStepWithoutAnInvalidate) {
     EXPECT_EQ(b.inv_mass_dyn[k], 1.0 / b.mass[k]);
     EXPECT_DOUBLE_EQ(b.inv_inertia_dyn[k], 1.0 / b.inertia[k]);
   }
+}
+
+// Radii scaled disc by disc (the packing's decompression by cells): each disc by its own factor,
+// a free disc's mass by the factor squared and its inertia by its fourth power (m ~ r^2,
+// I ~ r^4 for a disc of fixed density), as the uniform scale_radii does.
+TEST(WorldMethods, RadiiScaledDiscByDiscCarryTheirMassesAndInertias) {
+  World w = resting_square();
+  w.step();
+  const double unscaled_step = w.time_step();
+  const Bodies& b = w.bodies();
+  const std::vector<double> mass(b.mass.begin(), b.mass.end());
+  const std::vector<double> inertia(b.inertia.begin(), b.inertia.end());
+  std::vector<double> factor(w.discs().size());
+  for (std::size_t i = 0; i < factor.size(); ++i) factor[i] = 0.9 + 0.01 * static_cast<double>(i);
+  w.scale_radii(factor);
+  for (std::size_t i = 0; i < factor.size(); ++i) {
+    EXPECT_DOUBLE_EQ(w.discs().r[i], kR * factor[i]);
+    const std::size_t body = static_cast<std::size_t>(w.discs().body[i]);
+    EXPECT_DOUBLE_EQ(b.mass[body], mass[body] * factor[i] * factor[i]);
+    EXPECT_DOUBLE_EQ(b.inertia[body], inertia[body] * std::pow(factor[i], 4));
+    EXPECT_DOUBLE_EQ(b.inv_mass_dyn[body], 1.0 / b.mass[body]);  // no density scaling here
+  }
+  // The critical step follows the new masses from the next step on: that of a world built with
+  // these radii.
+  w.step();
+  World fresh = resting_square(factor);
+  fresh.step();
+  EXPECT_DOUBLE_EQ(w.time_step(), fresh.time_step());
+  EXPECT_NE(w.time_step(), unscaled_step);
+  EXPECT_THROW(w.scale_radii(std::vector<double>(3, 1.0)), std::invalid_argument);
 }
 
 TEST(WorldMethods, FixedStepTakesOverAtTheNextStepAndZeroGivesTheAutomaticOneBack) {
