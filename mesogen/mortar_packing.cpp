@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 #include "dem/measure.hpp"
 #include "dem/serpentine_order.hpp"
 #include "dem/world.hpp"
+#include "mesogen/decompression_cells.hpp"
 #include "mesogen/fire_relaxation.hpp"
 
 namespace cdem::mesogen {
@@ -28,12 +30,25 @@ constexpr double kSlowDecompression = 2e-3;
 constexpr double kRatesTimeStepSafety = 0.8;
 constexpr double kFastDecompressionAbove = 100.0;  // x sigma0
 // The rates above were tuned on the 100 x 200 mm mould at R_mean 0.5 mm (200 mean diameters),
-// where one seed in three came out barely jammed (coordination 3.53 against 3.61-3.62). The
-// relaxation of the packing crosses the mould at a speed in diameters per cycle, so the rates
-// hold up to this span and are scaled down in proportion above it: unscaled, R_mean 0.35 mm
-// (286 diameters) unjammed (coordination 2.7-3.2, 19-32 % floating discs); scaled, every
-// packing measured has 3.60-3.68 (C30 moulds at R_mean 0.35-0.7 mm, 3 seeds each).
+// where one seed in three came out barely jammed (coordination 3.53 against 3.61-3.62). They
+// hold up to this span and are scaled down in proportion above it, up to
+// kCellDecompressionAboveDiameters: unscaled, R_mean 0.35 mm (286 diameters) unjammed
+// (coordination 2.7-3.2, 19-32 % floating discs); scaled, every packing measured has 3.60-3.68
+// (C30 moulds at R_mean 0.35-0.7 mm, 3 seeds each).
 constexpr double kRateSpanDiameters = 100.0;
+// Above this span the mould decompresses cell by cell (DecompressionCells, cells of
+// kDecompressionCellDiameters) at the rate of a mould of this span. With one common factor
+// the 500-diameter mould (250 x 500 mm) unjammed at that rate (coordination 3.16, 20 % floating
+// discs; 3.59 and 9.0 % on a second seed) and needed the span-scaled one (24,800 cycles); cell by
+// cell it packed jammed at that rate on 3 seeds (3.68, 7.0-7.1 %, 10,850-11,000 cycles;
+// docs/performance.md "Session 23"). Moulds up to this span (every shipped specimen) pack bit
+// for bit as before.
+constexpr double kCellDecompressionAboveDiameters = 200.0;
+// The side of a decompression cell, in mean diameters: the span up to which the rates hold
+// unscaled. Cells of 50 diameters gave the same statistics (the 500-diameter mould, seed 1:
+// coordination 3.680, 7.04 % floating against 3.681, 7.02 %; measured with an extra term pulling
+// each cell's stress toward the mould's, which changed nothing at 100 diameters: 3.682, 7.02 %).
+constexpr double kDecompressionCellDiameters = 100.0;
 constexpr double kHoldGain = 0.5;     // fraction of the wall-stress error corrected per interval
 constexpr long kCheckEvery = 50;      // cycles between convergence checks
 constexpr long kStiffnessEvery = 10;  // cycles between updates of the servo's stiffness estimate
@@ -138,40 +153,13 @@ void place_half_radius(const Container& mould, std::vector<double>& x, std::vect
   }
 }
 
-// The contacts an affine stiffness counts: those touching, or every candidate pair (touching or
-// within the skin: the response once the near pairs close).
-enum class AffineContacts { Touching, Candidates };
-
-// Change of the contact-based mean stress per unit relative radius change if the discs did not
-// move (affine response): (1 / 2A) sum kn L^2 over the contacts `which` counts (Pa). Isotropic
-// compression of a jammed packing is close to affine, so this is a fair estimate; the candidate
-// sum serves when re-compressing a packing that has few contacts.
-double affine_stiffness(const dem::World& w, double area, AffineContacts which) {
-  const bool touching_only = which == AffineContacts::Touching;
-  const dem::Discs& d = w.discs();
-  const dem::LinearContact& law = w.settings().laws[static_cast<int>(dem::ContactClass::Mortar)];
-  double sum = 0;
-  for (std::size_t k = 0; k < w.contacts().keys.size(); ++k) {
-    if (touching_only && w.pair_forces().overlap[k] <= 0) continue;
-    const std::int32_t i = w.contacts().first[k], j = w.contacts().second[k];
-    const double l = d.r[i] + d.r[j];
-    sum += law.normal_stiffness(d.r[i], d.r[j]) * l * l;
-  }
-  const double kw =
-      w.settings().laws[static_cast<int>(dem::ContactClass::Wall)].wall_normal_stiffness();
-  for (std::size_t k = 0; k < w.contacts().wall_keys.size(); ++k) {
-    if (touching_only && w.wall_forces().overlap[k] <= 0) continue;
-    const double l = d.r[w.contacts().wall_disc[k]];
-    sum += kw * l * l;
-  }
-  return sum / (2.0 * area);
-}
-
 // The state a relaxation to sigma0 ends in: stresses in Pa (compression positive) and the
 // unbalanced-force ratio of its last check.
 struct RelaxedState {
   double wall_stress = 0, contact_stress = 0, unbalanced_ratio = 1;
   bool converged = false;
+  int decompression_cells = 0;             // 0: one common factor
+  double decompression_factor_spread = 0;  // largest / smallest radius factor per disc, - 1
 };
 
 // The convergence test of both relaxations: both stresses within the tolerance of sigma0 (Pa)
@@ -199,28 +187,58 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   //    a constant logarithmic rate. It has to be slow against the relaxation of the whole
   //    packing, else contacts open faster than the discs can follow, the coordination number
   //    collapses and the packing unjams (re-jamming from below then creeps for ~1e5 cycles).
+  //    On a mould wider than kCellDecompressionAboveDiameters each cell's discs shrink by the
+  //    factor that drops that cell's own contact stress by the fraction (DecompressionCells).
   // 2. Hold: the radii are left alone while the packing settles, except for a proportional
   //    correction on the wall stress (the reported figure) every check interval.
   const Eigen::Vector2d centre = mould.centre();
   const double span_diameters = mould_span_diameters(mould.width, mould.height, c.r_mean);
-  const double rate_scale = (c.time_step_safety / kRatesTimeStepSafety) *
-                            std::min(1.0, kRateSpanDiameters / span_diameters);
+  const bool by_cells = span_diameters > kCellDecompressionAboveDiameters;
+  const double rate_scale =
+      (c.time_step_safety / kRatesTimeStepSafety) *
+      std::min(1.0,
+               kRateSpanDiameters / std::min(span_diameters, kCellDecompressionAboveDiameters));
+  DecompressionCells cells(mould, kDecompressionCellDiameters * 2.0 * c.r_mean);
+  std::vector<double> factor;  // per disc, while decompressing by cells
+  // The radii the decompression starts from (by cells only), for the spread of its factors.
+  const std::vector<double> start_r =
+      by_cells ? std::vector<double>(world.discs().r.begin(), world.discs().r.end())
+               : std::vector<double>();
   const double band = 0.25 * c.stress_tolerance * c.sigma0;
   const double area = mould.area();
   double wall_sigma = 0, contact_sigma = 0, ratio = 1, stiffness = 0, hold_rate = 0;
   bool holding = false;
+  const auto end_state = [&](bool converged) {
+    RelaxedState out{wall_sigma, contact_sigma, ratio, converged};
+    if (!by_cells) return out;
+    out.decompression_cells = cells.count();
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (std::size_t i = 0; i < start_r.size(); ++i) {
+      const double f = world.discs().r[i] / start_r[i];
+      lo = std::min(lo, f);
+      hi = std::max(hi, f);
+    }
+    out.decompression_factor_spread = hi / lo - 1.0;
+    return out;
+  };
   while (world.step_count() < c.max_steps) {
     world.step();
     const double sigma = world.last_force_pass().virial / (2.0 * area);
     report_progress(world, area, c);
     if (!holding) holding = sigma <= c.sigma0 + band;
     if (!holding) {
-      if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
-        stiffness = affine_stiffness(world, area, AffineContacts::Touching);
       const double fraction =
           rate_scale *
           (sigma > kFastDecompressionAbove * c.sigma0 ? kFastDecompression : kSlowDecompression);
-      if (stiffness > 0) world.scale_radii(1.0 - fraction * sigma / stiffness);
+      if (by_cells) {
+        if (world.step_count() % kStiffnessEvery == 0 || !cells.updated()) cells.update(world);
+        cells.shrink_factors(fraction, factor);
+        world.scale_radii(factor);
+      } else {
+        if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
+          stiffness = affine_stiffness(world, area, AffineContacts::Touching);
+        if (stiffness > 0) world.scale_radii(1.0 - fraction * sigma / stiffness);
+      }
     } else if (hold_rate != 0) {
       world.scale_radii(1.0 + hold_rate);
     }
@@ -228,8 +246,7 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
     wall_sigma = dem::mean_stress(dem::wall_stress(world, area, centre));
     contact_sigma = sigma;
     ratio = dem::unbalanced_force_ratio(world);
-    if (at_sigma0(wall_sigma, contact_sigma, ratio, c))
-      return {wall_sigma, contact_sigma, ratio, true};
+    if (at_sigma0(wall_sigma, contact_sigma, ratio, c)) return end_state(true);
     // Kinetic-energy quench while holding (PFC practice: zero the velocities). Local damping
     // acts on the force only, so a disc that lost its contacts keeps its velocity and rattles
     // around for thousands of cycles, keeping the unbalanced-force ratio up; quenching during
@@ -245,7 +262,7 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
       hold_rate = kHoldGain * (c.sigma0 - wall_sigma) / k / static_cast<double>(kCheckEvery);
     }
   }
-  return {wall_sigma, contact_sigma, ratio, false};
+  return end_state(false);
 }
 
 // relaxation = "fire": the decompression as a sequence of static problems, as in the jamming
@@ -491,6 +508,8 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
                                ? relax_fire(world, mould, c, restored_stages)
                                : relax_damped(world, mould, c);
   out.fire_restored_stages = restored_stages;
+  out.decompression_cells = end.decompression_cells;
+  out.decompression_factor_spread = end.decompression_factor_spread;
   const double wall_sigma = end.wall_stress, contact_sigma = end.contact_stress,
                ratio = end.unbalanced_ratio;
   out.converged = end.converged;

@@ -148,6 +148,11 @@ struct MortarPacking {
   long expansion_and_calming_builds = 0;  // of which in the expansion and the calming
   bool converged = false;                 // stress within tolerance and forces balanced
   int fire_restored_stages = 0;           // relaxation = "fire": stages undone by the jamming check
+  // relaxation = "damped" on a mould wider than 200 mean diameters: the cells it decompressed
+  // cell by cell (0: one common factor), and how far the discs' radius factors over the
+  // relaxation spread (largest / smallest - 1; a common factor gives 0).
+  int decompression_cells = 0;
+  double decompression_factor_spread = 0;
 };
 
 // Throws RunError if the effort bound is reached without convergence (with the figures).

@@ -1,0 +1,94 @@
+#include "mesogen/decompression_cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dem/world.hpp"
+
+namespace cdem::mesogen {
+namespace {
+
+// Calls pair(k, i, j, kn L^2) for every disc-disc contact `which` counts (k its index in the
+// neighbour list, L = r_i + r_j), then wall(k, i, kw r_i^2) for every disc-wall one (N m): the
+// terms of the affine stiffness, in the order every sum of them is taken.
+template <class Pair, class Wall>
+void for_each_affine_term(const dem::World& w, AffineContacts which, Pair&& pair, Wall&& wall) {
+  const bool touching_only = which == AffineContacts::Touching;
+  const dem::Discs& d = w.discs();
+  const dem::LinearContact& law = w.settings().laws[static_cast<int>(dem::ContactClass::Mortar)];
+  for (std::size_t k = 0; k < w.contacts().keys.size(); ++k) {
+    if (touching_only && w.pair_forces().overlap[k] <= 0) continue;
+    const std::int32_t i = w.contacts().first[k], j = w.contacts().second[k];
+    const double l = d.r[i] + d.r[j];
+    pair(k, i, j, law.normal_stiffness(d.r[i], d.r[j]) * l * l);
+  }
+  const double kw =
+      w.settings().laws[static_cast<int>(dem::ContactClass::Wall)].wall_normal_stiffness();
+  for (std::size_t k = 0; k < w.contacts().wall_keys.size(); ++k) {
+    if (touching_only && w.wall_forces().overlap[k] <= 0) continue;
+    const std::int32_t i = w.contacts().wall_disc[k];
+    const double l = d.r[i];
+    wall(k, i, kw * l * l);
+  }
+}
+
+int cells_along(double length, double cell) {
+  return std::max(1, static_cast<int>(std::ceil(length / cell)));
+}
+
+}  // namespace
+
+double affine_stiffness(const dem::World& world, double area, AffineContacts which) {
+  double sum = 0;
+  for_each_affine_term(
+      world, which, [&sum](std::size_t, std::int32_t, std::int32_t, double s) { sum += s; },
+      [&sum](std::size_t, std::int32_t, double s) { sum += s; });
+  return sum / (2.0 * area);
+}
+
+DecompressionCells::DecompressionCells(const Container& mould, double cell)
+    : cell_(cell), nx_(cells_along(mould.width, cell)), ny_(cells_along(mould.height, cell)) {}
+
+void DecompressionCells::update(const dem::World& world) {
+  const dem::Discs& d = world.discs();
+  cell_of_.resize(d.r.size());
+  for (std::size_t i = 0; i < d.r.size(); ++i) {
+    const int cx = std::clamp(static_cast<int>(d.x[i] / cell_), 0, nx_ - 1);
+    const int cy = std::clamp(static_cast<int>(d.y[i] / cell_), 0, ny_ - 1);
+    cell_of_[i] = cy * nx_ + cx;
+  }
+  virial_.assign(static_cast<std::size_t>(count()), 0.0);
+  stiffness_.assign(static_cast<std::size_t>(count()), 0.0);
+  const dem::ContactForces& pf = world.pair_forces();
+  const dem::ContactForces& wf = world.wall_forces();
+  for_each_affine_term(
+      world, AffineContacts::Touching,
+      [&](std::size_t k, std::int32_t i, std::int32_t j, double s) {
+        // Frictionless: the force is normal, the branch the centre distance L - overlap.
+        const double v = 0.5 * pf.normal[k] * (d.r[i] + d.r[j] - pf.overlap[k]);
+        virial_[cell_of_[i]] += v;
+        virial_[cell_of_[j]] += v;
+        stiffness_[cell_of_[i]] += 0.5 * s;
+        stiffness_[cell_of_[j]] += 0.5 * s;
+      },
+      [&](std::size_t k, std::int32_t i, double s) {
+        virial_[cell_of_[i]] += wf.normal[k] * (d.r[i] - wf.overlap[k]);
+        stiffness_[cell_of_[i]] += s;
+      });
+  double virial = 0, stiffness = 0;
+  for (int c = 0; c < count(); ++c) {
+    virial += virial_[c];
+    stiffness += stiffness_[c];
+  }
+  ratio_.assign(static_cast<std::size_t>(count()), virial / stiffness);
+  for (int c = 0; c < count(); ++c)
+    if (stiffness_[c] > 0) ratio_[c] = virial_[c] / stiffness_[c];
+}
+
+void DecompressionCells::shrink_factors(double fraction, std::vector<double>& factor) const {
+  factor.resize(cell_of_.size());
+  for (std::size_t i = 0; i < cell_of_.size(); ++i)
+    factor[i] = 1.0 - fraction * ratio_[cell_of_[i]];
+}
+
+}  // namespace cdem::mesogen

@@ -1,0 +1,81 @@
+// The decompression of a wide mould cell by cell (mesogen/decompression_cells.hpp): each cell's
+// ratio of contact virial to affine stiffness against its closed form for touching equal discs,
+// a contact across two cells shared half and half, a cell without contacts on the mould's ratio.
+#include "mesogen/decompression_cells.hpp"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/specimen.hpp"
+#include "dem/world.hpp"
+
+namespace {
+
+using cdem::mesogen::AffineContacts;
+using cdem::mesogen::DecompressionCells;
+
+constexpr double kR = 1e-3;     // m, every disc's radius
+constexpr double kCell = 0.02;  // m, the cell side
+
+// A pair of equal discs overlapping by `overlap` (m), along x, centred on (x, y).
+void add_pair(cdem::dem::World& w, double x, double y, double overlap) {
+  const double half = kR - 0.5 * overlap;
+  w.add_disc(x - half, y, kR, 2500);
+  w.add_disc(x + half, y, kR, 2500);
+}
+
+// V / S of one such contact: kn d (2R - d) / (kn (2R)^2), the linear normal force times the
+// centre distance over kn L^2.
+double pair_ratio(double overlap) {
+  return overlap * (2 * kR - overlap) / (4 * kR * kR);
+}
+
+TEST(DecompressionCells, EachCellShrinksByItsOwnVirialOverAffineStiffness) {
+  cdem::dem::WorldSettings s;
+  s.laws.fill(cdem::dem::LinearContact{16e9, 1.0, 0.0});  // the packing's: frictionless
+  cdem::dem::World w(s);
+  cdem::Container mould;
+  mould.width = 4 * kCell;  // 4 x 2 cells
+  mould.height = 2 * kCell;
+  const double d1 = 1e-5, d2 = 2e-5, d3 = 3e-5, d4 = 4e-5;  // m
+  add_pair(w, 0.5 * kCell, 0.5 * kCell, d1);                // cell (0, 0)
+  add_pair(w, 1.5 * kCell, 0.5 * kCell, d2);                // cell (1, 0)
+  add_pair(w, 2.3 * kCell, 0.5 * kCell, d4);                // cell (2, 0)
+  add_pair(w, 3.0 * kCell, 0.5 * kCell, d3);                // across cells (2, 0) and (3, 0)
+  const int lonely = w.add_disc(2.5 * kCell, 1.5 * kCell, kR, 2500);  // cell (2, 1), alone
+  w.step();  // the force pass the cells read
+  ASSERT_EQ(w.last_force_pass().touching, 4);
+
+  DecompressionCells cells(mould, kCell);
+  EXPECT_EQ(cells.count(), 8);
+  EXPECT_FALSE(cells.updated());
+  cells.update(w);
+  ASSERT_TRUE(cells.updated());
+  const double fraction = 1e-3;
+  std::vector<double> factor;
+  cells.shrink_factors(fraction, factor);
+  ASSERT_EQ(factor.size(), w.discs().size());
+  const auto expect_ratio = [&](int disc, double ratio) {
+    EXPECT_NEAR((1.0 - factor[disc]) / fraction, ratio, 1e-9 * ratio) << "disc " << disc;
+  };
+  expect_ratio(0, pair_ratio(d1));
+  expect_ratio(1, pair_ratio(d1));
+  expect_ratio(2, pair_ratio(d2));
+  expect_ratio(3, pair_ratio(d2));
+  // Cell (2, 0) holds the d4 contact and half of the d3 one (equal kn: weights 1 and 1/2).
+  const double shared = (pair_ratio(d4) + 0.5 * pair_ratio(d3)) / 1.5;
+  expect_ratio(4, shared);
+  expect_ratio(5, shared);
+  expect_ratio(6, shared);  // the d3 pair's left disc
+  expect_ratio(7, pair_ratio(d3));
+  // No contact in its cell: the whole mould's ratio, the mean over the four equal-kn contacts.
+  expect_ratio(lonely, (pair_ratio(d1) + pair_ratio(d2) + pair_ratio(d3) + pair_ratio(d4)) / 4);
+
+  // The whole mould's affine stiffness: four contacts of kn (2R)^2 over 2A.
+  const double kn = s.laws[0].normal_stiffness(kR, kR);
+  EXPECT_NEAR(affine_stiffness(w, mould.area(), AffineContacts::Touching),
+              4 * kn * 4 * kR * kR / (2 * mould.area()), 1e-12 * kn);
+}
+
+}  // namespace
