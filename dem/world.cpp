@@ -20,6 +20,17 @@ void push_zero(std::initializer_list<StaggeredArray<T>*> vectors) {
   for (auto* v : vectors) v->push_back(T{});
 }
 
+// Scales free body b's mass by f2 and its inertia by f2^2 (its disc's radius scaled by
+// sqrt(f2)); the integration's inverses too unless density scaling sets them at every rebuild.
+void scale_free_body_mass(Bodies& bodies, std::size_t b, double f2, bool density_scaling) {
+  bodies.mass[b] *= f2;
+  bodies.inertia[b] *= f2 * f2;
+  if (!density_scaling) {
+    bodies.inv_mass_dyn[b] /= f2;
+    bodies.inv_inertia_dyn[b] /= f2 * f2;
+  }
+}
+
 }  // namespace
 
 World::World(WorldSettings s) : settings_(s) {
@@ -135,7 +146,7 @@ void World::scale_radii(double factor) {
   energy_.reference_pending = true;
   const double f2 = factor * factor;
   for (std::size_t b = 0; b < bodies_.size(); ++b)
-    if (!bodies_.is_clump[b]) scale_free_body_mass(b, f2);
+    if (!bodies_.is_clump[b]) scale_free_body_mass(bodies_, b, f2, settings_.density_scaling);
   // Uniform scaling leaves every kn unchanged (kn depends on the radius ratio only), so the
   // critical step scales with sqrt(m) ~ factor.
   if (!settings_.density_scaling && settings_.fixed_time_step <= 0 && factor < 1) dt_ *= factor;
@@ -154,19 +165,10 @@ void World::scale_radii(const std::vector<double>& factor) {
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     if (bodies_.is_clump[b]) continue;
     const double f = factor[bodies_.first_disc[b]];
-    scale_free_body_mass(b, f * f);
+    scale_free_body_mass(bodies_, b, f * f, settings_.density_scaling);
   }
   // The automatic step follows the masses (under density scaling it does not), set at a rebuild.
   if (!settings_.density_scaling && settings_.fixed_time_step <= 0) rebuild_pending_ = true;
-}
-
-void World::scale_free_body_mass(std::size_t b, double f2) {
-  bodies_.mass[b] *= f2;
-  bodies_.inertia[b] *= f2 * f2;
-  if (!settings_.density_scaling) {
-    bodies_.inv_mass_dyn[b] /= f2;
-    bodies_.inv_inertia_dyn[b] /= f2 * f2;
-  }
 }
 
 void World::translate_bodies(const std::vector<double>& dx, const std::vector<double>& dy) {

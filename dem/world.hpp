@@ -243,8 +243,6 @@ class World {
   void rebuild();
   void update_time_step();
   void account_wall_work();
-  // Scales free body b's mass by f2 and inertia by f2^2 (a radius change by sqrt(f2)).
-  void scale_free_body_mass(std::size_t b, double f2);
   void check_energy();
   [[noreturn]] void fail(const std::string& what, long disc) const;
 

@@ -200,6 +200,7 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
                kRateSpanDiameters / std::min(span_diameters, kCellDecompressionAboveDiameters));
   DecompressionCells cells(mould, kDecompressionCellDiameters * 2.0 * c.r_mean);
   std::vector<double> factor;  // per disc, while decompressing by cells
+  double factor_fraction = 0;  // the fraction `factor` was made for
   // The radii the decompression starts from (by cells only), for the spread of its factors.
   const std::vector<double> start_r =
       by_cells ? std::vector<double>(world.discs().r.begin(), world.discs().r.end())
@@ -231,8 +232,14 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
           rate_scale *
           (sigma > kFastDecompressionAbove * c.sigma0 ? kFastDecompression : kSlowDecompression);
       if (by_cells) {
-        if (world.step_count() % kStiffnessEvery == 0 || !cells.updated()) cells.update(world);
-        cells.shrink_factors(fraction, factor);
+        // The factors change only when the cells are read (every kStiffnessEvery cycles) or the
+        // rate changes (once, at kFastDecompressionAbove sigma0).
+        const bool read = world.step_count() % kStiffnessEvery == 0 || !cells.updated();
+        if (read) cells.update(world);
+        if (read || fraction != factor_fraction) {
+          cells.shrink_factors(fraction, factor);
+          factor_fraction = fraction;
+        }
         world.scale_radii(factor);
       } else {
         if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
