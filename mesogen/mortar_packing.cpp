@@ -193,11 +193,12 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   //    correction on the wall stress (the reported figure) every check interval.
   const Eigen::Vector2d centre = mould.centre();
   const double span_diameters = mould_span_diameters(mould.width, mould.height, c.r_mean);
-  const bool by_cells = span_diameters > kCellDecompressionAboveDiameters;
+  // A mould of exactly the threshold (the C30 mould, the notched beam) whatever the rounding of
+  // its units keeps the common factor.
+  const bool by_cells = span_diameters > kCellDecompressionAboveDiameters * (1 + 1e-9);
+  const double rate_span = by_cells ? kCellDecompressionAboveDiameters : span_diameters;
   const double rate_scale =
-      (c.time_step_safety / kRatesTimeStepSafety) *
-      std::min(1.0,
-               kRateSpanDiameters / std::min(span_diameters, kCellDecompressionAboveDiameters));
+      (c.time_step_safety / kRatesTimeStepSafety) * std::min(1.0, kRateSpanDiameters / rate_span);
   DecompressionCells cells(mould, kDecompressionCellDiameters * 2.0 * c.r_mean);
   std::vector<double> factor;  // per disc, while decompressing by cells
   double factor_fraction = 0;  // the fraction `factor` was made for
