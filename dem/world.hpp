@@ -113,7 +113,8 @@ class World {
   // Multiplies disc i's radius by factor[i] (one entry per disc; the packing's cell-by-cell
   // decompression, mesogen/decompression_cells.hpp), with the masses and inertias of free discs
   // as above. The automatic step (no density scaling, no fixed step) changes disc by disc, so the
-  // next step rebuilds, which sets it.
+  // next step rebuilds (a full neighbour build), which sets it; the packing cycles under density
+  // scaling, where it does not.
   void scale_radii(const std::vector<double>& factor);
   // Translates body b and its discs by (dx[b], dy[b]) (m; one entry per body, velocities left
   // alone), so the next force pass sees the new positions; the neighbour list's rebuild check

@@ -52,11 +52,13 @@ DecompressionCells::DecompressionCells(const Container& mould, double cell)
 void DecompressionCells::update(const dem::World& world) {
   const dem::Discs& d = world.discs();
   cell_of_.resize(d.r.size());
-  for (std::size_t i = 0; i < d.r.size(); ++i) {
-    const int cx = std::clamp(static_cast<int>(d.x[i] / cell_), 0, nx_ - 1);
-    const int cy = std::clamp(static_cast<int>(d.y[i] / cell_), 0, ny_ - 1);
-    cell_of_[i] = cy * nx_ + cx;
-  }
+  // Clamped before the conversion (a centre outside the mould goes to the nearest cell); the
+  // step stops a non-finite position before it gets here.
+  const auto cell_along = [this](double coordinate, int cells) {
+    return static_cast<int>(std::clamp(coordinate / cell_, 0.0, cells - 1.0));
+  };
+  for (std::size_t i = 0; i < d.r.size(); ++i)
+    cell_of_[i] = cell_along(d.y[i], ny_) * nx_ + cell_along(d.x[i], nx_);
   virial_.assign(static_cast<std::size_t>(count()), 0.0);
   stiffness_.assign(static_cast<std::size_t>(count()), 0.0);
   const dem::ContactForces& pf = world.pair_forces();
@@ -72,6 +74,9 @@ void DecompressionCells::update(const dem::World& world) {
         stiffness_[cell_of_[j]] += 0.5 * s;
       },
       [&](std::size_t k, std::int32_t i, double s) {
+        // The branch to the wall taken as r - overlap (the engine's virial takes the contact
+        // point, r - overlap / 2: a relative difference of overlap / 2r, ~1e-5, on wall
+        // contacts only).
         virial_[cell_of_[i]] += wf.normal[k] * (d.r[i] - wf.overlap[k]);
         stiffness_[cell_of_[i]] += s;
       });
@@ -80,7 +85,8 @@ void DecompressionCells::update(const dem::World& world) {
     virial += virial_[c];
     stiffness += stiffness_[c];
   }
-  ratio_.assign(static_cast<std::size_t>(count()), virial / stiffness);
+  // No touching contact anywhere (relax_damped never asks then: its stress would be 0): no shrink.
+  ratio_.assign(static_cast<std::size_t>(count()), stiffness > 0 ? virial / stiffness : 0.0);
   for (int c = 0; c < count(); ++c)
     if (stiffness_[c] > 0) ratio_[c] = virial_[c] / stiffness_[c];
 }

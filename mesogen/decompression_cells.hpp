@@ -33,11 +33,12 @@ double affine_stiffness(const dem::World& world, double area, AffineContacts whi
 class DecompressionCells {
  public:
   // `cell`: the side of a cell (m); the mould's bounding box [0, width] x [0, height] is cut
-  // into ceil(width / cell) x ceil(height / cell) cells.
+  // into ceil(width / cell) x ceil(height / cell) cells (the last column and row are thinner
+  // unless the side is a multiple of `cell`).
   DecompressionCells(const Container& mould, double cell);
 
   // Reads which cell each disc's centre lies in and every cell's V_c / S_c from the touching
-  // contacts of the world's last force pass.
+  // contacts of the world's last force pass (the branch of a wall contact taken as r - overlap).
   void update(const dem::World& world);
   bool updated() const { return !cell_of_.empty(); }
   // factor[i] = 1 - fraction x (V_c / S_c of disc i's cell at the last update): the radius
@@ -50,7 +51,7 @@ class DecompressionCells {
   int nx_, ny_;
   std::vector<std::int32_t> cell_of_;       // per disc
   std::vector<double> virial_, stiffness_;  // N m, per cell
-  std::vector<double> ratio_;               // V_c / S_c, per cell
+  std::vector<double> ratio_;               // V_c / S_c, per cell (dimensionless)
 };
 
 }  // namespace cdem::mesogen

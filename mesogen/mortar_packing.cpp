@@ -33,12 +33,13 @@ constexpr double kFastDecompressionAbove = 100.0;  // x sigma0
 // where one seed in three came out barely jammed (coordination 3.53 against 3.61-3.62). They
 // hold up to this span and are scaled down in proportion above it, up to
 // kCellDecompressionAboveDiameters: unscaled, R_mean 0.35 mm (286 diameters) unjammed
-// (coordination 2.7-3.2, 19-32 % floating discs); scaled, every packing measured has 3.60-3.68
-// (C30 moulds at R_mean 0.35-0.7 mm, 3 seeds each).
+// (coordination 2.7-3.2, 19-32 % floating discs); scaled, every packing measured had 3.60-3.68
+// (C30 moulds at R_mean 0.35-0.7 mm, 3 seeds each; since session 23 those wider than 200
+// diameters decompress cell by cell instead).
 constexpr double kRateSpanDiameters = 100.0;
-// Above this span the mould decompresses cell by cell (DecompressionCells, cells of
-// kDecompressionCellDiameters) at the rate of a mould of this span. With one common factor
-// the 500-diameter mould (250 x 500 mm) unjammed at that rate (coordination 3.16, 20 % floating
+// Above this span of its larger side the mould decompresses cell by cell (DecompressionCells, cells
+// of kDecompressionCellDiameters) at the rate of a mould of this span. With one common factor the
+// 500-diameter mould (250 x 500 mm) unjammed at that rate (coordination 3.16, 20 % floating
 // discs; 3.59 and 9.0 % on a second seed) and needed the span-scaled one (24,800 cycles); cell by
 // cell it packed jammed at that rate on 3 seeds (3.68, 7.0-7.1 %, 10,850-11,000 cycles;
 // docs/performance.md "Session 23"). Moulds up to this span (every shipped specimen) pack bit
@@ -187,15 +188,15 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   //    a constant logarithmic rate. It has to be slow against the relaxation of the whole
   //    packing, else contacts open faster than the discs can follow, the coordination number
   //    collapses and the packing unjams (re-jamming from below then creeps for ~1e5 cycles).
-  //    On a mould wider than kCellDecompressionAboveDiameters each cell's discs shrink by the
-  //    factor that drops that cell's own contact stress by the fraction (DecompressionCells).
+  //    On a mould whose larger side spans more than kCellDecompressionAboveDiameters each
+  //    cell's discs shrink by the factor that drops that cell's own contact stress by the
+  //    fraction, from the cell's stress and stiffness read every kStiffnessEvery cycles
+  //    (DecompressionCells; the common factor reads the stress every cycle).
   // 2. Hold: the radii are left alone while the packing settles, except for a proportional
   //    correction on the wall stress (the reported figure) every check interval.
   const Eigen::Vector2d centre = mould.centre();
   const double span_diameters = mould_span_diameters(mould.width, mould.height, c.r_mean);
-  // A mould of exactly the threshold (the C30 mould, the notched beam) whatever the rounding of
-  // its units keeps the common factor.
-  const bool by_cells = span_diameters > kCellDecompressionAboveDiameters * (1 + 1e-9);
+  const bool by_cells = decompresses_by_cells(mould.width, mould.height, c.r_mean);
   const double rate_span = by_cells ? kCellDecompressionAboveDiameters : span_diameters;
   const double rate_scale =
       (c.time_step_safety / kRatesTimeStepSafety) * std::min(1.0, kRateSpanDiameters / rate_span);
@@ -395,6 +396,11 @@ long default_expansion_steps(double r_ratio) {
 
 double mould_span_diameters(double width, double height, double r_mean) {
   return std::max(width, height) / (2.0 * r_mean);
+}
+
+bool decompresses_by_cells(double width, double height, double r_mean) {
+  return mould_span_diameters(width, height, r_mean) >
+         kCellDecompressionAboveDiameters * (1 + 1e-9);
 }
 
 double fire_stage_limit(double width, double height, const MortarPackingControls& c) {

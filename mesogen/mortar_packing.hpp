@@ -32,6 +32,12 @@ constexpr double kFireStageSpanDiameters = 200.0;
 // rather than left unproven.
 constexpr double kFireSpanDiameters = 500.0;
 
+// Whether relaxation = "damped" decompresses this mould cell by cell (mesogen/
+// decompression_cells.hpp): its larger side spans more than 200 mean diameters; a mould of
+// exactly 200 (the C30 mould, the notched beam), whatever the rounding of its units, keeps the
+// common factor (width, height and r_mean in m).
+bool decompresses_by_cells(double width, double height, double r_mean);
+
 // Why `relaxation = "fire"` is refused for this mould (empty: accepted).
 std::string fire_span_refusal(double width, double height, double r_mean);
 

@@ -1,6 +1,7 @@
 // The decompression of a wide mould cell by cell (mesogen/decompression_cells.hpp): each cell's
-// ratio of contact virial to affine stiffness against its closed form for touching equal discs,
-// a contact across two cells shared half and half, a cell without contacts on the mould's ratio.
+// ratio of contact virial to affine stiffness against its closed form for touching equal discs
+// and for a disc on a wall, a contact across two cells shared half and half, a cell without
+// contacts on the mould's ratio.
 #include "mesogen/decompression_cells.hpp"
 
 #include <vector>
@@ -30,6 +31,10 @@ void add_pair(cdem::dem::World& w, double x, double y, double overlap) {
 double pair_ratio(double overlap) {
   return overlap * (2 * kR - overlap) / (4 * kR * kR);
 }
+// The same for a disc on a wall: kw d (R - d) / (kw R^2), the branch taken as R - d.
+double wall_ratio(double overlap) {
+  return overlap * (kR - overlap) / (kR * kR);
+}
 
 TEST(DecompressionCells, EachCellShrinksByItsOwnVirialOverAffineStiffness) {
   cdem::dem::WorldSettings s;
@@ -44,8 +49,12 @@ TEST(DecompressionCells, EachCellShrinksByItsOwnVirialOverAffineStiffness) {
   add_pair(w, 2.3 * kCell, 0.5 * kCell, d4);                // cell (2, 0)
   add_pair(w, 3.0 * kCell, 0.5 * kCell, d3);                // across cells (2, 0) and (3, 0)
   const int lonely = w.add_disc(2.5 * kCell, 1.5 * kCell, kR, 2500);  // cell (2, 1), alone
+  const double dw = 5e-6;                                             // m
+  const int on_wall = w.add_disc(mould.width - (kR - dw), 1.5 * kCell, kR, 2500);  // cell (3, 1)
+  w.add_container_walls(mould);
   w.step();  // the force pass the cells read
   ASSERT_EQ(w.last_force_pass().touching, 4);
+  ASSERT_EQ(w.last_force_pass().touching_walls, 1);
 
   DecompressionCells cells(mould, kCell);
   EXPECT_EQ(cells.count(), 8);
@@ -69,13 +78,19 @@ TEST(DecompressionCells, EachCellShrinksByItsOwnVirialOverAffineStiffness) {
   expect_ratio(5, shared);
   expect_ratio(6, shared);  // the d3 pair's left disc
   expect_ratio(7, pair_ratio(d3));
-  // No contact in its cell: the whole mould's ratio, the mean over the four equal-kn contacts.
-  expect_ratio(lonely, (pair_ratio(d1) + pair_ratio(d2) + pair_ratio(d3) + pair_ratio(d4)) / 4);
-
-  // The whole mould's affine stiffness: four contacts of kn (2R)^2 over 2A.
+  expect_ratio(on_wall, wall_ratio(dw));
+  // No contact in its cell: the whole mould's ratio, sum V / sum S over the four disc-disc
+  // contacts (S = kn (2R)^2 each) and the wall contact (S = kw R^2).
   const double kn = s.laws[0].normal_stiffness(kR, kR);
+  const double kw = s.laws[0].wall_normal_stiffness();
+  const double pairs_s = 4 * kn * 4 * kR * kR, wall_s = kw * kR * kR;  // N m
+  const double pairs_v =
+      kn * 4 * kR * kR * (pair_ratio(d1) + pair_ratio(d2) + pair_ratio(d3) + pair_ratio(d4));
+  expect_ratio(lonely, (pairs_v + wall_s * wall_ratio(dw)) / (pairs_s + wall_s));
+
+  // The whole mould's affine stiffness: sum S over 2A.
   EXPECT_NEAR(affine_stiffness(w, mould.area(), AffineContacts::Touching),
-              4 * kn * 4 * kR * kR / (2 * mould.area()), 1e-12 * kn);
+              (pairs_s + wall_s) / (2 * mould.area()), 1e-12 * kn);
 }
 
 }  // namespace

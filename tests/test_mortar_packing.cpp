@@ -423,4 +423,19 @@ TEST(MortarPacking, ProgressIsReportedAndChangesNothing) {
   EXPECT_LT(quiet.expansion_and_calming_steps, quiet.steps);
 }
 
+// Which moulds decompress cell by cell (docs/dem_design.md "Mortar packing", step 6): the larger
+// side over 200 mean diameters. The C30 mould (0.1 x 0.2 m at R_mean 0.5 mm) and the notched
+// beam (0.4 x 0.1 m at 1 mm) are exactly 200 and keep the common factor, as does a mould given in
+// other units (20 cm at 0.05 cm) or a rounding error above 200.
+TEST(MortarPacking, OnlyMouldsWiderThan200DiametersDecompressByCells) {
+  using cdem::mesogen::decompresses_by_cells;
+  EXPECT_FALSE(decompresses_by_cells(0.1, 0.2, 0.5e-3));
+  EXPECT_FALSE(decompresses_by_cells(0.4, 0.1, 1.0e-3));
+  EXPECT_FALSE(decompresses_by_cells(20 * 0.01, 10 * 0.01, 0.05 * 0.01));
+  EXPECT_FALSE(decompresses_by_cells(0.2 * (1 + 1e-12), 0.1, 0.5e-3));
+  EXPECT_TRUE(decompresses_by_cells(0.25, 0.5, 0.5e-3));  // 500 diameters
+  EXPECT_TRUE(decompresses_by_cells(0.1, 0.2, 0.35e-3));  // 286: the finest C30 mortar
+  EXPECT_TRUE(decompresses_by_cells(0.201, 0.1, 0.5e-3));
+}
+
 }  // namespace
