@@ -20,6 +20,13 @@ void push_zero(std::initializer_list<StaggeredArray<T>*> vectors) {
   for (auto* v : vectors) v->push_back(T{});
 }
 
+// Whether a radius factor may close a gap (NaN too): a shrink only opens gaps, so the
+// displacement bound alone still rules a rebuild out (the check counts growth only:
+// dem/neighbor_list.hpp); a growth needs the pass over the discs.
+bool grows(double factor) {
+  return !(factor <= 1);
+}
+
 // Scales free body b's mass by f2 and its inertia by f2^2 (its disc's radius scaled by
 // sqrt(f2)); the integration's inverses too unless density scaling sets them at every rebuild.
 void scale_free_body_mass(Bodies& bodies, std::size_t b, double f2, bool density_scaling) {
@@ -140,9 +147,7 @@ void World::remove_wall_servos(int wall) {
 
 void World::scale_radii(double factor) {
   for (double& r : discs_.r) r *= factor;
-  // A shrink opens every gap, so the displacement bound alone still rules a rebuild out (the
-  // check counts growth only: dem/neighbor_list.hpp); a growth needs the pass over the discs.
-  if (factor > 1 || std::isnan(factor)) moved_bound_ = std::numeric_limits<double>::infinity();
+  if (grows(factor)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
   const double f2 = factor * factor;
   for (std::size_t b = 0; b < bodies_.size(); ++b)
@@ -158,9 +163,9 @@ void World::scale_radii(const std::vector<double>& factor) {
   bool grew = false;
   for (std::size_t i = 0; i < factor.size(); ++i) {
     discs_.r[i] *= factor[i];
-    grew = grew || !(factor[i] <= 1);
+    grew = grew || grows(factor[i]);
   }
-  if (grew) moved_bound_ = std::numeric_limits<double>::infinity();  // as for a uniform growth
+  if (grew) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     if (bodies_.is_clump[b]) continue;
