@@ -112,12 +112,12 @@ TEST(LargeMould, FiveHundredDiameterSectionPacksJammedCellByCell) {
       "floating %.2f %%, porosity %.4f, wall stress %.4g MPa, radius factors spread %.3g\n",
       discs, p.at("steps").get<long>(), p.at("decompression_cells").get<int>(),
       p.at("coordination_number").get<double>(), 100 * floating, p.at("porosity").get<double>(),
-      p["residual_stress_MPa"].get<double>(), p.at("decompression_factor_spread").get<double>());
+      p.at("residual_stress_MPa").get<double>(), p.at("decompression_factor_spread").get<double>());
   EXPECT_TRUE(p.at("converged").get<bool>());
   EXPECT_EQ(p.at("decompression_cells").get<int>(), 3 * 5);  // 100 diameters = 100 mm
   EXPECT_GT(p.at("coordination_number").get<double>(), 3.5);
   EXPECT_LT(floating, 0.10);
-  EXPECT_NEAR(p["residual_stress_MPa"].get<double>(), 0.1, 0.05 * 0.1);
+  EXPECT_NEAR(p.at("residual_stress_MPa").get<double>(), 0.1, 0.05 * 0.1);
   // The rate of a 200-diameter mould: about as many cycles as the C30 mould's 10,850, half the
   // span-scaled 24,800.
   EXPECT_LT(p.at("steps").get<long>(), 24800 / 2);
