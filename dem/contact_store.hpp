@@ -18,6 +18,7 @@ namespace cdem::dem {
 
 class World;
 struct MemoryFootprint;  // dem/memory_footprint.hpp
+class WorkerTeam;        // dem/worker_team.hpp
 
 // Persistent per-contact state, structure of arrays (sign conventions of
 // dem/parallel_bond.hpp: n from the first disc to the second, t = (-ny, nx)).
@@ -34,18 +35,20 @@ struct ContactStates {
   // its entry in ContactStore::smooth_joints.
   StaggeredArray<std::int32_t> joint;
 
+  // Sizes every array for n contacts, keeping what they hold below n (a merge writes every slot).
   void resize(std::size_t n) {
     for (auto* v : {&shear_force, &bond_normal, &bond_shear, &bond_moment, &bond_gap})
       make_room(*v, n);
     make_room(bond, n);
     make_room(joint, n);
-    shear_force.assign(n, 0.0);
-    bond.assign(n, 0);
-    bond_normal.assign(n, 0.0);
-    bond_shear.assign(n, 0.0);
-    bond_moment.assign(n, 0.0);
-    bond_gap.assign(n, 0.0);
-    joint.assign(n, -1);
+    for (auto* v : {&shear_force, &bond_normal, &bond_shear, &bond_moment, &bond_gap}) v->resize(n);
+    bond.resize(n);
+    joint.resize(n);
+  }
+  // Slot k takes the state of a new contact: no shear force, no bond.
+  void reset(std::size_t k) {
+    shear_force[k] = 0;
+    break_bond(k);
   }
   void copy_from(std::size_t to, const ContactStates& from, std::size_t from_index) {
     shear_force[to] = from.shear_force[from_index];
@@ -91,12 +94,14 @@ class ContactStore {
   // joint's bonded elements.
   int intact_bonds(std::size_t k) const;
 
-  // Takes the broad phase's candidates (sorted keys: disc-disc i << 32 | j with i < j, and
+  // Takes the broad phase's candidates (sorted unique keys: disc-disc i << 32 | j with i < j, and
   // disc << 32 | wall): the contacts become the candidates plus the old disc-disc pairs and
   // disc-wall contacts with an intact bond, each keeping its state; the pairs' classes follow
-  // from the discs' materials. Allocates only when the lists grow.
+  // from the discs' materials. The disc-disc lists are shared out on `team` when one is given
+  // (the same bits). Allocates only when the lists (or the team) grow.
   void merge(const std::vector<std::uint64_t>& pair_candidates,
-             const std::vector<std::uint64_t>& wall_candidates, const Discs& discs);
+             const std::vector<std::uint64_t>& wall_candidates, const Discs& discs,
+             WorkerTeam* team = nullptr);
 
  private:
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
@@ -106,6 +111,7 @@ class ContactStore {
   // store held three disc-disc-sized copies of the keys and state (94 bytes per disc on C30).
   StaggeredArray<std::uint64_t> merged_keys_, merged_wall_keys_;
   ContactStates merged_state_, merged_wall_state_;
+  std::vector<std::size_t> member_offsets_;  // where each member's part of a merged list starts
 };
 
 }  // namespace cdem::dem

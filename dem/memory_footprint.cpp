@@ -21,10 +21,11 @@ std::size_t force_bytes(const ContactForces& f) {
 MemoryFootprint memory_footprint(const World& world) {
   MemoryFootprint m;
   const Bodies& b = world.bodies_;
-  m.bodies = capacity_bytes(b.x, b.y, b.theta, b.vx, b.vy, b.omega, b.fx, b.fy, b.moment,
-                            b.fx_applied, b.fy_applied, b.mass, b.inertia, b.inv_mass_dyn,
-                            b.inv_inertia_dyn, b.first_disc, b.disc_count, b.is_clump, b.prescribed,
-                            world.stiffness_, world.rot_stiffness_);
+  m.bodies =
+      capacity_bytes(b.x, b.y, b.theta, b.vx, b.vy, b.omega, b.fx, b.fy, b.moment, b.fx_applied,
+                     b.fy_applied, b.mass, b.inertia, b.inv_mass_dyn, b.inv_inertia_dyn,
+                     b.first_disc, b.disc_count, b.is_clump, b.prescribed) +
+      world.stiffness_.body_bytes();
   const Discs& d = world.discs_;
   m.discs = capacity_bytes(d.x, d.y, d.r, d.vx, d.vy, d.omega, d.offset_x, d.offset_y, d.body,
                            d.active, d.material, d.fx, d.fy, d.moment);
@@ -37,7 +38,8 @@ MemoryFootprint memory_footprint(const World& world) {
   const SmoothJointStates& sj = c.smooth_joints;
   m.joints = capacity_bytes(fj.gap0, fj.theta, fj.bonded, fj.first_element, fj.element_shear,
                             sj.sets, sj.set, sj.nx, sj.ny, sj.area, sj.gap, sj.fs, sj.bonded);
-  m.merge_scratch = capacity_bytes(c.merged_keys_) + state_bytes(c.merged_state_);
+  m.merge_scratch =
+      capacity_bytes(c.merged_keys_, c.member_offsets_) + state_bytes(c.merged_state_);
   m.wall_pairs += capacity_bytes(c.merged_wall_keys_) + state_bytes(c.merged_wall_state_);
   const NeighborList& n = world.neighbors_;
   m.neighbor_list =
@@ -55,7 +57,8 @@ MemoryFootprint memory_footprint(const World& world) {
   const Walls& w = world.walls_;
   m.other = capacity_bytes(w.ax, w.ay, w.bx, w.by, w.arc, w.vx, w.vy, w.friction, w.fx, w.fy, w.sxx,
                            w.sxy, w.syx, w.syy, world.servos_.servos, world.cracks_.cracks,
-                           world.energy_.last_dx, world.energy_.last_dy);
+                           world.energy_.last_dx, world.energy_.last_dy) +
+            world.stiffness_.other_bytes() + capacity_bytes(world.member_dt_);
   return m;
 }
 

@@ -36,7 +36,7 @@ struct MemoryFootprint {
   // candidate keys)
   std::size_t neighbor_list = 0;
   std::size_t thread_plan = 0;  // bytes: the multi-thread cycle's plan and per-pair scratch
-  std::size_t other = 0;        // bytes: walls, servos, crack log, energy ledger
+  std::size_t other = 0;        // bytes: walls, servos, crack log, energy ledger, step scratch
 
   std::size_t total() const {
     return bodies + discs + pairs + wall_pairs + joints + merge_scratch + neighbor_list +

@@ -147,12 +147,11 @@ void NeighborList::build(const Discs& discs, const Walls& walls, WorkerTeam* tea
     // A team's job must not throw: a failed allocation is carried out of it and rethrown.
     std::vector<std::exception_ptr> failed(static_cast<std::size_t>(members));
     auto job = [&](int t) {
-      const std::size_t begin = n * static_cast<std::size_t>(t) / members;
-      const std::size_t end = n * static_cast<std::size_t>(t + 1) / members;
+      const MemberRange range = member_range(n, t, members);
       auto& keys = t == 0 ? pair_keys_ : member_keys_[static_cast<std::size_t>(t - 1)];
       try {
         keys.clear();
-        find_pairs(discs, begin, end, keys);
+        find_pairs(discs, range.begin, range.end, keys);
       } catch (...) {
         failed[static_cast<std::size_t>(t)] = std::current_exception();
       }

@@ -14,6 +14,7 @@
 // descheduled) a thread uses the short spin (60 us) for its next 256 waits
 // (docs/performance.md, "Session 14").
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <thread>
@@ -52,6 +53,40 @@ class WorkerTeam {
   std::atomic<std::uint32_t> arrived_{0};     // members at the barrier
   std::atomic<std::uint32_t> barrier_generation_{0};
 };
+
+// Member t's share of [0, n) when `members` members cut it into contiguous ranges of (nearly)
+// equal size: [n t / members, n (t + 1) / members).
+struct MemberRange {
+  std::size_t begin, end;
+};
+inline MemberRange member_range(std::size_t n, int t, int members) {
+  const auto m = static_cast<std::size_t>(members), i = static_cast<std::size_t>(t);
+  return {n * i / m, n * (i + 1) / m};
+}
+
+// Fewer items than this are not worth a hand-over to a team (a few microseconds, against about
+// a nanosecond per item of the jobs given to share_out).
+inline constexpr std::size_t kShareOutAbove = 8192;
+
+// Runs job(t, members) for every member t of `team` (member 0 on the calling thread) and returns
+// when all are done; job(0, 1) alone without a team or for fewer than kShareOutAbove items. The
+// job must not throw; share_out_members tells how many members it will run. For work outside the
+// step whose result does not depend on the share (each member works on its own range,
+// member_range, and nothing is summed across ranges but in the order of one thread), so the bits
+// are those of one thread.
+inline int share_out_members(const WorkerTeam* team, std::size_t items) {
+  return team && items >= kShareOutAbove ? team->size() : 1;
+}
+template <class Job>
+void share_out(WorkerTeam* team, std::size_t items, Job&& job) {
+  const int members = share_out_members(team, items);
+  if (members < 2) {
+    job(0, 1);
+    return;
+  }
+  auto member = [&job, members](int t) { job(t, members); };
+  team->run(member);
+}
 
 // CPU time of the calling thread (s): what a thread's work costs, whatever the machine's load.
 double thread_cpu_seconds();

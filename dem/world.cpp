@@ -1,6 +1,7 @@
 #include "dem/world.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -145,13 +146,19 @@ void World::remove_wall_servos(int wall) {
              list.end());
 }
 
+// The discs and free bodies are shared out on the team: each radius and mass is scaled on its
+// own, so the bits do not depend on the share (the packing calls this every cycle).
 void World::scale_radii(double factor) {
-  for (double& r : discs_.r) r *= factor;
+  const double f2 = factor * factor;
+  share_out(team(), discs_.size(), [&](int t, int members) {
+    const MemberRange discs = member_range(discs_.size(), t, members);
+    for (std::size_t i = discs.begin; i < discs.end; ++i) discs_.r[i] *= factor;
+    const MemberRange bodies = member_range(bodies_.size(), t, members);
+    for (std::size_t b = bodies.begin; b < bodies.end; ++b)
+      if (!bodies_.is_clump[b]) scale_free_body_mass(bodies_, b, f2, settings_.density_scaling);
+  });
   if (grows(factor)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
-  const double f2 = factor * factor;
-  for (std::size_t b = 0; b < bodies_.size(); ++b)
-    if (!bodies_.is_clump[b]) scale_free_body_mass(bodies_, b, f2, settings_.density_scaling);
   // Uniform scaling leaves every kn unchanged (kn depends on the radius ratio only), so the
   // critical step scales with sqrt(m) ~ factor.
   if (!settings_.density_scaling && settings_.fixed_time_step <= 0 && factor < 1) dt_ *= factor;
@@ -160,18 +167,24 @@ void World::scale_radii(double factor) {
 void World::scale_radii(const std::vector<double>& factor) {
   if (factor.size() != discs_.r.size())
     throw std::invalid_argument("World::scale_radii: one factor per disc expected");
-  bool grew = false;
-  for (std::size_t i = 0; i < factor.size(); ++i) {
-    discs_.r[i] *= factor[i];
-    grew = grew || grows(factor[i]);
-  }
-  if (grew) moved_bound_ = std::numeric_limits<double>::infinity();
+  std::atomic<bool> grew{false};
+  share_out(team(), discs_.size(), [&](int t, int members) {
+    const MemberRange discs = member_range(discs_.size(), t, members);
+    bool grew_here = false;
+    for (std::size_t i = discs.begin; i < discs.end; ++i) {
+      discs_.r[i] *= factor[i];
+      grew_here = grew_here || grows(factor[i]);
+    }
+    if (grew_here) grew.store(true, std::memory_order_relaxed);
+    const MemberRange bodies = member_range(bodies_.size(), t, members);
+    for (std::size_t b = bodies.begin; b < bodies.end; ++b) {
+      if (bodies_.is_clump[b]) continue;
+      const double f = factor[static_cast<std::size_t>(bodies_.first_disc[b])];
+      scale_free_body_mass(bodies_, b, f * f, settings_.density_scaling);
+    }
+  });
+  if (grew.load(std::memory_order_relaxed)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    if (bodies_.is_clump[b]) continue;
-    const double f = factor[bodies_.first_disc[b]];
-    scale_free_body_mass(bodies_, b, f * f, settings_.density_scaling);
-  }
   // The automatic step follows the masses (under density scaling it does not), set at a rebuild.
   if (!settings_.density_scaling && settings_.fixed_time_step <= 0) rebuild_pending_ = true;
 }
@@ -217,8 +230,8 @@ void World::rebuild() {
       neighbors_.skin = discs_.size() ? 0.2 * sum / static_cast<double>(discs_.size()) : 0.0;
     }
   }
-  neighbors_.build(discs_, walls_, settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr);
-  contacts_.merge(neighbors_.pair_candidates(), neighbors_.wall_candidates(), discs_);
+  neighbors_.build(discs_, walls_, team());
+  contacts_.merge(neighbors_.pair_candidates(), neighbors_.wall_candidates(), discs_, team());
   moved_bound_ = 0;
   update_time_step();
   rebuild_pending_ = false;
@@ -226,61 +239,71 @@ void World::rebuild() {
 
 // Per body: translational stiffness sum of max(kn, ks) and rotational sum of ks arm^2 over the
 // candidate contacts (touching or within the skin, so contacts about to form count already),
-// never less than one wall contact, so an isolated body does not get an unbounded step.
+// never less than one wall contact, so an isolated body does not get an unbounded step. The
+// disc-disc sums and the pass over the bodies are shared out on the team, the same bits as one
+// thread (dem/time_step_stiffness.hpp); the disc-wall terms follow them, in order.
 void World::update_time_step() {
-  const std::size_t nb = bodies_.size();
-  stiffness_.assign(nb, 0.0);
-  rot_stiffness_.assign(nb, 0.0);
   const auto arm = [&](std::int32_t d) {
     return std::sqrt(discs_.offset_x[d] * discs_.offset_x[d] +
                      discs_.offset_y[d] * discs_.offset_y[d]) +
            discs_.r[d];
   };
-  for (std::size_t k = 0; k < contacts_.keys.size(); ++k) {
-    const std::int32_t i = contacts_.first[k], j = contacts_.second[k];
-    const std::uint8_t cls = contacts_.contact_class[k];
-    const auto kind = static_cast<BondKind>(contacts_.state.bond[k]);
-    const ContactStiffness c =
-        kind == BondKind::SmoothJoint
-            ? smooth_joint_stiffness(contacts_.smooth_joints, contacts_.state.joint[k])
-            : pair_stiffness(settings_.laws[cls], settings_.bonds[cls], kind, discs_.r[i],
-                             discs_.r[j]);
-    const double kt = std::max(c.normal, c.shear);
-    const double ai = arm(i), aj = arm(j);
-    stiffness_[discs_.body[i]] += kt;
-    stiffness_[discs_.body[j]] += kt;
-    rot_stiffness_[discs_.body[i]] += c.shear * ai * ai + c.rotation;
-    rot_stiffness_[discs_.body[j]] += c.shear * aj * aj + c.rotation;
-  }
+  stiffness_.sum_pairs(
+      bodies_, discs_, contacts_,
+      [&](std::size_t k) {
+        const std::int32_t i = contacts_.first[k], j = contacts_.second[k];
+        const std::uint8_t cls = contacts_.contact_class[k];
+        const auto kind = static_cast<BondKind>(contacts_.state.bond[k]);
+        const ContactStiffness c =
+            kind == BondKind::SmoothJoint
+                ? smooth_joint_stiffness(contacts_.smooth_joints, contacts_.state.joint[k])
+                : pair_stiffness(settings_.laws[cls], settings_.bonds[cls], kind, discs_.r[i],
+                                 discs_.r[j]);
+        const double ai = arm(i), aj = arm(j);
+        return ContactStiffnessTerm{std::max(c.normal, c.shear), c.shear * ai * ai + c.rotation,
+                                    c.shear * aj * aj + c.rotation};
+      },
+      team());
+  std::vector<double>& stiffness = stiffness_.translational;
+  std::vector<double>& rot_stiffness = stiffness_.rotational;
   const ContactStiffness wall =
       wall_stiffness(settings_.laws[static_cast<int>(ContactClass::Wall)]);
   const double kn_wall = wall.normal, ks_wall = wall.shear;
   for (std::size_t k = 0; k < contacts_.wall_keys.size(); ++k) {
     const std::int32_t i = contacts_.wall_disc[k];
     const double a = arm(i);
-    stiffness_[discs_.body[i]] += std::max(kn_wall, ks_wall);
-    rot_stiffness_[discs_.body[i]] += ks_wall * a * a;
+    stiffness[discs_.body[i]] += std::max(kn_wall, ks_wall);
+    rot_stiffness[discs_.body[i]] += ks_wall * a * a;
   }
   const double k_floor = std::max(kn_wall, ks_wall);
-  double dt_min = std::numeric_limits<double>::infinity();
   const double safety = settings_.time_step_safety;
   const double tau2 = std::pow(settings_.scaled_time_step / safety, 2);  // s^2, density scaling
-  for (std::size_t b = 0; b < nb; ++b) {
-    const double kt = std::max(stiffness_[b], k_floor);
-    double kr = rot_stiffness_[b];
-    if (kr <= 0) {
-      const double a = arm(bodies_.first_disc[b]);
-      kr = ks_wall * a * a;
+  // s, the smallest critical step of each member's bodies (a minimum: the same whatever the share)
+  std::vector<double>& member_dt = member_dt_;
+  member_dt.assign(static_cast<std::size_t>(share_out_members(team(), bodies_.size())),
+                   std::numeric_limits<double>::infinity());
+  share_out(team(), bodies_.size(), [&](int t, int members) {
+    const MemberRange range = member_range(bodies_.size(), t, members);
+    double dt_min = std::numeric_limits<double>::infinity();
+    for (std::size_t b = range.begin; b < range.end; ++b) {
+      const double kt = std::max(stiffness[b], k_floor);
+      double kr = rot_stiffness[b];
+      if (kr <= 0) {
+        const double a = arm(bodies_.first_disc[b]);
+        kr = ks_wall * a * a;
+      }
+      if (settings_.density_scaling) {
+        bodies_.inv_mass_dyn[b] = 1.0 / (kt * tau2);
+        bodies_.inv_inertia_dyn[b] = 1.0 / (kr * tau2);
+        continue;
+      }
+      if (bodies_.prescribed[b]) continue;
+      dt_min =
+          std::min({dt_min, std::sqrt(bodies_.mass[b] / kt), std::sqrt(bodies_.inertia[b] / kr)});
     }
-    if (settings_.density_scaling) {
-      bodies_.inv_mass_dyn[b] = 1.0 / (kt * tau2);
-      bodies_.inv_inertia_dyn[b] = 1.0 / (kr * tau2);
-      continue;
-    }
-    if (bodies_.prescribed[b]) continue;
-    dt_min =
-        std::min({dt_min, std::sqrt(bodies_.mass[b] / kt), std::sqrt(bodies_.inertia[b] / kr)});
-  }
+    member_dt[static_cast<std::size_t>(t)] = dt_min;
+  });
+  const double dt_min = *std::min_element(member_dt.begin(), member_dt.end());
   // Under density scaling every body sits at the same critical step by construction.
   dt_critical_ = settings_.density_scaling ? settings_.scaled_time_step / safety
                  : std::isfinite(dt_min)   ? dt_min

@@ -22,6 +22,7 @@
 #include "dem/neighbor_list.hpp"
 #include "dem/servo.hpp"
 #include "dem/threaded_cycle.hpp"
+#include "dem/time_step_stiffness.hpp"
 #include "dem/wall.hpp"
 #include "dem/worker_team.hpp"
 
@@ -243,6 +244,8 @@ class World {
 
   void rebuild();
   void update_time_step();
+  // The team of a world that runs several threads, else null (dem/worker_team.hpp share_out).
+  WorkerTeam* team() { return settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr; }
   void account_wall_work();
   void check_energy();
   [[noreturn]] void fail(const std::string& what, long disc) const;
@@ -266,9 +269,10 @@ class World {
   // rebuild check skip its pass over every disc while the bound alone rules a rebuild out.
   double moved_bound_ = std::numeric_limits<double>::infinity();
   ForcePassResult last_pass_;
-  ThreadedCycle threaded_;  // plan and scratch of the multi-thread cycle
-  WorkerTeamHandle team_;   // threads > 1: runs the threaded cycle and the neighbour search
-  std::vector<double> stiffness_, rot_stiffness_;  // per body, scratch of update_time_step
+  ThreadedCycle threaded_;         // plan and scratch of the multi-thread cycle
+  WorkerTeamHandle team_;          // threads > 1: the threaded cycle, rebuilds, radius changes
+  TimeStepStiffness stiffness_;    // per body, the sums update_time_step sets the step from
+  std::vector<double> member_dt_;  // s, per team member: scratch of update_time_step
 };
 
 }  // namespace cdem::dem

@@ -1,0 +1,239 @@
+// Work outside the step shared out on a thread team (dem/worker_team.hpp share_out): the merge of
+// the contact lists at a rebuild and the stiffness sums of the time step give the bits of one
+// thread for teams of 2 and 3, checked on lists long enough to be shared out
+// (kShareOutAbove items), against a plain loop written here.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "dem/contact_store.hpp"
+#include "dem/time_step_stiffness.hpp"
+#include "dem/world.hpp"
+
+namespace {
+
+using namespace cdem::dem;
+
+template <class A, class B>
+bool same_bits(const A& a, const B& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
+std::vector<std::uint64_t> random_keys(std::mt19937_64& rng, std::size_t count,
+                                       std::uint32_t discs) {
+  std::uniform_int_distribution<std::uint32_t> disc(0, discs - 1);
+  std::set<std::uint64_t> keys;
+  while (keys.size() < count) {
+    const std::uint32_t a = disc(rng), b = disc(rng);
+    if (a != b) keys.insert(pair_key(std::min(a, b), std::max(a, b)));
+  }
+  return {keys.begin(), keys.end()};
+}
+
+constexpr std::uint32_t kDiscs = 20000;
+
+TEST(SharedOut, MergedContactListsAreTheUnionWithTheStatesCarriedForAnyTeam) {
+  static_assert(kShareOutAbove < 30000, "the lists below must be long enough to be shared out");
+  std::mt19937_64 rng(7);
+  Discs discs;
+  for (std::uint32_t i = 0; i < kDiscs; ++i)
+    discs.material.push_back(i % 3 ? DiscMaterial::Mortar : DiscMaterial::Aggregate);
+  ContactStore before;
+  before.merge(random_keys(rng, 30000, kDiscs), {}, discs);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (std::size_t k = 0; k < before.keys.size(); ++k) {
+    before.state.shear_force[k] = u(rng);
+    if (u(rng) > 0) {  // half the old pairs hold a bond, which keeps them in the list
+      before.state.bond[k] = 1;
+      before.state.bond_normal[k] = u(rng);
+      before.state.bond_shear[k] = u(rng);
+      before.state.bond_moment[k] = u(rng);
+      before.state.bond_gap[k] = u(rng);
+      before.state.joint[k] = static_cast<std::int32_t>(k);
+    }
+  }
+  // New candidates: about 60 % of the old pairs and as many new ones.
+  std::vector<std::uint64_t> candidates = random_keys(rng, 15000, kDiscs);
+  for (std::uint64_t key : before.keys)
+    if (u(rng) > -0.2) candidates.push_back(key);
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+
+  ContactStore one = before;
+  one.merge(candidates, {}, discs);
+  // The union, each key's state from the old list or zero: checked key by key.
+  std::set<std::uint64_t> expected(candidates.begin(), candidates.end());
+  for (std::size_t k = 0; k < before.keys.size(); ++k)
+    if (before.state.bond[k]) expected.insert(before.keys[k]);
+  ASSERT_TRUE(same_bits(one.keys, std::vector<std::uint64_t>(expected.begin(), expected.end())));
+  for (std::size_t k = 0; k < one.keys.size(); ++k) {
+    const auto old = std::lower_bound(before.keys.begin(), before.keys.end(), one.keys[k]);
+    const bool carried = old != before.keys.end() && *old == one.keys[k];
+    const std::size_t o = static_cast<std::size_t>(old - before.keys.begin());
+    EXPECT_EQ(one.state.shear_force[k], carried ? before.state.shear_force[o] : 0.0);
+    EXPECT_EQ(one.state.bond[k], carried ? before.state.bond[o] : 0);
+    EXPECT_EQ(one.state.joint[k], carried ? before.state.joint[o] : -1);
+    EXPECT_EQ(one.first[k], static_cast<std::int32_t>(one.keys[k] >> 32));
+    EXPECT_EQ(one.contact_class[k], static_cast<std::uint8_t>(disc_pair_class(
+                                        static_cast<int>(discs.material[one.first[k]]),
+                                        static_cast<int>(discs.material[one.second[k]]))));
+  }
+
+  // A second merge, into the scratch the first left (not zeroed): half the candidates again.
+  std::vector<std::uint64_t> again;
+  for (std::size_t k = 0; k < candidates.size(); k += 2) again.push_back(candidates[k]);
+  ContactStore twice = one;
+  twice.merge(again, {}, discs);
+
+  for (int members : {2, 3, 4}) {
+    WorkerTeam team(members);
+    ContactStore shared = before;
+    shared.merge(candidates, {}, discs, &team);
+    EXPECT_TRUE(same_bits(shared.keys, one.keys)) << members;
+    EXPECT_TRUE(same_bits(shared.first, one.first)) << members;
+    EXPECT_TRUE(same_bits(shared.second, one.second)) << members;
+    EXPECT_TRUE(same_bits(shared.contact_class, one.contact_class)) << members;
+    const ContactStates &a = shared.state, &b = one.state;
+    EXPECT_TRUE(same_bits(a.shear_force, b.shear_force) && same_bits(a.bond, b.bond) &&
+                same_bits(a.bond_normal, b.bond_normal) && same_bits(a.bond_shear, b.bond_shear) &&
+                same_bits(a.bond_moment, b.bond_moment) && same_bits(a.bond_gap, b.bond_gap) &&
+                same_bits(a.joint, b.joint))
+        << members;
+    shared.merge(again, {}, discs, &team);
+    EXPECT_TRUE(same_bits(shared.keys, twice.keys)) << members;
+    EXPECT_TRUE(same_bits(shared.state.shear_force, twice.state.shear_force) &&
+                same_bits(shared.state.bond, twice.state.bond) &&
+                same_bits(shared.state.joint, twice.state.joint))
+        << members;
+  }
+}
+
+// A 100 x 100 lattice of touching free discs (densities varied) and, right of it, a clump of 100
+// pebbles that touches the last disc of every row: the clump is the last body, and every
+// member's contacts reach it (the set-aside path); each cut between members also crosses a row
+// of free discs. One step builds the candidate list.
+World lattice_with_clump(WorldSettings settings = {}) {
+  World w(settings);
+  const double r = 0.5e-3, pitch = 1e-3;  // m
+  for (int row = 0; row < 100; ++row)
+    for (int col = 0; col < 100; ++col)
+      w.add_disc(col * pitch, row * pitch, r, 2000 + 100 * ((row + col) % 7));
+  std::vector<double> px, py, pr;
+  for (int row = 0; row < 100; ++row) {
+    px.push_back(100 * pitch);  // world positions
+    py.push_back(row * pitch);
+    pr.push_back(r);
+  }
+  w.add_clump(100 * pitch, 49.5 * pitch, 0.01, 1e-5, px, py, pr,
+              std::vector<std::uint8_t>(px.size(), 1));
+  w.step();
+  return w;
+}
+
+TEST(SharedOut, TimeStepStiffnessSumsHaveTheBitsOfOneThreadForAnyTeam) {
+  const World w = lattice_with_clump();
+  const ContactStore& c = w.contacts();
+  ASSERT_GE(c.keys.size(), 2 * kShareOutAbove);
+  const auto clump = static_cast<std::int32_t>(w.bodies().size() - 1);
+  // Terms of magnitudes over 16 decades, so that a sum taken in another order has other bits.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> decade(-8, 8);
+  std::vector<ContactStiffnessTerm> terms(c.keys.size());
+  for (auto& t : terms)
+    t = {std::pow(10.0, decade(rng)), std::pow(10.0, decade(rng)), std::pow(10.0, decade(rng))};
+  // One thread: every contact in order, first disc's body then second's.
+  std::vector<double> translational(w.bodies().size()), rotational(w.bodies().size());
+  for (std::size_t k = 0; k < c.keys.size(); ++k) {
+    const std::int32_t bi = w.discs().body[c.first[k]], bj = w.discs().body[c.second[k]];
+    translational[bi] += terms[k].translational;
+    translational[bj] += terms[k].translational;
+    rotational[bi] += terms[k].rotational_first;
+    rotational[bj] += terms[k].rotational_second;
+  }
+  // The same sums backwards differ: the comparison below can see an order change.
+  double backwards = 0;
+  for (std::size_t k = c.keys.size(); k-- > 0;)
+    if (w.discs().body[c.second[k]] == clump) backwards += terms[k].translational;
+  ASSERT_NE(backwards, translational[clump]);
+
+  const auto term = [&](std::size_t k) { return terms[k]; };
+  TimeStepStiffness alone;
+  alone.sum_pairs(w.bodies(), w.discs(), c, term, nullptr);
+  EXPECT_TRUE(same_bits(alone.translational, translational));
+  EXPECT_TRUE(same_bits(alone.rotational, rotational));
+  for (int members : {2, 3, 4}) {
+    WorkerTeam team(members);
+    TimeStepStiffness shared;
+    for (int repeat = 0; repeat < 2; ++repeat) {  // the second sum reuses the scratch
+      shared.sum_pairs(w.bodies(), w.discs(), c, term, &team);
+      EXPECT_TRUE(same_bits(shared.translational, translational)) << members;
+      EXPECT_TRUE(same_bits(shared.rotational, rotational)) << members;
+    }
+  }
+}
+
+// The world's critical step and scaled masses, set from those sums, with 1, 2 and 3 threads.
+TEST(SharedOut, CriticalStepAndScaledMassesDoNotDependOnTheThreads) {
+  for (bool density_scaling : {false, true}) {
+    double dt = 0;
+    std::vector<double> inv_mass, inv_inertia;
+    for (int threads : {1, 2, 3}) {
+      WorldSettings s;
+      s.threads = threads;
+      s.density_scaling = density_scaling;
+      s.scaled_time_step = 1e-6;  // s
+      const World w = lattice_with_clump(s);
+      if (threads == 1) {
+        dt = w.critical_time_step();
+        inv_mass.assign(w.bodies().inv_mass_dyn.begin(), w.bodies().inv_mass_dyn.end());
+        inv_inertia.assign(w.bodies().inv_inertia_dyn.begin(), w.bodies().inv_inertia_dyn.end());
+        ASSERT_GT(dt, 0);
+        continue;
+      }
+      EXPECT_EQ(w.critical_time_step(), dt) << threads;
+      EXPECT_TRUE(same_bits(w.bodies().inv_mass_dyn, inv_mass)) << threads;
+      EXPECT_TRUE(same_bits(w.bodies().inv_inertia_dyn, inv_inertia)) << threads;
+    }
+  }
+}
+
+// The packing's radius servo: both scale_radii overloads (a shrink for all, then per disc, some
+// growing), radii and masses against the products written out, with 1, 2 and 3 threads.
+TEST(SharedOut, ScaledRadiiAndMassesDoNotDependOnTheThreads) {
+  const World before = lattice_with_clump();
+  const double common = 0.99;
+  std::vector<double> factor(before.discs().size());
+  for (std::size_t i = 0; i < factor.size(); ++i)
+    factor[i] = i % 17 ? 1.0 - 1e-3 * static_cast<double>(i % 13) : 1.002;
+  for (int threads : {1, 2, 3}) {
+    WorldSettings s;
+    s.threads = threads;
+    World w = lattice_with_clump(s);
+    ASSERT_GE(w.discs().size(), kShareOutAbove);
+    w.scale_radii(common);
+    w.scale_radii(factor);
+    for (std::size_t i = 0; i < factor.size(); ++i)
+      ASSERT_EQ(w.discs().r[i], before.discs().r[i] * common * factor[i]) << threads << ' ' << i;
+    for (std::size_t b = 0; b < w.bodies().size(); ++b) {
+      const double f = factor[static_cast<std::size_t>(w.bodies().first_disc[b])];
+      const bool clump = w.bodies().is_clump[b];
+      ASSERT_EQ(w.bodies().mass[b], clump ? before.bodies().mass[b]
+                                          : before.bodies().mass[b] * (common * common) * (f * f))
+          << threads << ' ' << b;
+      ASSERT_EQ(w.bodies().inertia[b], clump ? before.bodies().inertia[b]
+                                             : before.bodies().inertia[b] *
+                                                   ((common * common) * (common * common)) *
+                                                   ((f * f) * (f * f)))
+          << threads << ' ' << b;
+    }
+  }
+}
+
+}  // namespace
