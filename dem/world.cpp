@@ -279,9 +279,8 @@ void World::update_time_step() {
   const double safety = settings_.time_step_safety;
   const double tau2 = std::pow(settings_.scaled_time_step / safety, 2);  // s^2, density scaling
   // s, the smallest critical step of each member's bodies (a minimum: the same whatever the share)
-  std::vector<double>& member_dt = member_dt_;
-  member_dt.assign(static_cast<std::size_t>(share_out_members(team(), bodies_.size())),
-                   std::numeric_limits<double>::infinity());
+  member_dt_.assign(static_cast<std::size_t>(share_out_members(team(), bodies_.size())),
+                    std::numeric_limits<double>::infinity());
   share_out(team(), bodies_.size(), [&](int t, int members) {
     const MemberRange range = member_range(bodies_.size(), t, members);
     double dt_min = std::numeric_limits<double>::infinity();
@@ -301,9 +300,9 @@ void World::update_time_step() {
       dt_min =
           std::min({dt_min, std::sqrt(bodies_.mass[b] / kt), std::sqrt(bodies_.inertia[b] / kr)});
     }
-    member_dt[static_cast<std::size_t>(t)] = dt_min;
+    member_dt_[static_cast<std::size_t>(t)] = dt_min;
   });
-  const double dt_min = *std::min_element(member_dt.begin(), member_dt.end());
+  const double dt_min = *std::min_element(member_dt_.begin(), member_dt_.end());
   // Under density scaling every body sits at the same critical step by construction.
   dt_critical_ = settings_.density_scaling ? settings_.scaled_time_step / safety
                  : std::isfinite(dt_min)   ? dt_min
@@ -372,7 +371,7 @@ void World::step() {
   if (rebuild_pending_ || neighbors_.needs_rebuild(discs_, walls_, moved_bound_)) rebuild();
   const bool book = settings_.energy_tracking;
   ThreadedStep threaded;
-  if (settings_.threads > 1) {
+  if (WorkerTeam* shared = team()) {
     ThreadedStepSettings ts;
     ts.laws = &settings_.laws;
     ts.bonds = &settings_.bonds;
@@ -380,8 +379,8 @@ void World::step() {
     ts.guard = settings_.max_overlap_ratio;
     ts.alpha = settings_.local_damping;
     ts.book_energy = book;
-    threaded = threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts,
-                              team_.get(settings_.threads));
+    threaded =
+        threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts, *shared);
     last_pass_ = threaded.pass;
   } else {
     last_pass_ =
