@@ -1,0 +1,130 @@
+#!/usr/bin/env bash
+# The speed figures of issue 18's acceptance in one run (docs/performance.md, "Issue 18 at a
+# glance"), with the machine's load before every run. Not a CTest test: run it by hand on a
+# quiet machine, after building (Release):
+#   bash bench/acceptance.sh [build-dir] [rounds] [large-specimen.h5]
+# 1. `cdem generate samples/c30_specimen.toml`, 1 and 2 threads alternated, `rounds` rounds (3):
+#    wall, user and peak resident size per run, medians; every specimen must be byte-identical,
+#    and its coordination, floating fraction, residual stress and porosity inside the ranges the
+#    stability suite asserts (tests/stability/test_stability_packing.cpp).
+# 2. samples/c30_ucs.toml on that specimen, `[test] threads` 1 and 2 alternated: wall per run,
+#    medians and their ratio; every run must give the same peak stress and steps, bit for bit.
+# 3. bench/lammps_compare.sh (1,000 steps, 5 pairs): LAMMPS / cdem per disc-step.
+# 4. bench_scale on the C30 specimen (and on the large specimen if one is given, e.g. one made
+#    with `cdem generate bench/bench_scale_million.toml`): ns per disc-step and solver bytes per
+#    disc, and the large / C30 ratio.
+# Exits non-zero if a run fails or a bitwise or statistics check does not hold. Writes only into
+# a temporary directory, removed at exit.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+repo="$(cd "$here/.." && pwd)"
+build="$(cd "${1:-$repo/build}" && pwd)"
+rounds="${2:-3}"
+large="${3:-}"
+cdem="$build/bin/cdem"
+for exe in "$cdem" "$build/bin/bench_scale" "$build/bin/bench_dem_lammps"; do
+  [ -x "$exe" ] || { echo "acceptance.sh: $exe not found; build first (scripts/setup.sh)" >&2; exit 2; }
+done
+[[ "$rounds" =~ ^[1-9][0-9]*$ ]] || { echo "acceptance.sh: rounds must be a positive integer, got '$rounds'" >&2; exit 2; }
+[ -z "$large" ] || [ -f "$large" ] || { echo "acceptance.sh: large specimen '$large' not found" >&2; exit 2; }
+
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+load() { cut -d' ' -f1-3 /proc/loadavg; }
+echo "acceptance.sh: $(date -u '+%Y-%m-%d %H:%M:%S') UTC, $(nproc) CPUs, load $(load), $(git -C "$repo" describe --always --dirty 2>/dev/null || echo 'no git')"
+
+echo "== 1. cdem generate samples/c30_specimen.toml (wall s, user s, peak KB)"
+for r in $(seq "$rounds"); do
+  for t in 1 2; do
+    l="$(load)"
+    /usr/bin/time -o "$work/time" -f "%e %U %M" "$cdem" generate "$repo/samples/c30_specimen.toml" \
+      -o "$work/gen_${t}_$r.h5" --summary "$work/gen_${t}_$r.json" --threads "$t" -q > /dev/null
+    echo "generate $t $r $(cat "$work/time")" >> "$work/times"
+    echo "  round $r, $t thread(s), load before $l: $(cat "$work/time")"
+  done
+done
+for f in "$work"/gen_*.h5; do
+  cmp -s "$f" "$work/gen_1_1.h5" || { echo "acceptance.sh: $f differs from gen_1_1.h5" >&2; exit 1; }
+done
+echo "  all $((2 * rounds)) specimens byte-identical"
+
+echo "== 2. samples/c30_ucs.toml, [test] threads = 1 and 2 (wall s)"
+for t in 1 2; do
+  sed -e "s#^specimen = .*#specimen = \"$work/gen_1_1.h5\"#" \
+      -e "s#^materials = .*#materials = \"$repo/samples/c30_materials.toml\"#" \
+      -e "s#^\[test\]#[test]\nthreads = $t#" "$repo/samples/c30_ucs.toml" > "$work/ucs_$t.toml"
+done
+for r in $(seq "$rounds"); do
+  for t in 1 2; do
+    l="$(load)"
+    /usr/bin/time -o "$work/time" -f "%e %U %M" "$cdem" run "$work/ucs_$t.toml" \
+      -o "$work/ucs.h5" --summary "$work/ucs_${t}_$r.json" -q > /dev/null
+    rm -f "$work"/ucs.h5 "$work"/ucs.xmf "$work"/ucs*.png
+    echo "ucs $t $r $(cat "$work/time")" >> "$work/times"
+    echo "  round $r, $t thread(s), load before $l: $(cat "$work/time")"
+  done
+done
+
+echo "== 3. bench/lammps_compare.sh $build 1000 5"
+echo "  load before $(load)"
+bash "$here/lammps_compare.sh" "$build" 1000 5 > "$work/lammps.out" 2> "$work/lammps.err" ||
+  { cat "$work/lammps.err" >&2; exit 1; }
+sed -n '/^wall time/,/^CPU time/p' "$work/lammps.out" | sed '$d' | sed 's/^/  /'
+
+echo "== 4. bench_scale (one thread)"
+scale() {  # specimen steps -> the RESULT line
+  echo "  load before $(load)" >&2
+  "$build/bin/bench_scale" "$1" --steps "$2" --repeats 3 | grep '^RESULT'
+}
+scale "$work/gen_1_1.h5" 100 | tee "$work/scale_c30" | sed 's/^/  C30: /'
+[ -z "$large" ] || scale "$large" 50 | tee "$work/scale_large" | sed 's/^/  large: /'
+
+/usr/bin/python3 - "$work" <<'PY'
+import glob, json, os, statistics, sys
+work = sys.argv[1]
+runs = {}
+for line in open(os.path.join(work, "times")):
+    kind, threads, _, wall, user, peak = line.split()
+    runs.setdefault((kind, int(threads)), []).append((float(wall), float(user), int(peak)))
+med = {k: statistics.median(w for w, _, _ in v) for k, v in runs.items()}
+ok = True
+print("== summary (medians of the walls)")
+for kind, target in (("generate", "3 s"), ("ucs", "45 s on 1 thread, 30 s on 2, 1.7x")):
+    print(f"  {kind}: 1 thread {med[(kind, 1)]:.2f} s, 2 threads {med[(kind, 2)]:.2f} s, "
+          f"{med[(kind, 1)] / med[(kind, 2)]:.2f}x (target {target}); peak "
+          f"{max(p for _, _, p in runs[(kind, 1)]) / 1024:.1f} / "
+          f"{max(p for _, _, p in runs[(kind, 2)]) / 1024:.1f} MB")
+# The ranges the stability suite asserts (tests/stability/test_stability_packing.cpp,
+# ReferenceMould: floating discs over the packing's discs, sigma0 and its tolerance as in
+# samples/c30_specimen.toml).
+s = json.load(open(os.path.join(work, "gen_1_1.json")))
+p = s["packing"]
+floating = p["floating_discs"] / s["discs"]
+checks = [("coordination > 3.5", p["coordination_number"] > 3.5),
+          ("floating < 10 %", floating < 0.10),
+          ("residual stress within 5 % of 0.1 MPa", abs(s["residual_stress_MPa"] - 0.1) <= 0.005),
+          ("porosity 0.13-0.22", 0.13 <= s["porosity"] <= 0.22)]
+print(f"  specimen: coordination {p['coordination_number']:.3f}, floating {100 * floating:.2f} %, "
+      f"residual stress {s['residual_stress_MPa']:.4f} MPa, porosity {s['porosity']:.4f}: "
+      + ", ".join(f"{name} {'yes' if good else 'NO'}" for name, good in checks))
+ok = ok and all(good for _, good in checks)
+ucs = {(json.dumps([d["peak_stress_MPa"], d["steps"]]))
+       for d in (json.load(open(f)) for f in glob.glob(os.path.join(work, "ucs_*_*.json")))}
+print(f"  UCS peak stress and steps over all runs: {sorted(ucs)}"
+      f"{' (bitwise the same)' if len(ucs) == 1 else ' DIFFER'}")
+ok = ok and len(ucs) == 1
+def result(name):
+    path = os.path.join(work, name)
+    if not os.path.exists(path):
+        return None
+    fields = open(path).read().split()[1:]
+    return dict(zip(fields[::2], fields[1::2]))
+c30, large = result("scale_c30"), result("scale_large")
+print(f"  C30 step: {c30['ns_wall']} ns per disc-step, {c30['accounted_B_per_disc']} B per disc")
+if large:
+    print(f"  large step: {large['discs']} discs, {large['ns_wall']} ns per disc-step "
+          f"({float(large['ns_wall']) / float(c30['ns_wall']):.2f}x C30; target within 1.25x), "
+          f"{large['accounted_B_per_disc']} B per disc (target 600)")
+sys.exit(0 if ok else 1)
+PY
+echo "acceptance.sh: done, load $(load)"
