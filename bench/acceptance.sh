@@ -14,10 +14,12 @@
 #    with `cdem generate bench/bench_scale_million.toml`): ns per disc-step and solver bytes per
 #    disc, and the large / C30 ratio.
 # Exits non-zero if a run fails or a bitwise or statistics check does not hold. Writes only into
-# a temporary directory, removed at exit.
+# a temporary directory, removed at exit. Installs the Debian `time` package if /usr/bin/time is
+# missing, and bench/lammps_compare.sh the `lammps` package (both need root).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 repo="$(cd "$here/.." && pwd)"
+[ -d "${1:-$repo/build}" ] || { echo "acceptance.sh: build directory '${1:-$repo/build}' not found" >&2; exit 2; }
 build="$(cd "${1:-$repo/build}" && pwd)"
 rounds="${2:-3}"
 large="${3:-}"
@@ -27,6 +29,10 @@ for exe in "$cdem" "$build/bin/bench_scale" "$build/bin/bench_dem_lammps"; do
 done
 [[ "$rounds" =~ ^[1-9][0-9]*$ ]] || { echo "acceptance.sh: rounds must be a positive integer, got '$rounds'" >&2; exit 2; }
 [ -z "$large" ] || [ -f "$large" ] || { echo "acceptance.sh: large specimen '$large' not found" >&2; exit 2; }
+if [ ! -x /usr/bin/time ]; then  # GNU time: wall, user and peak resident size of each run
+  echo "/usr/bin/time not found: installing the Debian time package" >&2
+  DEBIAN_FRONTEND=noninteractive apt-get install -y time > /dev/null
+fi
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
