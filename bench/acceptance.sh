@@ -17,18 +17,19 @@
 # a temporary directory, removed at exit. Installs the Debian `time` package if /usr/bin/time is
 # missing, and bench/lammps_compare.sh the `lammps` package (both need root).
 set -euo pipefail
+fail() { echo "acceptance.sh: $2" >&2; exit "$1"; }  # exit code, message
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 repo="$(cd "$here/.." && pwd)"
-[ -d "${1:-$repo/build}" ] || { echo "acceptance.sh: build directory '${1:-$repo/build}' not found" >&2; exit 2; }
+[ -d "${1:-$repo/build}" ] || fail 2 "build directory '${1:-$repo/build}' not found"
 build="$(cd "${1:-$repo/build}" && pwd)"
 rounds="${2:-3}"
 large="${3:-}"
 cdem="$build/bin/cdem"
 for exe in "$cdem" "$build/bin/bench_scale" "$build/bin/bench_dem_lammps"; do
-  [ -x "$exe" ] || { echo "acceptance.sh: $exe not found; build first (scripts/setup.sh)" >&2; exit 2; }
+  [ -x "$exe" ] || fail 2 "$exe not found; build first (scripts/setup.sh)"
 done
-[[ "$rounds" =~ ^[1-9][0-9]*$ ]] || { echo "acceptance.sh: rounds must be a positive integer, got '$rounds'" >&2; exit 2; }
-[ -z "$large" ] || [ -f "$large" ] || { echo "acceptance.sh: large specimen '$large' not found" >&2; exit 2; }
+[[ "$rounds" =~ ^[1-9][0-9]*$ ]] || fail 2 "rounds must be a positive integer, got '$rounds'"
+[ -z "$large" ] || [ -f "$large" ] || fail 2 "large specimen '$large' not found"
 if [ ! -x /usr/bin/time ]; then  # GNU time: wall, user and peak resident size of each run
   echo "/usr/bin/time not found: installing the Debian time package" >&2
   DEBIAN_FRONTEND=noninteractive apt-get install -y time > /dev/null
@@ -37,7 +38,8 @@ fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 load() { cut -d' ' -f1-3 /proc/loadavg; }
-echo "acceptance.sh: $(date -u '+%Y-%m-%d %H:%M:%S') UTC, $(nproc) CPUs, load $(load), $(git -C "$repo" describe --always --dirty 2>/dev/null || echo 'no git')"
+version="$(git -C "$repo" describe --always --dirty 2> /dev/null || echo 'no git')"
+echo "acceptance.sh: $(date -u '+%Y-%m-%d %H:%M:%S') UTC, $(nproc) CPUs, load $(load), $version"
 
 echo "== 1. cdem generate samples/c30_specimen.toml (wall s, user s, peak KB)"
 for r in $(seq "$rounds"); do
@@ -50,7 +52,7 @@ for r in $(seq "$rounds"); do
   done
 done
 for f in "$work"/gen_*.h5; do
-  cmp -s "$f" "$work/gen_1_1.h5" || { echo "acceptance.sh: $f differs from gen_1_1.h5" >&2; exit 1; }
+  cmp -s "$f" "$work/gen_1_1.h5" || fail 1 "$f differs from gen_1_1.h5"
 done
 echo "  all $((2 * rounds)) specimens byte-identical"
 
