@@ -73,10 +73,11 @@ using ContactLaws = std::array<LinearContact, kContactClassCount>;
 // reach their strength) and fills forces, discs.fx/fy/moment and the wall force sums.
 // `laws` are the linear parts by class, `bonds` the bond laws by class (a pair's bond kind is
 // its own state, set at installation). `max_overlap_ratio` is the instability-guard threshold.
+// `lanes`: disc pairs in AVX-512 lanes where the CPU has them (the same bits either way).
 ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore& list,
                                        ContactForces& pair, ContactForces& wall_pair,
                                        const ContactLaws& laws, const BondModels& bonds, double dt,
-                                       double max_overlap_ratio);
+                                       double max_overlap_ratio, bool lanes = true);
 
 // Pieces of the pass shared with the multi-thread cycle.
 

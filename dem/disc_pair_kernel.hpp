@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "dem/contact_solver.hpp"
+#include "dem/lanes.hpp"
 
 namespace cdem::dem {
 
@@ -21,46 +22,177 @@ namespace cdem::dem {
 // a loop with no dependency between iterations, then their laws. 64 geometries fit in L1.
 inline constexpr std::size_t kGeometryBlock = 64;
 
+// The law of one pair and of several is written once, over the number type T: double for one
+// pair, Lanes for kLaneCount (dem/lanes.hpp).
+
+// Geometry of a pair.
+template <class T>
+struct PairGeometryOf {
+  T ri, rj;          // m, radii of the first and second disc
+  T overlap;         // m, reach - centre distance
+  T nx, ny;          // unit normal from i to j
+  T inverse_length;  // 1/m, 1 / (R_i + R_j)
+};
+
+// Geometry of a pair from the vector (dx, dy) between the centres, i to j (m), and the radii
+// (m). sqrt and division share one unit of the core, so 1 / dist and 1 / (R_i + R_j) come from
+// one reciprocal of their product. Coincident centres (dist = 0, or NaN) have no normal (the
+// guard stops the run); their reciprocal is that of 1 x reach, i.e. exactly 1 / reach.
+template <class T>
+PairGeometryOf<T> pair_geometry(T dx, T dy, T ri, T rj) {
+  PairGeometryOf<T> g;
+  g.ri = ri;
+  g.rj = rj;
+  const T reach = ri + rj;
+  const T dist = sqrt_of(dx * dx + dy * dy);
+  g.overlap = reach - dist;
+  const auto apart = is_positive(dist);
+  const T length = select(apart, dist, splat<T>(1.0));
+  const T inv = 1.0 / (length * reach);
+  const T inverse_dist = reach * inv;
+  g.nx = select(apart, dx * inverse_dist, T{});
+  g.ny = select(apart, dy * inverse_dist, T{});
+  g.inverse_length = length * inv;
+  return g;
+}
+
+// Velocities of the two discs of a pair (m/s; spins rad/s).
+template <class T>
+struct PairMotionOf {
+  T vxi, vyi, wi, vxj, vyj, wj;
+};
+
+// Tangential velocity of j's contact point relative to i's (m/s), spins included; the arms
+// are R - overlap / 2.
+template <class T>
+T tangential_velocity(const PairGeometryOf<T>& g, const PairMotionOf<T>& m) {
+  const T arm_i = g.ri - 0.5 * g.overlap, arm_j = g.rj - 0.5 * g.overlap;
+  return (m.vxj - m.vxi) * -g.ny + (m.vyj - m.vyi) * g.nx - arm_j * m.wj - arm_i * m.wi;
+}
+
+// Velocity of j's centre relative to i's along n (m/s; positive = separating).
+template <class T>
+T normal_velocity(const PairGeometryOf<T>& g, const PairMotionOf<T>& m) {
+  return (m.vxj - m.vxi) * g.nx + (m.vyj - m.vyi) * g.ny;
+}
+
+// Totals on j from a pair's normal force (compression positive) and shear force along t (N)
+// and the bond moment on j (N m).
+template <class T>
+struct ResolvedPairOf {
+  T normal, overlap, fx, fy, moment_i, moment_j;
+};
+
+template <class T>
+ResolvedPairOf<T> resolve(const PairGeometryOf<T>& g, T normal, T shear, T bond_moment) {
+  ResolvedPairOf<T> f;
+  f.normal = normal;
+  f.overlap = g.overlap;
+  f.fx = normal * g.nx - shear * g.ny;
+  f.fy = normal * g.ny + shear * g.nx;
+  f.moment_i = -(g.ri - 0.5 * g.overlap) * shear - bond_moment;
+  f.moment_j = -(g.rj - 0.5 * g.overlap) * shear + bond_moment;
+  return f;
+}
+
+// The linear part of a pair: trial shear force of the step (N, along t) and the
+// compression-only normal force (N).
+template <class T>
+struct LinearPartOf {
+  T kn, ks;  // N/m, normal and shear stiffness
+  T vt;      // m/s, tangential velocity of j's contact point relative to i's
+  T old;     // N, shear force of the previous step
+  T trial;   // N, old shear force plus the step's increment
+  T fn;      // N, compression-only normal force
+};
+
+// With the E* (Pa) and 1 / kappa of the pair's class, the shear force of the previous step (N)
+// and the time step (s).
+template <class T>
+LinearPartOf<T> linear_part(const PairGeometryOf<T>& g, const PairMotionOf<T>& m, T emod,
+                            T shear_per_normal_stiffness, T old_shear, T dt) {
+  LinearPartOf<T> l;
+  l.kn = disc_normal_stiffness(emod, g.ri, g.rj, g.inverse_length);
+  l.ks = l.kn * shear_per_normal_stiffness;
+  l.vt = tangential_velocity(g, m);
+  l.old = old_shear;
+  l.trial = linear_shear_increment(l.old, l.ks, l.vt, dt);
+  l.fn = l.kn * max_of(g.overlap, T{});
+  return l;
+}
+
+// The linear contact with Coulomb slip (friction coefficient mu): its parts, the shear force
+// after the limit (N) and the step's slip work (J per m).
+template <class T>
+struct LinearContactOf {
+  LinearPartOf<T> part;
+  T fs, slip_work;
+};
+
+template <class T>
+LinearContactOf<T> linear_contact(const PairGeometryOf<T>& g, const PairMotionOf<T>& m, T emod,
+                                  T shear_per_normal_stiffness, T mu, T old_shear, T dt) {
+  LinearContactOf<T> c;
+  c.part = linear_part(g, m, emod, shear_per_normal_stiffness, old_shear, dt);
+  c.fs = coulomb_limit(c.part.trial, mu, c.part.fn);
+  c.slip_work = linear_slip_work(c.part.old, c.part.trial, c.fs, c.part.ks);
+  return c;
+}
+
+// A pair with an intact parallel bond (SPEC 4; docs/dem_design.md "Bonds in the contact
+// loop") up to the failure test: the linear contact with Coulomb slip plus the bond's springs,
+// their geometry, forces and stresses. P: ParallelBondParams for one pair, ParallelBondLanes
+// for several.
+template <class T>
+struct ParallelBondedPairOf {
+  LinearContactOf<T> contact;
+  ParallelBondGeometryOf<T> bond;
+  ParallelBondStateOf<T> state;
+  ParallelBondStressOf<T> stress;
+};
+
+template <class T, class P>
+ParallelBondedPairOf<T> parallel_bonded_pair(const PairGeometryOf<T>& g, const PairMotionOf<T>& m,
+                                             const LinearContactOf<T>& contact, const P& p,
+                                             T tan_friction_angle, ParallelBondStateOf<T> state,
+                                             T dt) {
+  ParallelBondedPairOf<T> r;
+  r.contact = contact;
+  r.bond = parallel_bond_geometry(p, g.ri, g.rj, g.inverse_length);
+  r.state = state;
+  parallel_bond_increment(r.state, r.bond, normal_velocity(g, m) * dt, contact.part.vt * dt,
+                          (m.wj - m.wi) * dt);
+  r.stress = parallel_bond_stress(r.state, r.bond, p, tan_friction_angle);
+  return r;
+}
+
+// The class constants of the parallel-bond law for several pairs, one per lane.
+struct ParallelBondLanes {
+  Lanes modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
+};
+
 class DiscPairKernel {
  public:
-  struct Geometry {
+  struct Geometry : PairGeometryOf<double> {
     std::int32_t i, j;
-    double ri, rj;
-    double overlap;         // m, reach - centre distance
-    double nx, ny;          // unit normal from i to j
-    double inverse_length;  // 1/m, 1 / (R_i + R_j)
   };
 
-  // Geometry of pair k. sqrt and division share one unit of the core, so 1 / dist and
-  // 1 / (R_i + R_j) come from one reciprocal of their product. The pass computes the geometry
-  // of a block of pairs before their laws (see disc_disc_pass): the geometries are
-  // independent of each other, so their sqrt and division latencies overlap instead of
-  // stalling each pair's law.
+  // Geometry of pair k. The pass computes the geometry of a block of pairs before their laws
+  // (see evaluate_range): the geometries are independent of each other, so their sqrt and
+  // division latencies overlap instead of stalling each pair's law.
   Geometry geometry(std::size_t k) const {
     Geometry g;
     g.i = first_[k];
     g.j = second_[k];
-    const double dx = x_[g.j] - x_[g.i], dy = y_[g.j] - y_[g.i];
-    g.ri = r_[g.i];
-    g.rj = r_[g.j];
-    const double reach = g.ri + g.rj;
-    const double dist = std::sqrt(dx * dx + dy * dy);
-    g.overlap = reach - dist;
-    if (dist > 0) {
-      const double inv = 1.0 / (dist * reach);
-      const double inverse_dist = reach * inv;
-      g.nx = dx * inverse_dist;
-      g.ny = dy * inverse_dist;
-      g.inverse_length = dist * inv;
-    } else {  // coincident centres: no normal (the guard stops the run)
-      g.nx = g.ny = 0;
-      g.inverse_length = 1.0 / reach;
-    }
+    static_cast<PairGeometryOf<double>&>(g) =
+        pair_geometry(x_[g.j] - x_[g.i], y_[g.j] - y_[g.i], r_[g.i], r_[g.j]);
     return g;
   }
 
+  // `lanes`: evaluate the unbonded and parallel-bonded pairs kLaneCount at a time where the CPU
+  // can (lanes_supported()); the results are the same bits either way.
   DiscPairKernel(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
-                 const BondModels& bonds, double dt, double guard)
+                 const BondModels& bonds, double dt, double guard, bool lanes = true)
       : first_(list.first.data()),
         second_(list.second.data()),
         contact_class_(list.contact_class.data()),
@@ -97,23 +229,33 @@ class DiscPairKernel {
         laws_(laws),
         bonds_(bonds),
         dt_(dt),
-        guard_(guard) {
+        guard_(guard),
+        lanes_(lanes && lanes_supported()) {
+    static_assert(kContactClassCount <= static_cast<int>(kLaneCount));
     for (int c = 0; c < kContactClassCount; ++c) {
       tan_friction_angle_[c] = std::tan(bonds[c].parallel.friction_angle);
       tan_joint_friction_angle_[c] = std::tan(bonds[c].flat_joint.friction_angle);
       shear_per_normal_stiffness_[c] = laws[c].shear_per_normal_stiffness();
+      const ParallelBondParams& p = bonds[c].parallel;
+      by_class_.emod[c] = laws[c].emod;
+      by_class_.shear_per_normal_stiffness[c] = shear_per_normal_stiffness_[c];
+      by_class_.mu[c] = laws[c].mu;
+      by_class_.tan_friction_angle[c] = tan_friction_angle_[c];
+      by_class_.modulus[c] = p.modulus;
+      by_class_.stiffness_ratio[c] = p.stiffness_ratio;
+      by_class_.tensile_strength[c] = p.tensile_strength;
+      by_class_.cohesion[c] = p.cohesion;
+      by_class_.radius_multiplier[c] = p.radius_multiplier;
+      by_class_.moment_factor[c] = p.moment_factor;
     }
   }
 
-  // Evaluates pair k of geometry g: updates its shear and bond state, stores normal, overlap, fx,
-  // fy (and, if its bond breaks, failure and released energy). `within_guard` is false when the
-  // overlap exceeds the instability guard. Unbonded pairs (all of them in an unbonded run) take the
-  // short linear path and never touch the bond arrays; the branch follows the bond kind, which
-  // changes only when a bond breaks, so it is well predicted.
-  // Evaluates pairs [begin, end) in blocks of kGeometryBlock (a block's geometries first, then
-  // their laws) and hands each to take(k, geometry, force) in ascending k: the loop of the
-  // one-thread pass and of each thread's range. Returns the first pair tripping the guard, or
-  // `end` when none does.
+  // Evaluates pairs [begin, end) in blocks of kGeometryBlock and hands each to take(k, geometry,
+  // force) in ascending k: the loop of the one-thread pass and of each thread's range. With the
+  // lanes, a block goes kLaneCount pairs at a time through evaluate_lanes, and the pairs it leaves
+  // (other bond kinds, bonds breaking in this step) and the range's last few one at a time;
+  // without, a block's geometries come first, then their laws. Returns the first pair tripping
+  // the guard, or `end` when none does.
   template <class Take>
   std::size_t evaluate_range(std::size_t begin, std::size_t end, Take&& take) const {
     Geometry g[kGeometryBlock];
@@ -142,17 +284,40 @@ class DiscPairKernel {
           __builtin_prefetch(disc_fy_ + j, 1);
           __builtin_prefetch(disc_m_ + j, 1);
         }
-      for (std::size_t k = start; k < stop; ++k) g[k - start] = geometry(k);
-      for (std::size_t k = start; k < stop; ++k) {
-        bool within_guard;
-        const PairForce f = evaluate(k, g[k - start], within_guard);
-        if (!within_guard) bad = std::min(bad, k);
-        take(k, g[k - start], f);
-      }
+      std::size_t k = start;
+      if (lanes_)
+        for (; k + kLaneCount <= stop; k += kLaneCount) {
+          PairLanes out;
+          evaluate_lanes(k, out);
+          for (std::size_t l = 0; l < kLaneCount; ++l) {
+            if (!(out.done >> l & 1)) {
+              evaluate_one(k + l, geometry(k + l), bad, take);
+              continue;
+            }
+            if (!(out.within_guard >> l & 1)) bad = std::min(bad, k + l);
+            take(k + l, out.geometry(l, first_[k + l], second_[k + l]), out.force(l));
+          }
+        }
+      for (std::size_t q = k; q < stop; ++q) g[q - k] = geometry(q);
+      for (std::size_t q = k; q < stop; ++q) evaluate_one(q, g[q - k], bad, take);
     }
     return bad;
   }
 
+  // Pair k alone: evaluated, its guard test folded into `bad`, handed to `take`.
+  template <class Take>
+  void evaluate_one(std::size_t k, const Geometry& g, std::size_t& bad, Take& take) const {
+    bool within_guard;
+    const PairForce f = evaluate(k, g, within_guard);
+    if (!within_guard) bad = std::min(bad, k);
+    take(k, g, f);
+  }
+
+  // Evaluates pair k of geometry g: updates its shear and bond state, stores normal, overlap, fx,
+  // fy (and, if its bond breaks, failure and released energy). `within_guard` is false when the
+  // overlap exceeds the instability guard. Unbonded pairs (all of them in an unbonded run) take the
+  // short linear path and never touch the bond arrays; the branch follows the bond kind, which
+  // changes only when a bond breaks, so it is well predicted.
   PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
     const auto kind = static_cast<BondKind>(bond_[k]);
     // A smooth joint's discs may overlap without limit: its force comes from the joint's own gap,
@@ -200,91 +365,152 @@ class DiscPairKernel {
   }
 
  private:
-  // Tangential velocity of j's contact point relative to i's (m/s), spins included; the arms
-  // are R - overlap / 2.
-  double tangential_velocity(const Geometry& g) const {
-    const double arm_i = g.ri - 0.5 * g.overlap, arm_j = g.rj - 0.5 * g.overlap;
-    return (vx_[g.j] - vx_[g.i]) * -g.ny + (vy_[g.j] - vy_[g.i]) * g.nx - arm_j * w_[g.j] -
-           arm_i * w_[g.i];
+  // Results of kLaneCount consecutive pairs evaluated at once (evaluate_lanes): their
+  // geometry and forces, and which lanes were evaluated (done) and are within the guard.
+  struct PairLanes {
+    alignas(64) double ri[kLaneCount], rj[kLaneCount], overlap[kLaneCount], nx[kLaneCount],
+        ny[kLaneCount], inverse_length[kLaneCount];
+    alignas(64) double normal[kLaneCount], fx[kLaneCount], fy[kLaneCount], moment_i[kLaneCount],
+        moment_j[kLaneCount], slip_work[kLaneCount];
+    unsigned done = 0, within_guard = 0;  // bit l: lane l
+
+    Geometry geometry(std::size_t l, std::int32_t i, std::int32_t j) const {
+      Geometry g;
+      g.i = i;
+      g.j = j;
+      g.ri = ri[l];
+      g.rj = rj[l];
+      g.overlap = overlap[l];
+      g.nx = nx[l];
+      g.ny = ny[l];
+      g.inverse_length = inverse_length[l];
+      return g;
+    }
+    PairForce force(std::size_t l) const {
+      PairForce f;
+      f.normal = normal[l];
+      f.overlap = overlap[l];
+      f.fx = fx[l];
+      f.fy = fy[l];
+      f.moment_i = moment_i[l];
+      f.moment_j = moment_j[l];
+      f.slip_work = slip_work[l];
+      return f;
+    }
+  };
+
+  // Pairs k .. k + kLaneCount - 1 in lanes: the unbonded ones with the law of `linear`, those
+  // with an intact parallel bond with the law of `parallel_bonded`, the same operations in the
+  // same order, so each lane gets the bits of its one-pair evaluation. A lane of another bond
+  // kind, or whose bond breaks in this step, writes nothing and is left out of `done`, for the
+  // one-pair path. The discs' data come by gathers, the class constants by a permutation of a
+  // register holding the four classes' values.
+  CDEM_LANES_TARGET void evaluate_lanes(std::size_t k, PairLanes& out) const {
+    const std::int32_t *i = first_ + k, *j = second_ + k;
+    const std::uint8_t* cls = contact_class_ + k;
+    const LaneMask unbonded = lanes_equal(bond_ + k, static_cast<std::uint8_t>(BondKind::None));
+    const LaneMask parallel = lanes_equal(bond_ + k, static_cast<std::uint8_t>(BondKind::Parallel));
+    const PairGeometryOf<Lanes> g = pair_geometry(
+        gather(x_, j) - gather(x_, i), gather(y_, j) - gather(y_, i), gather(r_, i), gather(r_, j));
+    const PairMotionOf<Lanes> m{gather(vx_, i), gather(vy_, i), gather(w_, i),
+                                gather(vx_, j), gather(vy_, j), gather(w_, j)};
+    const Lanes mu = lookup(by_class_.mu, cls), dt = splat<Lanes>(dt_);
+    const LinearContactOf<Lanes> c = dem::linear_contact(
+        g, m, lookup(by_class_.emod, cls), lookup(by_class_.shear_per_normal_stiffness, cls), mu,
+        load(shear_ + k), dt);
+    const ParallelBondLanes p{
+        lookup(by_class_.modulus, cls),           lookup(by_class_.stiffness_ratio, cls),
+        lookup(by_class_.tensile_strength, cls),  lookup(by_class_.cohesion, cls),
+        lookup(by_class_.radius_multiplier, cls), lookup(by_class_.moment_factor, cls)};
+    const unsigned bonded_lanes = lane_bits(parallel);
+    const ParallelBondedPairOf<Lanes> r = parallel_bonded_pair(
+        g, m, c, p, lookup(by_class_.tan_friction_angle, cls),
+        {load_where(bonded_lanes, bond_normal_ + k), load_where(bonded_lanes, bond_shear_ + k),
+         load_where(bonded_lanes, bond_moment_ + k)},
+        dt);
+    const LaneMask breaks =
+        parallel_bond_breaks_in_tension(r.stress, p) | parallel_bond_breaks_in_shear(r.stress);
+    const unsigned done = lane_bits(unbonded | (parallel & ~breaks));
+    // An unbonded pair of a frictionless class carries no shear force (linear()).
+    const Lanes fs = select(parallel | (mu > 0), c.fs, Lanes{});
+    const ResolvedPairOf<Lanes> f =
+        dem::resolve(g, select(parallel, c.part.fn - r.state.fn, c.part.fn),
+                     select(parallel, fs + r.state.fs, fs), select(parallel, r.state.m, Lanes{}));
+    store_where(done, shear_ + k, fs);
+    store_where(done & bonded_lanes, bond_normal_ + k, r.state.fn);
+    store_where(done & bonded_lanes, bond_shear_ + k, r.state.fs);
+    store_where(done & bonded_lanes, bond_moment_ + k, r.state.m);
+    store_where(done, normal_ + k, f.normal);
+    store_where(done, overlap_ + k, f.overlap);
+    store_where(done, fx_ + k, f.fx);
+    store_where(done, fy_ + k, f.fy);
+    store_where(~0u, out.ri, g.ri);
+    store_where(~0u, out.rj, g.rj);
+    store_where(~0u, out.overlap, g.overlap);
+    store_where(~0u, out.nx, g.nx);
+    store_where(~0u, out.ny, g.ny);
+    store_where(~0u, out.inverse_length, g.inverse_length);
+    store_where(~0u, out.normal, f.normal);
+    store_where(~0u, out.fx, f.fx);
+    store_where(~0u, out.fy, f.fy);
+    store_where(~0u, out.moment_i, f.moment_i);
+    store_where(~0u, out.moment_j, f.moment_j);
+    store_where(~0u, out.slip_work, select(parallel | (mu > 0), c.slip_work, Lanes{}));
+    out.done = done;
+    out.within_guard = lane_bits(g.overlap <= guard_ * min_of(g.ri, g.rj));
   }
 
-  // Velocity of j's centre relative to i's along n (m/s; positive = separating).
-  double normal_velocity(const Geometry& g) const {
-    return (vx_[g.j] - vx_[g.i]) * g.nx + (vy_[g.j] - vy_[g.i]) * g.ny;
+  PairMotionOf<double> motion(const Geometry& g) const {
+    return {vx_[g.i], vy_[g.i], w_[g.i], vx_[g.j], vy_[g.j], w_[g.j]};
   }
 
-  // Totals on j from the normal (compression positive) and shear force along t and the bond
-  // moment on j.
   static void resolve(const Geometry& g, double normal, double shear, double bond_moment,
                       PairForce& f) {
-    f.normal = normal;
-    f.overlap = g.overlap;
-    f.fx = normal * g.nx - shear * g.ny;
-    f.fy = normal * g.ny + shear * g.nx;
-    f.moment_i = -(g.ri - 0.5 * g.overlap) * shear - bond_moment;
-    f.moment_j = -(g.rj - 0.5 * g.overlap) * shear + bond_moment;
+    const ResolvedPairOf<double> r = dem::resolve<double>(g, normal, shear, bond_moment);
+    f.normal = r.normal;
+    f.overlap = r.overlap;
+    f.fx = r.fx;
+    f.fy = r.fy;
+    f.moment_i = r.moment_i;
+    f.moment_j = r.moment_j;
   }
 
-  double shear_stiffness(int contact_class, double kn) const {
-    return kn * shear_per_normal_stiffness_[contact_class];
+  LinearContactOf<double> linear_contact(std::size_t k, const Geometry& g, int cls) const {
+    return dem::linear_contact<double>(g, motion(g), laws_[cls].emod,
+                                       shear_per_normal_stiffness_[cls], laws_[cls].mu, shear_[k],
+                                       dt_);
   }
 
-  // An unbonded pair: compression-only normal force, incremental shear force with Coulomb slip.
-  // Branch-free over touching / apart (about a third of the candidates are apart, at random
-  // along the list): a pair apart has zero normal force, so the Coulomb limit zeroes its shear
-  // force too (the history is forgotten when a contact opens).
+  // An unbonded pair: compression-only normal force, incremental shear force with Coulomb slip
+  // where the class has friction. A pair apart has zero normal force, so the Coulomb limit
+  // zeroes its shear force too (the history is forgotten when a contact opens).
   PairForce linear(std::size_t k, const Geometry& g) const {
     const int cls = contact_class_[k];
-    const LinearContact& law = laws_[cls];
-    const double kn = law.normal_stiffness(g.ri, g.rj, g.inverse_length);
-    const double fn = kn * std::max(g.overlap, 0.0);
+    const LinearContactOf<double> c = linear_contact(k, g, cls);
+    const bool friction = laws_[cls].mu > 0;
     PairForce f;
-    double fs = 0;
-    if (law.mu > 0) {
-      const LinearShear s = linear_shear_step(shear_[k], shear_stiffness(cls, kn),
-                                              tangential_velocity(g), dt_, law.mu, fn);
-      fs = s.force;
-      f.slip_work = s.slip_work;
-    }
+    const double fs = friction ? c.fs : 0.0;
+    f.slip_work = friction ? c.slip_work : 0.0;
     shear_[k] = fs;
-    resolve(g, fn, fs, 0.0, f);
+    resolve(g, c.part.fn, fs, 0.0, f);
     return f;
   }
 
-  // The linear part of a bonded pair (contact or parallel bond): trial shear force of the
-  // step (N, along t) and the compression-only normal force (N).
-  struct BondedLinearPart {
-    double kn, ks, vt, old, trial, fn;
-  };
-  BondedLinearPart bonded_linear_part(std::size_t k, const Geometry& g, int cls) const {
-    BondedLinearPart l;
-    l.kn = laws_[cls].normal_stiffness(g.ri, g.rj, g.inverse_length);
-    l.ks = shear_stiffness(cls, l.kn);
-    l.vt = tangential_velocity(g);
-    l.old = shear_[k];
-    l.trial = linear_shear_increment(l.old, l.ks, l.vt, dt_);
-    l.fn = l.kn * std::max(g.overlap, 0.0);
-    return l;
-  }
-
-  // A pair with an intact parallel bond (SPEC 4; docs/dem_design.md "Bonds in the contact
-  // loop"): the linear contact with Coulomb slip plus the bond's springs. In the pass where the
-  // bond breaks the contact is already plain linear. 83 % of the C30 pairs take this path, so
-  // it has its own function, without the branches of the other bond kinds.
+  // One pair with an intact parallel bond. In the pass where the bond breaks the contact is
+  // already plain linear. 83 % of the C30 pairs take this law, so it has its own function,
+  // without the branches of the other bond kinds.
   PairForce parallel_bonded(std::size_t k, const Geometry& g) const {
     const int cls = contact_class_[k];
-    const BondedLinearPart l = bonded_linear_part(k, g, cls);
-    const double fs = coulomb_limit(l.trial, laws_[cls].mu, l.fn);
-    PairForce f;
-    f.slip_work = linear_slip_work(l.old, l.trial, fs, l.ks);
     const ParallelBondParams& p = bonds_[cls].parallel;
-    const ParallelBondGeometry bg = parallel_bond_geometry(p, g.ri, g.rj, g.inverse_length);
-    ParallelBondState pb{bond_normal_[k], bond_shear_[k], bond_moment_[k]};
-    parallel_bond_increment(pb, bg, normal_velocity(g) * dt_, l.vt * dt_,
-                            (w_[g.j] - w_[g.i]) * dt_);
-    f.failure = parallel_bond_failure(pb, bg, p, tan_friction_angle_[cls]);
+    const ParallelBondedPairOf<double> r = parallel_bonded_pair<double>(
+        g, motion(g), linear_contact(k, g, cls), p, tan_friction_angle_[cls],
+        {bond_normal_[k], bond_shear_[k], bond_moment_[k]}, dt_);
+    PairForce f;
+    f.slip_work = r.contact.slip_work;
+    ParallelBondState pb = r.state;
+    f.failure = parallel_bond_failure(r.stress, p);
     if (f.failure != BondFailure::None) {
-      f.released = parallel_bond_strain_energy(pb, bg);
+      f.released = parallel_bond_strain_energy(pb, r.bond);
       pb = {};
       bond_[k] = static_cast<std::uint8_t>(BondKind::None);
       bond_gap_[k] = 0;
@@ -292,9 +518,9 @@ class DiscPairKernel {
     bond_normal_[k] = pb.fn;
     bond_shear_[k] = pb.fs;
     bond_moment_[k] = pb.m;
-    shear_[k] = fs;
+    shear_[k] = r.contact.fs;
     // Totals on j: linear part plus bond (the bond's normal force is tension positive).
-    resolve(g, l.fn - pb.fn, fs + pb.fs, pb.m, f);
+    resolve(g, r.contact.part.fn - pb.fn, r.contact.fs + pb.fs, pb.m, f);
     return f;
   }
 
@@ -305,7 +531,8 @@ class DiscPairKernel {
     if (kind == BondKind::FlatJoint) return flat_joint(k, g);
     if (kind == BondKind::SmoothJoint) return smooth_joint(k, g);
     const int cls = contact_class_[k];
-    const BondedLinearPart l = bonded_linear_part(k, g, cls);
+    const LinearPartOf<double> l = linear_part<double>(
+        g, motion(g), laws_[cls].emod, shear_per_normal_stiffness_[cls], shear_[k], dt_);
     const double fn_bonded = l.kn * (g.overlap + bond_gap_[k]);
     PairForce f;
     f.failure = contact_bond_failure(fn_bonded, l.trial,
@@ -342,9 +569,10 @@ class DiscPairKernel {
     theta += (w_[g.j] - w_[g.i]) * dt_;
     const double gap = -g.overlap - joint_gap0_[joint];
     std::uint32_t& bonded = joint_bonded_[joint];
-    const FlatJointForce jf = flat_joint_update(
-        jg, p, law.mu, tan_joint_friction_angle_[cls], gap, theta, tangential_velocity(g) * dt_,
-        joint_element_shear_ + joint_first_element_[joint], bonded);
+    const FlatJointForce jf =
+        flat_joint_update(jg, p, law.mu, tan_joint_friction_angle_[cls], gap, theta,
+                          dem::tangential_velocity<double>(g, motion(g)) * dt_,
+                          joint_element_shear_ + joint_first_element_[joint], bonded);
     PairForce f;
     f.slip_work = jf.slip_work;
     if (jf.failed) {
@@ -372,8 +600,8 @@ class DiscPairKernel {
     const SmoothJointLaw& law = joints.sets[static_cast<std::size_t>(joints.set[e])];
     // m, relative displacement of the contact points: normal part from the centres, tangential
     // part with the spins (tangential_velocity), t = (-ny, nx).
-    const double un = normal_velocity(g) * dt_;
-    const double ut = tangential_velocity(g) * dt_;
+    const double un = dem::normal_velocity<double>(g, motion(g)) * dt_;
+    const double ut = dem::tangential_velocity<double>(g, motion(g)) * dt_;
     const double ux = un * g.nx - ut * g.ny, uy = un * g.ny + ut * g.nx;
     const double jx = joints.nx[e], jy = joints.ny[e];
     SmoothJointState s{joints.gap[e], joints.fs[e], joints.bonded[e] != 0};
@@ -417,7 +645,15 @@ class DiscPairKernel {
   std::array<double, kContactClassCount> tan_friction_angle_{};          // tan(phi_b) by class
   std::array<double, kContactClassCount> tan_joint_friction_angle_{};    // flat joint tan(phi)
   std::array<double, kContactClassCount> shear_per_normal_stiffness_{};  // 1 / kappa* by class
+  // The class constants of the lanes, by class code (up to kLaneCount classes).
+  struct ByClass {
+    double emod[kLaneCount]{}, shear_per_normal_stiffness[kLaneCount]{}, mu[kLaneCount]{},
+        tan_friction_angle[kLaneCount]{}, modulus[kLaneCount]{}, stiffness_ratio[kLaneCount]{},
+        tensile_strength[kLaneCount]{}, cohesion[kLaneCount]{}, radius_multiplier[kLaneCount]{},
+        moment_factor[kLaneCount]{};
+  } by_class_;
   double dt_, guard_;
+  bool lanes_;
 };
 
 }  // namespace cdem::dem

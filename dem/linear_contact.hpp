@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "core/units.hpp"
+#include "dem/lanes.hpp"
 
 namespace cdem::dem {
 
@@ -29,9 +30,7 @@ struct LinearContact {
   }
   // The same with 1 / L = 1 / (R1 + R2) given (the contact loop gets it from a reciprocal it
   // shares with the contact normal).
-  double normal_stiffness(double r1, double r2, double inverse_length) const {
-    return 2.0 * std::min(r1, r2) * kThickness * emod * inverse_length;
-  }
+  double normal_stiffness(double r1, double r2, double inverse_length) const;
   // Disc-wall: r = L = R1, so kn = 2 t E* whatever the radius.
   double wall_normal_stiffness() const { return 2.0 * kThickness * emod; }
   // ks = kn / kappa, in two spellings kept side by side because the guarded results
@@ -45,6 +44,17 @@ struct LinearContact {
   double shear_per_normal_stiffness() const { return 1.0 / kappa; }
 };
 
+// Disc-disc normal stiffness kn = 2 min(R1, R2) t E* / L (N/m) with E* (Pa) and 1 / L (1/m)
+// given. T = double for one pair, Lanes for several (dem/lanes.hpp), as in the laws below.
+template <class T>
+T disc_normal_stiffness(T emod, T r1, T r2, T inverse_length) {
+  return 2.0 * min_of(r1, r2) * kThickness * emod * inverse_length;
+}
+
+inline double LinearContact::normal_stiffness(double r1, double r2, double inverse_length) const {
+  return disc_normal_stiffness(emod, r1, r2, inverse_length);
+}
+
 // Normal force (N, repulsive positive) for an overlap (m, positive when the discs overlap):
 // the linear law carries compression only.
 inline double linear_normal_force(double kn, double overlap) {
@@ -55,14 +65,16 @@ inline double linear_normal_force(double kn, double overlap) {
 // component along the current tangent t = (-ny, nx). In 2D that component *is* the force
 // rotated with the contact plane (no projection error to correct). `slip_velocity` is the
 // tangential velocity (m/s) of the second body's contact point relative to the first.
-inline double linear_shear_increment(double fs, double ks, double slip_velocity, double dt) {
+template <class T>
+T linear_shear_increment(T fs, T ks, T slip_velocity, T dt) {
   return fs - ks * slip_velocity * dt;
 }
 
 // Coulomb limit |Fs| <= mu Fn; returns the admissible shear force (sliding keeps the sign).
-inline double coulomb_limit(double fs, double mu, double fn) {
-  const double fmax = mu * fn;
-  return std::clamp(fs, -fmax, fmax);
+template <class T>
+T coulomb_limit(T fs, T mu, T fn) {
+  const T fmax = mu * fn;
+  return clamp_of(fs, -fmax, fmax);
 }
 
 // Energy dissipated by one step of a shear spring (J per m of thickness): the mean shear force
@@ -73,9 +85,10 @@ inline double coulomb_limit(double fs, double mu, double fn) {
 // increment. Non-zero only where the limit clipped the trial force and the mean force is
 // non-zero: one rarely taken branch instead of a division on every contact; stuck contacts
 // (trial = fs) and contacts apart (old = fs = 0) give exactly zero either way.
-inline double linear_slip_work(double old_shear, double trial, double shear, double ks) {
-  const double mean_twice = old_shear + shear, excess = trial - shear;
-  return mean_twice * excess != 0 ? 0.5 * mean_twice * excess / ks : 0.0;
+template <class T>
+T linear_slip_work(T old_shear, T trial, T shear, T ks) {
+  const T mean_twice = old_shear + shear, excess = trial - shear;
+  return quotient_where(is_nonzero(mean_twice * excess), 0.5 * mean_twice * excess, ks);
 }
 
 struct LinearShear {

@@ -13,8 +13,10 @@
 //   (N m). The force on disc 2 is -fn n + fs t, on disc 1 its opposite.
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "dem/bond_failure.hpp"
+#include "dem/lanes.hpp"
 #include "dem/linear_contact.hpp"
 
 namespace cdem::dem {
@@ -29,28 +31,34 @@ struct ParallelBondParams {
   double moment_factor = 1;      // beta
 };
 
-// Geometry and stiffness of one bond, fixed at installation.
-struct ParallelBondGeometry {
-  double radius = 0;   // Rb = lambda min(R1, R2), m
-  double area = 0;     // Ab = 2 Rb t, m^2
-  double inertia = 0;  // Ib = (2/3) Rb^3 t, m^4
-  double kn = 0;       // kbn = Eb / L, Pa/m (force per area per displacement)
-  double ks = 0;       // kbs = kbn / kappa_b, Pa/m
+// Geometry and stiffness of one bond, fixed at installation. T = double for one bond, Lanes for
+// several (dem/lanes.hpp), as in the functions below.
+template <class T>
+struct ParallelBondGeometryOf {
+  T radius{};   // Rb = lambda min(R1, R2), m
+  T area{};     // Ab = 2 Rb t, m^2
+  T inertia{};  // Ib = (2/3) Rb^3 t, m^4
+  T kn{};       // kbn = Eb / L, Pa/m (force per area per displacement)
+  T ks{};       // kbs = kbn / kappa_b, Pa/m
 };
+using ParallelBondGeometry = ParallelBondGeometryOf<double>;
 
-struct ParallelBondState {
-  double fn = 0;  // N, tension positive
-  double fs = 0;  // N, on disc 2 along t
-  double m = 0;   // N m, on disc 2
+template <class T>
+struct ParallelBondStateOf {
+  T fn{};  // N, tension positive
+  T fs{};  // N, on disc 2 along t
+  T m{};   // N m, on disc 2
 };
+using ParallelBondState = ParallelBondStateOf<double>;
 
 // L = R1 + R2 for two discs; for a disc-wall bond pass r2 = 0 (L = R1, r = R1).
 // `inverse_length` = 1 / L (the contact loop shares that reciprocal with the contact normal).
-inline ParallelBondGeometry parallel_bond_geometry(const ParallelBondParams& p, double r1,
-                                                   double r2, double inverse_length) {
+// P: ParallelBondParams, or for several bonds a struct of the same members as Lanes.
+template <class P, class T>
+ParallelBondGeometryOf<T> parallel_bond_geometry(const P& p, T r1, T r2, T inverse_length) {
   constexpr double t = kThickness;  // m
-  const double r = r2 > 0 ? std::min(r1, r2) : r1;
-  ParallelBondGeometry g;
+  const T r = select(is_positive(r2), min_of(r1, r2), r1);
+  ParallelBondGeometryOf<T> g;
   g.radius = p.radius_multiplier * r;
   g.area = 2 * g.radius * t;
   g.inertia = (2.0 / 3.0) * g.radius * g.radius * g.radius * t;
@@ -65,34 +73,48 @@ inline ParallelBondGeometry parallel_bond_geometry(const ParallelBondParams& p, 
 }
 
 // dFn = kbn Ab d_open, dFs = -kbs Ab d_shear, dM = -kbn Ib d_theta.
-inline void parallel_bond_increment(ParallelBondState& s, const ParallelBondGeometry& g,
-                                    double d_open, double d_shear, double d_theta) {
+template <class T>
+void parallel_bond_increment(ParallelBondStateOf<T>& s, const ParallelBondGeometryOf<T>& g,
+                             std::type_identity_t<T> d_open, std::type_identity_t<T> d_shear,
+                             std::type_identity_t<T> d_theta) {
   s.fn += g.kn * g.area * d_open;
   s.fs -= g.ks * g.area * d_shear;
   s.m -= g.kn * g.inertia * d_theta;
 }
 
-struct ParallelBondStress {
-  double sigma_max = 0;       // Pa, Fn/Ab + beta |M| Rb / Ib, tension positive
-  double tau_max = 0;         // Pa, |Fs| / Ab
-  double shear_strength = 0;  // Pa, c_b - sigma tan(phi_b), sigma = Fn/Ab (tension positive)
+template <class T>
+struct ParallelBondStressOf {
+  T sigma_max{};       // Pa, Fn/Ab + beta |M| Rb / Ib, tension positive
+  T tau_max{};         // Pa, |Fs| / Ab
+  T shear_strength{};  // Pa, c_b - sigma tan(phi_b), sigma = Fn/Ab (tension positive)
 };
+using ParallelBondStress = ParallelBondStressOf<double>;
 
 // `tan_friction_angle` = tan(phi_b), passed in so the contact loop evaluates it once per class.
-inline ParallelBondStress parallel_bond_stress(const ParallelBondState& s,
-                                               const ParallelBondGeometry& g,
-                                               const ParallelBondParams& p,
-                                               double tan_friction_angle) {
+template <class P, class T>
+ParallelBondStressOf<T> parallel_bond_stress(const ParallelBondStateOf<T>& s,
+                                             const ParallelBondGeometryOf<T>& g, const P& p,
+                                             T tan_friction_angle) {
   constexpr double t = kThickness;  // m
-  ParallelBondStress out;
+  ParallelBondStressOf<T> out;
   // One reciprocal serves the three stresses (this runs for every bond in every pass):
   // Rb / Ib = 3 / (2 Rb^2 t) = 6 t / Ab^2.
-  const double inverse_area = 1.0 / g.area;
-  const double sigma = s.fn * inverse_area;
-  out.sigma_max = sigma + p.moment_factor * std::fabs(s.m) * 6 * t * inverse_area * inverse_area;
-  out.tau_max = std::fabs(s.fs) * inverse_area;
+  const T inverse_area = 1.0 / g.area;
+  const T sigma = s.fn * inverse_area;
+  out.sigma_max = sigma + p.moment_factor * abs_of(s.m) * 6 * t * inverse_area * inverse_area;
+  out.tau_max = abs_of(s.fs) * inverse_area;
   out.shear_strength = p.cohesion - sigma * tan_friction_angle;
   return out;
+}
+
+// The two failure criteria (true, or a lane mask, where the bond breaks that way).
+template <class P, class T>
+auto parallel_bond_breaks_in_tension(const ParallelBondStressOf<T>& st, const P& p) {
+  return is_at_least(st.sigma_max, p.tensile_strength);
+}
+template <class T>
+auto parallel_bond_breaks_in_shear(const ParallelBondStressOf<T>& st) {
+  return is_at_least(st.tau_max, st.shear_strength);
 }
 
 inline ParallelBondStress parallel_bond_stress(const ParallelBondState& s,
@@ -102,12 +124,16 @@ inline ParallelBondStress parallel_bond_stress(const ParallelBondState& s,
 }
 
 // Tension is checked first, as in PFC: a bond that fails both ways is a tensile crack.
+inline BondFailure parallel_bond_failure(const ParallelBondStress& st,
+                                         const ParallelBondParams& p) {
+  if (parallel_bond_breaks_in_tension(st, p)) return BondFailure::Tension;
+  if (parallel_bond_breaks_in_shear(st)) return BondFailure::Shear;
+  return BondFailure::None;
+}
+
 inline BondFailure parallel_bond_failure(const ParallelBondState& s, const ParallelBondGeometry& g,
                                          const ParallelBondParams& p, double tan_friction_angle) {
-  const ParallelBondStress st = parallel_bond_stress(s, g, p, tan_friction_angle);
-  if (st.sigma_max >= p.tensile_strength) return BondFailure::Tension;
-  if (st.tau_max >= st.shear_strength) return BondFailure::Shear;
-  return BondFailure::None;
+  return parallel_bond_failure(parallel_bond_stress(s, g, p, tan_friction_angle), p);
 }
 
 inline BondFailure parallel_bond_failure(const ParallelBondState& s, const ParallelBondGeometry& g,

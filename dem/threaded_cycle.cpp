@@ -244,7 +244,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   plan(bodies, discs, list, nt);
   if (lanes_.size() < static_cast<std::size_t>(nt)) lanes_.resize(static_cast<std::size_t>(nt));
   if (s.book_energy) body_energy_.resize(bodies.size());
-  const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard);
+  const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard, s.lanes);
   const std::size_t count = list.keys.size();
   const LinearContact& wall_law = (*s.laws)[static_cast<int>(ContactClass::Wall)];
   long bad_wall = -1;

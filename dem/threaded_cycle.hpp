@@ -53,6 +53,7 @@ struct ThreadedStepSettings {
   double guard = 0;          // max overlap / radius
   double alpha = 0;          // local damping
   bool book_energy = false;  // form the integration's energy terms
+  bool lanes = true;         // pairs in AVX-512 lanes where the CPU has them (same bits)
 };
 
 class ThreadedCycle {

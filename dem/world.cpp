@@ -379,13 +379,14 @@ void World::step() {
     ts.guard = settings_.max_overlap_ratio;
     ts.alpha = settings_.local_damping;
     ts.book_energy = book;
+    ts.lanes = settings_.pair_lanes;
     threaded =
         threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts, *shared);
     last_pass_ = threaded.pass;
   } else {
-    last_pass_ =
-        compute_contact_forces(discs_, walls_, contacts_, pair_forces_, wall_forces_,
-                               settings_.laws, settings_.bonds, dt_, settings_.max_overlap_ratio);
+    last_pass_ = compute_contact_forces(discs_, walls_, contacts_, pair_forces_, wall_forces_,
+                                        settings_.laws, settings_.bonds, dt_,
+                                        settings_.max_overlap_ratio, settings_.pair_lanes);
   }
   if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0) {
     std::ostringstream what;

@@ -15,7 +15,8 @@
 //
 // Each world also runs with 2 and 3 threads (the multi-thread cycle, dem/threaded_cycle.hpp) and
 // must give the same hashes: results do not depend on the thread count, and 3 threads cut the
-// lists where 2 do not.
+// lists where 2 do not. Each runs with and without the pair kernel's AVX-512 lanes
+// (dem/lanes.hpp, added after the hashes were recorded): the same hashes either way.
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -23,6 +24,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -142,9 +144,10 @@ void expect_hashes(const WorldHashes& got, const WorldHashes& want) {
 // A mortar packing (10 x 20 mm, ~320 discs) in its four mould walls, every third disc an
 // aggregate disc so the pairs fall in all three classes M, ITZ and A; the top and bottom walls
 // close in at 0.5 m/s each so wall contacts load, slip and (bonded) break bonds.
-World loaded_packing(const BondModels& bonds, int threads) {
+World loaded_packing(const BondModels& bonds, int threads, bool lanes) {
   WorldSettings s;
   s.threads = threads;
+  s.pair_lanes = lanes;
   s.laws.fill(LinearContact{16e9, 1.45, 0.5});
   s.bonds = bonds;
   World w(s);
@@ -176,11 +179,17 @@ constexpr bool kRecordedToolchain = false;
   GTEST_SKIP() << "hashes recorded with GCC 12.2, x86-64, Release without -march; re-record " \
                   "them for this toolchain (see the file's header)"
 
-class BitwiseGuard : public testing::TestWithParam<int> {};  // the thread count
+// The thread count, and whether the disc pairs may run in AVX-512 lanes (dem/lanes.hpp; on a
+// CPU without AVX-512 both settings run every pair alone).
+class BitwiseGuard : public testing::TestWithParam<std::tuple<int, bool>> {
+ protected:
+  int threads() const { return std::get<0>(GetParam()); }
+  bool lanes() const { return std::get<1>(GetParam()); }
+};
 
 TEST_P(BitwiseGuard, UnbondedPacking) {
   SKIP_UNLESS_RECORDED_TOOLCHAIN();
-  World w = loaded_packing({}, GetParam());
+  World w = loaded_packing({}, threads(), lanes());
   w.cycle(kSteps);
   ASSERT_GT(w.last_force_pass().touching, 300);  // a packing: about 2 contacts per disc or more
   expect_hashes(hash_world(w),
@@ -203,7 +212,7 @@ TEST_P(BitwiseGuard, BondedPacking) {
   BondModel& a = bonds[static_cast<int>(ContactClass::Aggregate)];
   a.kind = BondKind::Contact;
   a.contact = {2e6, 2e6};
-  World w = loaded_packing(bonds, GetParam());
+  World w = loaded_packing(bonds, threads(), lanes());
   w.refresh_neighbors();
   const long installed = install_bonds(w).total();
   ASSERT_GT(installed, 300);
@@ -222,7 +231,8 @@ TEST_P(BitwiseGuard, BondedPacking) {
 TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
   SKIP_UNLESS_RECORDED_TOOLCHAIN();
   const auto dir =
-      test::scratch_dir("BitwiseGuard", "ReducedC30Uniaxial" + std::to_string(GetParam()));
+      test::scratch_dir("BitwiseGuard", "ReducedC30Uniaxial" + std::to_string(threads()) +
+                                            (lanes() ? "lanes" : "alone"));
   test::write_text(dir / "spec.toml",
                    "seed = 1\n[specimen]\nshape = \"rectangle\"\nwidth_mm = 40\nheight_mm = 80\n"
                    "[gradation]\ntype = \"walraven\"\np_k = 0.75\nd_min_mm = 5\nd_max_mm = 10\n"
@@ -245,7 +255,8 @@ TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
   test::write_text(dir / "test.toml",
                    "seed = 1\nspecimen = \"specimen.h5\"\nmaterials = \"materials.toml\"\n"
                    "[test]\ntype = \"uniaxial\"\nhistory_interval = 100\nthreads = " +
-                       std::to_string(GetParam()) + "\n");
+                       std::to_string(threads()) +
+                       "\npair_lanes = " + (lanes() ? "true" : "false") + "\n");
   const LabTestInput input = read_lab_test(dir / "test.toml");
   const Specimen specimen = read_specimen(dir / "specimen.h5");
   ASSERT_GT(specimen.r.size(), 1000u);
@@ -279,6 +290,7 @@ TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
   EXPECT_GT(b[0] + b[1] + b[2], 1000);  // more bonds than discs: a bonded packing
 }
 
-INSTANTIATE_TEST_SUITE_P(Threads, BitwiseGuard, testing::Values(1, 2, 3));
+INSTANTIATE_TEST_SUITE_P(ThreadsAndLanes, BitwiseGuard,
+                         testing::Combine(testing::Values(1, 2, 3), testing::Bool()));
 
 }  // namespace

@@ -1,0 +1,180 @@
+#pragma once
+// Eight contact pairs evaluated at once with AVX-512 (docs/performance.md "Session 26").
+//
+// A law written as a template over its number type T runs on one pair with T = double and on
+// kLaneCount pairs with T = Lanes, a GCC vector of eight doubles: one instruction applies an
+// operation to every lane. IEEE-754 add, subtract, multiply, divide and sqrt are correctly
+// rounded in every lane, so the same operations in the same order give each lane the bits of
+// the one-pair evaluation. Two things keep that true: the build never fuses a * b + c
+// (-ffp-contract=off, CMakeLists.txt; AVX-512 brings FMA with it), and the helpers below, whose
+// double overloads are exactly the std:: functions the one-pair laws used (std::min(a, b) is
+// (b < a) ? b : a, std::max(a, b) is (a < b) ? b : a, std::clamp(v, lo, hi) is
+// std::min(std::max(v, lo), hi) in libstdc++), so -0, +0 and NaN come out alike.
+//
+// Code on Lanes runs in functions marked CDEM_LANES_TARGET, which are called only when the CPU
+// has AVX-512F (lanes_supported()); they are marked `flatten` so that the templated laws are
+// inlined into them and compiled for AVX-512 too. Lanes never cross a call between AVX-512 and
+// other code by value: the two pass them differently (in registers, in memory), so such a call
+// would read garbage (tests/test_dem_pair_lanes.cpp passes them by reference).
+// GCC 12's AVX-512 intrinsics warn of their own deliberately undefined start values
+// (_mm512_undefined_pd; GCC bug 105593).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#include <immintrin.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+namespace cdem::dem {
+
+inline constexpr std::size_t kLaneCount = 8;
+
+using Lanes = double __attribute__((vector_size(kLaneCount * sizeof(double))));
+// A comparison of two Lanes: all bits set in a lane where it holds, none where it does not.
+using LaneMask = std::int64_t __attribute__((vector_size(kLaneCount * sizeof(double))));
+
+#define CDEM_LANES_TARGET __attribute__((target("avx512f"), flatten))
+
+// True when this CPU runs the lane code (AVX-512F).
+inline bool lanes_supported() {
+  static const bool supported = __builtin_cpu_supports("avx512f");
+  return supported;
+}
+
+// The value of `if_true` where `condition` holds, of `if_false` elsewhere.
+inline double select(bool condition, double if_true, double if_false) {
+  return condition ? if_true : if_false;
+}
+// (A blend under the condition's bit mask: GCC 12 turns the vector `?:` on some masks into a
+// branch per lane.)
+__attribute__((target("avx512f"))) inline Lanes select(LaneMask condition, Lanes if_true,
+                                                       Lanes if_false) {
+  const __m512i c = reinterpret_cast<__m512i>(condition);
+  return _mm512_mask_blend_pd(_mm512_test_epi64_mask(c, c), if_false, if_true);
+}
+
+// Comparisons: a bool for one pair, a LaneMask for lanes. A law compares through these, not
+// with the operators: GCC 12 compiles a comparison of Lanes written in a template instantiated
+// outside AVX-512 code lane by lane, even when it is inlined into AVX-512 code afterwards.
+inline bool is_less(double a, double b) {
+  return a < b;
+}
+__attribute__((target("avx512f"))) inline LaneMask is_less(Lanes a, Lanes b) {
+  return a < b;
+}
+inline bool is_at_least(double a, double b) {
+  return a >= b;
+}
+__attribute__((target("avx512f"))) inline LaneMask is_at_least(Lanes a, Lanes b) {
+  return a >= b;
+}
+inline bool is_positive(double a) {
+  return a > 0;
+}
+__attribute__((target("avx512f"))) inline LaneMask is_positive(Lanes a) {
+  return a > 0;
+}
+inline bool is_nonzero(double a) {
+  return a != 0;
+}
+__attribute__((target("avx512f"))) inline LaneMask is_nonzero(Lanes a) {
+  return a != 0;
+}
+
+template <class T>
+T min_of(T a, T b) {
+  return select(is_less(b, a), b, a);
+}
+template <class T>
+T max_of(T a, T b) {
+  return select(is_less(a, b), b, a);
+}
+template <class T>
+T clamp_of(T v, T lo, T hi) {
+  return min_of(max_of(v, lo), hi);
+}
+
+inline double abs_of(double a) {
+  return std::fabs(a);
+}
+inline Lanes abs_of(Lanes a) {
+  constexpr std::int64_t magnitude_bits = 0x7fff'ffff'ffff'ffff;  // all but the sign bit
+  return reinterpret_cast<Lanes>(reinterpret_cast<LaneMask>(a) & magnitude_bits);
+}
+
+inline double sqrt_of(double a) {
+  return std::sqrt(a);
+}
+__attribute__((target("avx512f"))) inline Lanes sqrt_of(Lanes a) {
+  return _mm512_sqrt_pd(a);
+}
+
+// numerator / denominator where `condition` holds, +0 elsewhere. One pair divides only where
+// it holds (a rarely taken branch); lanes divide in every lane and keep the quotients that hold.
+inline double quotient_where(bool condition, double numerator, double denominator) {
+  return condition ? numerator / denominator : 0.0;
+}
+inline Lanes quotient_where(LaneMask condition, Lanes numerator, Lanes denominator) {
+  return select(condition, numerator / denominator, Lanes{});
+}
+
+// A value the same in every lane (a constant of the law, the time step).
+template <class T>
+T splat(double v);
+template <>
+inline double splat<double>(double v) {
+  return v;
+}
+template <>
+inline Lanes splat<Lanes>(double v) {
+  return Lanes{v, v, v, v, v, v, v, v};
+}
+
+// Bit l set where lane l of `condition` holds.
+__attribute__((target("avx512f"))) inline unsigned lane_bits(LaneMask condition) {
+  return _mm512_test_epi64_mask(reinterpret_cast<__m512i>(condition),
+                                reinterpret_cast<__m512i>(condition));
+}
+
+// Lane l = base[index[l]], for eight consecutive int32 indices at `index`.
+__attribute__((target("avx512f"))) inline Lanes gather(const double* base,
+                                                       const std::int32_t* index) {
+  return _mm512_i32gather_pd(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(index)), base,
+                             sizeof(double));
+}
+
+// Lane l = table[code[l]] for eight consecutive byte codes (< 8) at `code`: a per-class
+// constant of each pair's class.
+__attribute__((target("avx512f"))) inline Lanes lookup(const double (&table)[kLaneCount],
+                                                       const std::uint8_t* code) {
+  const __m512i index =
+      _mm512_cvtepu8_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(code)));
+  return _mm512_permutexvar_pd(index, _mm512_loadu_pd(table));
+}
+
+// Where the byte code[l] equals `value`, for eight consecutive byte codes at `code`.
+__attribute__((target("avx512f"))) inline LaneMask lanes_equal(const std::uint8_t* code,
+                                                               std::uint8_t value) {
+  const __m512i codes =
+      _mm512_cvtepu8_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(code)));
+  return reinterpret_cast<LaneMask>(codes) == static_cast<std::int64_t>(value);
+}
+
+// Stores the lanes whose bit is set in `lanes` to at[0 .. 7]; the others keep their memory.
+__attribute__((target("avx512f"))) inline void store_where(unsigned lanes, double* at, Lanes v) {
+  _mm512_mask_storeu_pd(at, static_cast<__mmask8>(lanes), v);
+}
+
+// at[0 .. 7] where `lanes` has the bit, +0 elsewhere (nothing is read there).
+__attribute__((target("avx512f"))) inline Lanes load_where(unsigned lanes, const double* at) {
+  return _mm512_maskz_loadu_pd(static_cast<__mmask8>(lanes), at);
+}
+
+__attribute__((target("avx512f"))) inline Lanes load(const double* at) {
+  return _mm512_loadu_pd(at);
+}
+
+}  // namespace cdem::dem
+
+#pragma GCC diagnostic pop

@@ -1,0 +1,369 @@
+// Pairs evaluated eight at a time with AVX-512 (dem/lanes.hpp, DiscPairKernel::evaluate_lanes)
+// give each pair the bits of its one-pair evaluation. The independent reason: IEEE-754
+// arithmetic is correctly rounded in every lane, so the same operations in the same order must
+// agree to the last bit; any difference is a change of the law or of its order (a fused
+// multiply-add, a reassociated sum, a min that treats -0 or NaN differently).
+//
+// The tests skip on a CPU without AVX-512F, where the lanes never run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <limits>
+#include <vector>
+
+#include "core/rng.hpp"
+#include "dem/bond_installation.hpp"
+#include "dem/disc_pair_kernel.hpp"
+#include "dem/world.hpp"
+#include "jostled_lattice.hpp"
+
+namespace {
+
+using namespace cdem::dem;
+
+#define SKIP_WITHOUT_LANES() \
+  if (!lanes_supported()) GTEST_SKIP() << "this CPU has no AVX-512F: the lanes never run"
+
+std::uint64_t bits(double v) {
+  return std::bit_cast<std::uint64_t>(v);
+}
+
+Lanes lanes_of(const double (&v)[kLaneCount]) {
+  Lanes out;
+  for (std::size_t l = 0; l < kLaneCount; ++l) out[l] = v[l];
+  return out;
+}
+
+// The laws on lanes compiled as the kernel compiles them (AVX-512, everything inlined). Lanes
+// cross into these functions by reference only: by value, an AVX-512 function takes them in
+// registers where its caller passes them in memory.
+CDEM_LANES_TARGET void geometry_in_lanes(const Lanes& dx, const Lanes& dy, const Lanes& ri,
+                                         const Lanes& rj, PairGeometryOf<Lanes>& g) {
+  g = pair_geometry(dx, dy, ri, rj);
+}
+
+CDEM_LANES_TARGET void law_in_lanes(const PairGeometryOf<Lanes>& g, const PairMotionOf<Lanes>& m,
+                                    const Lanes& emod, const Lanes& spn, const Lanes& mu,
+                                    const ParallelBondLanes& p, const Lanes& tan_phi,
+                                    const Lanes& old, const ParallelBondStateOf<Lanes>& s,
+                                    const Lanes& dt, ParallelBondedPairOf<Lanes>& r,
+                                    LaneMask& breaks, ResolvedPairOf<Lanes>& f) {
+  const LinearContactOf<Lanes> c = linear_contact(g, m, emod, spn, mu, old, dt);
+  r = parallel_bonded_pair(g, m, c, p, tan_phi, s, dt);
+  breaks = parallel_bond_breaks_in_tension(r.stress, p) | parallel_bond_breaks_in_shear(r.stress);
+  f = resolve(g, c.part.fn - r.state.fn, c.fs + r.state.fs, r.state.m);
+}
+
+CDEM_LANES_TARGET void helpers_in_lanes(const Lanes& a, const Lanes& b, Lanes& min, Lanes& max,
+                                        Lanes& abs, Lanes& clamp, Lanes& quotient) {
+  min = min_of(a, b);
+  max = max_of(a, b);
+  abs = abs_of(a);
+  clamp = clamp_of(a, -b, b);
+  quotient = quotient_where(is_nonzero(a), a, b);
+}
+
+TEST(PairLanes, HelpersMatchTheStdFunctionsOnSignedZerosInfinitiesAndNaN) {
+  SKIP_WITHOUT_LANES();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double values[] = {-0.0, 0.0, -1.5, 2.0, nan, -inf, inf, 1e-310};
+  for (double a : values)
+    for (double b : values) {
+      const double as[kLaneCount] = {a, a, a, a, a, a, a, a},
+                   bs[kLaneCount] = {b, b, b, b, b, b, b, b};
+      Lanes min, max, abs, clamp, quotient;
+      helpers_in_lanes(lanes_of(as), lanes_of(bs), min, max, abs, clamp, quotient);
+      for (std::size_t l = 0; l < kLaneCount; l += 7) {
+        const double la = a, lb = b;
+        EXPECT_EQ(bits(min[l]), bits(std::min(la, lb))) << a << ' ' << b;
+        EXPECT_EQ(bits(max[l]), bits(std::max(la, lb))) << a << ' ' << b;
+        EXPECT_EQ(bits(abs[l]), bits(std::fabs(la))) << a;
+        EXPECT_EQ(bits(quotient[l]), bits(la != 0 ? la / lb : 0.0)) << a << ' ' << b;
+        if (!(lb < -lb)) {  // std::clamp needs lo <= hi
+          EXPECT_EQ(bits(clamp[l]), bits(std::clamp(la, -lb, lb))) << a << ' ' << b;
+        }
+      }
+    }
+  // The signed zeros themselves, lane by lane.
+  const double zeros[kLaneCount] = {-0.0, 0.0, -0.0, 0.0, 0.0, -0.0, nan, -0.0};
+  const double others[kLaneCount] = {0.0, -0.0, -0.0, 0.0, nan, nan, 0.0, 1.0};
+  Lanes min, max, abs, clamp, quotient;
+  helpers_in_lanes(lanes_of(zeros), lanes_of(others), min, max, abs, clamp, quotient);
+  for (std::size_t l = 0; l < kLaneCount; ++l) {
+    EXPECT_EQ(bits(min[l]), bits(std::min(zeros[l], others[l]))) << l;
+    EXPECT_EQ(bits(max[l]), bits(std::max(zeros[l], others[l]))) << l;
+    EXPECT_EQ(bits(abs[l]), bits(std::fabs(zeros[l]))) << l;
+  }
+}
+
+TEST(PairLanes, GeometryGivesEachLaneTheBitsOfOnePair) {
+  SKIP_WITHOUT_LANES();
+  cdem::Rng rng(20261202);
+  long coincident = 0;
+  for (int batch = 0; batch < 2000; ++batch) {
+    double dx[kLaneCount], dy[kLaneCount], ri[kLaneCount], rj[kLaneCount];
+    for (std::size_t l = 0; l < kLaneCount; ++l) {
+      ri[l] = rng.uniform(0.2e-3, 1e-3);
+      rj[l] = rng.uniform(0.2e-3, 1e-3);
+      dx[l] = rng.uniform(-2e-3, 2e-3);
+      dy[l] = rng.uniform(-2e-3, 2e-3);
+      const int special = static_cast<int>(rng.uniform(0, 8));
+      if (special == 0) dx[l] = dy[l] = 0;           // coincident centres
+      if (special == 1) dx[l] = 1e-170, dy[l] = 0;   // dist underflows to 0, dx does not
+      if (special == 2) dx[l] = -0.0, dy[l] = -0.0;  // coincident, signed zeros
+      coincident += special <= 2;
+    }
+    PairGeometryOf<Lanes> gl;
+    geometry_in_lanes(lanes_of(dx), lanes_of(dy), lanes_of(ri), lanes_of(rj), gl);
+    for (std::size_t l = 0; l < kLaneCount; ++l) {
+      const PairGeometryOf<double> g = pair_geometry(dx[l], dy[l], ri[l], rj[l]);
+      const double lane[] = {gl.overlap[l], gl.nx[l], gl.ny[l], gl.inverse_length[l]};
+      const double one[] = {g.overlap, g.nx, g.ny, g.inverse_length};
+      for (std::size_t q = 0; q < std::size(lane); ++q)
+        ASSERT_EQ(bits(lane[q]), bits(one[q])) << "batch " << batch << " lane " << l << " q " << q;
+    }
+  }
+  EXPECT_GT(coincident, 1000);
+}
+
+// Random pairs over the states the C30 test goes through: apart and touching (and exactly
+// touching, +0 and -0 overlap), sticking and slipping, bonds far from and beyond failure, in
+// tension and in shear, classes with and without friction.
+TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
+  SKIP_WITHOUT_LANES();
+  cdem::Rng rng(20261125);
+  ParallelBondParams classes[2];
+  classes[0].modulus = 16e9;
+  classes[0].stiffness_ratio = 1.45;
+  classes[0].tensile_strength = 8e6;
+  classes[0].cohesion = 20e6;
+  classes[0].friction_angle = 0.5;
+  classes[1] = classes[0];
+  classes[1].modulus = 9e9;
+  classes[1].radius_multiplier = 0.8;
+  classes[1].moment_factor = 0.5;
+  const double emod[2] = {16e9, 9e9}, spn[2] = {1 / 1.45, 1.0}, mu[2] = {0.5, 0.0};
+  const double dt = 3.6e-8;  // s
+  long breaking = 0, slipping = 0, apart = 0;
+  for (int batch = 0; batch < 5000; ++batch) {
+    PairGeometryOf<double> g[kLaneCount];
+    PairMotionOf<double> m[kLaneCount];
+    ParallelBondStateOf<double> s[kLaneCount];
+    double old[kLaneCount];
+    int cls[kLaneCount];
+    PairGeometryOf<Lanes> gl;
+    PairMotionOf<Lanes> ml;
+    ParallelBondStateOf<Lanes> sl;
+    ParallelBondLanes pl;
+    Lanes emodl, spnl, mul, tanl, oldl;
+    for (std::size_t l = 0; l < kLaneCount; ++l) {
+      cls[l] = static_cast<int>(rng.uniform(0, 2)) & 1;
+      g[l].ri = rng.uniform(0.2e-3, 1e-3);
+      g[l].rj = rng.uniform(0.2e-3, 1e-3);
+      const int kind = batch % 7;
+      g[l].overlap = kind == 0 ? 0.0 : kind == 1 ? -0.0 : rng.uniform(-2e-6, 4e-6);
+      const double angle = rng.uniform(0, 6.283);
+      g[l].nx = std::cos(angle);
+      g[l].ny = std::sin(angle);
+      g[l].inverse_length = 1 / (g[l].ri + g[l].rj - g[l].overlap);
+      m[l] = {rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-300, 300),
+              rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-300, 300)};
+      // N (bond strengths times Ab ~ 1e-3 m^2 are 8e3-2e4 N): every third batch far beyond.
+      const double scale = batch % 3 == 0 ? 3e4 : 3e3;
+      s[l] = {rng.uniform(-scale, scale), rng.uniform(-scale, scale),
+              rng.uniform(-scale, scale) * 1e-4};
+      old[l] = rng.uniform(-3e4, 3e4);  // N, against Coulomb limits up to ~2e4 N
+      gl.ri[l] = g[l].ri;
+      gl.rj[l] = g[l].rj;
+      gl.overlap[l] = g[l].overlap;
+      gl.nx[l] = g[l].nx;
+      gl.ny[l] = g[l].ny;
+      gl.inverse_length[l] = g[l].inverse_length;
+      ml.vxi[l] = m[l].vxi;
+      ml.vyi[l] = m[l].vyi;
+      ml.wi[l] = m[l].wi;
+      ml.vxj[l] = m[l].vxj;
+      ml.vyj[l] = m[l].vyj;
+      ml.wj[l] = m[l].wj;
+      sl.fn[l] = s[l].fn;
+      sl.fs[l] = s[l].fs;
+      sl.m[l] = s[l].m;
+      const ParallelBondParams& p = classes[cls[l]];
+      pl.modulus[l] = p.modulus;
+      pl.stiffness_ratio[l] = p.stiffness_ratio;
+      pl.tensile_strength[l] = p.tensile_strength;
+      pl.cohesion[l] = p.cohesion;
+      pl.radius_multiplier[l] = p.radius_multiplier;
+      pl.moment_factor[l] = p.moment_factor;
+      emodl[l] = emod[cls[l]];
+      spnl[l] = spn[cls[l]];
+      mul[l] = mu[cls[l]];
+      tanl[l] = std::tan(p.friction_angle);
+      oldl[l] = old[l];
+    }
+    LaneMask breaks;
+    ResolvedPairOf<Lanes> fl;
+    ParallelBondedPairOf<Lanes> r;
+    law_in_lanes(gl, ml, emodl, spnl, mul, pl, tanl, oldl, sl, splat<Lanes>(dt), r, breaks, fl);
+    for (std::size_t l = 0; l < kLaneCount; ++l) {
+      const ParallelBondParams& p = classes[cls[l]];
+      const LinearContactOf<double> c =
+          linear_contact(g[l], m[l], emod[cls[l]], spn[cls[l]], mu[cls[l]], old[l], dt);
+      const ParallelBondedPairOf<double> one =
+          parallel_bonded_pair(g[l], m[l], c, p, std::tan(p.friction_angle), s[l], dt);
+      const double lane[] = {
+          r.contact.part.kn[l],    r.contact.part.ks[l], r.contact.part.vt[l],
+          r.contact.part.trial[l], r.contact.part.fn[l], r.contact.fs[l],
+          r.contact.slip_work[l],  r.bond.radius[l],     r.bond.area[l],
+          r.bond.inertia[l],       r.bond.kn[l],         r.bond.ks[l],
+          r.state.fn[l],           r.state.fs[l],        r.state.m[l],
+          r.stress.sigma_max[l],   r.stress.tau_max[l],  r.stress.shear_strength[l]};
+      const double scalar[] = {
+          one.contact.part.kn,    one.contact.part.ks, one.contact.part.vt,
+          one.contact.part.trial, one.contact.part.fn, one.contact.fs,
+          one.contact.slip_work,  one.bond.radius,     one.bond.area,
+          one.bond.inertia,       one.bond.kn,         one.bond.ks,
+          one.state.fn,           one.state.fs,        one.state.m,
+          one.stress.sigma_max,   one.stress.tau_max,  one.stress.shear_strength};
+      for (std::size_t q = 0; q < std::size(lane); ++q)
+        ASSERT_EQ(bits(lane[q]), bits(scalar[q]))
+            << "batch " << batch << " lane " << l << " q " << q;
+      const bool fails = parallel_bond_failure(one.stress, p) != BondFailure::None;
+      ASSERT_EQ(breaks[l] != 0, fails) << "batch " << batch << " lane " << l;
+      const ResolvedPairOf<double> f1 = resolve(g[l], one.contact.part.fn - one.state.fn,
+                                                one.contact.fs + one.state.fs, one.state.m);
+      EXPECT_EQ(bits(fl.fx[l]), bits(f1.fx));
+      EXPECT_EQ(bits(fl.fy[l]), bits(f1.fy));
+      EXPECT_EQ(bits(fl.moment_i[l]), bits(f1.moment_i));
+      EXPECT_EQ(bits(fl.moment_j[l]), bits(f1.moment_j));
+      breaking += fails;
+      slipping += one.contact.slip_work != 0;
+      apart += g[l].overlap <= 0;
+    }
+  }
+  // The draw reached every branch of the law.
+  EXPECT_GT(breaking, 1000);
+  EXPECT_GT(slipping, 1000);
+  EXPECT_GT(apart, 1000);
+}
+
+// The whole kernel on a jostled lattice, part of it bonded: the pass in lanes (evaluate_range)
+// leaves every per-pair result and state with the bits of evaluating each pair alone, bonds
+// that break in the step (they take the one-pair path) and unbonded pairs of a class with and
+// without friction included.
+class PairLanesPass : public testing::TestWithParam<double> {};  // the friction coefficient
+
+TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
+  SKIP_WITHOUT_LANES();
+  BondModel bond;
+  bond.kind = BondKind::Parallel;
+  bond.parallel.modulus = 16e9;
+  bond.parallel.stiffness_ratio = 1.45;
+  bond.parallel.tensile_strength = 3e6;
+  bond.parallel.cohesion = 6e6;
+  bond.parallel.friction_angle = 0.5;
+  World w(cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, GetParam()}, bond));
+  cdem::test::add_hex_lattice(w);
+  install_bonds(w, BondInstallation{0.03});
+  cdem::test::jostle(w);
+  w.cycle(20);  // bonds loaded, some broken (their pairs unbonded now), contacts slipping
+
+  Discs discs[2] = {w.discs(), w.discs()};
+  ContactStore store[2] = {w.contacts(), w.contacts()};
+  ContactForces out[2], wall_out[2];
+  const ContactLaws& laws = w.settings().laws;
+  const BondModels& bonds = w.settings().bonds;
+  const double dt = w.time_step(), guard = w.settings().max_overlap_ratio;
+  const std::size_t count = store[0].keys.size();
+  std::vector<PairForce> in_lanes(count), alone(count);
+  long parallel = 0, unbonded = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    parallel += store[0].state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel);
+    unbonded += store[0].state.bond[k] == static_cast<std::uint8_t>(BondKind::None);
+  }
+  ASSERT_GT(parallel, 4 * static_cast<long>(kLaneCount));
+  ASSERT_GT(unbonded, 4 * static_cast<long>(kLaneCount));
+  std::cout << parallel << " parallel-bonded and " << unbonded << " unbonded pairs\n";
+  std::size_t bad[2];
+  for (int c = 0; c < 2; ++c) {
+    prepare_force_results(out[c], wall_out[c], store[c]);
+    const DiscPairKernel kernel(discs[c], store[c], out[c], laws, bonds, dt, guard, c == 0);
+    std::vector<PairForce>& to = c == 0 ? in_lanes : alone;
+    bad[c] = kernel.evaluate_range(
+        0, count, [&](std::size_t k, const auto&, const PairForce& f) { to[k] = f; });
+  }
+  EXPECT_EQ(bad[0], bad[1]);
+  long broke = 0, slipped = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const PairForce &a = in_lanes[k], &b = alone[k];
+    const double fa[] = {a.normal,   a.overlap,  a.fx,        a.fy,
+                         a.moment_i, a.moment_j, a.slip_work, a.released};
+    const double fb[] = {b.normal,   b.overlap,  b.fx,        b.fy,
+                         b.moment_i, b.moment_j, b.slip_work, b.released};
+    for (std::size_t q = 0; q < std::size(fa); ++q)
+      ASSERT_EQ(bits(fa[q]), bits(fb[q])) << "pair " << k << " field " << q;
+    ASSERT_EQ(a.failure, b.failure) << k;
+    broke += b.failure != BondFailure::None;
+    slipped += b.slip_work != 0;
+  }
+  EXPECT_GT(broke, 0);  // the one-pair path of a breaking bond was exercised
+  if (GetParam() > 0) {
+    EXPECT_GT(slipped, 0);
+  }
+  const auto same = [](const auto& x, const auto& y) {
+    ASSERT_EQ(x.size(), y.size());
+    for (std::size_t k = 0; k < x.size(); ++k)
+      ASSERT_EQ(bits(static_cast<double>(x[k])), bits(static_cast<double>(y[k]))) << k;
+  };
+  same(out[0].normal, out[1].normal);
+  same(out[0].overlap, out[1].overlap);
+  same(out[0].fx, out[1].fx);
+  same(out[0].fy, out[1].fy);
+  same(out[0].failure, out[1].failure);
+  same(out[0].bond_energy_released, out[1].bond_energy_released);
+  same(store[0].state.shear_force, store[1].state.shear_force);
+  same(store[0].state.bond_normal, store[1].state.bond_normal);
+  same(store[0].state.bond_shear, store[1].state.bond_shear);
+  same(store[0].state.bond_moment, store[1].state.bond_moment);
+  same(store[0].state.bond, store[1].state.bond);
+  same(store[0].state.bond_gap, store[1].state.bond_gap);
+}
+
+INSTANTIATE_TEST_SUITE_P(Friction, PairLanesPass, testing::Values(0.5, 0.0));
+
+// A whole run, 1 and 2 threads: a world with the lanes and one without end with the same bits.
+TEST(PairLanes, RunsWithAndWithoutLanesEndAlike) {
+  SKIP_WITHOUT_LANES();
+  BondModel bond;
+  bond.kind = BondKind::Parallel;
+  bond.parallel.modulus = 16e9;
+  bond.parallel.stiffness_ratio = 1.45;
+  bond.parallel.tensile_strength = 3e6;
+  bond.parallel.cohesion = 6e6;
+  bond.parallel.friction_angle = 0.5;
+  std::vector<double> reference;
+  for (int threads : {1, 2})
+    for (bool lanes : {false, true}) {
+      WorldSettings s = cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5}, bond);
+      s.pair_lanes = lanes;
+      World w(s);
+      cdem::test::add_hex_lattice(w);
+      install_bonds(w, BondInstallation{0.03});
+      cdem::test::jostle(w);
+      w.cycle(300);
+      ASSERT_GT(w.cracks().size(), 0u);
+      const std::vector<double> b = cdem::test::world_bits(w);
+      if (reference.empty()) {
+        reference = b;
+      } else {
+        cdem::test::expect_same_bits(reference, b);
+      }
+    }
+}
+
+}  // namespace
