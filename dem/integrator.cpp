@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace cdem::dem {
 
@@ -29,16 +31,17 @@ void gather_body_forces(Bodies& b, const Discs& d, std::size_t begin, std::size_
 namespace {
 
 // Energy terms of one body over one step, before the common factor dt / 2: damping and
-// applied work as force x (v_old + v_new).
-struct StepEnergy {
-  double damped = 0, applied = 0;
+// applied work as force x (v_old + v_new). T = double for one body, Lanes for several.
+template <class T>
+struct StepEnergyOf {
+  T damped{}, applied{};
 };
 
 // Local damping of one degree of freedom; with kDamped = false (alpha = 0) the force itself,
 // which is what local_damping returns for alpha = 0 (F minus a signed zero), so the velocities
 // have the same bits either way.
-template <bool kDamped>
-double damped_force(double force, double velocity, double alpha) {
+template <bool kDamped, class T>
+T damped_force(T force, T velocity, T alpha) {
   if constexpr (kDamped)
     return local_damping(force, velocity, alpha);
   else
@@ -52,15 +55,68 @@ double damped_force(double force, double velocity, double alpha) {
 // forces, which carries the strain energy to the half step, is not summed here: it is needed
 // only when the energies are read, and strain_to_half_step (dem/energy.hpp) forms it then from
 // the forces and velocities the step leaves behind.
-template <bool kDamped>
-void advance(double& v, double force, double applied, double inv_inertia, double dt, double alpha,
-             StepEnergy& e) {
-  const double f_damped = damped_force<kDamped>(force, v, alpha);
-  const double v_old = v;
+// kBook = false: the velocity alone.
+template <bool kBook, bool kDamped, class T>
+void advance(T& v, T force, T applied, T inv_inertia, T dt, T alpha, StepEnergyOf<T>& e) {
+  const T f_damped = damped_force<kDamped>(force, v, alpha);
+  const T v_old = v;
   v += dt * inv_inertia * f_damped;
-  const double v_sum = v_old + v;
-  if constexpr (kDamped) e.damped += (force - f_damped) * v_sum;
-  e.applied += applied * v_sum;
+  if constexpr (kBook) {
+    const T v_sum = v_old + v;
+    if constexpr (kDamped) e.damped += (force - f_damped) * v_sum;
+    e.applied += applied * v_sum;
+  }
+}
+
+// Eight consecutive free discs (not clumps, not prescribed) integrated at once: their step's
+// terms of the range sums, each summed into the totals in body order by the caller.
+struct FreeDiscLanes {
+  alignas(64) double damped[kLaneCount], applied[kLaneCount];
+  alignas(64) double position[kLaneCount];  // m, x + y + theta after the step
+  alignas(64) double speed2[kLaneCount];    // m^2/s^2, squared speed
+};
+
+// True when bodies k .. k + kLaneCount - 1 are all free discs.
+bool free_discs(const Bodies& b, std::size_t k) {
+  std::uint64_t prescribed, clump;
+  static_assert(sizeof(prescribed) == kLaneCount * sizeof(b.prescribed[0]));
+  std::memcpy(&prescribed, b.prescribed.data() + k, sizeof(prescribed));
+  std::memcpy(&clump, b.is_clump.data() + k, sizeof(clump));
+  return (prescribed | clump) == 0;
+}
+
+// The free-disc branch of integrate_bodies on lanes, the same operations in the same order.
+template <bool kBook, bool kDamped>
+CDEM_LANES_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
+                                            std::size_t k, FreeDiscLanes& out) {
+  const Lanes dtl = splat<Lanes>(dt), al = splat<Lanes>(alpha);
+  Lanes vx = load(b.vx.data() + k), vy = load(b.vy.data() + k), w = load(b.omega.data() + k);
+  const Lanes inv_mass = load(b.inv_mass_dyn.data() + k);
+  StepEnergyOf<Lanes> e;
+  advance<kBook, kDamped>(vx, load(b.fx.data() + k), load(b.fx_applied.data() + k), inv_mass, dtl,
+                          al, e);
+  advance<kBook, kDamped>(vy, load(b.fy.data() + k), load(b.fy_applied.data() + k), inv_mass, dtl,
+                          al, e);
+  advance<kBook, kDamped>(w, load(b.moment.data() + k), Lanes{}, load(b.inv_inertia_dyn.data() + k),
+                          dtl, al, e);
+  const Lanes x = load(b.x.data() + k) + dtl * vx, y = load(b.y.data() + k) + dtl * vy;
+  const Lanes theta = load(b.theta.data() + k) + dtl * w;
+  store(b.vx.data() + k, vx);
+  store(b.vy.data() + k, vy);
+  store(b.omega.data() + k, w);
+  store(b.x.data() + k, x);
+  store(b.y.data() + k, y);
+  store(b.theta.data() + k, theta);
+  store(out.damped, e.damped);
+  store(out.applied, e.applied);
+  store(out.position, x + y + theta);
+  store(out.speed2, vx * vx + vy * vy);
+  const std::int32_t* disc = b.first_disc.data() + k;
+  scatter(d.x.data(), disc, x);
+  scatter(d.y.data(), disc, y);
+  scatter(d.vx.data(), disc, vx);
+  scatter(d.vy.data(), disc, vy);
+  scatter(d.omega.data(), disc, w);
 }
 
 // kBook = false is the same loop without the energy terms, kDamped = false without local
@@ -69,7 +125,7 @@ void advance(double& v, double force, double applied, double inv_inertia, double
 // energy terms are also stored there (the multi-thread cycle sums them in body order).
 template <bool kBook, bool kDamped>
 RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::size_t begin,
-                             std::size_t end, BodyStepEnergy* per_body) {
+                             std::size_t end, BodyStepEnergy* per_body, bool lanes) {
   RangeMotion m;
   // Sum of every position: non-finite exactly when some position is (positions are far from
   // overflow), so the loop carries one addition per body instead of a test and a branch; the
@@ -77,21 +133,32 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
   double position_sum = 0;
   // Largest squared speed of a free disc and largest pebble speed bound of a clump (m/s).
   double disc_speed2 = 0, pebble_speed = 0;
+  lanes = lanes && lanes_supported();
   for (std::size_t k = begin; k < end; ++k) {
+    if (lanes && k + kLaneCount <= end && free_discs(b, k)) {
+      FreeDiscLanes out;
+      integrate_free_discs<kBook, kDamped>(b, d, dt, alpha, k, out);
+      for (std::size_t l = 0; l < kLaneCount; ++l) {
+        if constexpr (kBook) {
+          m.damped += out.damped[l];
+          m.applied += out.applied[l];
+          if (per_body) per_body[k + l] = {out.damped[l], out.applied[l], 0.0};
+        }
+        position_sum += out.position[l];
+        disc_speed2 = std::max(disc_speed2, out.speed2[l]);
+      }
+      k += kLaneCount - 1;
+      continue;
+    }
     if (!b.prescribed[k]) {
+      StepEnergyOf<double> e;
+      advance<kBook, kDamped>(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
+      advance<kBook, kDamped>(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
+      advance<kBook, kDamped>(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, e);
       if constexpr (kBook) {
-        StepEnergy e;
-        advance<kDamped>(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
-        advance<kDamped>(b.vy[k], b.fy[k], b.fy_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
-        advance<kDamped>(b.omega[k], b.moment[k], 0.0, b.inv_inertia_dyn[k], dt, alpha, e);
         m.damped += e.damped;
         m.applied += e.applied;
         if (per_body) per_body[k] = {e.damped, e.applied, 0.0};
-      } else {
-        b.vx[k] += dt * b.inv_mass_dyn[k] * damped_force<kDamped>(b.fx[k], b.vx[k], alpha);
-        b.vy[k] += dt * b.inv_mass_dyn[k] * damped_force<kDamped>(b.fy[k], b.vy[k], alpha);
-        b.omega[k] +=
-            dt * b.inv_inertia_dyn[k] * damped_force<kDamped>(b.moment[k], b.omega[k], alpha);
       }
     } else if constexpr (kBook) {
       // The contacts push on the body with F - F_applied; it does the opposite work on them.
@@ -141,12 +208,13 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
 }  // namespace
 
 RangeMotion integrate_range(Bodies& b, Discs& d, double dt, double alpha, bool book,
-                            std::size_t begin, std::size_t end, BodyStepEnergy* per_body) {
+                            std::size_t begin, std::size_t end, BodyStepEnergy* per_body,
+                            bool lanes) {
   if (alpha != 0)
-    return book ? integrate_bodies<true, true>(b, d, dt, alpha, begin, end, per_body)
-                : integrate_bodies<false, true>(b, d, dt, alpha, begin, end, per_body);
-  return book ? integrate_bodies<true, false>(b, d, dt, alpha, begin, end, per_body)
-              : integrate_bodies<false, false>(b, d, dt, alpha, begin, end, per_body);
+    return book ? integrate_bodies<true, true>(b, d, dt, alpha, begin, end, per_body, lanes)
+                : integrate_bodies<false, true>(b, d, dt, alpha, begin, end, per_body, lanes);
+  return book ? integrate_bodies<true, false>(b, d, dt, alpha, begin, end, per_body, lanes)
+              : integrate_bodies<false, false>(b, d, dt, alpha, begin, end, per_body, lanes);
 }
 
 void book_step_energy(const RangeMotion& m, double dt, EnergyLedger& ledger) {
@@ -167,8 +235,10 @@ StepMotion step_motion(const Bodies& b, const RangeMotion& m, double dt) {
   return motion;
 }
 
-StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger) {
-  const RangeMotion m = integrate_range(b, d, dt, alpha, ledger != nullptr, 0, b.size(), nullptr);
+StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger,
+                     bool lanes) {
+  const RangeMotion m =
+      integrate_range(b, d, dt, alpha, ledger != nullptr, 0, b.size(), nullptr, lanes);
   if (ledger) book_step_energy(m, dt, *ledger);
   return step_motion(b, m, dt);
 }

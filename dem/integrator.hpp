@@ -9,17 +9,20 @@
 #include "dem/bodies.hpp"
 #include "dem/discs.hpp"
 #include "dem/energy.hpp"
+#include "dem/lanes.hpp"
 
 namespace cdem::dem {
 
 // Local damping: F <- F - alpha |F| sign(v) (alpha in [0, 1); 0 switches it off). It removes
 // a fixed fraction of the work of the out-of-balance force and needs no velocity scale.
-inline double local_damping(double force, double velocity, double alpha) {
+// T = double for one degree of freedom, Lanes for several (dem/lanes.hpp).
+template <class T>
+T local_damping(T force, T velocity, T alpha) {
   // alpha |F| sign(v) with sign(0) = 0: the sign is copied, never branched on (the sign of a
   // velocity is as good as random); only v = 0, rare once a body moves, takes the other path.
   // Fewer instructions than forming sign(v) as a number, and the same bits.
-  const double damping = std::copysign(alpha * std::abs(force), velocity);
-  return force - (velocity != 0 ? damping : 0.0);
+  const T damping = copysign_of(alpha * abs_of(force), velocity);
+  return force - select(is_nonzero(velocity), damping, T{});
 }
 
 // Sums the disc forces and moments of bodies [begin, end) about their centroids into
@@ -42,7 +45,8 @@ struct StepMotion {
   long bad_body = -1;           // the first body whose state became non-finite, or -1
   double max_displacement = 0;  // m, bound on the largest disc displacement of the step
 };
-StepMotion integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger);
+StepMotion integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger,
+                     bool lanes = true);
 
 // The pieces of integrate for a range of bodies. Energy terms of one body's step before the
 // common factors (damping and applied work: force x (v_old + v_new); prescribed: the work rate
@@ -59,8 +63,11 @@ struct RangeMotion {
 // Integrates bodies [begin, end); with `book` it forms the energy terms, and with `per_body`
 // (indexed by body) also stores each body's, so that ranges integrated by several threads can
 // be summed in body order afterwards, with the bits of one loop.
+// With `lanes`, runs of eight free discs are integrated at once with AVX-512 where the CPU has
+// it (dem/lanes.hpp; the same bits).
 RangeMotion integrate_range(Bodies& bodies, Discs& discs, double dt, double alpha, bool book,
-                            std::size_t begin, std::size_t end, BodyStepEnergy* per_body);
+                            std::size_t begin, std::size_t end, BodyStepEnergy* per_body,
+                            bool lanes = true);
 // Adds the sums of a whole step (all bodies, in body order) to the ledger.
 void book_step_energy(const RangeMotion& step, double dt, EnergyLedger& ledger);
 // The step's result from its sums (the bad body is looked for only if the sum is non-finite).

@@ -103,6 +103,16 @@ inline Lanes abs_of(Lanes a) {
   return reinterpret_cast<Lanes>(reinterpret_cast<LaneMask>(a) & magnitude_bits);
 }
 
+// The magnitude of `magnitude` with the sign of `sign`.
+inline double copysign_of(double magnitude, double sign) {
+  return std::copysign(magnitude, sign);
+}
+inline Lanes copysign_of(Lanes magnitude, Lanes sign) {
+  constexpr std::int64_t sign_bit = static_cast<std::int64_t>(0x8000'0000'0000'0000ull);
+  return reinterpret_cast<Lanes>((reinterpret_cast<LaneMask>(magnitude) & ~sign_bit) |
+                                 (reinterpret_cast<LaneMask>(sign) & sign_bit));
+}
+
 inline double sqrt_of(double a) {
   return std::sqrt(a);
 }
@@ -166,6 +176,13 @@ __attribute__((target("avx512f"))) inline void store_where(unsigned lanes, doubl
   _mm512_mask_storeu_pd(at, static_cast<__mmask8>(lanes), v);
 }
 
+// base[index[l]] = lane l, for eight consecutive int32 indices at `index` (distinct).
+__attribute__((target("avx512f"))) inline void scatter(double* base, const std::int32_t* index,
+                                                       Lanes v) {
+  _mm512_i32scatter_pd(base, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index)), v,
+                       sizeof(double));
+}
+
 // at[0 .. 7] where `lanes` has the bit, +0 elsewhere (nothing is read there).
 __attribute__((target("avx512f"))) inline Lanes load_where(unsigned lanes, const double* at) {
   return _mm512_maskz_loadu_pd(static_cast<__mmask8>(lanes), at);
@@ -173,6 +190,10 @@ __attribute__((target("avx512f"))) inline Lanes load_where(unsigned lanes, const
 
 __attribute__((target("avx512f"))) inline Lanes load(const double* at) {
   return _mm512_loadu_pd(at);
+}
+
+__attribute__((target("avx512f"))) inline void store(double* at, Lanes v) {
+  _mm512_storeu_pd(at, v);
 }
 
 }  // namespace cdem::dem

@@ -353,7 +353,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       // Likewise thread 0's energy sums are the start of the chain over the bodies.
       lane.motion =
           integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, body_begin, body_end,
-                          s.book_energy && t > 0 ? body_energy_.data() : nullptr);
+                          s.book_energy && t > 0 ? body_energy_.data() : nullptr, s.lanes);
     }
     if (sample) lane.body_seconds += thread_cpu_seconds() - phase2_start;
     if (t == 0) integrated = !stop;

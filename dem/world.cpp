@@ -379,14 +379,14 @@ void World::step() {
     ts.guard = settings_.max_overlap_ratio;
     ts.alpha = settings_.local_damping;
     ts.book_energy = book;
-    ts.lanes = settings_.pair_lanes;
+    ts.lanes = settings_.lanes;
     threaded =
         threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts, *shared);
     last_pass_ = threaded.pass;
   } else {
     last_pass_ = compute_contact_forces(discs_, walls_, contacts_, pair_forces_, wall_forces_,
                                         settings_.laws, settings_.bonds, dt_,
-                                        settings_.max_overlap_ratio, settings_.pair_lanes);
+                                        settings_.max_overlap_ratio, settings_.lanes);
   }
   if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0) {
     std::ostringstream what;
@@ -419,7 +419,8 @@ void World::step() {
     motion = step_motion(bodies_, threaded.motion, dt_);
   } else {
     gather_body_forces(bodies_, discs_);
-    motion = integrate(bodies_, discs_, dt_, settings_.local_damping, book ? &energy_ : nullptr);
+    motion = integrate(bodies_, discs_, dt_, settings_.local_damping, book ? &energy_ : nullptr,
+                       settings_.lanes);
   }
   if (motion.bad_body >= 0)
     fail("has a non-finite position or velocity", bodies_.first_disc[motion.bad_body]);

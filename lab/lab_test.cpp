@@ -110,7 +110,7 @@ LabTestControls read_controls(const InputTable& t) {
                          "jaw_radius_ratio",
                          "loading_arc_deg",
                          "threads",
-                         "pair_lanes",
+                         "lanes",
                          "min_contacts",
                          "bond_gap_ratio",
                          "max_genesis_broken_fraction",
@@ -206,7 +206,7 @@ LabTestControls read_controls(const InputTable& t) {
   if (t.has("loading_arc_deg"))
     c.loading_arc = t.number("loading_arc_deg", Range::closed(1, 60)) * units::degree;
   c.threads = static_cast<int>(t.integer_or("threads", c.threads, 1, 1024));
-  c.pair_lanes = t.boolean_or("pair_lanes", c.pair_lanes);
+  c.lanes = t.boolean_or("lanes", c.lanes);
   c.genesis.min_contacts =
       static_cast<int>(t.integer_or("min_contacts", c.genesis.min_contacts, 0, 12));
   c.genesis.bond_gap_ratio =
@@ -758,7 +758,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   settings.density_scaling = c.density_scaling;
   settings.scaled_time_step = c.scaled_time_step;
   settings.threads = c.threads;
-  settings.pair_lanes = c.pair_lanes;
+  settings.lanes = c.lanes;
 
   LabTestResult res;
   res.type = c.type;

@@ -147,7 +147,7 @@ void expect_hashes(const WorldHashes& got, const WorldHashes& want) {
 World loaded_packing(const BondModels& bonds, int threads, bool lanes) {
   WorldSettings s;
   s.threads = threads;
-  s.pair_lanes = lanes;
+  s.lanes = lanes;
   s.laws.fill(LinearContact{16e9, 1.45, 0.5});
   s.bonds = bonds;
   World w(s);
@@ -256,7 +256,7 @@ TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
                    "seed = 1\nspecimen = \"specimen.h5\"\nmaterials = \"materials.toml\"\n"
                    "[test]\ntype = \"uniaxial\"\nhistory_interval = 100\nthreads = " +
                        std::to_string(threads()) +
-                       "\npair_lanes = " + (lanes() ? "true" : "false") + "\n");
+                       "\nlanes = " + (lanes() ? "true" : "false") + "\n");
   const LabTestInput input = read_lab_test(dir / "test.toml");
   const Specimen specimen = read_specimen(dir / "specimen.h5");
   ASSERT_GT(specimen.r.size(), 1000u);

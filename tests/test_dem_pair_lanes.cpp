@@ -350,7 +350,7 @@ TEST(PairLanes, RunsWithAndWithoutLanesEndAlike) {
   for (int threads : {1, 2})
     for (bool lanes : {false, true}) {
       WorldSettings s = cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5}, bond);
-      s.pair_lanes = lanes;
+      s.lanes = lanes;
       World w(s);
       cdem::test::add_hex_lattice(w);
       install_bonds(w, BondInstallation{0.03});
