@@ -19,10 +19,14 @@ long disc_disc_pass(Discs& d, ContactStore& list, ContactForces& out, const Cont
   const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard, lanes);
   const std::size_t count = list.keys.size();
   out.broken.clear();
-  const std::size_t bad =
-      kernel.evaluate_range(0, count, [&](std::size_t k, const auto&, const PairForce& f) {
-        kernel.add(k, f, result, out.broken);
+  DiscPairKernel::PassSums sums;
+  sums.totals = result;
+  const std::size_t bad = kernel.evaluate_range(
+      0, count, [&](std::size_t k, const DiscPairKernel::Geometry& g, const PairForce& f) {
+        kernel.add(k, g, f, sums, out.broken);
       });
+  kernel.finish(sums);
+  result = sums.totals;
   return bad == count ? -1 : static_cast<long>(bad);
 }
 

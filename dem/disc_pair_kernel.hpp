@@ -341,19 +341,38 @@ class DiscPairKernel {
     return f;
   }
 
+  // The running sums of the one-thread pass (add): the first disc's force and moment over the
+  // run of pairs it is the first disc of, and the pass totals. A local of the pass, so they stay
+  // in registers (a store to the disc arrays could alias totals held elsewhere).
+  struct PassSums {
+    std::int32_t disc = -1;        // the first disc of the current run
+    double fx = 0, fy = 0, m = 0;  // its sums so far, N and N m
+    ForcePassResult totals;        // virial, touching, slip work, bonds broken and their energy
+  };
+
   // Adds pair k onto its discs and the pass totals. Pairs apart carry zeros, so adding them
   // unconditionally keeps the loop branch-free. The virial uses the centre distance
-  // reach - overlap (a bonded pair may be apart).
-  void add(std::size_t k, const PairForce& f, ForcePassResult& result,
+  // reach - overlap (a bonded pair may be apart). The first disc's sums are kept in `s` over
+  // its run and stored when the run ends (finish): the pairs run in the order of their first
+  // discs and have i < j, so every pair that adds onto disc i as its second disc comes before
+  // i's run, and each sum takes the same additions in the same order as in memory.
+  void add(std::size_t k, const Geometry& g, const PairForce& f, PassSums& s,
            std::vector<std::int32_t>& broken) const {
-    const std::int32_t i = first_[k], j = second_[k];
-    disc_fx_[j] += f.fx;
-    disc_fy_[j] += f.fy;
-    disc_fx_[i] -= f.fx;
-    disc_fy_[i] -= f.fy;
-    disc_m_[i] += f.moment_i;
-    disc_m_[j] += f.moment_j;
-    result.virial += f.normal * (r_[i] + r_[j] - f.overlap);
+    if (g.i != s.disc) {
+      finish(s);
+      s.disc = g.i;
+      s.fx = disc_fx_[g.i];
+      s.fy = disc_fy_[g.i];
+      s.m = disc_m_[g.i];
+    }
+    disc_fx_[g.j] += f.fx;
+    disc_fy_[g.j] += f.fy;
+    s.fx -= f.fx;
+    s.fy -= f.fy;
+    s.m += f.moment_i;
+    disc_m_[g.j] += f.moment_j;
+    ForcePassResult& result = s.totals;
+    result.virial += f.normal * (g.ri + g.rj - f.overlap);
     result.touching += f.overlap > 0;
     result.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {
@@ -362,6 +381,14 @@ class DiscPairKernel {
       // One crack per bond, or per flat-joint element that broke.
       result.bonds_broken += f.failed_elements ? std::popcount(f.failed_elements) : 1;
     }
+  }
+
+  // Stores the sums of the run in hand onto its disc.
+  void finish(const PassSums& s) const {
+    if (s.disc < 0) return;
+    disc_fx_[s.disc] = s.fx;
+    disc_fy_[s.disc] = s.fy;
+    disc_m_[s.disc] = s.m;
   }
 
  private:
