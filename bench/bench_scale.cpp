@@ -231,11 +231,7 @@ int most_at_one_page_offset(const World& w) {
                           b.first_disc.data(),
                           b.is_clump.data(),
                           b.prescribed.data(),
-                          d.x.data(),
-                          d.y.data(),
-                          d.vx.data(),
-                          d.vy.data(),
-                          d.omega.data(),
+                          d.state.data(),
                           d.fx.data(),
                           d.fy.data(),
                           d.moment.data(),
@@ -318,7 +314,7 @@ int run(const Options& o) {
               static_cast<double>(footprint.total()),
               static_cast<double>(footprint.total()) / discs);
   print_footprint(footprint, discs, pairs, bodies);
-  std::printf("arrays of the step (34) starting in one cache line of a page: at most %d\n",
+  std::printf("arrays of the step (30) starting in one cache line of a page: at most %d\n",
               most_at_one_page_offset(w));
 
   std::vector<double> cpu_ns, wall_ns;

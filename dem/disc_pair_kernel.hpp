@@ -184,8 +184,8 @@ class DiscPairKernel {
     Geometry g;
     g.i = first_[k];
     g.j = second_[k];
-    static_cast<PairGeometryOf<double>&>(g) =
-        pair_geometry(x_[g.j] - x_[g.i], y_[g.j] - y_[g.i], r_[g.i], r_[g.j]);
+    static_cast<PairGeometryOf<double>&>(g) = pair_geometry(
+        disc_[g.j].x - disc_[g.i].x, disc_[g.j].y - disc_[g.i].y, disc_[g.i].r, disc_[g.j].r);
     return g;
   }
 
@@ -196,12 +196,7 @@ class DiscPairKernel {
       : first_(list.first.data()),
         second_(list.second.data()),
         contact_class_(list.contact_class.data()),
-        x_(d.x.data()),
-        y_(d.y.data()),
-        r_(d.r.data()),
-        vx_(d.vx.data()),
-        vy_(d.vy.data()),
-        w_(d.omega.data()),
+        disc_(d.state.data()),
         shear_(list.state.shear_force.data()),
         bond_(list.state.bond.data()),
         bond_normal_(list.state.bond_normal.data()),
@@ -262,42 +257,41 @@ class DiscPairKernel {
     std::size_t bad = end;
     for (std::size_t start = begin; start < end; start += kGeometryBlock) {
       const std::size_t stop = std::min(start + kGeometryBlock, end);
-      // The next block's second discs, requested now so that they arrive while this block is
-      // evaluated. A pair's second disc lies up to a row of the numbering ahead of its first
-      // (the pairs run in the order of their first discs), so on a specimen beyond the last-level
-      // cache its data come from DRAM along a path the hardware prefetcher does not follow: on the
-      // 10^6-disc section the loads of the second disc's position and velocity held 28 % of
-      // the pass's samples, and this cut the step to 0.70x (docs/performance.md
-      // "Session 21"; within the cache, as on C30, it costs nothing measurable). The loop stays
-      // written out here: GCC 12 drops a call to a function that only prefetches (it has no side
-      // effect), leaving no prefetch instruction in the pass.
+      // The next block's second discs (a record, one line, and the three force sums), requested
+      // now so that they arrive while this block is evaluated. A pair's second disc lies up to a
+      // row of the numbering ahead of its first (the pairs run in the order of their first discs),
+      // so on a specimen beyond the last-level cache its data come from DRAM along a path the
+      // hardware prefetcher does not follow: on the 10^6-disc section the loads of the second
+      // disc's position and velocity held 28 % of the pass's samples, and this cut the step to
+      // 0.70x (docs/performance.md "Session 21"; within the cache, as on C30, it costs nothing
+      // measurable). The loop stays written out here: GCC 12 drops a call to a function that only
+      // prefetches (it has no side effect), leaving no prefetch instruction in the pass.
       if (stop + kGeometryBlock <= end)
         for (std::size_t k = stop; k < stop + kGeometryBlock; ++k) {
           const std::int32_t j = second_[k];
-          __builtin_prefetch(x_ + j);
-          __builtin_prefetch(y_ + j);
-          __builtin_prefetch(r_ + j);
-          __builtin_prefetch(vx_ + j);
-          __builtin_prefetch(vy_ + j);
-          __builtin_prefetch(w_ + j);
+          __builtin_prefetch(disc_ + j);
           __builtin_prefetch(disc_fx_ + j, 1);  // read and written: the pass adds onto them
           __builtin_prefetch(disc_fy_ + j, 1);
           __builtin_prefetch(disc_m_ + j, 1);
         }
       std::size_t k = start;
-      if (lanes_)
-        for (; k + kLaneCount <= stop; k += kLaneCount) {
-          PairLanes out;
-          evaluate_lanes(k, out);
+      if (lanes_) {
+        // The block's groups are all evaluated before any is taken: a group's law is one long
+        // chain of dependent operations (sqrt, divisions), and the next group's, independent of
+        // it, overlaps it only if no other work stands between them.
+        PairLanes out[kGeometryBlock / kLaneCount];
+        const std::size_t groups = (stop - start) / kLaneCount;
+        for (std::size_t q = 0; q < groups; ++q) evaluate_lanes(start + q * kLaneCount, out[q]);
+        for (std::size_t q = 0; q < groups; ++q, k += kLaneCount)
           for (std::size_t l = 0; l < kLaneCount; ++l) {
-            if (!(out.done >> l & 1)) {
+            if (!(out[q].done >> l & 1)) {
               evaluate_one(k + l, geometry(k + l), bad, take);
               continue;
             }
-            if (!(out.within_guard >> l & 1)) bad = std::min(bad, k + l);
-            take(k + l, out.geometry(l, first_[k + l], second_[k + l]), out.force(l));
+            if (!(out[q].within_guard >> l & 1)) bad = std::min(bad, k + l);
+            take(k + l, out[q].geometry(l, first_[k + l], second_[k + l]), out[q].force(l));
           }
-        }
+      }
       for (std::size_t q = k; q < stop; ++q) g[q - k] = geometry(q);
       for (std::size_t q = k; q < stop; ++q) evaluate_one(q, g[q - k], bad, take);
     }
@@ -437,10 +431,15 @@ class DiscPairKernel {
     const std::uint8_t* cls = contact_class_ + k;
     const LaneMask unbonded = lanes_equal(bond_ + k, static_cast<std::uint8_t>(BondKind::None));
     const LaneMask parallel = lanes_equal(bond_ + k, static_cast<std::uint8_t>(BondKind::Parallel));
-    const PairGeometryOf<Lanes> g = pair_geometry(
-        gather(x_, j) - gather(x_, i), gather(y_, j) - gather(y_, i), gather(r_, i), gather(r_, j));
-    const PairMotionOf<Lanes> m{gather(vx_, i), gather(vy_, i), gather(w_, i),
-                                gather(vx_, j), gather(vy_, j), gather(w_, j)};
+    Lanes a[kLaneCount], b[kLaneCount];  // the fields of the first and second discs' DiscState
+    const auto* records = reinterpret_cast<const double*>(disc_);
+    load_records(records, i, a);
+    load_records(records, j, b);
+    using S = DiscState;
+    const PairGeometryOf<Lanes> g =
+        pair_geometry(b[S::kX] - a[S::kX], b[S::kY] - a[S::kY], a[S::kR], b[S::kR]);
+    const PairMotionOf<Lanes> m{a[S::kVx], a[S::kVy], a[S::kOmega],
+                                b[S::kVx], b[S::kVy], b[S::kOmega]};
     const Lanes mu = lookup(by_class_.mu, cls), dt = splat<Lanes>(dt_);
     const LinearContactOf<Lanes> c = dem::linear_contact(
         g, m, lookup(by_class_.emod, cls), lookup(by_class_.shear_per_normal_stiffness, cls), mu,
@@ -488,7 +487,8 @@ class DiscPairKernel {
   }
 
   PairMotionOf<double> motion(const Geometry& g) const {
-    return {vx_[g.i], vy_[g.i], w_[g.i], vx_[g.j], vy_[g.j], w_[g.j]};
+    const DiscState &i = disc_[g.i], &j = disc_[g.j];
+    return {i.vx, i.vy, i.omega, j.vx, j.vy, j.omega};
   }
 
   static void resolve(const Geometry& g, double normal, double shear, double bond_moment,
@@ -593,7 +593,7 @@ class DiscPairKernel {
     const FlatJointGeometry jg = flat_joint_geometry(p, law, g.ri, g.rj, g.inverse_length);
     const std::int32_t joint = joint_[k];
     double& theta = joint_theta_[joint];
-    theta += (w_[g.j] - w_[g.i]) * dt_;
+    theta += (disc_[g.j].omega - disc_[g.i].omega) * dt_;
     const double gap = -g.overlap - joint_gap0_[joint];
     std::uint32_t& bonded = joint_bonded_[joint];
     const FlatJointForce jf =
@@ -652,7 +652,7 @@ class DiscPairKernel {
 
   const std::int32_t *first_, *second_;
   const std::uint8_t* contact_class_;
-  const double *x_, *y_, *r_, *vx_, *vy_, *w_;
+  const DiscState* disc_;
   double* shear_;
   std::uint8_t* bond_;
   double *bond_normal_, *bond_shear_, *bond_moment_, *bond_gap_;

@@ -1,8 +1,19 @@
 #pragma once
-// Discs, structure of arrays laid out for the contact loop: everything a contact needs sits in
-// contiguous per-disc arrays (position, radius, velocity of the owning body carried to the disc),
-// so the pair kernel never looks at the bodies.
+// Discs, laid out for the contact loop: everything a contact needs sits in per-disc arrays
+// (position, radius, velocity of the owning body carried to the disc), so the pair kernel never
+// looks at the bodies.
+//
+// The position, radius, velocity and body-frame offset of a disc share one 64-byte record
+// (DiscState), one cache line: the pair pass reads the two discs of a pair by two line loads
+// (transposed into lanes by load_disc_lanes, dem/lanes.hpp) where one array per quantity took six
+// gathers per disc, each the cost of eight loads on this machine (docs/performance.md
+// "Session 27"), and a disc beyond the cache costs one line from memory instead of six. The
+// records are read and written field by field as if they were arrays (d.x[i], d.r[i]: DiscField),
+// so code away from the hot loops does not see the layout.
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
+#include <utility>
 
 #include "dem/staggered_array.hpp"
 
@@ -11,22 +22,132 @@ namespace cdem::dem {
 // The material a disc belongs to; a pair's contact class follows from the two materials.
 enum class DiscMaterial : std::uint8_t { Mortar = 0, Aggregate = 1 };
 
+// One disc's position, radius, velocity and offset in its body's frame, in this order (the lane
+// code reads them by position: DiscState::kX ...).
+struct alignas(64) DiscState {
+  double x = 0, y = 0;                // m, centre, world frame
+  double r = 0;                       // m, radius
+  double vx = 0, vy = 0, omega = 0;   // m/s, rad/s: velocity of the disc centre and spin
+  double offset_x = 0, offset_y = 0;  // m, centre in the body frame (0 for free discs)
+
+  static constexpr std::size_t kX = 0, kY = 1, kR = 2, kVx = 3, kVy = 4, kOmega = 5;
+  static constexpr std::size_t kFields = 8;
+};
+static_assert(sizeof(DiscState) == DiscState::kFields * sizeof(double));
+
+// One field of every disc's record, used as an array of doubles: indexed, sized, iterated.
+template <double DiscState::*kField>
+class DiscField {
+ public:
+  // Steps through one field of consecutive records.
+  template <class Value>
+  class Iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = double;
+    using difference_type = std::ptrdiff_t;
+    using pointer = Value*;
+    using reference = Value&;
+
+    Iterator() = default;
+    explicit Iterator(Value* at) : at_(at) {}
+    Value& operator*() const { return *at_; }
+    Iterator& operator++() {
+      at_ += DiscState::kFields;
+      return *this;
+    }
+    Iterator operator++(int) {
+      Iterator before = *this;
+      ++*this;
+      return before;
+    }
+    bool operator==(const Iterator& o) const { return at_ == o.at_; }
+    bool operator!=(const Iterator& o) const { return at_ != o.at_; }
+
+   private:
+    Value* at_ = nullptr;
+  };
+
+  using value_type = double;
+  using iterator = Iterator<double>;
+  using const_iterator = Iterator<const double>;
+
+  explicit DiscField(StaggeredArray<DiscState>* records) : records_(records) {}
+
+  double& operator[](std::size_t i) { return (*records_)[i].*kField; }
+  const double& operator[](std::size_t i) const { return (*records_)[i].*kField; }
+  std::size_t size() const { return records_->size(); }
+  bool empty() const { return records_->empty(); }
+  Iterator<double> begin() { return Iterator<double>(field(0)); }
+  Iterator<double> end() { return Iterator<double>(field(size())); }
+  Iterator<const double> begin() const { return Iterator<const double>(field(0)); }
+  Iterator<const double> end() const { return Iterator<const double>(field(size())); }
+  // Element by element, as std::vector's ==.
+  bool operator==(const DiscField& o) const {
+    if (size() != o.size()) return false;
+    for (std::size_t i = 0; i < size(); ++i)
+      if (!((*this)[i] == o[i])) return false;
+    return true;
+  }
+
+ private:
+  // The field of record i, i <= size() (one past the end for end()); records are standard
+  // layout, so a field's address plus kFields doubles is the same field of the next record.
+  double* field(std::size_t i) const {
+    return &(records_->data()->*kField) + i * DiscState::kFields;
+  }
+
+  StaggeredArray<DiscState>* records_;
+};
+
 struct Discs {
-  StaggeredArray<double> x, y;                // m, centre, world frame
-  StaggeredArray<double> r;                   // m, radius
-  StaggeredArray<double> vx, vy, omega;       // m/s, rad/s: velocity of the disc centre and spin
-  StaggeredArray<double> offset_x, offset_y;  // m, centre in the body frame (0 for free discs)
-  StaggeredArray<std::int32_t> body;          // owning body
-  StaggeredArray<std::uint8_t> active;        // 0: never in contact detection (buried pebble)
+  StaggeredArray<DiscState> state;      // position, radius, velocity, offset: one record per disc
+  StaggeredArray<std::int32_t> body;    // owning body
+  StaggeredArray<std::uint8_t> active;  // 0: never in contact detection (buried pebble)
   StaggeredArray<DiscMaterial> material;
   // Force and moment (about the disc centre) from the contacts of the last force pass.
   StaggeredArray<double> fx, fy, moment;  // N, N m
 
-  std::size_t size() const { return x.size(); }
+  // The fields of `state` as arrays (m, m/s, rad/s as in DiscState).
+  DiscField<&DiscState::x> x{&state};
+  DiscField<&DiscState::y> y{&state};
+  DiscField<&DiscState::r> r{&state};
+  DiscField<&DiscState::vx> vx{&state};
+  DiscField<&DiscState::vy> vy{&state};
+  DiscField<&DiscState::omega> omega{&state};
+  DiscField<&DiscState::offset_x> offset_x{&state};
+  DiscField<&DiscState::offset_y> offset_y{&state};
+
+  Discs() = default;
+  // The fields view this object's records, not those of the copied or moved one.
+  Discs(const Discs& o) { *this = o; }
+  Discs(Discs&& o) noexcept { *this = std::move(o); }
+  Discs& operator=(const Discs& o) {
+    state = o.state;
+    body = o.body;
+    active = o.active;
+    material = o.material;
+    fx = o.fx;
+    fy = o.fy;
+    moment = o.moment;
+    return *this;
+  }
+  Discs& operator=(Discs&& o) noexcept {
+    state = std::move(o.state);
+    body = std::move(o.body);
+    active = std::move(o.active);
+    material = std::move(o.material);
+    fx = std::move(o.fx);
+    fy = std::move(o.fy);
+    moment = std::move(o.moment);
+    return *this;
+  }
+
+  std::size_t size() const { return state.size(); }
   // Room for n discs in every array, so a world built disc by disc holds no growth slack.
   void reserve(std::size_t n) {
-    for (auto* v : {&x, &y, &r, &vx, &vy, &omega, &offset_x, &offset_y, &fx, &fy, &moment})
-      v->reserve(n);
+    state.reserve(n);
+    for (auto* v : {&fx, &fy, &moment}) v->reserve(n);
     body.reserve(n);
     active.reserve(n);
     material.reserve(n);

@@ -111,12 +111,17 @@ CDEM_LANES_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, doub
   store(out.applied, e.applied);
   store(out.position, x + y + theta);
   store(out.speed2, vx * vx + vy * vy);
-  const std::int32_t* disc = b.first_disc.data() + k;
-  scatter(d.x.data(), disc, x);
-  scatter(d.y.data(), disc, y);
-  scatter(d.vx.data(), disc, vx);
-  scatter(d.vy.data(), disc, vy);
-  scatter(d.omega.data(), disc, w);
+  // Onto the discs' records: position and velocity; radius and offset keep theirs.
+  using S = DiscState;
+  Lanes fields[kLaneCount] = {};
+  fields[S::kX] = x;
+  fields[S::kY] = y;
+  fields[S::kVx] = vx;
+  fields[S::kVy] = vy;
+  fields[S::kOmega] = w;
+  constexpr unsigned kMoved =
+      1u << S::kX | 1u << S::kY | 1u << S::kVx | 1u << S::kVy | 1u << S::kOmega;
+  store_records(reinterpret_cast<double*>(d.state.data()), b.first_disc.data() + k, fields, kMoved);
 }
 
 // kBook = false is the same loop without the energy terms, kDamped = false without local

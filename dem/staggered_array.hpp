@@ -45,7 +45,11 @@ struct StaggeredAllocator {
 
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < staggering::kMinBytes) return static_cast<T*>(::operator new(bytes));
+    if (bytes < staggering::kMinBytes) {
+      if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
+        return static_cast<T*>(::operator new(bytes, std::align_val_t(alignof(T))));
+      return static_cast<T*>(::operator new(bytes));
+    }
     using staggering::kLine;
     using staggering::kPage;
     // Room for the shift to the wanted offset (< kPage) plus the block's own address, stored
@@ -61,7 +65,10 @@ struct StaggeredAllocator {
 
   void deallocate(T* p, std::size_t n) noexcept {
     if (n * sizeof(T) < staggering::kMinBytes) {
-      ::operator delete(p);
+      if constexpr (alignof(T) > __STDCPP_DEFAULT_NEW_ALIGNMENT__)
+        ::operator delete(p, std::align_val_t(alignof(T)));
+      else
+        ::operator delete(p);
       return;
     }
     std::byte* raw;

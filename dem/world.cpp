@@ -61,11 +61,12 @@ int World::add_disc(double x, double y, double r, double density, DiscMaterial m
   bodies_.is_clump.push_back(0);
   bodies_.prescribed.push_back(0);
 
-  discs_.x.push_back(x);
-  discs_.y.push_back(y);
-  discs_.r.push_back(r);
-  push_zero<double>({&discs_.vx, &discs_.vy, &discs_.omega, &discs_.offset_x, &discs_.offset_y,
-                     &discs_.fx, &discs_.fy, &discs_.moment});
+  DiscState disc;
+  disc.x = x;
+  disc.y = y;
+  disc.r = r;
+  discs_.state.push_back(disc);
+  push_zero<double>({&discs_.fx, &discs_.fy, &discs_.moment});
   discs_.body.push_back(body);
   discs_.active.push_back(1);
   discs_.material.push_back(material);
@@ -91,13 +92,14 @@ int World::add_clump(double cx, double cy, double mass, double inertia,
   bodies_.is_clump.push_back(1);
   bodies_.prescribed.push_back(0);
   for (std::size_t k = 0; k < px.size(); ++k) {
-    discs_.x.push_back(px[k]);
-    discs_.y.push_back(py[k]);
-    discs_.r.push_back(pr[k]);
-    discs_.offset_x.push_back(px[k] - cx);
-    discs_.offset_y.push_back(py[k] - cy);
-    push_zero<double>(
-        {&discs_.vx, &discs_.vy, &discs_.omega, &discs_.fx, &discs_.fy, &discs_.moment});
+    DiscState disc;
+    disc.x = px[k];
+    disc.y = py[k];
+    disc.r = pr[k];
+    disc.offset_x = px[k] - cx;
+    disc.offset_y = py[k] - cy;
+    discs_.state.push_back(disc);
+    push_zero<double>({&discs_.fx, &discs_.fy, &discs_.moment});
     discs_.body.push_back(body);
     discs_.active.push_back(active[k]);
     discs_.material.push_back(DiscMaterial::Aggregate);

@@ -55,8 +55,9 @@ py::array_t<T> view(const std::vector<T>& values, py::handle owner) {
 }
 
 // A read-only numpy array holding a copy of `values` (state that outlives the engine's memory).
-template <typename T, typename A>
-py::array_t<T> copy(const std::vector<T, A>& values) {
+// `values`: a std::vector, or a field of the discs' records (dem/discs.hpp).
+template <typename Array, typename T = typename Array::value_type>
+py::array_t<T> copy(const Array& values) {
   py::array_t<T> a(static_cast<py::ssize_t>(values.size()));
   std::copy(values.begin(), values.end(), a.mutable_data());
   a.attr("setflags")(py::arg("write") = false);

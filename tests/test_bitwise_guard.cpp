@@ -55,8 +55,10 @@ class StateHash {
     }
   }
   void add(double v) { add_bits(std::bit_cast<std::uint64_t>(v)); }
-  template <class T, class A>
-  void add(const std::vector<T, A>& v) {
+  // An array: its length, then its elements (a std::vector, or a field of the discs' records).
+  template <class Array>
+  void add(const Array& v) {
+    using T = typename Array::value_type;
     add_bits(v.size());
     for (const T& x : v) {
       if constexpr (std::is_floating_point_v<T>)
@@ -255,8 +257,8 @@ TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
   test::write_text(dir / "test.toml",
                    "seed = 1\nspecimen = \"specimen.h5\"\nmaterials = \"materials.toml\"\n"
                    "[test]\ntype = \"uniaxial\"\nhistory_interval = 100\nthreads = " +
-                       std::to_string(threads()) +
-                       "\nlanes = " + (lanes() ? "true" : "false") + "\n");
+                       std::to_string(threads()) + "\nlanes = " + (lanes() ? "true" : "false") +
+                       "\n");
   const LabTestInput input = read_lab_test(dir / "test.toml");
   const Specimen specimen = read_specimen(dir / "specimen.h5");
   ASSERT_GT(specimen.r.size(), 1000u);
