@@ -458,7 +458,8 @@ class DiscPairKernel {
         parallel_bond_breaks_in_tension(r.stress, p) | parallel_bond_breaks_in_shear(r.stress);
     const unsigned done = lane_bits(unbonded | (parallel & ~breaks));
     // An unbonded pair of a frictionless class carries no shear force (linear()).
-    const Lanes fs = select(parallel | (mu > 0), c.fs, Lanes{});
+    const LaneMask keeps_shear = parallel | is_positive(mu);
+    const Lanes fs = select(keeps_shear, c.fs, Lanes{});
     const ResolvedPairOf<Lanes> f =
         dem::resolve(g, select(parallel, c.part.fn - r.state.fn, c.part.fn),
                      select(parallel, fs + r.state.fs, fs), select(parallel, r.state.m, Lanes{}));
@@ -481,9 +482,9 @@ class DiscPairKernel {
     store_where(~0u, out.fy, f.fy);
     store_where(~0u, out.moment_i, f.moment_i);
     store_where(~0u, out.moment_j, f.moment_j);
-    store_where(~0u, out.slip_work, select(parallel | (mu > 0), c.slip_work, Lanes{}));
+    store_where(~0u, out.slip_work, select(keeps_shear, c.slip_work, Lanes{}));
     out.done = done;
-    out.within_guard = lane_bits(g.overlap <= guard_ * min_of(g.ri, g.rj));
+    out.within_guard = lane_bits(is_at_most(g.overlap, guard_ * min_of(g.ri, g.rj)));
   }
 
   PairMotionOf<double> motion(const Geometry& g) const {

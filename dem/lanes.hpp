@@ -31,8 +31,25 @@ namespace cdem::dem {
 inline constexpr std::size_t kLaneCount = 8;
 
 using Lanes = double __attribute__((vector_size(kLaneCount * sizeof(double))));
-// A comparison of two Lanes: all bits set in a lane where it holds, none where it does not.
-using LaneMask = std::int64_t __attribute__((vector_size(kLaneCount * sizeof(double))));
+// The bits of the eight doubles of a Lanes, as integers (sign and magnitude operations).
+using LaneBits = std::int64_t __attribute__((vector_size(kLaneCount * sizeof(double))));
+
+// A comparison of two Lanes: bit l set where it holds in lane l. It lives in an AVX-512 mask
+// register, as the comparison and the blend that reads it want it: GCC's vector comparison
+// gives a vector of all-ones lanes instead, which costs two more instructions on the way to
+// each blend (docs/performance.md "Session 27").
+struct LaneMask {
+  unsigned bits = 0;
+};
+inline LaneMask operator|(LaneMask a, LaneMask b) {
+  return {a.bits | b.bits};
+}
+inline LaneMask operator&(LaneMask a, LaneMask b) {
+  return {a.bits & b.bits};
+}
+inline LaneMask operator~(LaneMask a) {
+  return {~a.bits & ((1u << kLaneCount) - 1)};
+}
 
 #define CDEM_LANES_TARGET __attribute__((target("avx512f"), flatten))
 
@@ -46,40 +63,43 @@ inline bool lanes_supported() {
 inline double select(bool condition, double if_true, double if_false) {
   return condition ? if_true : if_false;
 }
-// (A blend under the condition's bit mask: GCC 12 turns the vector `?:` on some masks into a
-// branch per lane.)
 __attribute__((target("avx512f"))) inline Lanes select(LaneMask condition, Lanes if_true,
                                                        Lanes if_false) {
-  const __m512i c = reinterpret_cast<__m512i>(condition);
-  return _mm512_mask_blend_pd(_mm512_test_epi64_mask(c, c), if_false, if_true);
+  return _mm512_mask_blend_pd(static_cast<__mmask8>(condition.bits), if_false, if_true);
 }
 
-// Comparisons: a bool for one pair, a LaneMask for lanes. A law compares through these, not
-// with the operators: GCC 12 compiles a comparison of Lanes written in a template instantiated
-// outside AVX-512 code lane by lane, even when it is inlined into AVX-512 code afterwards.
+// Comparisons: a bool for one pair, a LaneMask for lanes, each lane true exactly where the
+// operator is for one pair (NaN compares false, but unequal): the predicates are the ordered
+// ones for <, <=, >=, >, the unordered one for !=.
 inline bool is_less(double a, double b) {
   return a < b;
 }
 __attribute__((target("avx512f"))) inline LaneMask is_less(Lanes a, Lanes b) {
-  return a < b;
+  return {_mm512_cmp_pd_mask(a, b, _CMP_LT_OQ)};
+}
+inline bool is_at_most(double a, double b) {
+  return a <= b;
+}
+__attribute__((target("avx512f"))) inline LaneMask is_at_most(Lanes a, Lanes b) {
+  return {_mm512_cmp_pd_mask(a, b, _CMP_LE_OQ)};
 }
 inline bool is_at_least(double a, double b) {
   return a >= b;
 }
 __attribute__((target("avx512f"))) inline LaneMask is_at_least(Lanes a, Lanes b) {
-  return a >= b;
+  return {_mm512_cmp_pd_mask(a, b, _CMP_GE_OQ)};
 }
 inline bool is_positive(double a) {
   return a > 0;
 }
 __attribute__((target("avx512f"))) inline LaneMask is_positive(Lanes a) {
-  return a > 0;
+  return {_mm512_cmp_pd_mask(a, _mm512_setzero_pd(), _CMP_GT_OQ)};
 }
 inline bool is_nonzero(double a) {
   return a != 0;
 }
 __attribute__((target("avx512f"))) inline LaneMask is_nonzero(Lanes a) {
-  return a != 0;
+  return {_mm512_cmp_pd_mask(a, _mm512_setzero_pd(), _CMP_NEQ_UQ)};
 }
 
 template <class T>
@@ -100,7 +120,7 @@ inline double abs_of(double a) {
 }
 inline Lanes abs_of(Lanes a) {
   constexpr std::int64_t magnitude_bits = 0x7fff'ffff'ffff'ffff;  // all but the sign bit
-  return reinterpret_cast<Lanes>(reinterpret_cast<LaneMask>(a) & magnitude_bits);
+  return reinterpret_cast<Lanes>(reinterpret_cast<LaneBits>(a) & magnitude_bits);
 }
 
 // The magnitude of `magnitude` with the sign of `sign`.
@@ -109,8 +129,8 @@ inline double copysign_of(double magnitude, double sign) {
 }
 inline Lanes copysign_of(Lanes magnitude, Lanes sign) {
   constexpr std::int64_t sign_bit = static_cast<std::int64_t>(0x8000'0000'0000'0000ull);
-  return reinterpret_cast<Lanes>((reinterpret_cast<LaneMask>(magnitude) & ~sign_bit) |
-                                 (reinterpret_cast<LaneMask>(sign) & sign_bit));
+  return reinterpret_cast<Lanes>((reinterpret_cast<LaneBits>(magnitude) & ~sign_bit) |
+                                 (reinterpret_cast<LaneBits>(sign) & sign_bit));
 }
 
 inline double sqrt_of(double a) {
@@ -142,9 +162,8 @@ inline Lanes splat<Lanes>(double v) {
 }
 
 // Bit l set where lane l of `condition` holds.
-__attribute__((target("avx512f"))) inline unsigned lane_bits(LaneMask condition) {
-  return _mm512_test_epi64_mask(reinterpret_cast<__m512i>(condition),
-                                reinterpret_cast<__m512i>(condition));
+inline unsigned lane_bits(LaneMask condition) {
+  return condition.bits;
 }
 
 // Transposes eight rows of eight lanes: afterwards v[a] lane b is what v[b] lane a was. Three
@@ -209,7 +228,7 @@ __attribute__((target("avx512f"))) inline LaneMask lanes_equal(const std::uint8_
                                                                std::uint8_t value) {
   const __m512i codes =
       _mm512_cvtepu8_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(code)));
-  return reinterpret_cast<LaneMask>(codes) == static_cast<std::int64_t>(value);
+  return {_mm512_cmpeq_epi64_mask(codes, _mm512_set1_epi64(value))};
 }
 
 // Stores the lanes whose bit is set in `lanes` to at[0 .. 7]; the others keep their memory.
