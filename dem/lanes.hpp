@@ -17,9 +17,10 @@
 // other code by value: the two pass them differently (in registers, in memory), so such a call
 // would read garbage (tests/test_dem_pair_lanes.cpp passes them by reference).
 // GCC 12's AVX-512 intrinsics warn of their own deliberately undefined start values
-// (_mm512_undefined_pd; GCC bug 105593).
+// (_mm512_undefined_pd; GCC bug 105593), with or without a `maybe`.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
 
 #include <cmath>
