@@ -5,7 +5,7 @@
 //
 // The position, radius, velocity and body-frame offset of a disc share one 64-byte record
 // (DiscState), one cache line: the pair pass reads the two discs of a pair by two line loads
-// (transposed into lanes by load_disc_lanes, dem/lanes.hpp) where one array per quantity took six
+// (transposed into lanes by load_records, dem/lanes.hpp) where one array per quantity took six
 // gathers per disc, each the cost of eight loads on this machine (docs/performance.md
 // "Session 27"), and a disc beyond the cache costs one line from memory instead of six. The
 // records are read and written field by field as if they were arrays (d.x[i], d.r[i]: DiscField),

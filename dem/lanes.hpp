@@ -168,7 +168,8 @@ inline unsigned lane_bits(LaneMask condition) {
 }
 
 // Transposes eight rows of eight lanes: afterwards v[a] lane b is what v[b] lane a was. Three
-// rounds of two-register shuffles (24 in all, about a third of the cost of one gather here).
+// rounds of two-register shuffles, 24 in all: eight line loads and a transpose cost about what
+// 1.3 gathers do on this Zen 5, and replace six (docs/performance.md "Session 27").
 __attribute__((target("avx512f"))) inline void transpose(Lanes (&v)[kLaneCount]) {
   Lanes t[kLaneCount], u[kLaneCount];
   // t[2p] = rows 2p and 2p + 1 interleaved at the even lanes, t[2p + 1] at the odd ones.

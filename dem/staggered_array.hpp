@@ -43,6 +43,8 @@ struct StaggeredAllocator {
   template <class U>
   StaggeredAllocator(const StaggeredAllocator<U>&) noexcept {}
 
+  // Large arrays start at a multiple of kLine; small ones at least at alignof(T) (a 64-byte
+  // record type, dem/discs.hpp, is read by aligned 64-byte loads).
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
     if (bytes < staggering::kMinBytes) {
