@@ -424,8 +424,8 @@ class DiscPairKernel {
   // with an intact parallel bond with the law of `parallel_bonded`, the same operations in the
   // same order, so each lane gets the bits of its one-pair evaluation. A lane of another bond
   // kind, or whose bond breaks in this step, writes nothing and is left out of `done`, for the
-  // one-pair path. The discs' data come by gathers, the class constants by a permutation of a
-  // register holding the four classes' values.
+  // one-pair path. The discs' data come as their records (a line each, transposed into lanes),
+  // the class constants by a permutation of a register holding the four classes' values.
   CDEM_LANES_TARGET void evaluate_lanes(std::size_t k, PairLanes& out) const {
     const std::int32_t *i = first_ + k, *j = second_ + k;
     const std::uint8_t* cls = contact_class_ + k;
