@@ -427,6 +427,7 @@ class DiscPairKernel {
   // one-pair path. The discs' data come as their records (a line each, transposed into lanes),
   // the class constants by a permutation of a register holding the four classes' values.
   CDEM_LANES_TARGET void evaluate_lanes(std::size_t k, PairLanes& out) const {
+    static_assert(DiscState::kFields == kLaneCount, "a record transposes into one Lanes per field");
     const std::int32_t *i = first_ + k, *j = second_ + k;
     const std::uint8_t* cls = contact_class_ + k;
     const LaneMask unbonded = lanes_equal(bond_ + k, static_cast<std::uint8_t>(BondKind::None));

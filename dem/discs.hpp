@@ -100,14 +100,17 @@ class DiscField {
   StaggeredArray<DiscState>* records_;
 };
 
-struct Discs {
+// The arrays of the discs; Discs adds the field views onto them.
+struct DiscArrays {
   StaggeredArray<DiscState> state;      // position, radius, velocity, offset: one record per disc
   StaggeredArray<std::int32_t> body;    // owning body
   StaggeredArray<std::uint8_t> active;  // 0: never in contact detection (buried pebble)
   StaggeredArray<DiscMaterial> material;
   // Force and moment (about the disc centre) from the contacts of the last force pass.
   StaggeredArray<double> fx, fy, moment;  // N, N m
+};
 
+struct Discs : DiscArrays {
   // The fields of `state` as arrays (m, m/s, rad/s as in DiscState).
   DiscField<&DiscState::x> x{&state};
   DiscField<&DiscState::y> y{&state};
@@ -119,27 +122,15 @@ struct Discs {
   DiscField<&DiscState::offset_y> offset_y{&state};
 
   Discs() = default;
-  // The fields view this object's records, not those of the copied or moved one.
-  Discs(const Discs& o) { *this = o; }
-  Discs(Discs&& o) noexcept { *this = std::move(o); }
+  // The arrays are copied or moved; the fields keep viewing this object's records.
+  Discs(const Discs& o) : DiscArrays(o) {}
+  Discs(Discs&& o) noexcept : DiscArrays(std::move(o)) {}
   Discs& operator=(const Discs& o) {
-    state = o.state;
-    body = o.body;
-    active = o.active;
-    material = o.material;
-    fx = o.fx;
-    fy = o.fy;
-    moment = o.moment;
+    DiscArrays::operator=(o);
     return *this;
   }
   Discs& operator=(Discs&& o) noexcept {
-    state = std::move(o.state);
-    body = std::move(o.body);
-    active = std::move(o.active);
-    material = std::move(o.material);
-    fx = std::move(o.fx);
-    fy = std::move(o.fy);
-    moment = std::move(o.moment);
+    DiscArrays::operator=(std::move(o));
     return *this;
   }
 
