@@ -12,11 +12,14 @@
 //
 //   build/bin/bench_scale SPECIMEN.h5 [--steps N] [--repeats R] [--warmup N] [--threads T]
 //                         [--law 0|1] [--tile NX NY] [--order auto|specimen|spatial]
+//                         [--pair-results records|every]
 //
 // --tile NX NY places NX x NY copies of the specimen side by side (clumps and all) before the
 // world is built: a large world from a small generated section, for when generating the large
 // one would take longer than the benchmark (docs/performance.md "Scale"). --order numbers the
 // world's bodies as dem/world_from_specimen.hpp's BodyOrder (default auto, as a lab test does).
+// --pair-results: the timed steps keep the per-pair results only at the end of each repeat, as
+// a lab test's loading keeps them only at its records (records, the default), or every step.
 #include <malloc.h>
 
 #include <algorithm>
@@ -60,13 +63,14 @@ struct Options {
   int law = 0;  // 0 = parallel bonds, 1 = flat joints (kMaterials)
   int tile_x = 1, tile_y = 1;
   cdem::dem::BodyOrder order = cdem::dem::BodyOrder::Automatic;
+  bool pair_results_every_step = false;
 };
 
 [[noreturn]] void usage_error(const std::string& what) {
   std::fprintf(stderr,
                "bench_scale: %s\nusage: bench_scale SPECIMEN.h5 [--steps N >= 1] [--repeats R "
                ">= 1] [--warmup N >= 1] [--threads 1..64] [--law 0|1] [--tile NX NY, 1..100 "
-               "each] [--order auto|specimen|spatial]\n",
+               "each] [--order auto|specimen|spatial] [--pair-results records|every]\n",
                what.c_str());
   std::exit(2);
 }
@@ -111,6 +115,11 @@ Options parse(int argc, char** argv) {
         o.order = cdem::dem::BodyOrder::Spatial;
       else
         usage_error(a + " = '" + v + "': auto, specimen or spatial");
+    } else if (a == "--pair-results") {
+      if (i + 1 >= argc) usage_error(a + " needs a value");
+      const std::string v = argv[++i];
+      if (v != "records" && v != "every") usage_error(a + " = '" + v + "': records or every");
+      o.pair_results_every_step = v == "every";
     } else if (a.rfind("--", 0) == 0)
       usage_error("unknown option " + a);
     else if (o.specimen.empty())
@@ -304,9 +313,10 @@ int run(const Options& o) {
       1e3 * specimen.container.height);
   std::printf(
       "world: %.0f discs, %.0f bodies, %.0f candidate pairs "
-      "(%.3f per disc), %ld bonds (%s), dt %.4g ns, threads %d\n",
+      "(%.3f per disc), %ld bonds (%s), dt %.4g ns, threads %d, per-pair results %s\n",
       discs, bodies, pairs, pairs / discs, bonds,
-      o.law == 0 ? "parallel bonds" : "flat-joint elements", w.time_step() * 1e9, o.threads);
+      o.law == 0 ? "parallel bonds" : "flat-joint elements", w.time_step() * 1e9, o.threads,
+      o.pair_results_every_step ? "every step" : "at the end of each repeat");
   std::printf("build (world, bonds, 2 + %ld warm-up steps): %.2f s CPU\n", o.warmup, build_cpu_s);
   std::printf("memory, resident growth over the build: %.0f B, %.1f B/disc\n", resident_growth,
               resident_growth / discs);
@@ -318,10 +328,13 @@ int run(const Options& o) {
               most_at_one_page_offset(w));
 
   std::vector<double> cpu_ns, wall_ns;
+  w.set_pair_results_on_request(!o.pair_results_every_step);
   for (int r = 0; r < o.repeats; ++r) {
     const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
-    w.cycle(o.steps);
+    w.cycle(o.steps - 1);
+    w.request_pair_results();
+    w.step();
     const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - t0;
     const double disc_steps = discs * static_cast<double>(o.steps);
     cpu_ns.push_back(1e9 * (cpu_seconds() - c0) / disc_steps);

@@ -14,9 +14,9 @@ namespace {
 // block by block, each pair's result still in registers. Returns the first pair tripping the
 // guard, or -1.
 long disc_disc_pass(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
-                    const BondModels& bonds, double dt, double guard, bool lanes,
+                    const BondModels& bonds, double dt, double guard, PassOptions options,
                     ForcePassResult& result) {
-  const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard, lanes);
+  const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard, options);
   const std::size_t count = list.keys.size();
   out.broken.clear();
   DiscPairKernel::PassSums sums;
@@ -165,7 +165,7 @@ void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wa
 ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore& list,
                                        ContactForces& pair, ContactForces& wall_pair,
                                        const ContactLaws& laws, const BondModels& bonds, double dt,
-                                       double max_overlap_ratio, bool lanes) {
+                                       double max_overlap_ratio, PassOptions options) {
   ForcePassResult result;
   prepare_force_results(pair, wall_pair, list);
   // Disc accumulators are summed in the sorted pair order, then the walls (deterministic).
@@ -173,7 +173,7 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
   std::fill(discs.fy.begin(), discs.fy.end(), 0.0);
   std::fill(discs.moment.begin(), discs.moment.end(), 0.0);
   result.bad_pair =
-      disc_disc_pass(discs, list, pair, laws, bonds, dt, max_overlap_ratio, lanes, result);
+      disc_disc_pass(discs, list, pair, laws, bonds, dt, max_overlap_ratio, options, result);
   result.bad_wall_pair =
       disc_wall_forces(discs, walls, list, wall_pair, laws[static_cast<int>(ContactClass::Wall)],
                        dt, max_overlap_ratio, result.slip_work, nullptr);

@@ -69,15 +69,26 @@ struct ForcePassResult {
 
 using ContactLaws = std::array<LinearContact, kContactClassCount>;
 
+// How a force pass runs and what it writes besides the forces on the discs.
+struct PassOptions {
+  // Disc pairs in AVX-512 lanes where the CPU has them (the same bits either way).
+  bool lanes = true;
+  // Write every disc pair's normal, overlap, fx and fy into ContactForces (32 bytes per pair).
+  // Without, only the pairs whose bond broke get them (the crack log reads their overlap): a
+  // loop that reads the per-pair results at its records only asks for them on those steps
+  // (World::request_pair_results). The forces on the discs, the totals and the state are the
+  // same bits either way.
+  bool pair_results = true;
+};
+
 // Evaluates all contacts, updates the persistent shear and bond state (breaking bonds that
 // reach their strength) and fills forces, discs.fx/fy/moment and the wall force sums.
 // `laws` are the linear parts by class, `bonds` the bond laws by class (a pair's bond kind is
 // its own state, set at installation). `max_overlap_ratio` is the instability-guard threshold.
-// `lanes`: disc pairs in AVX-512 lanes where the CPU has them (the same bits either way).
 ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore& list,
                                        ContactForces& pair, ContactForces& wall_pair,
                                        const ContactLaws& laws, const BondModels& bonds, double dt,
-                                       double max_overlap_ratio, bool lanes = true);
+                                       double max_overlap_ratio, PassOptions options = {});
 
 // Pieces of the pass shared with the multi-thread cycle.
 

@@ -189,10 +189,12 @@ class DiscPairKernel {
     return g;
   }
 
-  // `lanes`: evaluate the unbonded and parallel-bonded pairs kLaneCount at a time where the CPU
-  // can (lanes_supported()); the results are the same bits either way.
+  // options.lanes: evaluate the unbonded and parallel-bonded pairs kLaneCount at a time where
+  // the CPU can (lanes_supported()); the results are the same bits either way.
+  // options.pair_results: store every pair's normal, overlap, fx, fy in `out` (else only those
+  // of the pairs whose bond breaks).
   DiscPairKernel(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
-                 const BondModels& bonds, double dt, double guard, bool lanes = true)
+                 const BondModels& bonds, double dt, double guard, PassOptions options = {})
       : first_(list.first.data()),
         second_(list.second.data()),
         contact_class_(list.contact_class.data()),
@@ -225,7 +227,8 @@ class DiscPairKernel {
         bonds_(bonds),
         dt_(dt),
         guard_(guard),
-        lanes_(lanes && lanes_supported()) {
+        lanes_(options.lanes && lanes_supported()),
+        pair_results_(options.pair_results) {
     static_assert(kContactClassCount <= static_cast<int>(kLaneCount));
     for (int c = 0; c < kContactClassCount; ++c) {
       tan_friction_angle_[c] = std::tan(bonds[c].parallel.friction_angle);
@@ -308,10 +311,11 @@ class DiscPairKernel {
   }
 
   // Evaluates pair k of geometry g: updates its shear and bond state, stores normal, overlap, fx,
-  // fy (and, if its bond breaks, failure and released energy). `within_guard` is false when the
-  // overlap exceeds the instability guard. Unbonded pairs (all of them in an unbonded run) take the
-  // short linear path and never touch the bond arrays; the branch follows the bond kind, which
-  // changes only when a bond breaks, so it is well predicted.
+  // fy (if the pass keeps them or its bond breaks; and, if it breaks, failure and released
+  // energy). `within_guard` is false when the overlap exceeds the instability guard. Unbonded
+  // pairs (all of them in an unbonded run) take the short linear path and never touch the bond
+  // arrays; the branch follows the bond kind, which changes only when a bond breaks, so it is
+  // well predicted.
   PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
     const auto kind = static_cast<BondKind>(bond_[k]);
     // A smooth joint's discs may overlap without limit: its force comes from the joint's own gap,
@@ -322,10 +326,12 @@ class DiscPairKernel {
     const PairForce f = kind == BondKind::None       ? linear(k, g)
                         : kind == BondKind::Parallel ? parallel_bonded(k, g)
                                                      : bonded(k, g);
-    normal_[k] = f.normal;
-    overlap_[k] = f.overlap;
-    fx_[k] = f.fx;
-    fy_[k] = f.fy;
+    if (pair_results_ || f.failure != BondFailure::None) {
+      normal_[k] = f.normal;
+      overlap_[k] = f.overlap;
+      fx_[k] = f.fx;
+      fy_[k] = f.fy;
+    }
     if (f.failure != BondFailure::None) {
       failure_[k] = static_cast<std::uint8_t>(f.failure);
       released_[k] = f.released;
@@ -474,10 +480,12 @@ class DiscPairKernel {
     store_where(done & bonded_lanes, bond_normal_ + k, r.state.fn);
     store_where(done & bonded_lanes, bond_shear_ + k, r.state.fs);
     store_where(done & bonded_lanes, bond_moment_ + k, r.state.m);
-    store_where(done, normal_ + k, f.normal);
-    store_where(done, overlap_ + k, f.overlap);
-    store_where(done, fx_ + k, f.fx);
-    store_where(done, fy_ + k, f.fy);
+    if (pair_results_) {
+      store_where(done, normal_ + k, f.normal);
+      store_where(done, overlap_ + k, f.overlap);
+      store_where(done, fx_ + k, f.fx);
+      store_where(done, fy_ + k, f.fy);
+    }
     store_where(~0u, out.ri, g.ri);
     store_where(~0u, out.rj, g.rj);
     store_where(~0u, out.overlap, g.overlap);
@@ -688,7 +696,7 @@ class DiscPairKernel {
         moment_factor[kLaneCount]{};
   } by_class_;
   double dt_, guard_;
-  bool lanes_;
+  bool lanes_, pair_results_;
 };
 
 }  // namespace cdem::dem

@@ -244,7 +244,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   plan(bodies, discs, list, nt);
   if (lanes_.size() < static_cast<std::size_t>(nt)) lanes_.resize(static_cast<std::size_t>(nt));
   if (s.book_energy) body_energy_.resize(bodies.size());
-  const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard, s.lanes);
+  const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard, s.pass);
   const std::size_t count = list.keys.size();
   const LinearContact& wall_law = (*s.laws)[static_cast<int>(ContactClass::Wall)];
   long bad_wall = -1;
@@ -353,7 +353,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       // Likewise thread 0's energy sums are the start of the chain over the bodies.
       lane.motion =
           integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, body_begin, body_end,
-                          s.book_energy && t > 0 ? body_energy_.data() : nullptr, s.lanes);
+                          s.book_energy && t > 0 ? body_energy_.data() : nullptr, s.pass.lanes);
     }
     if (sample) lane.body_seconds += thread_cpu_seconds() - phase2_start;
     if (t == 0) integrated = !stop;

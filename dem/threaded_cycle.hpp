@@ -53,7 +53,7 @@ struct ThreadedStepSettings {
   double guard = 0;          // max overlap / radius
   double alpha = 0;          // local damping
   bool book_energy = false;  // form the integration's energy terms
-  bool lanes = true;         // WorldSettings::lanes (the same bits either way)
+  PassOptions pass;          // lanes (WorldSettings::lanes) and per-pair results
 };
 
 class ThreadedCycle {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/input_error.hpp"
+#include "dem/disc_pair_kernel.hpp"
 #include "dem/instability.hpp"
 #include "dem/integrator.hpp"
 
@@ -349,13 +350,17 @@ void World::account_wall_work() {
   energy_.last_step = dt_;
 }
 
+bool World::energy_check_due() const {
+  return settings_.energy_tracking && settings_.energy_check_interval >= 1 &&
+         steps_ % settings_.energy_check_interval == 0;
+}
+
 // Every energy_check_interval steps (an O(bodies + pairs) pass, about 1/6 of a cycle on the
 // reference specimen): restart the bookkeeping if energy was added outside the step since the
 // last check (radius scaling every cycle of the packing's servo must not pay it each cycle),
 // otherwise look for runaway kinetic energy.
 void World::check_energy() {
-  if (!settings_.energy_tracking) return;
-  if (settings_.energy_check_interval < 1 || steps_ % settings_.energy_check_interval != 0) return;
+  if (!energy_check_due()) return;
   if (energy_.reference_pending) {
     restart_energy_reference(*this);
     return;
@@ -372,6 +377,11 @@ void World::check_energy() {
 void World::step() {
   if (rebuild_pending_ || neighbors_.needs_rebuild(discs_, walls_, moved_bound_)) rebuild();
   const bool book = settings_.energy_tracking;
+  // The energy check reads the contacts' strain energy, from the per-pair results.
+  const PassOptions pass{
+      .lanes = settings_.lanes,
+      .pair_results = !pair_results_on_request_ || pair_results_requested_ || energy_check_due()};
+  pair_results_requested_ = false;
   ThreadedStep threaded;
   if (WorkerTeam* shared = team()) {
     ThreadedStepSettings ts;
@@ -381,15 +391,16 @@ void World::step() {
     ts.guard = settings_.max_overlap_ratio;
     ts.alpha = settings_.local_damping;
     ts.book_energy = book;
-    ts.lanes = settings_.lanes;
+    ts.pass = pass;
     threaded =
         threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts, *shared);
     last_pass_ = threaded.pass;
   } else {
     last_pass_ = compute_contact_forces(discs_, walls_, contacts_, pair_forces_, wall_forces_,
                                         settings_.laws, settings_.bonds, dt_,
-                                        settings_.max_overlap_ratio, settings_.lanes);
+                                        settings_.max_overlap_ratio, pass);
   }
+  pair_results_current_ = pass.pair_results;
   if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0) {
     std::ostringstream what;
     long disc;
@@ -397,7 +408,13 @@ void World::step() {
       const long k = last_pass_.bad_pair;
       disc = contacts_.first[k];
       const std::int32_t j = contacts_.second[k];
-      what << "overlaps disc " << j << " by " << pair_forces_.overlap[k] << " m, more than "
+      // The positions are still those of the pass (the step stops before the integration);
+      // the pass may not have kept the per-pair results.
+      const double overlap =
+          pair_geometry(discs_.x[j] - discs_.x[disc], discs_.y[j] - discs_.y[disc], discs_.r[disc],
+                        discs_.r[j])
+              .overlap;
+      what << "overlaps disc " << j << " by " << overlap << " m, more than "
            << settings_.max_overlap_ratio << " x the smaller radius "
            << std::min(discs_.r[disc], discs_.r[j]) << " m";
     } else {
@@ -431,6 +448,19 @@ void World::step() {
   move_walls(walls_, dt_);
   time_ += dt_;
   ++steps_;
+}
+
+void World::set_pair_results_on_request(bool on) {
+  pair_results_on_request_ = on;
+  pair_results_requested_ = false;
+}
+
+const ContactForces& World::pair_forces() const {
+  if (!pair_results_current_)
+    throw std::logic_error("World::pair_forces: step " + std::to_string(steps_) +
+                           " did not keep the per-pair results (pair results on request; call "
+                           "request_pair_results() before the step whose results are read)");
+  return pair_forces_;
 }
 
 double World::sum_body_force() const {

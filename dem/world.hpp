@@ -228,11 +228,20 @@ class World {
   const Walls& walls() const { return walls_; }
   const NeighborList& neighbors() const { return neighbors_; }  // the broad phase
   const ContactStore& contacts() const { return contacts_; }    // contacts and their state
-  const ContactForces& pair_forces() const { return pair_forces_; }
+  // The per-pair results of the last step (normal, overlap, fx, fy of every disc pair). With
+  // pair results on request, throws std::logic_error unless that step was asked to keep them.
+  const ContactForces& pair_forces() const;
   const ContactForces& wall_forces() const { return wall_forces_; }
   const CrackLog& cracks() const { return cracks_; }  // every bond failure, in order
   const WallServos& servos() const { return servos_; }
   const EnergyLedger& energy() const { return energy_; }
+
+  // Per-pair results: every step writes them (32 bytes per pair), unless they are on request:
+  // then only a step after request_pair_results() does (and a pair whose bond breaks), for a
+  // loop that reads them at its records only (lab/lab_test.cpp). The forces on the discs, the
+  // state and every total are the same bits either way.
+  void set_pair_results_on_request(bool on);
+  void request_pair_results() { pair_results_requested_ = true; }
 
  private:
   // Engine parts that edit the arrays in place and carry their own side effects.
@@ -252,6 +261,7 @@ class World {
   // The team of a world that runs several threads, else null (dem/worker_team.hpp share_out).
   WorkerTeam* team() { return settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr; }
   void account_wall_work();
+  bool energy_check_due() const;  // check_energy runs at the end of this step
   void check_energy();
   [[noreturn]] void fail(const std::string& what, long disc) const;
 
@@ -269,6 +279,8 @@ class World {
   double friction_dissipated_ = 0, bond_energy_released_ = 0;  // J/m
   long steps_ = 0;
   bool rebuild_pending_ = true;
+  bool pair_results_on_request_ = false, pair_results_requested_ = false;
+  bool pair_results_current_ = true;  // pair_forces_ holds the last step's results
   // m, bound on the largest disc displacement since the last neighbour build, summed from the
   // integration's speeds; infinite until the first build and after a radius growth. Lets the
   // rebuild check skip its pass over every disc while the bound alone rules a rebuild out.

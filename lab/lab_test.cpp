@@ -892,22 +892,36 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
     return reason;
   };
 
+  // The steps after which the loop records and snapshots: only they read the per-pair results
+  // (the confining stress, the energies, the snapshots), so only they keep them (32 bytes per
+  // pair and step; docs/performance.md "Session 28"). Back to every step when the loop ends,
+  // also by an exception.
+  const auto records_after = [&](long s) {
+    return s % c.history_interval == 0 || s >= c.max_steps;
+  };
+  const bool snapshots = hooks.snapshot && c.snapshot_interval > 0;
+  const auto snapshots_after = [&](long s) { return snapshots && s % c.snapshot_interval == 0; };
+  struct PairResultsOnRequest {
+    World& world;
+    explicit PairResultsOnRequest(World& w) : world(w) { world.set_pair_results_on_request(true); }
+    ~PairResultsOnRequest() { world.set_pair_results_on_request(false); }
+  } on_request(world);
+
   StopReason reason = record(false);
-  if (hooks.snapshot && c.snapshot_interval > 0)
-    hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
+  if (snapshots) hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   while (reason == StopReason::None) {
     if (confinement) confinement->update_targets(world);
     if (servo)
       world.set_wall_velocity(loading.top_wall, 0,
                               -servo->platen_velocity(cmod->opening(world), world.time() - time0,
                                                       world.time_step(), loading.force(world)));
+    const long s = world.step_count() - step0 + 1;  // after this step
+    if (records_after(s) || snapshots_after(s)) world.request_pair_results();
     world.step();
     boundary_work += loading.work(world, world.time_step());
-    const long s = world.step_count() - step0;
-    if (s % c.history_interval == 0 || s >= c.max_steps) reason = record(s >= c.max_steps);
+    if (records_after(s)) reason = record(s >= c.max_steps);
     if (reason != StopReason::None) break;
-    if (hooks.snapshot && c.snapshot_interval > 0 && s % c.snapshot_interval == 0)
-      hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
+    if (snapshots_after(s)) hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   }
   // A beam whose load has passed its peak and fallen well below it but still carries a tail at
   // max_deflection ends there with its figures; the work of the missing tail is not counted.

@@ -298,7 +298,8 @@ TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
   std::size_t bad[2];
   for (int c = 0; c < 2; ++c) {
     prepare_force_results(out[c], wall_out[c], store[c]);
-    const DiscPairKernel kernel(discs[c], store[c], out[c], laws, bonds, dt, guard, c == 0);
+    const DiscPairKernel kernel(discs[c], store[c], out[c], laws, bonds, dt, guard,
+                                PassOptions{.lanes = c == 0});
     std::vector<PairForce>& to = c == 0 ? in_lanes : alone;
     bad[c] = kernel.evaluate_range(
         0, count, [&](std::size_t k, const auto&, const PairForce& f) { to[k] = f; });

@@ -1,0 +1,153 @@
+// Per-pair results on request (World::set_pair_results_on_request, PassOptions::pair_results):
+// a step that does not keep the per-pair results (normal, overlap, fx, fy of every pair) must
+// leave everything else with the bits of a step that does, since those results are outputs only
+// (nothing of the next step reads them); the crack log still gets the overlap of each broken
+// pair; and reading the results of a step that did not keep them is an error, not stale data.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "dem/bond_installation.hpp"
+#include "dem/disc_pair_kernel.hpp"
+#include "dem/world.hpp"
+#include "jostled_lattice.hpp"
+
+namespace {
+
+using namespace cdem::dem;
+
+std::uint64_t bits(double v) {
+  return std::bit_cast<std::uint64_t>(v);
+}
+
+BondModel weak_parallel_bond() {
+  BondModel bond;
+  bond.kind = BondKind::Parallel;
+  bond.parallel.modulus = 16e9;
+  bond.parallel.stiffness_ratio = 1.45;
+  bond.parallel.tensile_strength = 3e6;
+  bond.parallel.cohesion = 6e6;
+  bond.parallel.friction_angle = 0.5;
+  return bond;
+}
+
+// The bonded, jostled lattice after `steps` steps, breaking bonds as it goes.
+World jostled_world(int threads, bool lanes) {
+  WorldSettings s =
+      cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5}, weak_parallel_bond());
+  s.lanes = lanes;
+  World w(s);
+  cdem::test::add_hex_lattice(w);
+  install_bonds(w, BondInstallation{0.03});
+  cdem::test::jostle(w);
+  return w;
+}
+
+void expect_same(const StaggeredArray<double>& a, const StaggeredArray<double>& b,
+                 const char* what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(bits(a[k]), bits(b[k])) << what << " " << k;
+}
+
+// Two runs of 300 steps, 1 and 2 threads, lanes on and off: one keeps the per-pair results
+// every step, the other only in the last step. Positions, spins, cracks (their points come from
+// the broken pairs' overlaps) and energies, and the last step's per-pair results, agree bit for
+// bit.
+class PairResultsOnRequest : public testing::TestWithParam<std::tuple<int, bool>> {};
+
+TEST_P(PairResultsOnRequest, ChangeNoBitOfTheRun) {
+  const auto [threads, lanes] = GetParam();
+  World every = jostled_world(threads, lanes), last = jostled_world(threads, lanes);
+  last.set_pair_results_on_request(true);
+  every.cycle(300);
+  last.cycle(299);
+  last.request_pair_results();
+  last.step();
+  ASSERT_GT(last.cracks().size(), 10u);  // bonds broke in steps that kept no per-pair results
+  cdem::test::expect_same_bits(cdem::test::world_bits(every), cdem::test::world_bits(last));
+  expect_same(every.pair_forces().normal, last.pair_forces().normal, "normal");
+  expect_same(every.pair_forces().overlap, last.pair_forces().overlap, "overlap");
+  expect_same(every.pair_forces().fx, last.pair_forces().fx, "fx");
+  expect_same(every.pair_forces().fy, last.pair_forces().fy, "fy");
+  expect_same(every.contacts().state.shear_force, last.contacts().state.shear_force, "shear");
+  expect_same(every.contacts().state.bond_moment, last.contacts().state.bond_moment, "moment");
+}
+
+INSTANTIATE_TEST_SUITE_P(ThreadsAndLanes, PairResultsOnRequest,
+                         testing::Combine(testing::Values(1, 2), testing::Bool()));
+
+TEST(PairResultsOnRequest, ReadingResultsNotKeptThrows) {
+  World w = jostled_world(1, true);
+  w.set_pair_results_on_request(true);
+  w.cycle(
+      2);  // the first step keeps them for the energy check (WorldSettings::energy_check_interval)
+  EXPECT_THROW(w.pair_forces(), std::logic_error);
+  w.request_pair_results();
+  w.step();
+  EXPECT_NO_THROW(w.pair_forces());
+  w.step();  // the request was for one step only
+  EXPECT_THROW(w.pair_forces(), std::logic_error);
+  // Back to every step: the results of the last step are still missing until the next one.
+  w.set_pair_results_on_request(false);
+  EXPECT_THROW(w.pair_forces(), std::logic_error);
+  w.step();
+  EXPECT_NO_THROW(w.pair_forces());
+}
+
+// The kernel alone: without per-pair results it writes none (the arrays keep a NaN sentinel),
+// except for the pairs whose bond breaks in the pass, which get the values of a pass that keeps
+// them all.
+TEST(PairResultsOnRequest, KernelWritesOnlyBrokenPairs) {
+  World w = jostled_world(1, true);
+  w.cycle(20);
+  Discs discs[2] = {w.discs(), w.discs()};
+  ContactStore store[2] = {w.contacts(), w.contacts()};
+  ContactForces out[2], wall_out[2];
+  std::vector<std::int32_t> broken[2];
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (int c = 0; c < 2; ++c) {
+    prepare_force_results(out[c], wall_out[c], store[c]);
+    for (auto* a : {&out[c].normal, &out[c].overlap, &out[c].fx, &out[c].fy})
+      for (double& v : *a) v = nan;
+    for (auto* a : {&discs[c].fx, &discs[c].fy, &discs[c].moment})
+      for (double& v : *a) v = 0;
+    const DiscPairKernel kernel(discs[c], store[c], out[c], w.settings().laws, w.settings().bonds,
+                                w.time_step(), w.settings().max_overlap_ratio,
+                                PassOptions{.lanes = true, .pair_results = c == 0});
+    DiscPairKernel::PassSums sums;
+    kernel.evaluate_range(0, store[c].keys.size(),
+                          [&](std::size_t k, const DiscPairKernel::Geometry& g,
+                              const PairForce& f) { kernel.add(k, g, f, sums, broken[c]); });
+    kernel.finish(sums);
+  }
+  ASSERT_EQ(broken[0], broken[1]);
+  EXPECT_GT(broken[1].size(), 0u);
+  for (std::size_t k = 0; k < store[0].keys.size(); ++k) {
+    const bool broke = std::find(broken[1].begin(), broken[1].end(),
+                                 static_cast<std::int32_t>(k)) != broken[1].end();
+    for (const auto& [a, b] : {std::pair{&out[0].normal, &out[1].normal},
+                               {&out[0].overlap, &out[1].overlap},
+                               {&out[0].fx, &out[1].fx},
+                               {&out[0].fy, &out[1].fy}}) {
+      ASSERT_FALSE(std::isnan((*a)[k])) << k;
+      if (broke)
+        ASSERT_EQ(bits((*a)[k]), bits((*b)[k])) << k;
+      else
+        ASSERT_TRUE(std::isnan((*b)[k])) << k;
+    }
+  }
+  expect_same(store[0].state.shear_force, store[1].state.shear_force, "shear");
+  expect_same(store[0].state.bond_normal, store[1].state.bond_normal, "bond normal");
+  for (const auto& [a, b] : {std::pair{&discs[0].fx, &discs[1].fx},
+                             {&discs[0].fy, &discs[1].fy},
+                             {&discs[0].moment, &discs[1].moment}})
+    for (std::size_t i = 0; i < a->size(); ++i) ASSERT_EQ(bits((*a)[i]), bits((*b)[i])) << i;
+}
+
+}  // namespace
