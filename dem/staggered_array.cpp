@@ -1,6 +1,12 @@
 #include "dem/staggered_array.hpp"
 
+#include <sys/mman.h>
+
 #include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <new>
 
 namespace cdem::dem::staggering {
 
@@ -10,6 +16,42 @@ std::size_t next_offset() {
   constexpr std::size_t kOffsets = kPage / kLine - 1;
   const std::size_t n = count.fetch_add(1, std::memory_order_relaxed);
   return kLine * (1 + (23 * n) % kOffsets);
+}
+
+namespace {
+
+constexpr std::size_t kHugePage = 2u << 20;      // bytes, a transparent huge page on x86-64
+constexpr std::size_t kHugeMinBytes = 4u << 20;  // blocks from this size on get them
+
+// Asks for huge pages over the 2 MB-aligned part of [begin, begin + bytes), before any of it is
+// touched (the kernel then backs it with huge pages as it faults in). Only a hint: where the
+// kernel does not have them the block keeps its 4 KB pages, and no result depends on which.
+void advise_huge_pages(std::byte* begin, std::size_t bytes) {
+  const auto a = reinterpret_cast<std::uintptr_t>(begin);
+  const std::uintptr_t first = (a + kHugePage - 1) / kHugePage * kHugePage;
+  const std::uintptr_t last = (a + bytes) / kHugePage * kHugePage;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
+
+}  // namespace
+
+void* allocate(std::size_t bytes) {
+  // Room for the shift to the wanted offset (< kPage) plus the block's own address, stored
+  // just before the array for deallocate.
+  auto* raw = static_cast<std::byte*>(::operator new(bytes + kPage + kLine));
+  const auto address = reinterpret_cast<std::uintptr_t>(raw);
+  std::size_t shift = (next_offset() + kPage - address % kPage) % kPage;
+  if (shift < sizeof(std::byte*)) shift += kPage;
+  std::byte* array = raw + shift;
+  std::memcpy(array - sizeof(std::byte*), &raw, sizeof(std::byte*));
+  if (bytes >= kHugeMinBytes) advise_huge_pages(array, bytes);
+  return array;
+}
+
+void deallocate(void* array) noexcept {
+  std::byte* raw;
+  std::memcpy(&raw, static_cast<std::byte*>(array) - sizeof(std::byte*), sizeof(std::byte*));
+  ::operator delete(raw);
 }
 
 }  // namespace cdem::dem::staggering
