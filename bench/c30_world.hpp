@@ -2,7 +2,9 @@
 // The C30 bonded world of the throughput benchmarks (bench_dem_c30, bench_threads_c30): the
 // generated specimen after material genesis as a lab test does it (floating discs removed, bonds
 // of the material table installed on every contact, relaxation out of the mould), with two
-// platens loading it at 0.02 m/s each, as at the start of a uniaxial compression test.
+// platens loading it at 0.02 m/s each, as at the start of a uniaxial compression test. Like the
+// test's loading between its records, the world keeps no per-pair results
+// (World::set_pair_results_on_request).
 // Needs the specimen file: `cdem generate samples/c30_specimen.toml -o /tmp/c30.h5`, or
 // $CDEM_C30_SPECIMEN.
 #include <algorithm>
@@ -58,6 +60,7 @@ inline C30World build_c30_world(const char* materials) {
   const int top = w.add_wall(xmax + over, ymax, xmin - over, ymax);
   w.set_wall_velocity(bottom, 0, kPlatenVelocity);
   w.set_wall_velocity(top, 0, -kPlatenVelocity);
+  w.set_pair_results_on_request(true);
   return C30World{std::move(w), report};
 }
 
