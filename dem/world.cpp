@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "core/input_error.hpp"
 #include "dem/disc_pair_kernel.hpp"
@@ -318,8 +319,44 @@ void World::update_time_step() {
     dt_ = std::isfinite(dt_min) ? safety * dt_min : 0.0;
 }
 
+namespace {
+
+// The last pass's per-pair results moved to their pairs' slots in the lists a merge made of
+// `old_keys` (both sorted): a pair new to the list was not evaluated in that pass and put no
+// force on its discs, so its results are zero. Results not sized to the old list, or an empty
+// old list (no pass yet), are left as they are; the next pass sizes them. `broken` held indices of
+// the old list, whose breaks the crack log has already: it is emptied.
+void realign_results(ContactForces& f, const StaggeredArray<std::uint64_t>& old_keys,
+                     const StaggeredArray<std::uint64_t>& new_keys) {
+  const auto realign = [&](auto& a) {
+    if (old_keys.empty() || a.size() != old_keys.size()) return;
+    std::remove_reference_t<decltype(a)> moved(new_keys.size());
+    for (std::size_t n = 0, o = 0; n < new_keys.size(); ++n) {
+      while (o < old_keys.size() && old_keys[o] < new_keys[n]) ++o;
+      if (o < old_keys.size() && old_keys[o] == new_keys[n]) moved[n] = a[o];
+    }
+    a.swap(moved);
+  };
+  for (auto* a :
+       {&f.normal, &f.overlap, &f.fx, &f.fy, &f.moment, &f.cx, &f.cy, &f.bond_energy_released})
+    realign(*a);
+  realign(f.failure);
+  realign(f.failed_elements);
+  realign(f.failed_shear);
+  f.broken.clear();
+}
+
+}  // namespace
+
+// A rebuild between steps merges the contact lists: the results of the last pass are moved with
+// their pairs, so that what reads them before the next step (a lab test's first record) reads
+// each pair's own.
 void World::refresh_neighbors() {
-  if (rebuild_pending_ || neighbors_.needs_rebuild(discs_, walls_, moved_bound_)) rebuild();
+  if (!rebuild_pending_ && !neighbors_.needs_rebuild(discs_, walls_, moved_bound_)) return;
+  const StaggeredArray<std::uint64_t> pair_keys = contacts_.keys, wall_keys = contacts_.wall_keys;
+  rebuild();
+  realign_results(pair_forces_, pair_keys, contacts_.keys);
+  realign_results(wall_forces_, wall_keys, contacts_.wall_keys);
 }
 
 void World::fail(const std::string& what, long disc) const {

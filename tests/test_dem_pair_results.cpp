@@ -2,7 +2,8 @@
 // a step that does not keep the per-pair results (normal, overlap, fx, fy of every pair) must
 // leave everything else with the bits of a step that does, since those results are outputs only
 // (nothing of the next step reads them); the crack log still gets the overlap of each broken
-// pair; and reading the results of a step that did not keep them is an error, not stale data.
+// pair; reading the results of a step that did not keep them is an error, not stale data; and a
+// rebuild between steps moves the results with their pairs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,11 +11,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
 #include "dem/bond_installation.hpp"
 #include "dem/disc_pair_kernel.hpp"
+#include "dem/measure.hpp"
 #include "dem/world.hpp"
 #include "jostled_lattice.hpp"
 
@@ -148,6 +151,44 @@ TEST(PairResultsOnRequest, KernelWritesOnlyBrokenPairs) {
                              {&discs[0].fy, &discs[1].fy},
                              {&discs[0].moment, &discs[1].moment}})
     for (std::size_t i = 0; i < a->size(); ++i) ASSERT_EQ(bits((*a)[i]), bits((*b)[i])) << i;
+}
+
+// A rebuild between steps (World::refresh_neighbors, as a lab test does before its first
+// record) that changes the pair list: each pair keeps the results of the last pass, a new pair
+// has none (it put no force on its discs), so the contact stress reads the same as before.
+TEST(PairResults, FollowTheirPairsThroughARebuildBetweenSteps) {
+  World w = jostled_world(1, true);
+  w.cycle(50);
+  struct Results {
+    double normal, overlap, fx, fy;
+  };
+  std::map<std::uint64_t, Results> before;
+  for (std::size_t k = 0; k < w.contacts().keys.size(); ++k)
+    before[w.contacts().keys[k]] = {w.pair_forces().normal[k], w.pair_forces().overlap[k],
+                                    w.pair_forces().fx[k], w.pair_forces().fy[k]};
+  const double area = 1e-4;  // m^2, any: the same on both sides
+  const Eigen::Matrix2d stress = contact_stress(w, area);
+  // A small disc among the lattice's first rows: its pairs (with the discs around it, numbered
+  // before it) enter the sorted list after each of those discs' own pairs.
+  const Discs& d = w.discs();
+  const double x = (d.x[0] + d.x[1] + d.x[12]) / 3, y = (d.y[0] + d.y[1] + d.y[12]) / 3;
+  w.add_disc(x, y, 0.05e-3, 2000);
+  w.refresh_neighbors();
+  const ContactStore& c = w.contacts();
+  ASSERT_GT(c.keys.size(), before.size());
+  long added = 0;
+  for (std::size_t k = 0; k < c.keys.size(); ++k) {
+    const auto old = before.find(c.keys[k]);
+    const Results r = old == before.end() ? Results{0, 0, 0, 0} : old->second;
+    added += old == before.end();
+    ASSERT_EQ(bits(w.pair_forces().normal[k]), bits(r.normal)) << k;
+    ASSERT_EQ(bits(w.pair_forces().overlap[k]), bits(r.overlap)) << k;
+    ASSERT_EQ(bits(w.pair_forces().fx[k]), bits(r.fx)) << k;
+    ASSERT_EQ(bits(w.pair_forces().fy[k]), bits(r.fy)) << k;
+  }
+  EXPECT_GT(added, 0);
+  const Eigen::Matrix2d after = contact_stress(w, area);
+  for (int e = 0; e < 4; ++e) EXPECT_EQ(after(e), stress(e)) << e;
 }
 
 }  // namespace
