@@ -26,6 +26,18 @@ inline dem::WorldSettings lattice_settings(int threads, const dem::LinearContact
   return s;
 }
 
+// A parallel bond weak enough that the jostled lattice breaks some of them within a few steps.
+inline dem::BondModel weak_parallel_bond() {
+  dem::BondModel bond;
+  bond.kind = dem::BondKind::Parallel;
+  bond.parallel.modulus = 16e9;
+  bond.parallel.stiffness_ratio = 1.45;
+  bond.parallel.tensile_strength = 3e6;
+  bond.parallel.cohesion = 6e6;
+  bond.parallel.friction_angle = 0.5;
+  return bond;
+}
+
 inline void add_hex_lattice(dem::World& w) {
   const double r = 0.5e-3;  // m
   for (int iy = 0; iy < 12; ++iy)

@@ -252,18 +252,6 @@ TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
   EXPECT_GT(apart, 1000);
 }
 
-// A parallel bond weak enough that the jostled lattice breaks some of them within a few steps.
-BondModel weak_parallel_bond() {
-  BondModel bond;
-  bond.kind = BondKind::Parallel;
-  bond.parallel.modulus = 16e9;
-  bond.parallel.stiffness_ratio = 1.45;
-  bond.parallel.tensile_strength = 3e6;
-  bond.parallel.cohesion = 6e6;
-  bond.parallel.friction_angle = 0.5;
-  return bond;
-}
-
 // The whole kernel on a jostled lattice, part of it bonded: the pass in lanes (evaluate_range)
 // leaves every per-pair result and state with the bits of evaluating each pair alone, bonds
 // that break in the step (they take the one-pair path) and unbonded pairs of a class with and
@@ -272,7 +260,7 @@ class PairLanesPass : public testing::TestWithParam<double> {};  // the friction
 
 TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
   SKIP_WITHOUT_LANES();
-  const BondModel bond = weak_parallel_bond();
+  const BondModel bond = cdem::test::weak_parallel_bond();
   World w(cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, GetParam()}, bond));
   cdem::test::add_hex_lattice(w);
   install_bonds(w, BondInstallation{0.03});
@@ -346,7 +334,7 @@ INSTANTIATE_TEST_SUITE_P(Friction, PairLanesPass, testing::Values(0.5, 0.0));
 // A whole run, 1 and 2 threads: a world with the lanes and one without end with the same bits.
 TEST(PairLanes, RunsWithAndWithoutLanesEndAlike) {
   SKIP_WITHOUT_LANES();
-  const BondModel bond = weak_parallel_bond();
+  const BondModel bond = cdem::test::weak_parallel_bond();
   std::vector<double> reference;
   for (int threads : {1, 2})
     for (bool lanes : {false, true}) {

@@ -29,21 +29,10 @@ std::uint64_t bits(double v) {
   return std::bit_cast<std::uint64_t>(v);
 }
 
-BondModel weak_parallel_bond() {
-  BondModel bond;
-  bond.kind = BondKind::Parallel;
-  bond.parallel.modulus = 16e9;
-  bond.parallel.stiffness_ratio = 1.45;
-  bond.parallel.tensile_strength = 3e6;
-  bond.parallel.cohesion = 6e6;
-  bond.parallel.friction_angle = 0.5;
-  return bond;
-}
-
 // The bonded, jostled lattice after `steps` steps, breaking bonds as it goes.
 World jostled_world(int threads, bool lanes) {
-  WorldSettings s =
-      cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5}, weak_parallel_bond());
+  WorldSettings s = cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5},
+                                                 cdem::test::weak_parallel_bond());
   s.lanes = lanes;
   World w(s);
   cdem::test::add_hex_lattice(w);
