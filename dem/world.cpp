@@ -492,12 +492,10 @@ void World::set_pair_results_on_request(bool on) {
   pair_results_requested_ = false;
 }
 
-const ContactForces& World::pair_forces() const {
-  if (!pair_results_current_)
-    throw std::logic_error("World::pair_forces: step " + std::to_string(steps_) +
-                           " did not keep the per-pair results (pair results on request; call "
-                           "request_pair_results() before the step whose results are read)");
-  return pair_forces_;
+void World::throw_pair_results_not_kept() const {
+  throw std::logic_error("World::pair_forces: step " + std::to_string(steps_) +
+                         " did not keep the per-pair results (pair results on request; call "
+                         "request_pair_results() before the step whose results are read)");
 }
 
 double World::sum_body_force() const {

@@ -230,7 +230,10 @@ class World {
   const ContactStore& contacts() const { return contacts_; }    // contacts and their state
   // The per-pair results of the last step (normal, overlap, fx, fy of every disc pair). With
   // pair results on request, throws std::logic_error unless that step was asked to keep them.
-  const ContactForces& pair_forces() const;
+  const ContactForces& pair_forces() const {
+    if (!pair_results_current_) throw_pair_results_not_kept();
+    return pair_forces_;
+  }
   const ContactForces& wall_forces() const { return wall_forces_; }
   const CrackLog& cracks() const { return cracks_; }  // every bond failure, in order
   const WallServos& servos() const { return servos_; }
@@ -262,6 +265,7 @@ class World {
   WorkerTeam* team() { return settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr; }
   void account_wall_work();
   bool energy_check_due() const;  // check_energy runs at the end of this step
+  [[noreturn]] void throw_pair_results_not_kept() const;
   void check_energy();
   [[noreturn]] void fail(const std::string& what, long disc) const;
 
