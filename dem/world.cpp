@@ -392,10 +392,10 @@ bool World::energy_check_due() const {
          steps_ % settings_.energy_check_interval == 0;
 }
 
-// Every energy_check_interval steps (an O(bodies + pairs) pass, about 1/6 of a cycle on the
-// reference specimen): restart the bookkeeping if energy was added outside the step since the
-// last check (radius scaling every cycle of the packing's servo must not pay it each cycle),
-// otherwise look for runaway kinetic energy.
+// Every energy_check_interval steps (an O(bodies + pairs) pass, about one cycle's time on the
+// C30 specimen since the lanes: docs/performance.md "Session 28"): restart the bookkeeping if
+// energy was added outside the step since the last check (radius scaling every cycle of the
+// packing's servo must not pay it each cycle), otherwise look for runaway kinetic energy.
 void World::check_energy() {
   if (!energy_check_due()) return;
   if (energy_.reference_pending) {

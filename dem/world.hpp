@@ -228,8 +228,8 @@ class World {
   const Walls& walls() const { return walls_; }
   const NeighborList& neighbors() const { return neighbors_; }  // the broad phase
   const ContactStore& contacts() const { return contacts_; }    // contacts and their state
-  // The per-pair results of the last step (normal, overlap, fx, fy of every disc pair). With
-  // pair results on request, throws std::logic_error unless that step was asked to keep them.
+  // The per-pair results of the last step (normal, overlap, fx, fy of every disc pair). Throws
+  // std::logic_error when that step did not keep them (pair results on request, below).
   const ContactForces& pair_forces() const {
     if (!pair_results_current_) throw_pair_results_not_kept();
     return pair_forces_;
