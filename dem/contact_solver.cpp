@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dem/array_growth.hpp"
 #include "dem/disc_pair_kernel.hpp"
@@ -179,6 +180,7 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
                        dt, max_overlap_ratio, result.slip_work, nullptr);
   add_wall_pairs(discs, list, wall_pair, 0, list.wall_keys.size());
   wall_totals(walls, list, wall_pair, discs, result);
+  if (!options.pair_results) result.virial = std::numeric_limits<double>::quiet_NaN();
   return result;
 }
 

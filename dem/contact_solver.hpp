@@ -53,7 +53,8 @@ struct ContactForces {
 struct ForcePassResult {
   // Sum over touching contacts of (branch vector . force), the trace of the contact stress
   // tensor times the area (N m). Disc-disc branch = centre to centre; disc-wall branch =
-  // centre to contact point.
+  // centre to contact point. NaN when the pass kept no per-pair results
+  // (PassOptions::pair_results): it is one of them, summed.
   double virial = 0;
   long touching = 0;  // disc-disc contacts with overlap > 0
   long touching_walls = 0;
@@ -73,11 +74,11 @@ using ContactLaws = std::array<LinearContact, kContactClassCount>;
 struct PassOptions {
   // Disc pairs in AVX-512 lanes where the CPU has them (the same bits either way).
   bool lanes = true;
-  // Write every disc pair's normal, overlap, fx and fy into ContactForces (32 bytes per pair).
-  // Without, only the pairs whose bond broke get them (the crack log reads their overlap): a
-  // loop that reads the per-pair results at its records only asks for them on those steps
-  // (World::request_pair_results). The forces on the discs, the totals and the state are the
-  // same bits either way.
+  // Write every disc pair's normal, overlap, fx and fy into ContactForces (32 bytes per pair)
+  // and sum the virial. Without, only the pairs whose bond broke get them (the crack log reads
+  // their overlap) and the virial is NaN: a loop that reads the per-pair results at its records
+  // only asks for them on those steps (World::request_pair_results). The forces on the discs,
+  // the other totals and the state are the same bits either way.
   bool pair_results = true;
 };
 

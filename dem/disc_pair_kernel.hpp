@@ -372,7 +372,7 @@ class DiscPairKernel {
     s.m += f.moment_i;
     disc_m_[g.j] += f.moment_j;
     ForcePassResult& result = s.totals;
-    result.virial += f.normal * (g.ri + g.rj - f.overlap);
+    if (pair_results_) result.virial += f.normal * (g.ri + g.rj - f.overlap);
     result.touching += f.overlap > 0;
     result.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <limits>
 
 #include "dem/disc_pair_kernel.hpp"
 
@@ -252,6 +253,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   double unused_slip = 0;
   double *disc_fx = discs.fx.data(), *disc_fy = discs.fy.data(), *disc_m = discs.moment.data();
   const bool sample = steps_++ % kSampleEvery == 0;
+  const bool keep_virial = s.pass.pair_results;
   auto job = [&](int t) {
     Lane& lane = lanes_[static_cast<std::size_t>(t)];
     const double start = sample ? thread_cpu_seconds() : 0;
@@ -283,11 +285,13 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
         pair_begin, pair_end, [&](std::size_t k, const Geometry& gk, const PairForce& f) {
           // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
           // others store theirs, and thread 0 goes on with the chain in its phase 2.
-          const double pair_virial = f.normal * (gk.ri + gk.rj - f.overlap);
-          if (t == 0)
-            virial += pair_virial;
-          else
-            virial_[k] = pair_virial;
+          if (keep_virial) {
+            const double pair_virial = f.normal * (gk.ri + gk.rj - f.overlap);
+            if (t == 0)
+              virial += pair_virial;
+            else
+              virial_[k] = pair_virial;
+          }
           const std::int32_t i = gk.i, j = gk.j;
           if (k != next_special) {
             disc_fx[j] += f.fx;
@@ -331,7 +335,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       const Lane& other = lanes_[static_cast<std::size_t>(u)];
       stop = stop || other.bad >= 0 || !other.broken.empty();
     }
-    if (t == 0) {
+    if (t == 0 && keep_virial) {
       // The virial chain goes on over the other threads' pairs, in pair order.
       double v = lane.virial;
       for (std::size_t k = pair_end; k < count; ++k) v += virial_[k];
@@ -377,7 +381,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const std::uint32_t elements = pair.failed_elements[static_cast<std::size_t>(k)];
     r.bonds_broken += elements ? std::popcount(elements) : 1;
   }
-  r.virial = lanes_[0].virial;
+  r.virial = keep_virial ? lanes_[0].virial : std::numeric_limits<double>::quiet_NaN();
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;
   r.bad_wall_pair = bad_wall;
