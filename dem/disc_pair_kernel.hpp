@@ -253,9 +253,13 @@ class DiscPairKernel {
   // lanes, a block goes kLaneCount pairs at a time through evaluate_lanes, and the pairs it leaves
   // (other bond kinds, bonds breaking in this step) and the range's last few one at a time;
   // without, a block's geometries come first, then their laws. Returns the first pair tripping
-  // the guard, or `end` when none does.
+  // the guard, or `end` when none does. Always inlined, and a caller's `take` with it, so that
+  // the running sums `take` adds to stay in registers: out of line, the multi-thread pass's
+  // `take` kept them and its captured pointers in memory, and added a pair onto its discs in
+  // about 3x the time of the one-thread pass (docs/performance.md "Session 29").
   template <class Take>
-  std::size_t evaluate_range(std::size_t begin, std::size_t end, Take&& take) const {
+  [[gnu::always_inline]] inline std::size_t evaluate_range(std::size_t begin, std::size_t end,
+                                                           Take&& take) const {
     Geometry g[kGeometryBlock];
     std::size_t bad = end;
     for (std::size_t start = begin; start < end; start += kGeometryBlock) {
@@ -372,7 +376,7 @@ class DiscPairKernel {
     s.m += f.moment_i;
     disc_m_[g.j] += f.moment_j;
     ForcePassResult& result = s.totals;
-    if (pair_results_) result.virial += f.normal * (g.ri + g.rj - f.overlap);
+    result.virial += f.normal * (g.ri + g.rj - f.overlap);
     result.touching += f.overlap > 0;
     result.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {

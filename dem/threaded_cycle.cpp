@@ -282,7 +282,9 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
     long touching = 0;
     const std::size_t bad = kernel.evaluate_range(
-        pair_begin, pair_end, [&](std::size_t k, const Geometry& gk, const PairForce& f) {
+        pair_begin, pair_end,
+        // Inlined into evaluate_range (see there): its sums then stay in registers.
+        [&](std::size_t k, const Geometry& gk, const PairForce& f) __attribute__((always_inline)) {
           // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
           // others store theirs, and thread 0 goes on with the chain in its phase 2.
           if (keep_virial) {
