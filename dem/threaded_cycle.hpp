@@ -19,10 +19,10 @@
 // thread for any thread count. The scalar totals (virial, slip work, released energy, energy
 // ledger terms) are summed in pair or body order: thread 0, whose pairs and bodies come first,
 // sums its own as it goes; it goes on with the virial chain over the others' stored terms in
-// its phase 2, and the other chains go on after the job. In a step where a bond broke or a
-// guard tripped the job stops before the integration: the caller records the cracks (which
-// read the positions of the step) or stops, and integrates afterwards, as the one-thread cycle
-// does.
+// its phase 2 (in a step that keeps its per-pair results: the virial is one of them), and the
+// other chains go on after the job. In a step where a bond broke or a guard tripped the job
+// stops before the integration: the caller records the cracks (which read the positions of
+// the step) or stops, and integrates afterwards, as the one-thread cycle does.
 #include <cstdint>
 #include <vector>
 

@@ -59,9 +59,13 @@ TEST_P(PairResultsOnRequest, ChangeNoBitOfTheRun) {
   last.set_pair_results_on_request(true);
   every.cycle(300);
   last.cycle(299);
+  // The virial is a sum of per-pair results: not formed in a step that keeps none.
+  EXPECT_TRUE(std::isnan(last.last_force_pass().virial));
   last.request_pair_results();
   last.step();
   ASSERT_GT(last.cracks().size(), 10u);  // bonds broke in steps that kept no per-pair results
+  EXPECT_TRUE(std::isfinite(last.last_force_pass().virial));
+  EXPECT_EQ(bits(every.last_force_pass().virial), bits(last.last_force_pass().virial));
   cdem::test::expect_same_bits(cdem::test::world_bits(every), cdem::test::world_bits(last));
   expect_same(every.pair_forces().normal, last.pair_forces().normal, "normal");
   expect_same(every.pair_forces().overlap, last.pair_forces().overlap, "overlap");
@@ -73,6 +77,19 @@ TEST_P(PairResultsOnRequest, ChangeNoBitOfTheRun) {
 
 INSTANTIATE_TEST_SUITE_P(ThreadsAndLanes, PairResultsOnRequest,
                          testing::Combine(testing::Values(1, 2), testing::Bool()));
+
+// The virial of a step that keeps its per-pair results is the same sum, in pair order, on one
+// thread and on several (threads after the first store their pairs' terms; the first chains
+// them after the barrier).
+TEST(PairResultsOnRequest, VirialIsTheSameOnOneAndTwoThreads) {
+  World one = jostled_world(1, true), two = jostled_world(2, true);
+  for (int step = 0; step < 50; ++step) {
+    one.step();
+    two.step();
+    ASSERT_TRUE(std::isfinite(one.last_force_pass().virial));
+    ASSERT_EQ(bits(one.last_force_pass().virial), bits(two.last_force_pass().virial)) << step;
+  }
+}
 
 TEST(PairResultsOnRequest, ReadingResultsNotKeptThrows) {
   World w = jostled_world(1, true);
