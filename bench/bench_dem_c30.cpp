@@ -21,6 +21,7 @@
 
 #include "c30_world.hpp"
 #include "cycle_throughput.hpp"
+#include "dem/contact_energy.hpp"
 
 namespace {
 
@@ -78,5 +79,35 @@ BENCHMARK(BM_C30BondedSpecimenCycles)
     ->UseRealTime();
 
 }  // namespace
+
+// The contact energy of a record or an energy check (an O(pairs) pass between steps) on the
+// loaded C30 world, 1 and 2 threads: with a team its two sums run at once, one per thread.
+void BM_C30ContactEnergy(benchmark::State& state) {
+  if (!fs::exists(cdem::bench::c30_specimen_path())) {
+    state.SkipWithError("no specimen (see BM_C30BondedSpecimenCycles)");
+    return;
+  }
+  cdem::dem::World w = c30_world(0).world;
+  cdem::dem::WorldSettings s = w.settings();
+  s.threads = static_cast<int>(state.range(0));
+  w.set_settings(s);
+  w.cycle(9);  // the team started
+  w.request_pair_results();
+  w.step();  // a loaded step that keeps its per-pair results
+  double strain = 0;
+  for (auto _ : state) {
+    strain = cdem::dem::contact_energy(w).strain();
+    benchmark::DoNotOptimize(strain);
+  }
+  state.counters["strain_J_per_m"] = strain;
+}
+
+BENCHMARK(BM_C30ContactEnergy)
+    ->ArgNames({"threads"})
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMicrosecond)
+    ->Repetitions(5)
+    ->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -235,6 +235,10 @@ class World {
     return pair_forces_;
   }
   const ContactForces& wall_forces() const { return wall_forces_; }
+  // The world's thread team when it runs several threads, else null: for a measure between
+  // steps (a read-only pass over the world, dem/contact_energy.cpp) that shares its work out
+  // with the bits of one thread. Not from inside a step.
+  WorkerTeam* measure_team() const { return team(); }
   const CrackLog& cracks() const { return cracks_; }  // every bond failure, in order
   const WallServos& servos() const { return servos_; }
   const EnergyLedger& energy() const { return energy_; }
@@ -262,7 +266,9 @@ class World {
   void rebuild();
   void update_time_step();
   // The team of a world that runs several threads, else null (dem/worker_team.hpp share_out).
-  WorkerTeam* team() { return settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr; }
+  WorkerTeam* team() const {
+    return settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr;
+  }
   void account_wall_work();
   bool energy_check_due() const;  // check_energy runs at the end of this step
   [[noreturn]] void throw_pair_results_not_kept() const;
@@ -291,7 +297,7 @@ class World {
   double moved_bound_ = std::numeric_limits<double>::infinity();
   ForcePassResult last_pass_;
   ThreadedCycle threaded_;         // plan and scratch of the multi-thread cycle
-  WorkerTeamHandle team_;          // threads > 1: the threaded cycle, rebuilds, radius changes
+  mutable WorkerTeamHandle team_;  // threads > 1: the threaded cycle, rebuilds, radius changes
   TimeStepStiffness stiffness_;    // per body, the sums update_time_step sets the step from
   std::vector<double> member_dt_;  // s, per team member: scratch of update_time_step
 };

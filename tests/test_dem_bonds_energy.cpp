@@ -250,3 +250,51 @@ TEST(BondEnergy, BalanceClosesOnAJostlingBondedLattice) {
 }
 
 }  // namespace
+
+namespace {
+
+// A bonded hex lattice with more candidate pairs than a team shares out (kShareOutAbove),
+// jostled so that bonds stretch and some break.
+World large_bonded_lattice(int threads) {
+  WorldSettings s;
+  s.threads = threads;
+  s.local_damping = 0.1;
+  s.laws.fill(LinearContact{16e9, 1.45, 0.5});
+  BondModel bond;
+  bond.kind = BondKind::Parallel;
+  bond.parallel.modulus = 16e9;
+  bond.parallel.stiffness_ratio = 1.45;
+  bond.parallel.tensile_strength = 3e6;
+  bond.parallel.cohesion = 6e6;
+  bond.parallel.friction_angle = 0.5;
+  s.bonds.fill(bond);
+  World w(s);
+  const double r = 0.5e-3;  // m
+  for (int iy = 0; iy < 60; ++iy)
+    for (int ix = 0; ix < 60; ++ix)
+      w.add_disc(ix * 2 * r + (iy % 2) * r, iy * std::sqrt(3.0) * r, r * (0.98 + 0.02 * (ix % 2)),
+                 2000);
+  install_bonds(w, BondInstallation{0.03});
+  cdem::Rng rng(3);
+  for (std::size_t b = 0; b < w.bodies().size(); ++b)
+    w.set_body_velocity(static_cast<int>(b), rng.uniform(-2, 2), rng.uniform(-2, 2),
+                        rng.uniform(-500, 500));
+  return w;
+}
+
+}  // namespace
+
+// With a team, contact_energy forms its two sums at once, each whole on one thread: the same
+// bits as the one loop of a world on one thread (the two worlds' states are the same bits).
+TEST(BondEnergy, ContactEnergyOnTwoThreadsHasTheBitsOfOne) {
+  World one = large_bonded_lattice(1), two = large_bonded_lattice(2);
+  one.cycle(200);
+  two.cycle(200);
+  ASSERT_GE(two.contacts().keys.size(), kShareOutAbove);  // the shared-out path runs
+  ASSERT_GT(one.cracks().size(), 0u);
+  const ContactEnergy a = contact_energy(one), b = contact_energy(two);
+  EXPECT_GT(a.bond_strain, 0);
+  EXPECT_GT(a.linear_strain, 0);
+  EXPECT_EQ(std::memcmp(&a, &b, sizeof(ContactEnergy)), 0)
+      << a.linear_strain << " " << b.linear_strain << " " << a.bond_strain << " " << b.bond_strain;
+}
