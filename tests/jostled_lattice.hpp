@@ -38,10 +38,11 @@ inline dem::BondModel weak_parallel_bond() {
   return bond;
 }
 
-inline void add_hex_lattice(dem::World& w) {
+// A hex lattice of side x side discs of radius about 0.5 mm.
+inline void add_hex_lattice(dem::World& w, int side = 12) {
   const double r = 0.5e-3;  // m
-  for (int iy = 0; iy < 12; ++iy)
-    for (int ix = 0; ix < 12; ++ix)
+  for (int iy = 0; iy < side; ++iy)
+    for (int ix = 0; ix < side; ++ix)
       w.add_disc(ix * 2 * r + (iy % 2) * r, iy * std::sqrt(3.0) * r, r * (0.98 + 0.02 * (ix % 2)),
                  2000);
 }

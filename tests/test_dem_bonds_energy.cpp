@@ -12,6 +12,7 @@
 #include "dem/bond_installation.hpp"
 #include "dem/contact_energy.hpp"
 #include "dem/world.hpp"
+#include "jostled_lattice.hpp"
 
 namespace {
 
@@ -256,29 +257,11 @@ namespace {
 // A bonded hex lattice with more candidate pairs than a team shares out (kShareOutAbove),
 // jostled so that bonds stretch and some break.
 World large_bonded_lattice(int threads) {
-  WorldSettings s;
-  s.threads = threads;
-  s.local_damping = 0.1;
-  s.laws.fill(LinearContact{16e9, 1.45, 0.5});
-  BondModel bond;
-  bond.kind = BondKind::Parallel;
-  bond.parallel.modulus = 16e9;
-  bond.parallel.stiffness_ratio = 1.45;
-  bond.parallel.tensile_strength = 3e6;
-  bond.parallel.cohesion = 6e6;
-  bond.parallel.friction_angle = 0.5;
-  s.bonds.fill(bond);
-  World w(s);
-  const double r = 0.5e-3;  // m
-  for (int iy = 0; iy < 60; ++iy)
-    for (int ix = 0; ix < 60; ++ix)
-      w.add_disc(ix * 2 * r + (iy % 2) * r, iy * std::sqrt(3.0) * r, r * (0.98 + 0.02 * (ix % 2)),
-                 2000);
+  World w(cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5},
+                                       cdem::test::weak_parallel_bond()));
+  cdem::test::add_hex_lattice(w, 60);
   install_bonds(w, BondInstallation{0.03});
-  cdem::Rng rng(3);
-  for (std::size_t b = 0; b < w.bodies().size(); ++b)
-    w.set_body_velocity(static_cast<int>(b), rng.uniform(-2, 2), rng.uniform(-2, 2),
-                        rng.uniform(-500, 500));
+  cdem::test::jostle(w);
   return w;
 }
 
