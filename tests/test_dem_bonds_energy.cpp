@@ -250,10 +250,6 @@ TEST(BondEnergy, BalanceClosesOnAJostlingBondedLattice) {
   EXPECT_LT(worst, 5e-3);
 }
 
-}  // namespace
-
-namespace {
-
 // A bonded hex lattice with more candidate pairs than a team shares out (kShareOutAbove),
 // jostled so that bonds stretch and some break.
 World large_bonded_lattice(int threads) {
@@ -264,8 +260,6 @@ World large_bonded_lattice(int threads) {
   cdem::test::jostle(w);
   return w;
 }
-
-}  // namespace
 
 // With a team, contact_energy forms its two sums at once, each whole on one thread: the same
 // bits as the one loop of a world on one thread (the two worlds' states are the same bits).
@@ -281,3 +275,5 @@ TEST(BondEnergy, ContactEnergyOnTwoThreadsHasTheBitsOfOne) {
   EXPECT_EQ(std::memcmp(&a, &b, sizeof(ContactEnergy)), 0)
       << a.linear_strain << " " << b.linear_strain << " " << a.bond_strain << " " << b.bond_strain;
 }
+
+}  // namespace
