@@ -6,7 +6,8 @@
 // and 2 threads, and the bonds broken while timing (0 = all bonds intact throughout).
 // The `law` argument picks the mortar and ITZ law on the same specimen: 0 = parallel bonds
 // (samples/c30_materials.toml), 1 = flat joints (samples/materials/c30_flat_joint.toml), so the
-// cost of the flat joint is a ratio within one run.
+// cost of the flat joint is a ratio within one run. BM_C30LaneSets compares the lane sets
+// (dem/lanes.hpp) the same way.
 //
 // Needs the specimen file (not generated here: about a minute):
 //   build/bin/cdem generate samples/c30_specimen.toml -o /tmp/c30.h5
@@ -73,6 +74,36 @@ void BM_C30BondedSpecimenCycles(benchmark::State& state) {
 BENCHMARK(BM_C30BondedSpecimenCycles)
     ->ArgNames({"threads", "law"})
     ->ArgsProduct({{1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(4)
+    ->Repetitions(5)
+    ->UseRealTime();
+
+// The lane sets on one thread (parallel bonds): none, AVX2 (four pairs or discs at a time) and
+// AVX-512 (eight), each where the CPU has it, so their gain is a ratio within one run. Run with
+// --benchmark_enable_random_interleaving=true on a busy host.
+void BM_C30LaneSets(benchmark::State& state) {
+  if (!fs::exists(cdem::bench::c30_specimen_path())) {
+    state.SkipWithError("no specimen (see BM_C30BondedSpecimenCycles)");
+    return;
+  }
+  const auto lanes = static_cast<cdem::dem::LaneIsa>(state.range(0));
+  if (cdem::dem::usable_lanes(lanes) != lanes) {
+    state.SkipWithError("this CPU does not have that lane set");
+    return;
+  }
+  cdem::dem::World w = c30_world(0).world;
+  cdem::dem::WorldSettings s = w.settings();
+  s.threads = 1;
+  s.lanes = lanes;
+  w.set_settings(s);
+  cdem::bench::time_cycles(state, w, kSteps);
+  state.counters["discs"] = static_cast<double>(w.discs().size());
+}
+
+BENCHMARK(BM_C30LaneSets)
+    ->ArgNames({"lanes"})
+    ->DenseRange(0, 2)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(4)
     ->Repetitions(5)

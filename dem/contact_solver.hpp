@@ -10,6 +10,7 @@
 #include "dem/bond_failure.hpp"
 #include "dem/contact_model.hpp"
 #include "dem/discs.hpp"
+#include "dem/lanes.hpp"
 #include "dem/linear_contact.hpp"
 #include "dem/neighbor_list.hpp"
 #include "dem/staggered_array.hpp"
@@ -72,8 +73,9 @@ using ContactLaws = std::array<LinearContact, kContactClassCount>;
 
 // How a force pass runs and what it writes besides the forces on the discs.
 struct PassOptions {
-  // Disc pairs in AVX-512 lanes where the CPU has them (the same bits either way).
-  bool lanes = true;
+  // Disc pairs in lanes: the widest set up to this one that the CPU has (dem/lanes.hpp; the
+  // same bits either way).
+  LaneIsa lanes = LaneIsa::Avx512;
   // Write every disc pair's normal, overlap, fx and fy into ContactForces (32 bytes per pair)
   // and sum the virial. Without, only the pairs whose bond broke get them (the crack log reads
   // their overlap) and the virial is NaN: a loop that reads the per-pair results at its records

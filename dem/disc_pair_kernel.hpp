@@ -23,7 +23,7 @@ namespace cdem::dem {
 inline constexpr std::size_t kGeometryBlock = 64;
 
 // The law of one pair and of several is written once, over the number type T: double for one
-// pair, Lanes for kLaneCount (dem/lanes.hpp).
+// pair, Lanes8 or Lanes4 for eight or four (dem/lanes.hpp).
 
 // Geometry of a pair.
 template <class T>
@@ -141,7 +141,7 @@ LinearContactOf<T> linear_contact(const PairGeometryOf<T>& g, const PairMotionOf
 
 // A pair with an intact parallel bond (SPEC 4; docs/dem_design.md "Bonds in the contact
 // loop") up to the failure test: the linear contact with Coulomb slip plus the bond's springs,
-// their geometry, forces and stresses. P: ParallelBondParams for one pair, ParallelBondLanes
+// their geometry, forces and stresses. P: ParallelBondParams for one pair, ParallelBondLanes<L>
 // for several.
 template <class T>
 struct ParallelBondedPairOf {
@@ -167,8 +167,9 @@ ParallelBondedPairOf<T> parallel_bonded_pair(const PairGeometryOf<T>& g, const P
 }
 
 // The class constants of the parallel-bond law for several pairs, one per lane.
+template <class L>
 struct ParallelBondLanes {
-  Lanes modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
+  L modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
 };
 
 class DiscPairKernel {
@@ -189,8 +190,9 @@ class DiscPairKernel {
     return g;
   }
 
-  // options.lanes: evaluate the unbonded and parallel-bonded pairs kLaneCount at a time where
-  // the CPU can (lanes_supported()); the results are the same bits either way.
+  // options.lanes: evaluate the unbonded and parallel-bonded pairs eight (AVX-512) or four
+  // (AVX2) at a time, the widest the CPU has up to options.lanes (usable_lanes()); the results
+  // are the same bits either way.
   // options.pair_results: store every pair's normal, overlap, fx, fy in `out` (else only those
   // of the pairs whose bond breaks).
   DiscPairKernel(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
@@ -227,9 +229,10 @@ class DiscPairKernel {
         bonds_(bonds),
         dt_(dt),
         guard_(guard),
-        lanes_(options.lanes && lanes_supported()),
+        lanes_(usable_lanes(options.lanes)),
         pair_results_(options.pair_results) {
-    static_assert(kContactClassCount <= static_cast<int>(kLaneCount));
+    // Lanes4's lookup reads the table's first four entries as one register.
+    static_assert(kContactClassCount <= 4);
     for (int c = 0; c < kContactClassCount; ++c) {
       tan_friction_angle_[c] = std::tan(bonds[c].parallel.friction_angle);
       tan_joint_friction_angle_[c] = std::tan(bonds[c].flat_joint.friction_angle);
@@ -250,8 +253,8 @@ class DiscPairKernel {
 
   // Evaluates pairs [begin, end) in blocks of kGeometryBlock and hands each to take(k, geometry,
   // force) in ascending k: the loop of the one-thread pass and of each thread's range. With the
-  // lanes, a block goes kLaneCount pairs at a time through evaluate_lanes, and the pairs it leaves
-  // (other bond kinds, bonds breaking in this step) and the range's last few one at a time;
+  // lanes, a block goes eight or four pairs at a time through evaluate_lanes, and the pairs it
+  // leaves (other bond kinds, bonds breaking in this step) and the range's last few one at a time;
   // without, a block's geometries come first, then their laws. Returns the first pair tripping
   // the guard, or `end` when none does. Always inlined, and a caller's `take` with it: called
   // out of line once per pair (registers saved and restored, the captured pointers and the
@@ -282,27 +285,39 @@ class DiscPairKernel {
           __builtin_prefetch(disc_m_ + j, 1);
         }
       std::size_t k = start;
-      if (lanes_) {
-        // The block's groups are all evaluated before any is taken: a group's law is one long
-        // chain of dependent operations (sqrt, divisions), and the next group's, independent of
-        // it, overlaps it only if no other work stands between them.
-        PairLanes out[kGeometryBlock / kLaneCount];
-        const std::size_t groups = (stop - start) / kLaneCount;
-        for (std::size_t q = 0; q < groups; ++q) evaluate_lanes(start + q * kLaneCount, out[q]);
-        for (std::size_t q = 0; q < groups; ++q, k += kLaneCount)
-          for (std::size_t l = 0; l < kLaneCount; ++l) {
-            if (!(out[q].done >> l & 1)) {
-              evaluate_one(k + l, geometry(k + l), bad, take);
-              continue;
-            }
-            if (!(out[q].within_guard >> l & 1)) bad = std::min(bad, k + l);
-            take(k + l, out[q].geometry(l, first_[k + l], second_[k + l]), out[q].force(l));
-          }
-      }
+      if (lanes_ == LaneIsa::Avx512)
+        k = evaluate_groups<Lanes8>(start, stop, bad, take);
+      else if (lanes_ == LaneIsa::Avx2)
+        k = evaluate_groups<Lanes4>(start, stop, bad, take);
       for (std::size_t q = k; q < stop; ++q) g[q - k] = geometry(q);
       for (std::size_t q = k; q < stop; ++q) evaluate_one(q, g[q - k], bad, take);
     }
     return bad;
+  }
+
+  // The whole groups of kLanes<L> pairs of the block [start, stop) in lanes, handed to `take`
+  // in ascending k (the lanes left out, one at a time); returns where the groups end. The
+  // block's groups are all evaluated before any is taken: a group's law is one long chain of
+  // dependent operations (sqrt, divisions), and the next group's, independent of it, overlaps it
+  // only if no other work stands between them.
+  template <class L, class Take>
+  [[gnu::always_inline]] inline std::size_t evaluate_groups(std::size_t start, std::size_t stop,
+                                                            std::size_t& bad, Take& take) const {
+    constexpr std::size_t n = kLanes<L>;
+    PairLanes<n> out[kGeometryBlock / n];
+    const std::size_t groups = (stop - start) / n;
+    for (std::size_t q = 0; q < groups; ++q) evaluate_lanes(start + q * n, out[q]);
+    std::size_t k = start;
+    for (std::size_t q = 0; q < groups; ++q, k += n)
+      for (std::size_t l = 0; l < n; ++l) {
+        if (!(out[q].done >> l & 1)) {
+          evaluate_one(k + l, geometry(k + l), bad, take);
+          continue;
+        }
+        if (!(out[q].within_guard >> l & 1)) bad = std::min(bad, k + l);
+        take(k + l, out[q].geometry(l, first_[k + l], second_[k + l]), out[q].force(l));
+      }
+    return k;
   }
 
   // Pair k alone: evaluated, its guard test folded into `bad`, handed to `take`.
@@ -396,13 +411,12 @@ class DiscPairKernel {
   }
 
  private:
-  // Results of kLaneCount consecutive pairs evaluated at once (evaluate_lanes): their
-  // geometry and forces, and which lanes were evaluated (done) and are within the guard.
+  // Results of n consecutive pairs evaluated at once (evaluate_lanes): their geometry and
+  // forces, and which lanes were evaluated (done) and are within the guard.
+  template <std::size_t n>
   struct PairLanes {
-    alignas(64) double ri[kLaneCount], rj[kLaneCount], overlap[kLaneCount], nx[kLaneCount],
-        ny[kLaneCount], inverse_length[kLaneCount];
-    alignas(64) double normal[kLaneCount], fx[kLaneCount], fy[kLaneCount], moment_i[kLaneCount],
-        moment_j[kLaneCount], slip_work[kLaneCount];
+    alignas(64) double ri[n], rj[n], overlap[n], nx[n], ny[n], inverse_length[n];
+    alignas(64) double normal[n], fx[n], fy[n], moment_i[n], moment_j[n], slip_work[n];
     unsigned done = 0, within_guard = 0;  // bit l: lane l
 
     Geometry geometry(std::size_t l, std::int32_t i, std::int32_t j) const {
@@ -430,56 +444,67 @@ class DiscPairKernel {
     }
   };
 
-  // Pairs k .. k + kLaneCount - 1 in lanes: the unbonded ones with the law of `linear`, those
-  // with an intact parallel bond with the law of `parallel_bonded`, the same operations in the
-  // same order, so each lane gets the bits of its one-pair evaluation. A lane of another bond
-  // kind, or whose bond breaks in this step, writes nothing and is left out of `done`, for the
+  // Pairs k .. k + n - 1 in lanes: the unbonded ones with the law of `linear`, those with an
+  // intact parallel bond with the law of `parallel_bonded`, the same operations in the same
+  // order, so each lane gets the bits of its one-pair evaluation. A lane of another bond kind,
+  // or whose bond breaks in this step, writes nothing and is left out of `done`, for the
   // one-pair path. The discs' data come as their records (a line each, transposed into lanes),
-  // the class constants by a permutation of a register holding the four classes' values.
-  CDEM_LANES_TARGET void evaluate_lanes(std::size_t k, PairLanes& out) const {
-    static_assert(DiscState::kFields == kLaneCount, "a record transposes into one Lanes per field");
+  // the class constants by a permutation of a register holding the classes' values. One body
+  // (evaluate_lanes_of) compiled for AVX-512 and for AVX2.
+  CDEM_LANES8_TARGET void evaluate_lanes(std::size_t k, PairLanes<8>& out) const {
+    evaluate_lanes_of<Lanes8>(k, out);
+  }
+  CDEM_LANES4_TARGET void evaluate_lanes(std::size_t k, PairLanes<4>& out) const {
+    evaluate_lanes_of<Lanes4>(k, out);
+  }
+
+  // Lane code: called only from the functions above, which inline it.
+  template <class L>
+  void evaluate_lanes_of(std::size_t k, PairLanes<kLanes<L>>& out) const {
+    static_assert(DiscState::kFields == kRecordFields,
+                  "a record transposes into one lane vector per field");
     const std::int32_t *i = first_ + k, *j = second_ + k;
     const std::uint8_t* cls = contact_class_ + k;
-    const LaneMask unbonded = lanes_equal(bond_ + k, static_cast<std::uint8_t>(BondKind::None));
-    const LaneMask parallel = lanes_equal(bond_ + k, static_cast<std::uint8_t>(BondKind::Parallel));
-    Lanes a[kLaneCount], b[kLaneCount];  // the fields of the first and second discs' DiscState
+    const MaskOf<L> unbonded = lanes_equal<L>(bond_ + k, static_cast<std::uint8_t>(BondKind::None));
+    const MaskOf<L> parallel =
+        lanes_equal<L>(bond_ + k, static_cast<std::uint8_t>(BondKind::Parallel));
+    L a[kRecordFields], b[kRecordFields];  // the fields of the first and second discs' DiscState
     const auto* records = reinterpret_cast<const double*>(disc_);
     load_records(records, i, a);
     load_records(records, j, b);
     using S = DiscState;
-    const PairGeometryOf<Lanes> g =
+    const PairGeometryOf<L> g =
         pair_geometry(b[S::kX] - a[S::kX], b[S::kY] - a[S::kY], a[S::kR], b[S::kR]);
-    const PairMotionOf<Lanes> m{a[S::kVx], a[S::kVy], a[S::kOmega],
-                                b[S::kVx], b[S::kVy], b[S::kOmega]};
-    const Lanes mu = lookup(by_class_.mu, cls), dt = splat<Lanes>(dt_);
-    const LinearContactOf<Lanes> c = dem::linear_contact(
-        g, m, lookup(by_class_.emod, cls), lookup(by_class_.shear_per_normal_stiffness, cls), mu,
-        load(shear_ + k), dt);
+    const PairMotionOf<L> m{a[S::kVx], a[S::kVy], a[S::kOmega], b[S::kVx], b[S::kVy], b[S::kOmega]};
+    const L mu = lookup<L>(by_class_.mu, cls), dt = splat<L>(dt_);
+    const LinearContactOf<L> c = dem::linear_contact(
+        g, m, lookup<L>(by_class_.emod, cls), lookup<L>(by_class_.shear_per_normal_stiffness, cls),
+        mu, load<L>(shear_ + k), dt);
     const unsigned bonded_lanes = lane_bits(parallel);
     // The bond law where a lane has a bond: an unbonded packing (the generator's, the LAMMPS
     // benchmark's) skips its two divisions; a bonded specimen takes it in almost every group.
-    ParallelBondedPairOf<Lanes> r{};
-    LaneMask breaks;
+    ParallelBondedPairOf<L> r{};
+    MaskOf<L> breaks{};
     if (bonded_lanes) {
-      const ParallelBondLanes p{
-          lookup(by_class_.modulus, cls),           lookup(by_class_.stiffness_ratio, cls),
-          lookup(by_class_.tensile_strength, cls),  lookup(by_class_.cohesion, cls),
-          lookup(by_class_.radius_multiplier, cls), lookup(by_class_.moment_factor, cls)};
-      r = parallel_bonded_pair(
-          g, m, c, p, lookup(by_class_.tan_friction_angle, cls),
-          {load_where(bonded_lanes, bond_normal_ + k), load_where(bonded_lanes, bond_shear_ + k),
-           load_where(bonded_lanes, bond_moment_ + k)},
-          dt);
+      const ParallelBondLanes<L> p{
+          lookup<L>(by_class_.modulus, cls),           lookup<L>(by_class_.stiffness_ratio, cls),
+          lookup<L>(by_class_.tensile_strength, cls),  lookup<L>(by_class_.cohesion, cls),
+          lookup<L>(by_class_.radius_multiplier, cls), lookup<L>(by_class_.moment_factor, cls)};
+      r = parallel_bonded_pair(g, m, c, p, lookup<L>(by_class_.tan_friction_angle, cls),
+                               {load_where<L>(bonded_lanes, bond_normal_ + k),
+                                load_where<L>(bonded_lanes, bond_shear_ + k),
+                                load_where<L>(bonded_lanes, bond_moment_ + k)},
+                               dt);
       breaks =
           parallel_bond_breaks_in_tension(r.stress, p) | parallel_bond_breaks_in_shear(r.stress);
     }
     const unsigned done = lane_bits(unbonded | (parallel & ~breaks));
     // An unbonded pair of a frictionless class carries no shear force (linear()).
-    const LaneMask keeps_shear = parallel | is_positive(mu);
-    const Lanes fs = select(keeps_shear, c.fs, Lanes{});
-    const ResolvedPairOf<Lanes> f =
+    const MaskOf<L> keeps_shear = parallel | is_positive(mu);
+    const L fs = select(keeps_shear, c.fs, L{});
+    const ResolvedPairOf<L> f =
         dem::resolve(g, select(parallel, c.part.fn - r.state.fn, c.part.fn),
-                     select(parallel, fs + r.state.fs, fs), select(parallel, r.state.m, Lanes{}));
+                     select(parallel, fs + r.state.fs, fs), select(parallel, r.state.m, L{}));
     store_where(done, shear_ + k, fs);
     store_where(done & bonded_lanes, bond_normal_ + k, r.state.fn);
     store_where(done & bonded_lanes, bond_shear_ + k, r.state.fs);
@@ -490,18 +515,18 @@ class DiscPairKernel {
       store_where(done, fx_ + k, f.fx);
       store_where(done, fy_ + k, f.fy);
     }
-    store_where(~0u, out.ri, g.ri);
-    store_where(~0u, out.rj, g.rj);
-    store_where(~0u, out.overlap, g.overlap);
-    store_where(~0u, out.nx, g.nx);
-    store_where(~0u, out.ny, g.ny);
-    store_where(~0u, out.inverse_length, g.inverse_length);
-    store_where(~0u, out.normal, f.normal);
-    store_where(~0u, out.fx, f.fx);
-    store_where(~0u, out.fy, f.fy);
-    store_where(~0u, out.moment_i, f.moment_i);
-    store_where(~0u, out.moment_j, f.moment_j);
-    store_where(~0u, out.slip_work, select(keeps_shear, c.slip_work, Lanes{}));
+    store(out.ri, g.ri);
+    store(out.rj, g.rj);
+    store(out.overlap, g.overlap);
+    store(out.nx, g.nx);
+    store(out.ny, g.ny);
+    store(out.inverse_length, g.inverse_length);
+    store(out.normal, f.normal);
+    store(out.fx, f.fx);
+    store(out.fy, f.fy);
+    store(out.moment_i, f.moment_i);
+    store(out.moment_j, f.moment_j);
+    store(out.slip_work, select(keeps_shear, c.slip_work, L{}));
     out.done = done;
     out.within_guard = lane_bits(is_at_most(g.overlap, guard_ * min_of(g.ri, g.rj)));
   }
@@ -692,15 +717,16 @@ class DiscPairKernel {
   std::array<double, kContactClassCount> tan_friction_angle_{};          // tan(phi_b) by class
   std::array<double, kContactClassCount> tan_joint_friction_angle_{};    // flat joint tan(phi)
   std::array<double, kContactClassCount> shear_per_normal_stiffness_{};  // 1 / kappa* by class
-  // The class constants of the lanes, by class code (up to kLaneCount classes).
+  // The class constants of the lanes, by class code: tables of eight, as Lanes8's lookup reads
+  // them (Lanes4's reads the first four).
   struct ByClass {
-    double emod[kLaneCount]{}, shear_per_normal_stiffness[kLaneCount]{}, mu[kLaneCount]{},
-        tan_friction_angle[kLaneCount]{}, modulus[kLaneCount]{}, stiffness_ratio[kLaneCount]{},
-        tensile_strength[kLaneCount]{}, cohesion[kLaneCount]{}, radius_multiplier[kLaneCount]{},
-        moment_factor[kLaneCount]{};
+    double emod[8]{}, shear_per_normal_stiffness[8]{}, mu[8]{}, tan_friction_angle[8]{},
+        modulus[8]{}, stiffness_ratio[8]{}, tensile_strength[8]{}, cohesion[8]{},
+        radius_multiplier[8]{}, moment_factor[8]{};
   } by_class_;
   double dt_, guard_;
-  bool lanes_, pair_results_;
+  LaneIsa lanes_;
+  bool pair_results_;
 };
 
 }  // namespace cdem::dem

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 namespace cdem::dem {
 
@@ -31,7 +32,7 @@ void gather_body_forces(Bodies& b, const Discs& d, std::size_t begin, std::size_
 namespace {
 
 // Energy terms of one body over one step, before the common factor dt / 2: damping and
-// applied work as force x (v_old + v_new). T = double for one body, Lanes for several.
+// applied work as force x (v_old + v_new). T = double for one body, Lanes8 or Lanes4 for several.
 template <class T>
 struct StepEnergyOf {
   T damped{}, applied{};
@@ -68,39 +69,43 @@ void advance(T& v, T force, T applied, T inv_inertia, T dt, T alpha, StepEnergyO
   }
 }
 
-// Eight consecutive free discs (not clumps, not prescribed) integrated at once: their step's
+// n consecutive free discs (not clumps, not prescribed) integrated at once: their step's
 // terms of the range sums, each summed into the totals in body order by the caller.
+template <std::size_t n>
 struct FreeDiscLanes {
-  alignas(64) double damped[kLaneCount], applied[kLaneCount];
-  alignas(64) double position[kLaneCount];  // m, x + y + theta after the step
-  alignas(64) double speed2[kLaneCount];    // m^2/s^2, squared speed
+  alignas(64) double damped[n], applied[n];
+  alignas(64) double position[n];  // m, x + y + theta after the step
+  alignas(64) double speed2[n];    // m^2/s^2, squared speed
 };
 
-// True when bodies k .. k + kLaneCount - 1 are all free discs.
+// True when bodies k .. k + n - 1 are all free discs.
+template <std::size_t n>
 bool free_discs(const Bodies& b, std::size_t k) {
-  std::uint64_t prescribed, clump;
-  static_assert(sizeof(prescribed) == kLaneCount * sizeof(b.prescribed[0]));
+  using Flags = std::conditional_t<n == 8, std::uint64_t, std::uint32_t>;
+  Flags prescribed, clump;
+  static_assert(sizeof(prescribed) == n * sizeof(b.prescribed[0]));
   std::memcpy(&prescribed, b.prescribed.data() + k, sizeof(prescribed));
   std::memcpy(&clump, b.is_clump.data() + k, sizeof(clump));
   return (prescribed | clump) == 0;
 }
 
 // The free-disc branch of integrate_bodies on lanes, the same operations in the same order.
-template <bool kBook, bool kDamped>
-CDEM_LANES_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
-                                            std::size_t k, FreeDiscLanes& out) {
-  const Lanes dtl = splat<Lanes>(dt), al = splat<Lanes>(alpha);
-  Lanes vx = load(b.vx.data() + k), vy = load(b.vy.data() + k), w = load(b.omega.data() + k);
-  const Lanes inv_mass = load(b.inv_mass_dyn.data() + k);
-  StepEnergyOf<Lanes> e;
-  advance<kBook, kDamped>(vx, load(b.fx.data() + k), load(b.fx_applied.data() + k), inv_mass, dtl,
-                          al, e);
-  advance<kBook, kDamped>(vy, load(b.fy.data() + k), load(b.fy_applied.data() + k), inv_mass, dtl,
-                          al, e);
-  advance<kBook, kDamped>(w, load(b.moment.data() + k), Lanes{}, load(b.inv_inertia_dyn.data() + k),
+// Lane code: called only from the integrate_free_discs below, which inline it.
+template <bool kBook, bool kDamped, class L>
+void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::size_t k,
+                             FreeDiscLanes<kLanes<L>>& out) {
+  const L dtl = splat<L>(dt), al = splat<L>(alpha);
+  L vx = load<L>(b.vx.data() + k), vy = load<L>(b.vy.data() + k), w = load<L>(b.omega.data() + k);
+  const L inv_mass = load<L>(b.inv_mass_dyn.data() + k);
+  StepEnergyOf<L> e;
+  advance<kBook, kDamped>(vx, load<L>(b.fx.data() + k), load<L>(b.fx_applied.data() + k), inv_mass,
                           dtl, al, e);
-  const Lanes x = load(b.x.data() + k) + dtl * vx, y = load(b.y.data() + k) + dtl * vy;
-  const Lanes theta = load(b.theta.data() + k) + dtl * w;
+  advance<kBook, kDamped>(vy, load<L>(b.fy.data() + k), load<L>(b.fy_applied.data() + k), inv_mass,
+                          dtl, al, e);
+  advance<kBook, kDamped>(w, load<L>(b.moment.data() + k), L{},
+                          load<L>(b.inv_inertia_dyn.data() + k), dtl, al, e);
+  const L x = load<L>(b.x.data() + k) + dtl * vx, y = load<L>(b.y.data() + k) + dtl * vy;
+  const L theta = load<L>(b.theta.data() + k) + dtl * w;
   store(b.vx.data() + k, vx);
   store(b.vy.data() + k, vy);
   store(b.omega.data() + k, w);
@@ -113,7 +118,7 @@ CDEM_LANES_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, doub
   store(out.speed2, vx * vx + vy * vy);
   // Onto the discs' records: position and velocity; radius and offset keep theirs.
   using S = DiscState;
-  Lanes fields[kLaneCount] = {};
+  L fields[kRecordFields] = {};
   fields[S::kX] = x;
   fields[S::kY] = y;
   fields[S::kVx] = vx;
@@ -124,13 +129,25 @@ CDEM_LANES_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, doub
   store_records(reinterpret_cast<double*>(d.state.data()), b.first_disc.data() + k, fields, kMoved);
 }
 
+template <bool kBook, bool kDamped>
+CDEM_LANES8_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
+                                             std::size_t k, FreeDiscLanes<8>& out) {
+  integrate_free_discs_of<kBook, kDamped, Lanes8>(b, d, dt, alpha, k, out);
+}
+template <bool kBook, bool kDamped>
+CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
+                                             std::size_t k, FreeDiscLanes<4>& out) {
+  integrate_free_discs_of<kBook, kDamped, Lanes4>(b, d, dt, alpha, k, out);
+}
+
 // kBook = false is the same loop without the energy terms, kDamped = false without local
 // damping (alpha = 0: its force and energy terms are zero); each combination is instantiated
 // separately so the loop carries no branch per degree of freedom. With `per_body`, each body's
-// energy terms are also stored there (the multi-thread cycle sums them in body order).
-template <bool kBook, bool kDamped>
+// energy terms are also stored there (the multi-thread cycle sums them in body order). n > 1:
+// runs of n free discs in lanes (8: AVX-512, 4: AVX2).
+template <bool kBook, bool kDamped, std::size_t n>
 RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::size_t begin,
-                             std::size_t end, BodyStepEnergy* per_body, bool lanes) {
+                             std::size_t end, BodyStepEnergy* per_body) {
   RangeMotion m;
   // Sum of every position: non-finite exactly when some position is (positions are far from
   // overflow), so the loop carries one addition per body instead of a test and a branch; the
@@ -138,23 +155,23 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
   double position_sum = 0;
   // Largest squared speed of a free disc and largest pebble speed bound of a clump (m/s).
   double disc_speed2 = 0, pebble_speed = 0;
-  lanes = lanes && lanes_supported();
   for (std::size_t k = begin; k < end; ++k) {
-    if (lanes && k + kLaneCount <= end && free_discs(b, k)) {
-      FreeDiscLanes out;
-      integrate_free_discs<kBook, kDamped>(b, d, dt, alpha, k, out);
-      for (std::size_t l = 0; l < kLaneCount; ++l) {
-        if constexpr (kBook) {
-          m.damped += out.damped[l];
-          m.applied += out.applied[l];
-          if (per_body) per_body[k + l] = {out.damped[l], out.applied[l], 0.0};
+    if constexpr (n > 1)
+      if (k + n <= end && free_discs<n>(b, k)) {
+        FreeDiscLanes<n> out;
+        integrate_free_discs<kBook, kDamped>(b, d, dt, alpha, k, out);
+        for (std::size_t l = 0; l < n; ++l) {
+          if constexpr (kBook) {
+            m.damped += out.damped[l];
+            m.applied += out.applied[l];
+            if (per_body) per_body[k + l] = {out.damped[l], out.applied[l], 0.0};
+          }
+          position_sum += out.position[l];
+          disc_speed2 = std::max(disc_speed2, out.speed2[l]);
         }
-        position_sum += out.position[l];
-        disc_speed2 = std::max(disc_speed2, out.speed2[l]);
+        k += n - 1;
+        continue;
       }
-      k += kLaneCount - 1;
-      continue;
-    }
     if (!b.prescribed[k]) {
       StepEnergyOf<double> e;
       advance<kBook, kDamped>(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);
@@ -214,12 +231,25 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
 
 RangeMotion integrate_range(Bodies& b, Discs& d, double dt, double alpha, bool book,
                             std::size_t begin, std::size_t end, BodyStepEnergy* per_body,
-                            bool lanes) {
+                            LaneIsa lanes) {
+  // Each combination of energy terms, damping and lane count is its own loop, with no branch on
+  // them per body.
+  const auto with_lanes = [&]<bool kBook, bool kDamped>() {
+    switch (usable_lanes(lanes)) {
+      case LaneIsa::Avx512:
+        return integrate_bodies<kBook, kDamped, 8>(b, d, dt, alpha, begin, end, per_body);
+      case LaneIsa::Avx2:
+        return integrate_bodies<kBook, kDamped, 4>(b, d, dt, alpha, begin, end, per_body);
+      case LaneIsa::None:
+        break;
+    }
+    return integrate_bodies<kBook, kDamped, 1>(b, d, dt, alpha, begin, end, per_body);
+  };
   if (alpha != 0)
-    return book ? integrate_bodies<true, true>(b, d, dt, alpha, begin, end, per_body, lanes)
-                : integrate_bodies<false, true>(b, d, dt, alpha, begin, end, per_body, lanes);
-  return book ? integrate_bodies<true, false>(b, d, dt, alpha, begin, end, per_body, lanes)
-              : integrate_bodies<false, false>(b, d, dt, alpha, begin, end, per_body, lanes);
+    return book ? with_lanes.template operator()<true, true>()
+                : with_lanes.template operator()<false, true>();
+  return book ? with_lanes.template operator()<true, false>()
+              : with_lanes.template operator()<false, false>();
 }
 
 void book_step_energy(const RangeMotion& m, double dt, EnergyLedger& ledger) {
@@ -241,7 +271,7 @@ StepMotion step_motion(const Bodies& b, const RangeMotion& m, double dt) {
 }
 
 StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger,
-                     bool lanes) {
+                     LaneIsa lanes) {
   const RangeMotion m =
       integrate_range(b, d, dt, alpha, ledger != nullptr, 0, b.size(), nullptr, lanes);
   if (ledger) book_step_energy(m, dt, *ledger);

@@ -15,7 +15,7 @@ namespace cdem::dem {
 
 // Local damping: F <- F - alpha |F| sign(v) (alpha in [0, 1); 0 switches it off). It removes
 // a fixed fraction of the work of the out-of-balance force and needs no velocity scale.
-// T = double for one degree of freedom, Lanes for several (dem/lanes.hpp).
+// T = double for one degree of freedom, Lanes8 or Lanes4 for several (dem/lanes.hpp).
 template <class T>
 T local_damping(T force, T velocity, T alpha) {
   // alpha |F| sign(v) with sign(0) = 0: the sign is copied, never branched on (the sign of a
@@ -46,7 +46,7 @@ struct StepMotion {
   double max_displacement = 0;  // m, bound on the largest disc displacement of the step
 };
 StepMotion integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger,
-                     bool lanes = true);
+                     LaneIsa lanes = LaneIsa::Avx512);
 
 // The pieces of integrate for a range of bodies. Energy terms of one body's step before the
 // common factors (damping and applied work: force x (v_old + v_new); prescribed: the work rate
@@ -63,11 +63,11 @@ struct RangeMotion {
 // Integrates bodies [begin, end); with `book` it forms the energy terms, and with `per_body`
 // (indexed by body) also stores each body's, so that ranges integrated by several threads can
 // be summed in body order afterwards, with the bits of one loop.
-// With `lanes`, runs of eight free discs are integrated at once with AVX-512 where the CPU has
-// it (dem/lanes.hpp; the same bits).
+// Runs of eight (AVX-512) or four (AVX2) free discs are integrated at once, the widest set up to
+// `lanes` that the CPU has (dem/lanes.hpp; the same bits).
 RangeMotion integrate_range(Bodies& bodies, Discs& discs, double dt, double alpha, bool book,
                             std::size_t begin, std::size_t end, BodyStepEnergy* per_body,
-                            bool lanes = true);
+                            LaneIsa lanes = LaneIsa::Avx512);
 // Adds the sums of a whole step (all bodies, in body order) to the ledger.
 void book_step_energy(const RangeMotion& step, double dt, EnergyLedger& ledger);
 // The step's result from its sums (the bad body is looked for only if the sum is non-finite).

@@ -31,8 +31,8 @@ struct ParallelBondParams {
   double moment_factor = 1;      // beta
 };
 
-// Geometry and stiffness of one bond, fixed at installation. T = double for one bond, Lanes for
-// several (dem/lanes.hpp), as in the functions below.
+// Geometry and stiffness of one bond, fixed at installation. T = double for one bond, Lanes8 or
+// Lanes4 for several (dem/lanes.hpp), as in the functions below.
 template <class T>
 struct ParallelBondGeometryOf {
   T radius{};   // Rb = lambda min(R1, R2), m
@@ -53,7 +53,7 @@ using ParallelBondState = ParallelBondStateOf<double>;
 
 // L = R1 + R2 for two discs; for a disc-wall bond pass r2 = 0 (L = R1, r = R1).
 // `inverse_length` = 1 / L (the contact loop shares that reciprocal with the contact normal).
-// P: ParallelBondParams, or for several bonds a struct of the same members as Lanes.
+// P: ParallelBondParams, or for several bonds a struct of the same members as Lanes8 or Lanes4.
 template <class P, class T>
 ParallelBondGeometryOf<T> parallel_bond_geometry(const P& p, T r1, T r2, T inverse_length) {
   constexpr double t = kThickness;  // m

@@ -64,11 +64,12 @@ struct WorldSettings {
   // cycle; docs/performance.md) and switches the runaway check off too (it needs the work put
   // in); the wall work is booked either way.
   bool energy_tracking = true;
-  // Evaluate the unbonded and parallel-bonded disc pairs, and integrate the free discs, eight at
-  // a time with AVX-512 where the CPU has it (dem/lanes.hpp). The results are bitwise the same
-  // either way (tests/test_dem_pair_lanes.cpp, tests/test_bitwise_guard.cpp); false takes every
-  // pair and body alone, as a CPU without AVX-512 does.
-  bool lanes = true;
+  // Evaluate the unbonded and parallel-bonded disc pairs, and integrate the free discs, several
+  // at a time: eight with AVX-512, four with AVX2, the widest set up to this one that the CPU
+  // has (dem/lanes.hpp). The results are bitwise the same either way
+  // (tests/test_dem_pair_lanes.cpp, tests/test_bitwise_guard.cpp); LaneIsa::None takes every
+  // pair and body alone, as a CPU without AVX2 does.
+  LaneIsa lanes = LaneIsa::Avx512;
 };
 
 class World {

@@ -758,7 +758,7 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
   settings.density_scaling = c.density_scaling;
   settings.scaled_time_step = c.scaled_time_step;
   settings.threads = c.threads;
-  settings.lanes = c.lanes;
+  settings.lanes = c.lanes ? dem::LaneIsa::Avx512 : dem::LaneIsa::None;
 
   LabTestResult res;
   res.type = c.type;

@@ -15,8 +15,8 @@
 //
 // Each world also runs with 2 and 3 threads (the multi-thread cycle, dem/threaded_cycle.hpp) and
 // must give the same hashes: results do not depend on the thread count, and 3 threads cut the
-// lists where 2 do not. Each runs with and without the pair kernel's AVX-512 lanes
-// (dem/lanes.hpp, added after the hashes were recorded): the same hashes either way.
+// lists where 2 do not. Each runs without lanes and with each lane set the CPU has (AVX2 and
+// AVX-512, dem/lanes.hpp, added after the hashes were recorded): the same hashes every way.
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -36,6 +36,7 @@
 #include "io/specimen_file.hpp"
 #include "lab/lab_test.hpp"
 #include "lab_test_fixtures.hpp"
+#include "lane_sets.hpp"
 #include "mesogen/generate.hpp"
 #include "scratch_dir.hpp"
 
@@ -146,7 +147,7 @@ void expect_hashes(const WorldHashes& got, const WorldHashes& want) {
 // A mortar packing (10 x 20 mm, ~320 discs) in its four mould walls, every third disc an
 // aggregate disc so the pairs fall in all three classes M, ITZ and A; the top and bottom walls
 // close in at 0.5 m/s each so wall contacts load, slip and (bonded) break bonds.
-World loaded_packing(const BondModels& bonds, int threads, bool lanes) {
+World loaded_packing(const BondModels& bonds, int threads, LaneIsa lanes) {
   WorldSettings s;
   s.threads = threads;
   s.lanes = lanes;
@@ -181,12 +182,15 @@ constexpr bool kRecordedToolchain = false;
   GTEST_SKIP() << "hashes recorded with GCC 12.2, x86-64, Release without -march; re-record " \
                   "them for this toolchain (see the file's header)"
 
-// The thread count, and whether the disc pairs may run in AVX-512 lanes (dem/lanes.hpp; on a
-// CPU without AVX-512 both settings run every pair alone).
-class BitwiseGuard : public testing::TestWithParam<std::tuple<int, bool>> {
+// The thread count, and the lanes the disc pairs and free discs may run in (dem/lanes.hpp); a
+// lane set this CPU lacks is skipped.
+class BitwiseGuard : public testing::TestWithParam<std::tuple<int, LaneIsa>> {
  protected:
+  void SetUp() override {
+    if (usable_lanes(lanes()) != lanes()) GTEST_SKIP() << "this CPU lacks the lane set";
+  }
   int threads() const { return std::get<0>(GetParam()); }
-  bool lanes() const { return std::get<1>(GetParam()); }
+  LaneIsa lanes() const { return std::get<1>(GetParam()); }
 };
 
 TEST_P(BitwiseGuard, UnbondedPacking) {
@@ -232,9 +236,12 @@ TEST_P(BitwiseGuard, BondedPacking) {
 // and platen loading through the lab layer.
 TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
   SKIP_UNLESS_RECORDED_TOOLCHAIN();
+  // The lab's `lanes` key is true or false: true runs the widest set this CPU has.
+  if (lanes() != LaneIsa::None && lanes() != lane_isa_of_cpu())
+    GTEST_SKIP() << "the lab test runs the widest lane set of this CPU only";
   const auto dir =
       test::scratch_dir("BitwiseGuard", "ReducedC30Uniaxial" + std::to_string(threads()) +
-                                            (lanes() ? "lanes" : "alone"));
+                                            std::to_string(static_cast<int>(lanes())));
   test::write_text(dir / "spec.toml",
                    "seed = 1\n[specimen]\nshape = \"rectangle\"\nwidth_mm = 40\nheight_mm = 80\n"
                    "[gradation]\ntype = \"walraven\"\np_k = 0.75\nd_min_mm = 5\nd_max_mm = 10\n"
@@ -257,8 +264,8 @@ TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
   test::write_text(dir / "test.toml",
                    "seed = 1\nspecimen = \"specimen.h5\"\nmaterials = \"materials.toml\"\n"
                    "[test]\ntype = \"uniaxial\"\nhistory_interval = 100\nthreads = " +
-                       std::to_string(threads()) + "\nlanes = " + (lanes() ? "true" : "false") +
-                       "\n");
+                       std::to_string(threads()) +
+                       "\nlanes = " + (lanes() != LaneIsa::None ? "true" : "false") + "\n");
   const LabTestInput input = read_lab_test(dir / "test.toml");
   const Specimen specimen = read_specimen(dir / "specimen.h5");
   ASSERT_GT(specimen.r.size(), 1000u);
@@ -293,6 +300,8 @@ TEST_P(BitwiseGuard, ReducedC30Uniaxial) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ThreadsAndLanes, BitwiseGuard,
-                         testing::Combine(testing::Values(1, 2, 3), testing::Bool()));
+                         testing::Combine(testing::Values(1, 2, 3),
+                                          testing::Values(LaneIsa::None, LaneIsa::Avx2,
+                                                          LaneIsa::Avx512)));
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The discs' records (dem/discs.hpp): one 64-byte DiscState per disc, read field by field as
-// arrays (d.x[i] ...), and read and written eight at a time by the lane code (load_records,
-// store_records: a transpose of eight records, dem/lanes.hpp). Independent reasons: a field
-// view must see the same element as the record (the same address), a copied or moved Discs
+// arrays (d.x[i] ...), and read and written eight or four at a time by the lane code
+// (load_records, store_records: a transpose of the records, dem/lanes.hpp). Independent reasons: a
+// field view must see the same element as the record (the same address), a copied or moved Discs
 // must view its own records, and a transpose of a matrix whose entries encode their row and
 // column must put entry (a, b) at (b, a).
 #include <gtest/gtest.h>
@@ -14,13 +14,13 @@
 
 #include "dem/discs.hpp"
 #include "dem/lanes.hpp"
+#include "lane_sets.hpp"
 
 namespace {
 
 using namespace cdem::dem;
 
-#define SKIP_WITHOUT_LANES() \
-  if (!lanes_supported()) GTEST_SKIP() << "this CPU has no AVX-512F: the lanes never run"
+using cdem::test::in_lanes;
 
 Discs discs_with(std::size_t n) {
   Discs d;
@@ -73,68 +73,83 @@ TEST(DiscRecords, ACopiedOrMovedSetViewsItsOwnRecords) {
   EXPECT_EQ(assigned.vx[0], 4);
 }
 
-// Lanes cross into AVX-512 code by reference only (dem/lanes.hpp).
-CDEM_LANES_TARGET void transpose_in_lanes(Lanes (&v)[kLaneCount]) {
-  transpose(v);
-}
-CDEM_LANES_TARGET void load_in_lanes(const Discs& d, const std::int32_t* index,
-                                     Lanes (&field)[kLaneCount]) {
-  load_records(reinterpret_cast<const double*>(d.state.data()), index, field);
-}
-CDEM_LANES_TARGET void store_in_lanes(Discs& d, const std::int32_t* index,
-                                      Lanes (&field)[kLaneCount], unsigned fields) {
-  store_records(reinterpret_cast<double*>(d.state.data()), index, field, fields);
+template <class L>
+class DiscRecordLanes : public testing::Test {};
+TYPED_TEST_SUITE(DiscRecordLanes, cdem::test::LaneTypes, cdem::test::LaneTypeNames);
+
+TYPED_TEST(DiscRecordLanes, TransposeMovesEntryAbToBa) {
+  using L = TypeParam;
+  constexpr std::size_t n = kLanes<L>;
+  SKIP_WITHOUT_LANES(L);
+  // n rows of n lanes (Lanes8), or two blocks of four (Lanes4's transpose4).
+  L v[8];
+  for (std::size_t a = 0; a < 8; ++a)
+    for (std::size_t b = 0; b < n; ++b) v[a][b] = static_cast<double>(10 * a + b);
+  in_lanes<L>([&] {
+    if constexpr (n == 8) {
+      transpose(v);
+    } else {
+      transpose4(v);
+      transpose4(v + 4);
+    }
+  });
+  for (std::size_t a = 0; a < 8; ++a)
+    for (std::size_t b = 0; b < n; ++b) {
+      const std::size_t block = a / n * n;  // the first row of a's block
+      EXPECT_EQ(v[a][b], static_cast<double>(10 * (block + b) + a - block))
+          << "row " << a << ", lane " << b;
+    }
 }
 
-TEST(DiscRecords, TransposeMovesEntryAbToBa) {
-  SKIP_WITHOUT_LANES();
-  Lanes v[kLaneCount];
-  for (std::size_t a = 0; a < kLaneCount; ++a)
-    for (std::size_t b = 0; b < kLaneCount; ++b) v[a][b] = static_cast<double>(10 * a + b);
-  transpose_in_lanes(v);
-  for (std::size_t a = 0; a < kLaneCount; ++a)
-    for (std::size_t b = 0; b < kLaneCount; ++b)
-      EXPECT_EQ(v[a][b], static_cast<double>(10 * b + a)) << "row " << a << ", lane " << b;
-}
-
-TEST(DiscRecords, EightRecordsLoadAsFieldsAndStoreBackOnlyTheChosenFields) {
-  SKIP_WITHOUT_LANES();
+TYPED_TEST(DiscRecordLanes, RecordsLoadAsFieldsAndStoreBackOnlyTheChosenFields) {
+  using L = TypeParam;
+  constexpr std::size_t n = kLanes<L>;
+  SKIP_WITHOUT_LANES(L);
   Discs d = discs_with(40);
   // Repeated and unordered indices load alike (the first discs of a group repeat).
-  const std::int32_t index[kLaneCount] = {3, 3, 17, 0, 39, 8, 8, 21};
-  Lanes field[kLaneCount];
-  load_in_lanes(d, index, field);
-  for (std::size_t l = 0; l < kLaneCount; ++l) {
-    const DiscState& s = d.state[static_cast<std::size_t>(index[l])];
-    EXPECT_EQ(field[DiscState::kX][l], s.x);
-    EXPECT_EQ(field[DiscState::kY][l], s.y);
-    EXPECT_EQ(field[DiscState::kR][l], s.r);
-    EXPECT_EQ(field[DiscState::kVx][l], s.vx);
-    EXPECT_EQ(field[DiscState::kVy][l], s.vy);
-    EXPECT_EQ(field[DiscState::kOmega][l], s.omega);
+  const std::int32_t index[8] = {3, 3, 17, 0, 39, 8, 8, 21};
+  for (std::size_t at = 0; at < 8; at += n) {
+    L field[kRecordFields];
+    in_lanes<L>(
+        [&] { load_records(reinterpret_cast<const double*>(d.state.data()), index + at, field); });
+    for (std::size_t l = 0; l < n; ++l) {
+      const DiscState& s = d.state[static_cast<std::size_t>(index[at + l])];
+      EXPECT_EQ(field[DiscState::kX][l], s.x);
+      EXPECT_EQ(field[DiscState::kY][l], s.y);
+      EXPECT_EQ(field[DiscState::kR][l], s.r);
+      EXPECT_EQ(field[DiscState::kVx][l], s.vx);
+      EXPECT_EQ(field[DiscState::kVy][l], s.vy);
+      EXPECT_EQ(field[DiscState::kOmega][l], s.omega);
+      EXPECT_EQ(field[DiscState::kOmega + 1][l], s.offset_x);
+      EXPECT_EQ(field[DiscState::kOmega + 2][l], s.offset_y);
+    }
   }
-  // Storing x and omega of eight distinct discs leaves their other fields, and the other
-  // discs, as they were.
+  // Storing x, omega and offset_y (a field of each half of a record) of n distinct discs leaves
+  // their other fields, and the other discs, as they were.
   const Discs before = d;
-  const std::int32_t distinct[kLaneCount] = {5, 1, 30, 12, 7, 33, 2, 19};
-  Lanes out[kLaneCount] = {};
-  for (std::size_t l = 0; l < kLaneCount; ++l) {
+  const std::int32_t distinct[8] = {5, 1, 30, 12, 7, 33, 2, 19};
+  L out[kRecordFields] = {};
+  for (std::size_t l = 0; l < n; ++l) {
     out[DiscState::kX][l] = -1.0 - static_cast<double>(l);
     out[DiscState::kOmega][l] = -100.0 - static_cast<double>(l);
+    out[DiscState::kOmega + 2][l] = -200.0 - static_cast<double>(l);
   }
-  store_in_lanes(d, distinct, out, 1u << DiscState::kX | 1u << DiscState::kOmega);
+  const unsigned fields =
+      1u << DiscState::kX | 1u << DiscState::kOmega | 1u << (DiscState::kOmega + 2);
+  in_lanes<L>(
+      [&] { store_records(reinterpret_cast<double*>(d.state.data()), distinct, out, fields); });
   for (std::size_t i = 0; i < d.size(); ++i) {
-    const auto* at = std::find(std::begin(distinct), std::end(distinct), static_cast<int>(i));
-    const bool written = at != std::end(distinct);
+    const auto* at = std::find(std::begin(distinct), std::begin(distinct) + n, static_cast<int>(i));
+    const bool written = at != std::begin(distinct) + n;
     const double l = static_cast<double>(at - std::begin(distinct));
     EXPECT_EQ(d.x[i], written ? -1.0 - l : before.x[i]) << "disc " << i;
     EXPECT_EQ(d.omega[i], written ? -100.0 - l : before.omega[i]) << "disc " << i;
+    EXPECT_EQ(d.offset_y[i], written ? -200.0 - l : before.offset_y[i]) << "disc " << i;
     EXPECT_EQ(d.y[i], before.y[i]);
     EXPECT_EQ(d.r[i], before.r[i]);
     EXPECT_EQ(d.vx[i], before.vx[i]);
     EXPECT_EQ(d.vy[i], before.vy[i]);
     EXPECT_EQ(d.offset_x[i], before.offset_x[i]);
-    EXPECT_EQ(d.offset_y[i], before.offset_y[i]);
   }
 }
 

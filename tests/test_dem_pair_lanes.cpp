@@ -1,10 +1,11 @@
-// Pairs evaluated eight at a time with AVX-512 (dem/lanes.hpp, DiscPairKernel::evaluate_lanes)
-// give each pair the bits of its one-pair evaluation. The independent reason: IEEE-754
-// arithmetic is correctly rounded in every lane, so the same operations in the same order must
-// agree to the last bit; any difference is a change of the law or of its order (a fused
-// multiply-add, a reassociated sum, a min that treats -0 or NaN differently).
+// Pairs evaluated eight at a time with AVX-512 or four with AVX2 (dem/lanes.hpp,
+// DiscPairKernel::evaluate_lanes) give each pair the bits of its one-pair evaluation. The
+// independent reason: IEEE-754 arithmetic is correctly rounded in every lane, so the same
+// operations in the same order must agree to the last bit; any difference is a change of the law
+// or of its order (a fused multiply-add, a reassociated sum, a min that treats -0 or NaN
+// differently).
 //
-// The tests skip on a CPU without AVX-512F, where the lanes never run.
+// Each test runs on both lane sets and skips one the CPU lacks (tests/lane_sets.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <iostream>
 #include <limits>
+#include <tuple>
 #include <vector>
 
 #include "core/rng.hpp"
@@ -20,65 +22,47 @@
 #include "dem/disc_pair_kernel.hpp"
 #include "dem/world.hpp"
 #include "jostled_lattice.hpp"
+#include "lane_sets.hpp"
 
 namespace {
 
 using namespace cdem::dem;
-
-#define SKIP_WITHOUT_LANES() \
-  if (!lanes_supported()) GTEST_SKIP() << "this CPU has no AVX-512F: the lanes never run"
+using cdem::test::in_lanes;
+using cdem::test::lanes_of;
 
 std::uint64_t bits(double v) {
   return std::bit_cast<std::uint64_t>(v);
 }
 
-Lanes lanes_of(const double (&v)[kLaneCount]) {
-  Lanes out;
-  for (std::size_t l = 0; l < kLaneCount; ++l) out[l] = v[l];
-  return out;
-}
+template <class L>
+class PairLanes : public testing::Test {};
+TYPED_TEST_SUITE(PairLanes, cdem::test::LaneTypes, cdem::test::LaneTypeNames);
 
-// The laws on lanes compiled as the kernel compiles them (AVX-512, everything inlined). Lanes
-// cross into these functions by reference only: by value, an AVX-512 function takes them in
-// registers where its caller passes them in memory.
-CDEM_LANES_TARGET void geometry_in_lanes(const Lanes& dx, const Lanes& dy, const Lanes& ri,
-                                         const Lanes& rj, PairGeometryOf<Lanes>& g) {
-  g = pair_geometry(dx, dy, ri, rj);
-}
-
-CDEM_LANES_TARGET void law_in_lanes(const PairGeometryOf<Lanes>& g, const PairMotionOf<Lanes>& m,
-                                    const Lanes& emod, const Lanes& spn, const Lanes& mu,
-                                    const ParallelBondLanes& p, const Lanes& tan_phi,
-                                    const Lanes& old, const ParallelBondStateOf<Lanes>& s,
-                                    const Lanes& dt, ParallelBondedPairOf<Lanes>& r,
-                                    LaneMask& breaks, ResolvedPairOf<Lanes>& f) {
-  const LinearContactOf<Lanes> c = linear_contact(g, m, emod, spn, mu, old, dt);
-  r = parallel_bonded_pair(g, m, c, p, tan_phi, s, dt);
-  breaks = parallel_bond_breaks_in_tension(r.stress, p) | parallel_bond_breaks_in_shear(r.stress);
-  f = resolve(g, c.part.fn - r.state.fn, c.fs + r.state.fs, r.state.m);
-}
-
-CDEM_LANES_TARGET void helpers_in_lanes(const Lanes& a, const Lanes& b, Lanes& min, Lanes& max,
-                                        Lanes& abs, Lanes& clamp, Lanes& quotient) {
-  min = min_of(a, b);
-  max = max_of(a, b);
-  abs = abs_of(a);
-  clamp = clamp_of(a, -b, b);
-  quotient = quotient_where(is_nonzero(a), a, b);
-}
-
-TEST(PairLanes, HelpersMatchTheStdFunctionsOnSignedZerosInfinitiesAndNaN) {
-  SKIP_WITHOUT_LANES();
+TYPED_TEST(PairLanes, HelpersMatchTheStdFunctionsOnSignedZerosInfinitiesAndNaN) {
+  using L = TypeParam;
+  constexpr std::size_t n = kLanes<L>;
+  SKIP_WITHOUT_LANES(L);
+  // The helpers on lanes compiled as the kernel compiles them.
+  L min, max, abs, clamp, quotient;
+  const auto helpers = [&](const L& a, const L& b) {
+    in_lanes<L>([&] {
+      min = min_of(a, b);
+      max = max_of(a, b);
+      abs = abs_of(a);
+      clamp = clamp_of(a, -b, b);
+      quotient = quotient_where(is_nonzero(a), a, b);
+    });
+  };
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double values[] = {-0.0, 0.0, -1.5, 2.0, nan, -inf, inf, 1e-310};
   for (double a : values)
     for (double b : values) {
-      const double as[kLaneCount] = {a, a, a, a, a, a, a, a},
-                   bs[kLaneCount] = {b, b, b, b, b, b, b, b};
-      Lanes min, max, abs, clamp, quotient;
-      helpers_in_lanes(lanes_of(as), lanes_of(bs), min, max, abs, clamp, quotient);
-      for (std::size_t l = 0; l < kLaneCount; l += 7) {
+      double as[n], bs[n];
+      std::fill(as, as + n, a);
+      std::fill(bs, bs + n, b);
+      helpers(lanes_of<L>(as), lanes_of<L>(bs));
+      for (std::size_t l = 0; l < n; l += n - 1) {
         const double la = a, lb = b;
         EXPECT_EQ(bits(min[l]), bits(std::min(la, lb))) << a << ' ' << b;
         EXPECT_EQ(bits(max[l]), bits(std::max(la, lb))) << a << ' ' << b;
@@ -90,24 +74,27 @@ TEST(PairLanes, HelpersMatchTheStdFunctionsOnSignedZerosInfinitiesAndNaN) {
       }
     }
   // The signed zeros themselves, lane by lane.
-  const double zeros[kLaneCount] = {-0.0, 0.0, -0.0, 0.0, 0.0, -0.0, nan, -0.0};
-  const double others[kLaneCount] = {0.0, -0.0, -0.0, 0.0, nan, nan, 0.0, 1.0};
-  Lanes min, max, abs, clamp, quotient;
-  helpers_in_lanes(lanes_of(zeros), lanes_of(others), min, max, abs, clamp, quotient);
-  for (std::size_t l = 0; l < kLaneCount; ++l) {
-    EXPECT_EQ(bits(min[l]), bits(std::min(zeros[l], others[l]))) << l;
-    EXPECT_EQ(bits(max[l]), bits(std::max(zeros[l], others[l]))) << l;
-    EXPECT_EQ(bits(abs[l]), bits(std::fabs(zeros[l]))) << l;
+  const double zeros[8] = {-0.0, 0.0, -0.0, 0.0, 0.0, -0.0, nan, -0.0};
+  const double others[8] = {0.0, -0.0, -0.0, 0.0, nan, nan, 0.0, 1.0};
+  for (std::size_t at = 0; at < 8; at += n) {
+    helpers(lanes_of<L>(zeros + at), lanes_of<L>(others + at));
+    for (std::size_t l = 0; l < n; ++l) {
+      EXPECT_EQ(bits(min[l]), bits(std::min(zeros[at + l], others[at + l]))) << at + l;
+      EXPECT_EQ(bits(max[l]), bits(std::max(zeros[at + l], others[at + l]))) << at + l;
+      EXPECT_EQ(bits(abs[l]), bits(std::fabs(zeros[at + l]))) << at + l;
+    }
   }
 }
 
-TEST(PairLanes, GeometryGivesEachLaneTheBitsOfOnePair) {
-  SKIP_WITHOUT_LANES();
+TYPED_TEST(PairLanes, GeometryGivesEachLaneTheBitsOfOnePair) {
+  using L = TypeParam;
+  constexpr std::size_t n = kLanes<L>;
+  SKIP_WITHOUT_LANES(L);
   cdem::Rng rng(20261202);
   long coincident = 0;
-  for (int batch = 0; batch < 2000; ++batch) {
-    double dx[kLaneCount], dy[kLaneCount], ri[kLaneCount], rj[kLaneCount];
-    for (std::size_t l = 0; l < kLaneCount; ++l) {
+  for (int batch = 0; batch < 2000 * 8 / static_cast<int>(n); ++batch) {
+    double dx[n], dy[n], ri[n], rj[n];
+    for (std::size_t l = 0; l < n; ++l) {
       ri[l] = rng.uniform(0.2e-3, 1e-3);
       rj[l] = rng.uniform(0.2e-3, 1e-3);
       dx[l] = rng.uniform(-2e-3, 2e-3);
@@ -118,9 +105,11 @@ TEST(PairLanes, GeometryGivesEachLaneTheBitsOfOnePair) {
       if (special == 2) dx[l] = -0.0, dy[l] = -0.0;  // coincident, signed zeros
       coincident += special <= 2;
     }
-    PairGeometryOf<Lanes> gl;
-    geometry_in_lanes(lanes_of(dx), lanes_of(dy), lanes_of(ri), lanes_of(rj), gl);
-    for (std::size_t l = 0; l < kLaneCount; ++l) {
+    PairGeometryOf<L> gl;
+    const L dxl = lanes_of<L>(dx), dyl = lanes_of<L>(dy), ril = lanes_of<L>(ri),
+            rjl = lanes_of<L>(rj);
+    in_lanes<L>([&] { gl = pair_geometry(dxl, dyl, ril, rjl); });
+    for (std::size_t l = 0; l < n; ++l) {
       const PairGeometryOf<double> g = pair_geometry(dx[l], dy[l], ri[l], rj[l]);
       const double lane[] = {gl.overlap[l], gl.nx[l], gl.ny[l], gl.inverse_length[l]};
       const double one[] = {g.overlap, g.nx, g.ny, g.inverse_length};
@@ -134,8 +123,10 @@ TEST(PairLanes, GeometryGivesEachLaneTheBitsOfOnePair) {
 // Random pairs over the states the C30 test goes through: apart and touching (and exactly
 // touching, +0 and -0 overlap), sticking and slipping, bonds far from and beyond failure, in
 // tension and in shear, classes with and without friction.
-TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
-  SKIP_WITHOUT_LANES();
+TYPED_TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
+  using L = TypeParam;
+  constexpr std::size_t n = kLanes<L>;
+  SKIP_WITHOUT_LANES(L);
   cdem::Rng rng(20261125);
   ParallelBondParams classes[2];
   classes[0].modulus = 16e9;
@@ -150,18 +141,18 @@ TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
   const double emod[2] = {16e9, 9e9}, spn[2] = {1 / 1.45, 1.0}, mu[2] = {0.5, 0.0};
   const double dt = 3.6e-8;  // s
   long breaking = 0, slipping = 0, apart = 0;
-  for (int batch = 0; batch < 5000; ++batch) {
-    PairGeometryOf<double> g[kLaneCount];
-    PairMotionOf<double> m[kLaneCount];
-    ParallelBondStateOf<double> s[kLaneCount];
-    double old[kLaneCount];
-    int cls[kLaneCount];
-    PairGeometryOf<Lanes> gl;
-    PairMotionOf<Lanes> ml;
-    ParallelBondStateOf<Lanes> sl;
-    ParallelBondLanes pl;
-    Lanes emodl, spnl, mul, tanl, oldl;
-    for (std::size_t l = 0; l < kLaneCount; ++l) {
+  for (int batch = 0; batch < 5000 * 8 / static_cast<int>(n); ++batch) {
+    PairGeometryOf<double> g[n];
+    PairMotionOf<double> m[n];
+    ParallelBondStateOf<double> s[n];
+    double old[n];
+    int cls[n];
+    PairGeometryOf<L> gl;
+    PairMotionOf<L> ml;
+    ParallelBondStateOf<L> sl;
+    ParallelBondLanes<L> pl;
+    L emodl, spnl, mul, tanl, oldl;
+    for (std::size_t l = 0; l < n; ++l) {
       cls[l] = static_cast<int>(rng.uniform(0, 2)) & 1;
       g[l].ri = rng.uniform(0.2e-3, 1e-3);
       g[l].rj = rng.uniform(0.2e-3, 1e-3);
@@ -206,11 +197,19 @@ TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
       tanl[l] = std::tan(p.friction_angle);
       oldl[l] = old[l];
     }
-    LaneMask breaks;
-    ResolvedPairOf<Lanes> fl;
-    ParallelBondedPairOf<Lanes> r;
-    law_in_lanes(gl, ml, emodl, spnl, mul, pl, tanl, oldl, sl, splat<Lanes>(dt), r, breaks, fl);
-    for (std::size_t l = 0; l < kLaneCount; ++l) {
+    unsigned breaks = 0;
+    ResolvedPairOf<L> fl;
+    ParallelBondedPairOf<L> r;
+    // The law on lanes compiled as the kernel compiles it.
+    in_lanes<L>([&] {
+      const L dtl = splat<L>(dt);
+      const LinearContactOf<L> c = linear_contact(gl, ml, emodl, spnl, mul, oldl, dtl);
+      r = parallel_bonded_pair(gl, ml, c, pl, tanl, sl, dtl);
+      breaks = lane_bits(parallel_bond_breaks_in_tension(r.stress, pl) |
+                         parallel_bond_breaks_in_shear(r.stress));
+      fl = resolve(gl, c.part.fn - r.state.fn, c.fs + r.state.fs, r.state.m);
+    });
+    for (std::size_t l = 0; l < n; ++l) {
       const ParallelBondParams& p = classes[cls[l]];
       const LinearContactOf<double> c =
           linear_contact(g[l], m[l], emod[cls[l]], spn[cls[l]], mu[cls[l]], old[l], dt);
@@ -234,7 +233,7 @@ TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
         ASSERT_EQ(bits(lane[q]), bits(scalar[q]))
             << "batch " << batch << " lane " << l << " q " << q;
       const bool fails = parallel_bond_failure(one.stress, p) != BondFailure::None;
-      ASSERT_EQ((lane_bits(breaks) >> l & 1) != 0, fails) << "batch " << batch << " lane " << l;
+      ASSERT_EQ((breaks >> l & 1) != 0, fails) << "batch " << batch << " lane " << l;
       const ResolvedPairOf<double> f1 = resolve(g[l], one.contact.part.fn - one.state.fn,
                                                 one.contact.fs + one.state.fs, one.state.m);
       EXPECT_EQ(bits(fl.fx[l]), bits(f1.fx));
@@ -256,12 +255,14 @@ TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
 // leaves every per-pair result and state with the bits of evaluating each pair alone, bonds
 // that break in the step (they take the one-pair path) and unbonded pairs of a class with and
 // without friction included.
-class PairLanesPass : public testing::TestWithParam<double> {};  // the friction coefficient
+// The friction coefficient and the lane set.
+class PairLanesPass : public testing::TestWithParam<std::tuple<double, LaneIsa>> {};
 
 TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
-  SKIP_WITHOUT_LANES();
+  const auto [friction, lanes] = GetParam();
+  if (usable_lanes(lanes) != lanes) GTEST_SKIP() << "this CPU lacks the lane set";
   const BondModel bond = cdem::test::weak_parallel_bond();
-  World w(cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, GetParam()}, bond));
+  World w(cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, friction}, bond));
   cdem::test::add_hex_lattice(w);
   install_bonds(w, BondInstallation{0.03});
   cdem::test::jostle(w);
@@ -274,28 +275,28 @@ TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
   const BondModels& bonds = w.settings().bonds;
   const double dt = w.time_step(), guard = w.settings().max_overlap_ratio;
   const std::size_t count = store[0].keys.size();
-  std::vector<PairForce> in_lanes(count), alone(count);
+  std::vector<PairForce> lane_forces(count), alone(count);
   long parallel = 0, unbonded = 0;
   for (std::size_t k = 0; k < count; ++k) {
     parallel += store[0].state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel);
     unbonded += store[0].state.bond[k] == static_cast<std::uint8_t>(BondKind::None);
   }
-  ASSERT_GT(parallel, 4 * static_cast<long>(kLaneCount));
-  ASSERT_GT(unbonded, 4 * static_cast<long>(kLaneCount));
+  ASSERT_GT(parallel, 32);  // several groups of lanes each
+  ASSERT_GT(unbonded, 32);
   std::cout << parallel << " parallel-bonded and " << unbonded << " unbonded pairs\n";
   std::size_t bad[2];
   for (int c = 0; c < 2; ++c) {
     prepare_force_results(out[c], wall_out[c], store[c]);
     const DiscPairKernel kernel(discs[c], store[c], out[c], laws, bonds, dt, guard,
-                                PassOptions{.lanes = c == 0});
-    std::vector<PairForce>& to = c == 0 ? in_lanes : alone;
+                                PassOptions{.lanes = c == 0 ? lanes : LaneIsa::None});
+    std::vector<PairForce>& to = c == 0 ? lane_forces : alone;
     bad[c] = kernel.evaluate_range(
         0, count, [&](std::size_t k, const auto&, const PairForce& f) { to[k] = f; });
   }
   EXPECT_EQ(bad[0], bad[1]);
   long broke = 0, slipped = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    const PairForce &a = in_lanes[k], &b = alone[k];
+    const PairForce &a = lane_forces[k], &b = alone[k];
     const double fa[] = {a.normal,   a.overlap,  a.fx,        a.fy,
                          a.moment_i, a.moment_j, a.slip_work, a.released};
     const double fb[] = {b.normal,   b.overlap,  b.fx,        b.fy,
@@ -307,7 +308,7 @@ TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
     slipped += b.slip_work != 0;
   }
   EXPECT_GT(broke, 0);  // the one-pair path of a breaking bond was exercised
-  if (GetParam() > 0) {
+  if (friction > 0) {
     EXPECT_GT(slipped, 0);
   }
   const auto same = [](const auto& x, const auto& y) {
@@ -329,15 +330,19 @@ TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
   same(store[0].state.bond_gap, store[1].state.bond_gap);
 }
 
-INSTANTIATE_TEST_SUITE_P(Friction, PairLanesPass, testing::Values(0.5, 0.0));
+INSTANTIATE_TEST_SUITE_P(FrictionAndLanes, PairLanesPass,
+                         testing::Combine(testing::Values(0.5, 0.0),
+                                          testing::Values(LaneIsa::Avx2, LaneIsa::Avx512)));
 
-// A whole run, 1 and 2 threads: a world with the lanes and one without end with the same bits.
-TEST(PairLanes, RunsWithAndWithoutLanesEndAlike) {
-  SKIP_WITHOUT_LANES();
+// A whole run, 1 and 2 threads: worlds without lanes and with each lane set the CPU has end with
+// the same bits.
+TEST(PairLanesRun, RunsWithAndWithoutLanesEndAlike) {
+  if (lane_isa_of_cpu() == LaneIsa::None) GTEST_SKIP() << "this CPU has no lanes";
   const BondModel bond = cdem::test::weak_parallel_bond();
   std::vector<double> reference;
   for (int threads : {1, 2})
-    for (bool lanes : {false, true}) {
+    for (LaneIsa lanes : {LaneIsa::None, LaneIsa::Avx2, LaneIsa::Avx512}) {
+      if (usable_lanes(lanes) != lanes) continue;
       WorldSettings s = cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5}, bond);
       s.lanes = lanes;
       World w(s);

@@ -20,6 +20,7 @@
 #include "dem/measure.hpp"
 #include "dem/world.hpp"
 #include "jostled_lattice.hpp"
+#include "lane_sets.hpp"
 
 namespace {
 
@@ -30,7 +31,7 @@ std::uint64_t bits(double v) {
 }
 
 // The bonded, jostled lattice after `steps` steps, breaking bonds as it goes.
-World jostled_world(int threads, bool lanes) {
+World jostled_world(int threads, LaneIsa lanes) {
   WorldSettings s = cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5},
                                                  cdem::test::weak_parallel_bond());
   s.lanes = lanes;
@@ -51,10 +52,11 @@ void expect_same(const StaggeredArray<double>& a, const StaggeredArray<double>& 
 // every step, the other only in the last step. Positions, spins, cracks (their points come from
 // the broken pairs' overlaps) and energies, and the last step's per-pair results, agree bit for
 // bit.
-class PairResultsOnRequest : public testing::TestWithParam<std::tuple<int, bool>> {};
+class PairResultsOnRequest : public testing::TestWithParam<std::tuple<int, LaneIsa>> {};
 
 TEST_P(PairResultsOnRequest, ChangeNoBitOfTheRun) {
   const auto [threads, lanes] = GetParam();
+  if (usable_lanes(lanes) != lanes) GTEST_SKIP() << "this CPU lacks the lane set";
   World every = jostled_world(threads, lanes), last = jostled_world(threads, lanes);
   last.set_pair_results_on_request(true);
   every.cycle(300);
@@ -76,13 +78,15 @@ TEST_P(PairResultsOnRequest, ChangeNoBitOfTheRun) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ThreadsAndLanes, PairResultsOnRequest,
-                         testing::Combine(testing::Values(1, 2), testing::Bool()));
+                         testing::Combine(testing::Values(1, 2),
+                                          testing::Values(LaneIsa::None, LaneIsa::Avx2,
+                                                          LaneIsa::Avx512)));
 
 // The virial of a step that keeps its per-pair results is the same sum, in pair order, on one
 // thread and on several (threads after the first store their pairs' terms; the first chains
 // them after the barrier).
 TEST(PairResultsOnRequest, VirialIsTheSameOnOneAndTwoThreads) {
-  World one = jostled_world(1, true), two = jostled_world(2, true);
+  World one = jostled_world(1, LaneIsa::Avx512), two = jostled_world(2, LaneIsa::Avx512);
   for (int step = 0; step < 50; ++step) {
     one.step();
     two.step();
@@ -92,7 +96,7 @@ TEST(PairResultsOnRequest, VirialIsTheSameOnOneAndTwoThreads) {
 }
 
 TEST(PairResultsOnRequest, ReadingResultsNotKeptThrows) {
-  World w = jostled_world(1, true);
+  World w = jostled_world(1, LaneIsa::Avx512);
   w.set_pair_results_on_request(true);
   w.cycle(
       2);  // the first step keeps them for the energy check (WorldSettings::energy_check_interval)
@@ -113,7 +117,7 @@ TEST(PairResultsOnRequest, ReadingResultsNotKeptThrows) {
 // except for the pairs whose bond breaks in the pass, which get the values of a pass that keeps
 // them all.
 TEST(PairResultsOnRequest, KernelWritesOnlyBrokenPairs) {
-  World w = jostled_world(1, true);
+  World w = jostled_world(1, LaneIsa::Avx512);
   w.cycle(20);
   Discs discs[2] = {w.discs(), w.discs()};
   ContactStore store[2] = {w.contacts(), w.contacts()};
@@ -128,7 +132,7 @@ TEST(PairResultsOnRequest, KernelWritesOnlyBrokenPairs) {
       for (double& v : *a) v = 0;
     const DiscPairKernel kernel(discs[c], store[c], out[c], w.settings().laws, w.settings().bonds,
                                 w.time_step(), w.settings().max_overlap_ratio,
-                                PassOptions{.lanes = true, .pair_results = c == 0});
+                                PassOptions{.lanes = LaneIsa::Avx512, .pair_results = c == 0});
     DiscPairKernel::PassSums sums;
     kernel.evaluate_range(0, store[c].keys.size(),
                           [&](std::size_t k, const DiscPairKernel::Geometry& g,
@@ -163,7 +167,7 @@ TEST(PairResultsOnRequest, KernelWritesOnlyBrokenPairs) {
 // record) that changes the pair list: each pair keeps the results of the last pass, a new pair
 // has none (it put no force on its discs), so the contact stress reads the same as before.
 TEST(PairResults, FollowTheirPairsThroughARebuildBetweenSteps) {
-  World w = jostled_world(1, true);
+  World w = jostled_world(1, LaneIsa::Avx512);
   w.cycle(50);
   struct Results {
     double normal, overlap, fx, fy;
