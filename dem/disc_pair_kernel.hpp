@@ -506,9 +506,13 @@ class DiscPairKernel {
         dem::resolve(g, select(parallel, c.part.fn - r.state.fn, c.part.fn),
                      select(parallel, fs + r.state.fs, fs), select(parallel, r.state.m, L{}));
     store_where(done, shear_ + k, fs);
-    store_where(done & bonded_lanes, bond_normal_ + k, r.state.fn);
-    store_where(done & bonded_lanes, bond_shear_ + k, r.state.fs);
-    store_where(done & bonded_lanes, bond_moment_ + k, r.state.m);
+    // An unbonded group (an unbonded packing's every group) stores no bond state: AVX2's
+    // store_where reads and rewrites the slots even where it stores no lane.
+    if (const unsigned bonded_done = done & bonded_lanes) {
+      store_where(bonded_done, bond_normal_ + k, r.state.fn);
+      store_where(bonded_done, bond_shear_ + k, r.state.fs);
+      store_where(bonded_done, bond_moment_ + k, r.state.m);
+    }
     if (pair_results_) {
       store_where(done, normal_ + k, f.normal);
       store_where(done, overlap_ + k, f.overlap);

@@ -156,7 +156,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
   // Largest squared speed of a free disc and largest pebble speed bound of a clump (m/s).
   double disc_speed2 = 0, pebble_speed = 0;
   for (std::size_t k = begin; k < end; ++k) {
-    if constexpr (n > 1)
+    if constexpr (n > 1) {
       if (k + n <= end && free_discs<n>(b, k)) {
         FreeDiscLanes<n> out;
         integrate_free_discs<kBook, kDamped>(b, d, dt, alpha, k, out);
@@ -172,6 +172,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
         k += n - 1;
         continue;
       }
+    }
     if (!b.prescribed[k]) {
       StepEnergyOf<double> e;
       advance<kBook, kDamped>(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);

@@ -91,7 +91,8 @@ inline LaneMask8 operator&(LaneMask8 a, LaneMask8 b) {
   return {a.bits & b.bits};
 }
 inline LaneMask8 operator~(LaneMask8 a) {
-  return {~a.bits & ((1u << kLanes<Lanes8>)-1)};
+  constexpr unsigned all = (1u << kLanes<Lanes8>)-1;  // a bit per lane
+  return {~a.bits & all};
 }
 
 // A comparison of two Lanes4: all ones in a lane where it holds, zero elsewhere, as AVX2's
@@ -278,8 +279,8 @@ CDEM_AVX512 inline void transpose(Lanes8 (&v)[8]) {
   }
 }
 
-// Transposes four rows of four lanes held at v[at .. at + 3]: afterwards v[at + a] lane b is
-// what v[at + b] lane a was (two rounds of shuffles, eight in all).
+// Transposes four rows of four lanes held at v[0 .. 3]: afterwards v[a] lane b is what v[b] lane
+// a was (two rounds of shuffles, eight in all).
 CDEM_AVX2 inline void transpose4(Lanes4* v) {
   const Lanes4 t0 = _mm256_unpacklo_pd(v[0], v[1]), t1 = _mm256_unpackhi_pd(v[0], v[1]);
   const Lanes4 t2 = _mm256_unpacklo_pd(v[2], v[3]), t3 = _mm256_unpackhi_pd(v[2], v[3]);

@@ -45,7 +45,8 @@ struct LinearContact {
 };
 
 // Disc-disc normal stiffness kn = 2 min(R1, R2) t E* / L (N/m) with E* (Pa) and 1 / L (1/m)
-// given. T = double for one pair, Lanes8 or Lanes4 for several (dem/lanes.hpp), as in the laws below.
+// given. T = double for one pair, Lanes8 or Lanes4 for several (dem/lanes.hpp), as in the laws
+// below.
 template <class T>
 T disc_normal_stiffness(T emod, T r1, T r2, T inverse_length) {
   return 2.0 * min_of(r1, r2) * kThickness * emod * inverse_length;

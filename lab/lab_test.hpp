@@ -70,7 +70,7 @@ struct LabTestControls {
   double jaw_cover = 0.5235987755982988;    // rad, 30 degrees
   double loading_arc = 0.2617993877991494;  // rad, 2 alpha = 15 degrees
   int threads = 1;
-  bool lanes = true;  // WorldSettings::lanes (the same bits either way)
+  bool lanes = true;  // WorldSettings::lanes: true the CPU's widest set, false none (same bits)
   GenesisOptions genesis{};
   // Biaxial: the confinements of the series (Pa, >= 0; 0 = unconfined, no side walls), and the
   // one of the run in hand (set by run_biaxial_series); dem/confinement.hpp has the servo

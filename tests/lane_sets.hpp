@@ -33,11 +33,6 @@ template <class L>
 inline constexpr dem::LaneIsa kIsaOf =
     dem::kLanes<L> == 8 ? dem::LaneIsa::Avx512 : dem::LaneIsa::Avx2;
 
-template <class L>
-bool cpu_runs() {
-  return dem::usable_lanes(kIsaOf<L>) == kIsaOf<L>;
-}
-
 // Runs f() compiled as the engine compiles its lane code (L's instruction set, everything it
 // calls inlined). Lanes cross into it by reference only (f captures them by reference): by
 // value, lane code takes them in registers where other code passes them in memory.
@@ -72,7 +67,9 @@ L lanes_of(const double* v) {
 
 }  // namespace cdem::test
 
-#define SKIP_WITHOUT_LANES(L)                                                             \
-  if (!cdem::test::cpu_runs<L>())                                                         \
-  GTEST_SKIP() << "this CPU has no " << (cdem::dem::kLanes<L> == 8 ? "AVX-512F" : "AVX2") \
-               << ": these lanes never run"
+// Skips a test of lane set `isa` (a LaneIsa) on a CPU that lacks it; SKIP_WITHOUT_LANES, of the
+// set of lane type L.
+#define SKIP_WITHOUT_LANE_SET(isa)           \
+  if (cdem::dem::usable_lanes(isa) != (isa)) \
+  GTEST_SKIP() << "this CPU has no " << cdem::dem::lane_isa_name(isa) << ": these lanes never run"
+#define SKIP_WITHOUT_LANES(L) SKIP_WITHOUT_LANE_SET(cdem::test::kIsaOf<L>)

@@ -186,9 +186,7 @@ constexpr bool kRecordedToolchain = false;
 // lane set this CPU lacks is skipped.
 class BitwiseGuard : public testing::TestWithParam<std::tuple<int, LaneIsa>> {
  protected:
-  void SetUp() override {
-    if (usable_lanes(lanes()) != lanes()) GTEST_SKIP() << "this CPU lacks the lane set";
-  }
+  void SetUp() override { SKIP_WITHOUT_LANE_SET(lanes()); }
   int threads() const { return std::get<0>(GetParam()); }
   LaneIsa lanes() const { return std::get<1>(GetParam()); }
 };

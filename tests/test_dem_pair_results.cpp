@@ -56,7 +56,7 @@ class PairResultsOnRequest : public testing::TestWithParam<std::tuple<int, LaneI
 
 TEST_P(PairResultsOnRequest, ChangeNoBitOfTheRun) {
   const auto [threads, lanes] = GetParam();
-  if (usable_lanes(lanes) != lanes) GTEST_SKIP() << "this CPU lacks the lane set";
+  SKIP_WITHOUT_LANE_SET(lanes);
   World every = jostled_world(threads, lanes), last = jostled_world(threads, lanes);
   last.set_pair_results_on_request(true);
   every.cycle(300);
