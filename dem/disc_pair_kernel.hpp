@@ -297,16 +297,14 @@ class DiscPairKernel {
 
   // The whole groups of kLanes<L> pairs of the block [start, stop) in lanes, handed to `take`
   // in ascending k (the lanes left out, one at a time); returns where the groups end. The
-  // block's groups are all evaluated before any is taken: a group's law is one long chain of
-  // dependent operations (sqrt, divisions), and the next group's, independent of it, overlaps it
-  // only if no other work stands between them.
+  // block's groups are all evaluated before any is taken (evaluate_lanes).
   template <class L, class Take>
   [[gnu::always_inline]] inline std::size_t evaluate_groups(std::size_t start, std::size_t stop,
                                                             std::size_t& bad, Take& take) const {
     constexpr std::size_t n = kLanes<L>;
     PairLanes<n> out[kGeometryBlock / n];
     const std::size_t groups = (stop - start) / n;
-    for (std::size_t q = 0; q < groups; ++q) evaluate_lanes(start + q * n, out[q]);
+    evaluate_lanes(start, groups, out);
     std::size_t k = start;
     for (std::size_t q = 0; q < groups; ++q, k += n)
       for (std::size_t l = 0; l < n; ++l) {
@@ -444,38 +442,59 @@ class DiscPairKernel {
     }
   };
 
-  // Pairs k .. k + n - 1 in lanes: the unbonded ones with the law of `linear`, those with an
-  // intact parallel bond with the law of `parallel_bonded`, the same operations in the same
-  // order, so each lane gets the bits of its one-pair evaluation. A lane of another bond kind,
-  // or whose bond breaks in this step, writes nothing and is left out of `done`, for the
-  // one-pair path. The discs' data come as their records (a line each, transposed into lanes),
-  // the class constants by a permutation of a register holding the classes' values. One body
-  // (evaluate_lanes_of) compiled for AVX-512 and for AVX2.
-  CDEM_LANES8_TARGET void evaluate_lanes(std::size_t k, PairLanes<8>& out) const {
-    evaluate_lanes_of<Lanes8>(k, out);
+  // Groups of n pairs in lanes (n = 8 for AVX-512, 4 for AVX2): the unbonded ones with the law
+  // of `linear`, those with an intact parallel bond with the law of `parallel_bonded`, the same
+  // operations in the same order, so each lane gets the bits of its one-pair evaluation. A lane of
+  // another bond kind, or whose bond breaks in this step, writes nothing and is left out of `done`,
+  // for the one-pair path. The discs' data come as their records (a line each, transposed into
+  // lanes), the class constants by a permutation of a register holding the classes' values. One
+  // body (evaluate_lanes_of) compiled for AVX-512 and for AVX2.
+  CDEM_LANES8_TARGET void evaluate_lanes(std::size_t k, std::size_t groups,
+                                         PairLanes<8>* out) const {
+    evaluate_lanes_of<Lanes8>(k, groups, out);
   }
-  CDEM_LANES4_TARGET void evaluate_lanes(std::size_t k, PairLanes<4>& out) const {
-    evaluate_lanes_of<Lanes4>(k, out);
+  CDEM_LANES4_TARGET void evaluate_lanes(std::size_t k, std::size_t groups,
+                                         PairLanes<4>* out) const {
+    evaluate_lanes_of<Lanes4>(k, groups, out);
   }
 
-  // Lane code: called only from the functions above, which inline it.
+  // Lane code: called only from the functions above, which inline it. The groups of pairs
+  // k, k + n, ... (n = kLanes<L>, at most kGeometryBlock pairs) into out[0 .. groups - 1]: every
+  // group's geometry first, then every group's law. A geometry is a chain of a sqrt and a
+  // division; the groups' chains are independent, and they overlap only if no law stands
+  // between them (docs/performance.md "Session 31").
   template <class L>
-  void evaluate_lanes_of(std::size_t k, PairLanes<kLanes<L>>& out) const {
+  void evaluate_lanes_of(std::size_t k, std::size_t groups, PairLanes<kLanes<L>>* out) const {
+    constexpr std::size_t n = kLanes<L>;
+    PairGeometryOf<L> g[kGeometryBlock / n];
+    PairMotionOf<L> m[kGeometryBlock / n];
+    for (std::size_t q = 0; q < groups; ++q) lane_geometry<L>(k + q * n, g[q], m[q]);
+    for (std::size_t q = 0; q < groups; ++q) lane_law<L>(k + q * n, g[q], m[q], out[q]);
+  }
+
+  // The geometry and velocities of pairs k .. k + n - 1, from their discs' records (a line
+  // each, transposed into lanes).
+  template <class L>
+  void lane_geometry(std::size_t k, PairGeometryOf<L>& g, PairMotionOf<L>& m) const {
     static_assert(DiscState::kFields == kRecordFields,
                   "a record transposes into one lane vector per field");
-    const std::int32_t *i = first_ + k, *j = second_ + k;
+    L a[kRecordFields], b[kRecordFields];  // the fields of the first and second discs' DiscState
+    const auto* records = reinterpret_cast<const double*>(disc_);
+    load_records(records, first_ + k, a);
+    load_records(records, second_ + k, b);
+    using S = DiscState;
+    g = pair_geometry(b[S::kX] - a[S::kX], b[S::kY] - a[S::kY], a[S::kR], b[S::kR]);
+    m = {a[S::kVx], a[S::kVy], a[S::kOmega], b[S::kVx], b[S::kVy], b[S::kOmega]};
+  }
+
+  // The law of pairs k .. k + n - 1 of geometry g and velocities m, into `out`.
+  template <class L>
+  void lane_law(std::size_t k, const PairGeometryOf<L>& g, const PairMotionOf<L>& m,
+                PairLanes<kLanes<L>>& out) const {
     const std::uint8_t* cls = contact_class_ + k;
     const MaskOf<L> unbonded = lanes_equal<L>(bond_ + k, static_cast<std::uint8_t>(BondKind::None));
     const MaskOf<L> parallel =
         lanes_equal<L>(bond_ + k, static_cast<std::uint8_t>(BondKind::Parallel));
-    L a[kRecordFields], b[kRecordFields];  // the fields of the first and second discs' DiscState
-    const auto* records = reinterpret_cast<const double*>(disc_);
-    load_records(records, i, a);
-    load_records(records, j, b);
-    using S = DiscState;
-    const PairGeometryOf<L> g =
-        pair_geometry(b[S::kX] - a[S::kX], b[S::kY] - a[S::kY], a[S::kR], b[S::kR]);
-    const PairMotionOf<L> m{a[S::kVx], a[S::kVy], a[S::kOmega], b[S::kVx], b[S::kVy], b[S::kOmega]};
     const L mu = lookup<L>(by_class_.mu, cls), dt = splat<L>(dt_);
     const LinearContactOf<L> c = dem::linear_contact(
         g, m, lookup<L>(by_class_.emod, cls), lookup<L>(by_class_.shear_per_normal_stiffness, cls),

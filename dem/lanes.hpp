@@ -251,6 +251,25 @@ CDEM_AVX2 inline unsigned lane_bits(LaneMask4 condition) {
   return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(condition.lanes)));
 }
 
+// The lanes l < 4 whose bit is set in `lanes`, as AVX2's masked loads and stores read them.
+CDEM_AVX2 inline __m256i lane_mask4(unsigned lanes) {
+  const LaneBits4 bit{1, 2, 4, 8};
+  return reinterpret_cast<__m256i>((bit & static_cast<std::int64_t>(lanes)) != 0);
+}
+
+// Stores the lanes whose bit is set in `lanes` to at[0 .. kLanes - 1]; the others keep their
+// memory.
+CDEM_AVX512 inline void store_where(unsigned lanes, double* at, Lanes8 v) {
+  _mm512_mask_storeu_pd(at, static_cast<__mmask8>(lanes), v);
+}
+// AVX2's masked store costs several times a load, a blend and a store on Zen 3
+// (docs/performance.md "Session 30"), so the other lanes are rewritten with what they hold: the
+// caller must own all four slots (no other thread reads or writes them meanwhile).
+CDEM_AVX2 inline void store_where(unsigned lanes, double* at, Lanes4 v) {
+  const __m256d keep = _mm256_loadu_pd(at);
+  _mm256_storeu_pd(at, _mm256_blendv_pd(keep, v, reinterpret_cast<__m256d>(lane_mask4(lanes))));
+}
+
 // The records the lanes load and store: kRecordFields doubles, 64 bytes, aligned (a DiscState).
 inline constexpr std::size_t kRecordFields = 8;
 
@@ -323,26 +342,15 @@ CDEM_AVX512 inline void store_records(double* records, const std::int32_t* index
                          static_cast<__mmask8>(fields), field[l]);
 }
 
-// The lanes l < 4 whose bit is set in `lanes`, as AVX2's masked loads and stores read them.
-CDEM_AVX2 inline __m256i lane_mask4(unsigned lanes) {
-  const LaneBits4 bit{1, 2, 4, 8};
-  return reinterpret_cast<__m256i>((bit & static_cast<std::int64_t>(lanes)) != 0);
-}
-
 CDEM_AVX2 inline void store_records(double* records, const std::int32_t* index,
                                     Lanes4 (&field)[kRecordFields], unsigned fields) {
   transpose4(field);
   transpose4(field + 4);
-  // A load, a blend and a store per half record, as store_where: the caller owns the records.
-  const auto first = reinterpret_cast<__m256d>(lane_mask4(fields)),
-             second = reinterpret_cast<__m256d>(lane_mask4(fields >> 4));
+  // The caller owns the records (store_where rewrites a half record's other fields).
   for (std::size_t l = 0; l < 4; ++l) {
     double* record = records + kRecordFields * static_cast<std::size_t>(index[l]);
-    if (fields & 0x0f)
-      _mm256_store_pd(record, _mm256_blendv_pd(_mm256_load_pd(record), field[l], first));
-    if (fields & 0xf0)
-      _mm256_store_pd(record + 4,
-                      _mm256_blendv_pd(_mm256_load_pd(record + 4), field[4 + l], second));
+    if (fields & 0x0f) store_where(fields, record, field[l]);
+    if (fields & 0xf0) store_where(fields >> 4, record + 4, field[4 + l]);
   }
 }
 
@@ -390,19 +398,6 @@ CDEM_AVX512 inline LaneMask8 lanes_equal<Lanes8>(const std::uint8_t* code, std::
 template <>
 CDEM_AVX2 inline LaneMask4 lanes_equal<Lanes4>(const std::uint8_t* code, std::uint8_t value) {
   return {reinterpret_cast<LaneBits4>(_mm256_cmpeq_epi64(codes4(code), _mm256_set1_epi64x(value)))};
-}
-
-// Stores the lanes whose bit is set in `lanes` to at[0 .. kLanes - 1]; the others keep their
-// memory.
-CDEM_AVX512 inline void store_where(unsigned lanes, double* at, Lanes8 v) {
-  _mm512_mask_storeu_pd(at, static_cast<__mmask8>(lanes), v);
-}
-// AVX2's masked store costs several times a load, a blend and a store on Zen 3
-// (docs/performance.md "Session 30"), so the other lanes are rewritten with what they hold: the
-// caller must own all four slots (no other thread reads or writes them meanwhile).
-CDEM_AVX2 inline void store_where(unsigned lanes, double* at, Lanes4 v) {
-  const __m256d keep = _mm256_loadu_pd(at);
-  _mm256_storeu_pd(at, _mm256_blendv_pd(keep, v, reinterpret_cast<__m256d>(lane_mask4(lanes))));
 }
 
 // at[0 .. kLanes - 1] where `lanes` has the bit, +0 elsewhere (nothing is read there).
