@@ -20,14 +20,12 @@ long disc_disc_pass(Discs& d, ContactStore& list, ContactForces& out, const Cont
   const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard, options);
   const std::size_t count = list.keys.size();
   out.broken.clear();
-  DiscPairKernel::PassSums sums;
-  sums.totals = result;
+  ForcePassResult totals = result;  // a local, so the sums stay in registers
   const std::size_t bad = kernel.evaluate_range(
       0, count, [&](std::size_t k, const DiscPairKernel::Geometry& g, const PairForce& f) {
-        kernel.add(k, g, f, sums, out.broken);
+        kernel.add(k, g, f, totals, out.broken);
       });
-  kernel.finish(sums);
-  result = sums.totals;
+  result = totals;
   return bad == count ? -1 : static_cast<long>(bad);
 }
 

@@ -172,6 +172,21 @@ struct ParallelBondLanes {
   L modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
 };
 
+// Adds a pair's force onto its discs' sums, +f on the second disc j and -f on the first i, and
+// each disc's moment (N, N m). Straight onto memory: the pairs of a first disc run one after
+// another, and keeping that disc's sums in registers over its run cost a mispredicted branch
+// at every run's end, more than the store-to-load round trips it saved (docs/performance.md
+// "Session 32"). Each sum takes its additions in pair order either way.
+inline void add_onto_discs(double* fx, double* fy, double* m, std::int32_t i, std::int32_t j,
+                           const PairForce& f) {
+  fx[j] += f.fx;
+  fy[j] += f.fy;
+  fx[i] -= f.fx;
+  fy[i] -= f.fy;
+  m[i] += f.moment_i;
+  m[j] += f.moment_j;
+}
+
 class DiscPairKernel {
  public:
   struct Geometry : PairGeometryOf<double> {
@@ -318,9 +333,13 @@ class DiscPairKernel {
     return k;
   }
 
-  // Pair k alone: evaluated, its guard test folded into `bad`, handed to `take`.
+  // Pair k alone: evaluated, its guard test folded into `bad`, handed to `take`. Always inlined,
+  // and `evaluate` never: out of line, this function took `take` by address, so the running sums
+  // it captures (and `bad`) escaped, and GCC kept them in memory through the whole pass, each
+  // addition a store-to-load round trip (docs/performance.md "Session 32").
   template <class Take>
-  void evaluate_one(std::size_t k, const Geometry& g, std::size_t& bad, Take& take) const {
+  [[gnu::always_inline]] inline void evaluate_one(std::size_t k, const Geometry& g,
+                                                  std::size_t& bad, Take& take) const {
     bool within_guard;
     const PairForce f = evaluate(k, g, within_guard);
     if (!within_guard) bad = std::min(bad, k);
@@ -333,7 +352,7 @@ class DiscPairKernel {
   // pairs (all of them in an unbonded run) take the short linear path and never touch the bond
   // arrays; the branch follows the bond kind, which changes only when a bond breaks, so it is
   // well predicted.
-  PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
+  [[gnu::noinline]] PairForce evaluate(std::size_t k, const Geometry& g, bool& within_guard) const {
     const auto kind = static_cast<BondKind>(bond_[k]);
     // A smooth joint's discs may overlap without limit: its force comes from the joint's own gap,
     // not from the overlap, and its discs slide along the joint through each other (Itasca's
@@ -358,54 +377,22 @@ class DiscPairKernel {
     return f;
   }
 
-  // The running sums of the one-thread pass (add): the first disc's force and moment over the
-  // run of pairs it is the first disc of, and the pass totals. A local of the pass, so they stay
-  // in registers (a store to the disc arrays could alias totals held elsewhere).
-  struct PassSums {
-    std::int32_t disc = -1;        // the first disc of the current run
-    double fx = 0, fy = 0, m = 0;  // its sums so far, N and N m
-    ForcePassResult totals;        // virial, touching, slip work, bonds broken and their energy
-  };
-
-  // Adds pair k onto its discs and the pass totals. Pairs apart carry zeros, so adding them
-  // unconditionally keeps the loop branch-free. The virial uses the centre distance
-  // reach - overlap (a bonded pair may be apart). The first disc's sums are kept in `s` over
-  // its run and stored when the run ends (finish): the pairs run in the order of their first
-  // discs and have i < j, so every pair that adds onto disc i as its second disc comes before
-  // i's run, and each sum takes the same additions in the same order as in memory.
-  void add(std::size_t k, const Geometry& g, const PairForce& f, PassSums& s,
+  // Adds pair k onto its discs and onto `totals`, the pass totals (a local of the pass, so they
+  // stay in registers). Pairs apart carry zeros, so adding them unconditionally keeps the loop
+  // branch-free. The virial uses the centre distance reach - overlap (a bonded pair may be
+  // apart).
+  void add(std::size_t k, const Geometry& g, const PairForce& f, ForcePassResult& totals,
            std::vector<std::int32_t>& broken) const {
-    if (g.i != s.disc) {
-      finish(s);
-      s.disc = g.i;
-      s.fx = disc_fx_[g.i];
-      s.fy = disc_fy_[g.i];
-      s.m = disc_m_[g.i];
-    }
-    disc_fx_[g.j] += f.fx;
-    disc_fy_[g.j] += f.fy;
-    s.fx -= f.fx;
-    s.fy -= f.fy;
-    s.m += f.moment_i;
-    disc_m_[g.j] += f.moment_j;
-    ForcePassResult& result = s.totals;
-    result.virial += f.normal * (g.ri + g.rj - f.overlap);
-    result.touching += f.overlap > 0;
-    result.slip_work += f.slip_work;
+    add_onto_discs(disc_fx_, disc_fy_, disc_m_, g.i, g.j, f);
+    totals.virial += f.normal * (g.ri + g.rj - f.overlap);
+    totals.touching += f.overlap > 0;
+    totals.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {
       broken.push_back(static_cast<std::int32_t>(k));
-      result.bond_energy_released += f.released;
+      totals.bond_energy_released += f.released;
       // One crack per bond, or per flat-joint element that broke.
-      result.bonds_broken += f.failed_elements ? std::popcount(f.failed_elements) : 1;
+      totals.bonds_broken += f.failed_elements ? std::popcount(f.failed_elements) : 1;
     }
-  }
-
-  // Stores the sums of the run in hand onto its disc.
-  void finish(const PassSums& s) const {
-    if (s.disc < 0) return;
-    disc_fx_[s.disc] = s.fx;
-    disc_fy_[s.disc] = s.fy;
-    disc_m_[s.disc] = s.m;
   }
 
  private:

@@ -296,12 +296,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
           }
           const std::int32_t i = gk.i, j = gk.j;
           if (k != next_special) {
-            disc_fx[j] += f.fx;
-            disc_fy[j] += f.fy;
-            disc_fx[i] -= f.fx;
-            disc_fy[i] -= f.fy;
-            disc_m[i] += f.moment_i;
-            disc_m[j] += f.moment_j;
+            add_onto_discs(disc_fx, disc_fy, disc_m, i, j, f);
           } else {
             parts_[special] = {f.fx, f.fy, f.moment_i, f.moment_j};
             const std::uint8_t direct = special_direct_[special];

@@ -133,11 +133,10 @@ TEST(PairResultsOnRequest, KernelWritesOnlyBrokenPairs) {
     const DiscPairKernel kernel(discs[c], store[c], out[c], w.settings().laws, w.settings().bonds,
                                 w.time_step(), w.settings().max_overlap_ratio,
                                 PassOptions{.lanes = LaneIsa::Avx512, .pair_results = c == 0});
-    DiscPairKernel::PassSums sums;
+    ForcePassResult totals;
     kernel.evaluate_range(0, store[c].keys.size(),
                           [&](std::size_t k, const DiscPairKernel::Geometry& g,
-                              const PairForce& f) { kernel.add(k, g, f, sums, broken[c]); });
-    kernel.finish(sums);
+                              const PairForce& f) { kernel.add(k, g, f, totals, broken[c]); });
   }
   ASSERT_EQ(broken[0], broken[1]);
   EXPECT_GT(broken[1].size(), 0u);
