@@ -172,19 +172,29 @@ struct ParallelBondLanes {
   L modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
 };
 
-// Adds a pair's force onto its discs' sums, +f on the second disc j and -f on the first i, and
-// each disc's moment (N, N m). Straight onto memory: the pairs of a first disc run one after
-// another, and keeping that disc's sums in registers over its run cost a mispredicted branch
-// at every run's end, more than the store-to-load round trips it saved (docs/performance.md
-// "Session 32"). Each sum takes its additions in pair order either way.
+// A pair's force onto the sums of its second disc j (+f and moment_j) and of its first disc i
+// (-f and moment_i), N and N m. F: a PairForce, or any record of fx, fy, moment_i, moment_j.
+template <class F>
+void add_onto_second(double& fx, double& fy, double& m, const F& f) {
+  fx += f.fx;
+  fy += f.fy;
+  m += f.moment_j;
+}
+template <class F>
+void add_onto_first(double& fx, double& fy, double& m, const F& f) {
+  fx -= f.fx;
+  fy -= f.fy;
+  m += f.moment_i;
+}
+
+// Adds a pair's force onto both discs' sums. Straight onto memory: the pairs of a first disc
+// run one after another, and keeping that disc's sums in registers over its run cost a
+// mispredicted branch at every run's end, more than the store-to-load round trips it saved
+// (docs/performance.md "Session 32"). Each sum takes its additions in pair order either way.
 inline void add_onto_discs(double* fx, double* fy, double* m, std::int32_t i, std::int32_t j,
                            const PairForce& f) {
-  fx[j] += f.fx;
-  fy[j] += f.fy;
-  fx[i] -= f.fx;
-  fy[i] -= f.fy;
-  m[i] += f.moment_i;
-  m[j] += f.moment_j;
+  add_onto_second(fx[j], fy[j], m[j], f);
+  add_onto_first(fx[i], fy[i], m[i], f);
 }
 
 class DiscPairKernel {

@@ -218,18 +218,10 @@ void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_
     // pairs where i is the second disc (first disc < i) all come before those where it is the
     // first.
     double fx = 0, fy = 0, m = 0;
-    for (std::int32_t e = shared_term_start_[s]; e < shared_term_mid_[s]; ++e) {
-      const PairSum& p = parts[terms[e]];
-      fx += p.fx;
-      fy += p.fy;
-      m += p.moment_j;
-    }
-    for (std::int32_t e = shared_term_mid_[s]; e < shared_term_start_[s + 1]; ++e) {
-      const PairSum& p = parts[terms[e]];
-      fx -= p.fx;
-      fy -= p.fy;
-      m += p.moment_i;
-    }
+    for (std::int32_t e = shared_term_start_[s]; e < shared_term_mid_[s]; ++e)
+      add_onto_second(fx, fy, m, parts[terms[e]]);
+    for (std::int32_t e = shared_term_mid_[s]; e < shared_term_start_[s + 1]; ++e)
+      add_onto_first(fx, fy, m, parts[terms[e]]);
     discs.fx[i] = fx;
     discs.fy[i] = fy;
     discs.moment[i] = m;
@@ -300,16 +292,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
           } else {
             parts_[special] = {f.fx, f.fy, f.moment_i, f.moment_j};
             const std::uint8_t direct = special_direct_[special];
-            if (direct & kDirectSecond) {
-              disc_fx[j] += f.fx;
-              disc_fy[j] += f.fy;
-              disc_m[j] += f.moment_j;
-            }
-            if (direct & kDirectFirst) {
-              disc_fx[i] -= f.fx;
-              disc_fy[i] -= f.fy;
-              disc_m[i] += f.moment_i;
-            }
+            if (direct & kDirectSecond) add_onto_second(disc_fx[j], disc_fy[j], disc_m[j], f);
+            if (direct & kDirectFirst) add_onto_first(disc_fx[i], disc_fy[i], disc_m[i], f);
             next_special = static_cast<std::size_t>(special_pairs_[++special]);
           }
           touching += f.overlap > 0;
