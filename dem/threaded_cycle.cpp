@@ -270,7 +270,19 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
         static_cast<std::size_t>(std::lower_bound(special_pairs_.begin(), special_pairs_.end(),
                                                   static_cast<std::int32_t>(pair_begin)) -
                                  special_pairs_.begin());
-    auto next_special = static_cast<std::size_t>(special_pairs_[special]);
+    // The take's pointers are copied into locals of this function: reached through the step's
+    // frame (which escapes to the team) or through `this`, each was loaded again at every pair
+    // (the take may call the allocator, which could change them). 5 % fewer instructions in
+    // the pass (docs/performance.md "Session 33").
+    double *const fx = disc_fx, *const fy = disc_fy, *const m = disc_m;
+    PairSum* const parts = parts_.data();
+    const std::uint8_t* const direct = special_direct_.data();
+    const std::int32_t* const special_pair = special_pairs_.data();
+    double* const pair_virial = t == 0 || !keep_virial ? nullptr : virial_.data();
+    const bool virial_wanted = keep_virial;
+    std::vector<std::pair<std::int32_t, double>>& slips = lane.slips;
+    std::vector<std::int32_t>& broken = lane.broken;
+    auto next_special = static_cast<std::size_t>(special_pair[special]);
     double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
     long touching = 0;
     const std::size_t bad = kernel.evaluate_range(
@@ -279,26 +291,25 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
         [&](std::size_t k, const Geometry& gk, const PairForce& f) __attribute__((always_inline)) {
           // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
           // others store theirs, and thread 0 goes on with the chain in its phase 2.
-          if (keep_virial) {
-            const double pair_virial = f.normal * (gk.ri + gk.rj - f.overlap);
-            if (t == 0)
-              virial += pair_virial;
+          if (virial_wanted) {
+            const double v = f.normal * (gk.ri + gk.rj - f.overlap);
+            if (pair_virial)
+              pair_virial[k] = v;
             else
-              virial_[k] = pair_virial;
+              virial += v;
           }
           const std::int32_t i = gk.i, j = gk.j;
           if (k != next_special) {
-            add_onto_discs(disc_fx, disc_fy, disc_m, i, j, f);
+            add_onto_discs(fx, fy, m, i, j, f);
           } else {
-            parts_[special] = {f.fx, f.fy, f.moment_i, f.moment_j};
-            const std::uint8_t direct = special_direct_[special];
-            if (direct & kDirectSecond) add_onto_second(disc_fx[j], disc_fy[j], disc_m[j], f);
-            if (direct & kDirectFirst) add_onto_first(disc_fx[i], disc_fy[i], disc_m[i], f);
-            next_special = static_cast<std::size_t>(special_pairs_[++special]);
+            parts[special] = {f.fx, f.fy, f.moment_i, f.moment_j};
+            if (direct[special] & kDirectSecond) add_onto_second(fx[j], fy[j], m[j], f);
+            if (direct[special] & kDirectFirst) add_onto_first(fx[i], fy[i], m[i], f);
+            next_special = static_cast<std::size_t>(special_pair[++special]);
           }
           touching += f.overlap > 0;
-          if (f.slip_work != 0) lane.slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
-          if (f.failure != BondFailure::None) lane.broken.push_back(static_cast<std::int32_t>(k));
+          if (f.slip_work != 0) slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
+          if (f.failure != BondFailure::None) broken.push_back(static_cast<std::int32_t>(k));
         });
     lane.virial = virial;
     lane.touching = touching;
