@@ -202,6 +202,7 @@ void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
   shared_term_start_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
   parts_.resize(special_pairs_.size() - 1);
   virial_.resize(count);
+  slip_terms_.resize(count);
 }
 
 void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const {
@@ -249,7 +250,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   auto job = [&](int t) {
     Lane& lane = lanes_[static_cast<std::size_t>(t)];
     const double start = sample ? thread_cpu_seconds() : 0;
-    lane.slips.clear();
     lane.broken.clear();
     lane.touching = 0;
     lane.bad = -1;
@@ -280,7 +280,14 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const std::int32_t* const special_pair = special_pairs_.data();
     double* const pair_virial = t == 0 || !keep_virial ? nullptr : virial_.data();
     const bool virial_wanted = keep_virial;
-    std::vector<std::pair<std::int32_t, double>>& slips = lane.slips;
+    // Slip work: thread 0 sums its pairs' in pair order, as the one-thread pass does; the others
+    // pack their non-zero terms without a branch. Which pairs slip looks random to a branch
+    // predictor, and later in the loading up to a third of them do: a list appended behind a
+    // branch cost about 10 % of the two-thread step there (docs/performance.md "Session 34").
+    // Leaving out the zeros keeps the sum's bits (x + 0 = x for every x of the chain).
+    double* const slip_out = t == 0 ? nullptr : slip_terms_.data() + pair_begin;
+    std::size_t slip_terms = 0;
+    double slip_work = 0;  // J, thread 0 only
     std::vector<std::int32_t>& broken = lane.broken;
     auto next_special = static_cast<std::size_t>(special_pair[special]);
     double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
@@ -308,10 +315,17 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
             next_special = static_cast<std::size_t>(special_pair[++special]);
           }
           touching += f.overlap > 0;
-          if (f.slip_work != 0) slips.emplace_back(static_cast<std::int32_t>(k), f.slip_work);
+          if (slip_out) {
+            slip_out[slip_terms] = f.slip_work;
+            slip_terms += f.slip_work != 0;
+          } else {
+            slip_work += f.slip_work;
+          }
           if (f.failure != BondFailure::None) broken.push_back(static_cast<std::int32_t>(k));
         });
     lane.virial = virial;
+    lane.slip_work = slip_work;
+    lane.slip_terms = slip_terms;
     lane.touching = touching;
     if (bad < pair_end) lane.bad = static_cast<long>(bad);
     if (t == nt - 1)
@@ -326,6 +340,16 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     for (int u = 0; u < nt; ++u) {
       const Lane& other = lanes_[static_cast<std::size_t>(u)];
       stop = stop || other.bad >= 0 || !other.broken.empty();
+    }
+    if (t == 0) {
+      // The slip work chain goes on over the other threads' terms, in pair order.
+      double w = lane.slip_work;
+      for (int u = 1; u < nt; ++u) {
+        const double* terms = slip_terms_.data() + first_start_[cuts_[static_cast<std::size_t>(u)]];
+        const std::size_t n = lanes_[static_cast<std::size_t>(u)].slip_terms;
+        for (std::size_t q = 0; q < n; ++q) w += terms[q];
+      }
+      lane.slip_work = w;
     }
     if (t == 0 && keep_virial) {
       // The virial chain goes on over the other threads' pairs, in pair order.
@@ -365,7 +389,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const Lane& lane = lanes_[static_cast<std::size_t>(u)];
     r.touching += lane.touching;
     if (bad < 0) bad = lane.bad;
-    for (const auto& [k, work] : lane.slips) r.slip_work += work;
     pair.broken.insert(pair.broken.end(), lane.broken.begin(), lane.broken.end());
   }
   for (const std::int32_t k : pair.broken) {
@@ -373,6 +396,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const std::uint32_t elements = pair.failed_elements[static_cast<std::size_t>(k)];
     r.bonds_broken += elements ? std::popcount(elements) : 1;
   }
+  r.slip_work = lanes_[0].slip_work;
   r.virial = keep_virial ? lanes_[0].virial : std::numeric_limits<double>::quiet_NaN();
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;

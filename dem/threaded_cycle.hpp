@@ -18,11 +18,11 @@
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
 // thread for any thread count. The scalar totals (virial, slip work, released energy, energy
 // ledger terms) are summed in pair or body order: thread 0, whose pairs and bodies come first,
-// sums its own as it goes; it goes on with the virial chain over the others' stored terms in
-// its phase 2 (in a step that keeps its per-pair results: the virial is one of them), and the
-// other chains go on after the job. In a step where a bond broke or a guard tripped the job
-// stops before the integration: the caller records the cracks (which read the positions of
-// the step) or stops, and integrates afterwards, as the one-thread cycle does.
+// sums its own as it goes; it goes on with the slip work chain over the others' stored terms in
+// its phase 2, and with the virial chain (in a step that keeps its per-pair results: the virial
+// is one of them), and the other chains go on after the job. In a step where a bond broke or a
+// guard tripped the job stops before the integration: the caller records the cracks (which read the
+// positions of the step) or stops, and integrates afterwards, as the one-thread cycle does.
 #include <cstdint>
 #include <vector>
 
@@ -74,8 +74,11 @@ class ThreadedCycle {
   };
   // One thread's results of a step (padded so two threads never share a cache line).
   struct alignas(64) Lane {
-    std::vector<std::pair<std::int32_t, double>> slips;  // pairs with non-zero slip work (J)
-    std::vector<std::int32_t> broken;                    // pairs whose bond broke, ascending
+    std::vector<std::int32_t> broken;  // pairs whose bond broke, ascending
+    // J. Thread 0: the slip work of every pair, in pair order (its own, then in its phase 2
+    // the others' packed terms); the others: how many terms they packed into slip_terms_.
+    double slip_work = 0;
+    std::size_t slip_terms = 0;
     long touching = 0;
     long bad = -1;
     double virial = 0;  // N m, thread 0 only: the virial of every pair, in pair order
@@ -126,6 +129,9 @@ class ThreadedCycle {
   std::vector<std::uint8_t> special_direct_;
   std::vector<PairSum> parts_;
   std::vector<double> virial_;  // N m, per pair of threads 1..: normal force x centre distance
+  // J. Threads 1..: the non-zero slip works of the range's pairs, in pair order, packed from
+  // the range's first pair on (thread 0 chains them on in its phase 2).
+  std::vector<double> slip_terms_;
   // Per shared disc s: shared_terms_[shared_term_start_[s], shared_term_mid_[s]) are the parts
   // (indices into parts_) of its pairs as second disc, then up to shared_term_start_[s + 1] as
   // first disc, each ascending: the order of the one-thread pass.
