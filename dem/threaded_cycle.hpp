@@ -75,10 +75,10 @@ class ThreadedCycle {
   // One thread's results of a step (padded so two threads never share a cache line).
   struct alignas(64) Lane {
     std::vector<std::int32_t> broken;  // pairs whose bond broke, ascending
-    // J. Thread 0: the slip work of every pair, in pair order (its own, then in its phase 2
-    // the others' packed terms); the others: how many terms they packed into slip_terms_.
+    // J, thread 0 only: the slip work of every pair, in pair order (its own, then in its phase 2
+    // the others' packed terms).
     double slip_work = 0;
-    std::size_t slip_terms = 0;
+    std::size_t slip_terms = 0;  // threads 1..: how many terms they packed into slip_terms_
     long touching = 0;
     long bad = -1;
     double virial = 0;  // N m, thread 0 only: the virial of every pair, in pair order
