@@ -5,6 +5,7 @@
 // disc-step.
 #include <benchmark/benchmark.h>
 
+#include "dem/measure.hpp"
 #include "dem/world.hpp"
 
 namespace cdem::bench {
@@ -25,6 +26,14 @@ inline void time_cycles(benchmark::State& state, dem::World& w, long steps) {
   state.counters["ns_per_disc_step"] =
       benchmark::Counter(static_cast<double>(disc_steps) * 1e-9,
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// Touching disc-disc contacts after one more step that keeps its per-pair results (the pass does
+// not count them; a world with results on request keeps them only when asked).
+inline long touching_contacts_after_step(dem::World& w) {
+  w.request_pair_results();
+  w.step();
+  return dem::overlap_statistics(w).contacts;
 }
 
 }  // namespace cdem::bench

@@ -57,7 +57,9 @@ struct ForcePassResult {
   // centre to contact point. NaN when the pass kept no per-pair results
   // (PassOptions::pair_results): it is one of them, summed.
   double virial = 0;
-  long touching = 0;  // disc-disc contacts with overlap > 0
+  // Disc-wall contacts with overlap > 0. The disc-disc ones are not counted in the pass (a
+  // step reads them nowhere; 4 instructions per pair): overlap_statistics (dem/measure.hpp)
+  // counts them from the per-pair results.
   long touching_walls = 0;
   // Guard: index of the first pair (or wall pair) whose overlap exceeds the allowed fraction of
   // the smaller radius, -1 if none.

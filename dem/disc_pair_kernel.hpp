@@ -395,7 +395,6 @@ class DiscPairKernel {
            std::vector<std::int32_t>& broken) const {
     add_onto_discs(disc_fx_, disc_fy_, disc_m_, g.i, g.j, f);
     totals.virial += f.normal * (g.ri + g.rj - f.overlap);
-    totals.touching += f.overlap > 0;
     totals.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {
       broken.push_back(static_cast<std::int32_t>(k));

@@ -170,20 +170,20 @@ void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
   // The pairs that reach a shared disc, ascending, each with the ends its thread adds at once;
   // every other pair is added onto both discs as it is evaluated.
   special_pairs_.clear();
-  special_direct_.clear();
   for (std::size_t k = 0; k < count; ++k) {
     const auto i = static_cast<std::size_t>(list.first[k]),
                j = static_cast<std::size_t>(list.second[k]);
     if (!shared_[i] && !shared_[j]) continue;
-    special_pairs_.push_back(static_cast<std::int32_t>(k));
-    special_direct_.push_back(static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
-                                                        (shared_[j] ? 0 : kDirectSecond)));
+    special_pairs_.push_back({{},
+                              static_cast<std::int32_t>(k),
+                              static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
+                                                        (shared_[j] ? 0 : kDirectSecond))});
   }
-  special_pairs_.push_back(static_cast<std::int32_t>(count));  // never reached
+  special_pairs_.push_back({{}, static_cast<std::int32_t>(count), 0});  // never reached
   std::vector<std::int32_t>& rank = rank_;
   rank.assign(count, -1);
   for (std::size_t s = 0; s + 1 < special_pairs_.size(); ++s)
-    rank[static_cast<std::size_t>(special_pairs_[s])] = static_cast<std::int32_t>(s);
+    rank[static_cast<std::size_t>(special_pairs_[s].pair)] = static_cast<std::int32_t>(s);
   shared_discs_.clear();
   shared_terms_.clear();
   shared_term_start_.clear();
@@ -200,13 +200,12 @@ void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
       shared_terms_.push_back(rank[static_cast<std::size_t>(k)]);
   }
   shared_term_start_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
-  parts_.resize(special_pairs_.size() - 1);
   virial_.resize(count);
   slip_terms_.resize(count);
 }
 
 void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const {
-  const PairSum* parts = parts_.data();
+  const SpecialPair* specials = special_pairs_.data();
   const std::int32_t* terms = shared_terms_.data();
   const auto first =
       static_cast<std::size_t>(std::lower_bound(shared_discs_.begin(), shared_discs_.end(),
@@ -220,9 +219,9 @@ void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_
     // first.
     double fx = 0, fy = 0, m = 0;
     for (std::int32_t e = shared_term_start_[s]; e < shared_term_mid_[s]; ++e)
-      add_onto_second(fx, fy, m, parts[terms[e]]);
+      add_onto_second(fx, fy, m, specials[terms[e]].part);
     for (std::int32_t e = shared_term_mid_[s]; e < shared_term_start_[s + 1]; ++e)
-      add_onto_first(fx, fy, m, parts[terms[e]]);
+      add_onto_first(fx, fy, m, specials[terms[e]].part);
     discs.fx[i] = fx;
     discs.fy[i] = fy;
     discs.moment[i] = m;
@@ -251,10 +250,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     Lane& lane = lanes_[static_cast<std::size_t>(t)];
     const double start = sample ? thread_cpu_seconds() : 0;
     lane.broken.clear();
-    lane.touching = 0;
     lane.bad = -1;
     lane.motion = {};
-    lane.virial = 0;
     const std::size_t disc_begin = cuts_[static_cast<std::size_t>(t)];
     const std::size_t disc_end = cuts_[static_cast<std::size_t>(t) + 1];
     // Phase 1: the pairs whose first disc is this thread's, in blocks of kGeometryBlock as in
@@ -266,20 +263,18 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const auto pair_end = static_cast<std::size_t>(first_start_[disc_end]);
     // Pairs that reach no shared disc are added onto both discs at once, as the one-thread pass
     // adds them; the others (special_pairs_, ascending) store their part for the shared disc.
-    std::size_t special =
-        static_cast<std::size_t>(std::lower_bound(special_pairs_.begin(), special_pairs_.end(),
-                                                  static_cast<std::int32_t>(pair_begin)) -
-                                 special_pairs_.begin());
+    SpecialPair* special = &*std::lower_bound(
+        special_pairs_.begin(), special_pairs_.end(), static_cast<std::int32_t>(pair_begin),
+        [](const SpecialPair& p, std::int32_t k) { return p.pair < k; });
     // The take's pointers are copied into locals of this function: reached through the step's
     // frame (which escapes to the team) or through `this`, each was loaded again at every pair
     // (the take may call the allocator, which could change them). 5 % fewer instructions in
     // the pass (docs/performance.md "Session 33").
     double *const fx = disc_fx, *const fy = disc_fy, *const m = disc_m;
-    PairSum* const parts = parts_.data();
-    const std::uint8_t* const direct = special_direct_.data();
-    const std::int32_t* const special_pair = special_pairs_.data();
-    double* const pair_virial = t == 0 || !keep_virial ? nullptr : virial_.data();
-    const bool virial_wanted = keep_virial;
+    // In a step that keeps the per-pair results every thread stores each pair's virial, and
+    // thread 0 chains them in its phase 2 (one pointer here where a sum, a flag and a pointer
+    // held registers the pair loop needed: docs/performance.md "Session 35").
+    double* const pair_virial = keep_virial ? virial_.data() : nullptr;
     // Slip work: thread 0 sums its pairs' in pair order, as the one-thread pass does; the others
     // pack their non-zero terms without a branch. Which pairs slip looks random to a branch
     // predictor, and later in the loading up to a third of them do: a list appended behind a
@@ -289,32 +284,20 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     std::size_t slip_terms = 0;
     double slip_work = 0;  // J, thread 0 only
     std::vector<std::int32_t>& broken = lane.broken;
-    auto next_special = static_cast<std::size_t>(special_pair[special]);
-    double virial = 0;  // N m, thread 0 only: the virial of its pairs, in pair order
-    long touching = 0;
     const std::size_t bad = kernel.evaluate_range(
         pair_begin, pair_end,
         // Inlined into evaluate_range (see there): a call per pair cost 3x the additions.
         [&](std::size_t k, const Geometry& gk, const PairForce& f) __attribute__((always_inline)) {
-          // Thread 0's pairs come first: it sums their virial as the one-thread pass does; the
-          // others store theirs, and thread 0 goes on with the chain in its phase 2.
-          if (virial_wanted) {
-            const double v = f.normal * (gk.ri + gk.rj - f.overlap);
-            if (pair_virial)
-              pair_virial[k] = v;
-            else
-              virial += v;
-          }
+          if (pair_virial) pair_virial[k] = f.normal * (gk.ri + gk.rj - f.overlap);
           const std::int32_t i = gk.i, j = gk.j;
-          if (k != next_special) {
+          if (k != static_cast<std::size_t>(special->pair)) {
             add_onto_discs(fx, fy, m, i, j, f);
           } else {
-            parts[special] = {f.fx, f.fy, f.moment_i, f.moment_j};
-            if (direct[special] & kDirectSecond) add_onto_second(fx[j], fy[j], m[j], f);
-            if (direct[special] & kDirectFirst) add_onto_first(fx[i], fy[i], m[i], f);
-            next_special = static_cast<std::size_t>(special_pair[++special]);
+            special->part = {f.fx, f.fy, f.moment_i, f.moment_j};
+            if (special->direct & kDirectSecond) add_onto_second(fx[j], fy[j], m[j], f);
+            if (special->direct & kDirectFirst) add_onto_first(fx[i], fy[i], m[i], f);
+            ++special;
           }
-          touching += f.overlap > 0;
           if (slip_out) {
             slip_out[slip_terms] = f.slip_work;
             slip_terms += f.slip_work != 0;
@@ -323,10 +306,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
           }
           if (f.failure != BondFailure::None) broken.push_back(static_cast<std::int32_t>(k));
         });
-    lane.virial = virial;
     lane.slip_work = slip_work;
     lane.slip_terms = slip_terms;
-    lane.touching = touching;
     if (bad < pair_end) lane.bad = static_cast<long>(bad);
     if (t == nt - 1)
       bad_wall = disc_wall_forces(discs, walls, list, wall_pair, wall_law, s.dt, s.guard,
@@ -352,9 +333,9 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       lane.slip_work = w;
     }
     if (t == 0 && keep_virial) {
-      // The virial chain goes on over the other threads' pairs, in pair order.
-      double v = lane.virial;
-      for (std::size_t k = pair_end; k < count; ++k) v += virial_[k];
+      // The virial chain over every pair, in pair order.
+      double v = 0;
+      for (std::size_t k = 0; k < count; ++k) v += virial_[k];
       lane.virial = v;
     }
     // This thread's bodies (a cut of its own, balanced on the measured time of this phase) and
@@ -387,7 +368,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   long bad = -1;
   for (int u = 0; u < nt; ++u) {
     const Lane& lane = lanes_[static_cast<std::size_t>(u)];
-    r.touching += lane.touching;
     if (bad < 0) bad = lane.bad;
     pair.broken.insert(pair.broken.end(), lane.broken.begin(), lane.broken.end());
   }

@@ -18,9 +18,10 @@
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
 // thread for any thread count. The scalar totals (virial, slip work, released energy, energy
 // ledger terms) are summed in pair or body order: thread 0, whose pairs and bodies come first,
-// sums its own as it goes; it goes on with the slip work chain over the others' stored terms in
-// its phase 2, and with the virial chain (in a step that keeps its per-pair results: the virial
-// is one of them), and the other chains go on after the job. In a step where a bond broke or a
+// sums its own slip work as it goes and goes on with the chain over the others' stored terms in
+// its phase 2; in a step that keeps its per-pair results (the virial is one of them) every
+// thread stores each pair's virial and thread 0 chains them in its phase 2; the other chains go
+// on after the job. In a step where a bond broke or a
 // guard tripped the job stops before the integration: the caller records the cracks (which read the
 // positions of the step) or stops, and integrates afterwards, as the one-thread cycle does.
 #include <cstdint>
@@ -72,6 +73,15 @@ class ThreadedCycle {
   struct PairSum {
     double fx, fy, moment_i, moment_j;
   };
+  // A pair that reaches a shared disc: its index, the ends its thread adds at once
+  // (kDirectFirst | kDirectSecond) and the part it stores in a step for the shared end. One
+  // record, so the take walks one pointer over them (five values held across the pair loop
+  // spilled the loop's registers: docs/performance.md "Session 35").
+  struct SpecialPair {
+    PairSum part;
+    std::int32_t pair;
+    std::uint8_t direct;
+  };
   // One thread's results of a step (padded so two threads never share a cache line).
   struct alignas(64) Lane {
     std::vector<std::int32_t> broken;  // pairs whose bond broke, ascending
@@ -79,13 +89,12 @@ class ThreadedCycle {
     // the others' packed terms).
     double slip_work = 0;
     std::size_t slip_terms = 0;  // threads 1..: how many terms they packed into slip_terms_
-    long touching = 0;
     long bad = -1;
     double virial = 0;  // N m, thread 0 only: the virial of every pair, in pair order
     RangeMotion motion;
     double pair_seconds = 0, body_seconds = 0;  // s, CPU time of phase 1 and 2, sampled steps
   };
-  // special_direct_ bits: the pair's thread adds it onto its first / second disc as it
+  // SpecialPair::direct bits: the pair's thread adds it onto its first / second disc as it
   // evaluates it (the other end is shared).
   static constexpr std::uint8_t kDirectFirst = 1, kDirectSecond = 2;
 
@@ -123,18 +132,15 @@ class ThreadedCycle {
   int samples_ = 0;
   std::vector<std::uint8_t> shared_;        // per disc: 1 if an earlier range's pair reaches it
   std::vector<std::int32_t> shared_discs_;  // the shared discs, ascending
-  // The pairs reaching a shared disc, ascending, then the pair count (a sentinel); per such
-  // pair its kDirectFirst | kDirectSecond bits and the part it stores in a step.
-  std::vector<std::int32_t> special_pairs_;
-  std::vector<std::uint8_t> special_direct_;
-  std::vector<PairSum> parts_;
-  std::vector<double> virial_;  // N m, per pair of threads 1..: normal force x centre distance
+  // The pairs reaching a shared disc, ascending, then a sentinel whose pair is the pair count.
+  std::vector<SpecialPair> special_pairs_;
+  std::vector<double> virial_;  // N m, per pair: normal force x centre distance
   // J. Threads 1..: the non-zero slip works of the range's pairs, in pair order, packed from
   // the range's first pair on (thread 0 chains them on in its phase 2).
   std::vector<double> slip_terms_;
   // Per shared disc s: shared_terms_[shared_term_start_[s], shared_term_mid_[s]) are the parts
-  // (indices into parts_) of its pairs as second disc, then up to shared_term_start_[s + 1] as
-  // first disc, each ascending: the order of the one-thread pass.
+  // (indices into special_pairs_) of its pairs as second disc, then up to shared_term_start_[s + 1]
+  // as first disc, each ascending: the order of the one-thread pass.
   std::vector<std::int32_t> shared_terms_, shared_term_start_, shared_term_mid_;
   // Scratch of plan_shared and rebalance (inside the step loop), kept so that they do not
   // allocate: per range its rate (s per unit work), the cumulative estimate (s), the cuts a

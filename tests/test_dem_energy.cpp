@@ -52,7 +52,8 @@ DriftRun run_box(int side, long steps, double safety) {
     ke_before = ke_after;
     if (n == 0) e0 = e;
     out.worst = std::max(out.worst, std::abs(e - e0) / e0);
-    const long touching = w.last_force_pass().touching + w.last_force_pass().touching_walls;
+    const long touching =
+        cdem::dem::overlap_statistics(w).contacts + w.last_force_pass().touching_walls;
     out.onsets += std::max(0L, touching - touching_before);
     touching_before = touching;
   }
