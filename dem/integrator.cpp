@@ -8,28 +8,28 @@
 
 namespace cdem::dem {
 
-void gather_body_forces(Bodies& b, const Discs& d, std::size_t begin, std::size_t end) {
-  for (std::size_t k = begin; k < end; ++k) {
-    const std::int32_t first = b.first_disc[k];
-    if (!b.is_clump[k]) {
-      b.fx[k] = d.fx[first] + b.fx_applied[k];
-      b.fy[k] = d.fy[first] + b.fy_applied[k];
-      b.moment[k] = d.moment[first];
-      continue;
-    }
-    double fx = b.fx_applied[k], fy = b.fy_applied[k], m = 0;
-    for (std::int32_t i = first; i < first + b.disc_count[k]; ++i) {
-      fx += d.fx[i];
-      fy += d.fy[i];
-      m += d.moment[i] + (d.x[i] - b.x[k]) * d.fy[i] - (d.y[i] - b.y[k]) * d.fx[i];
-    }
-    b.fx[k] = fx;
-    b.fy[k] = fy;
-    b.moment[k] = m;
-  }
-}
-
 namespace {
+
+// Body k's force and moment about its centroid: its discs' sums plus the applied loads, into
+// bodies.fx/fy/moment (read after the step too: unbalanced force, prescribed work).
+void gather_body_force(Bodies& b, const Discs& d, std::size_t k) {
+  const std::int32_t first = b.first_disc[k];
+  if (!b.is_clump[k]) {
+    b.fx[k] = d.fx[first] + b.fx_applied[k];
+    b.fy[k] = d.fy[first] + b.fy_applied[k];
+    b.moment[k] = d.moment[first];
+    return;
+  }
+  double fx = b.fx_applied[k], fy = b.fy_applied[k], m = 0;
+  for (std::int32_t i = first; i < first + b.disc_count[k]; ++i) {
+    fx += d.fx[i];
+    fy += d.fy[i];
+    m += d.moment[i] + (d.x[i] - b.x[k]) * d.fy[i] - (d.y[i] - b.y[k]) * d.fx[i];
+  }
+  b.fx[k] = fx;
+  b.fy[k] = fy;
+  b.moment[k] = m;
+}
 
 // Energy terms of one body over one step, before the common factor dt / 2: damping and
 // applied work as force x (v_old + v_new). T = double for one body, Lanes8 or Lanes4 for several.
@@ -78,7 +78,8 @@ struct FreeDiscLanes {
   alignas(64) double speed2[n];    // m^2/s^2, squared speed
 };
 
-// True when bodies k .. k + n - 1 are all free discs.
+// True when bodies k .. k + n - 1 are all free discs, on consecutive discs (as World numbers
+// them: a body's discs follow the previous body's), whose forces are then read as one vector.
 template <std::size_t n>
 bool free_discs(const Bodies& b, std::size_t k) {
   using Flags = std::conditional_t<n == 8, std::uint64_t, std::uint32_t>;
@@ -86,7 +87,8 @@ bool free_discs(const Bodies& b, std::size_t k) {
   static_assert(sizeof(prescribed) == n * sizeof(b.prescribed[0]));
   std::memcpy(&prescribed, b.prescribed.data() + k, sizeof(prescribed));
   std::memcpy(&clump, b.is_clump.data() + k, sizeof(clump));
-  return (prescribed | clump) == 0;
+  return (prescribed | clump) == 0 &&
+         b.first_disc[k + n - 1] - b.first_disc[k] == static_cast<std::int32_t>(n - 1);
 }
 
 // The free-disc branch of integrate_bodies on lanes, the same operations in the same order.
@@ -97,13 +99,21 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::
   const L dtl = splat<L>(dt), al = splat<L>(alpha);
   L vx = load<L>(b.vx.data() + k), vy = load<L>(b.vy.data() + k), w = load<L>(b.omega.data() + k);
   const L inv_mass = load<L>(b.inv_mass_dyn.data() + k);
+  // The bodies' forces gathered from their discs here (gather_body_force's free-disc branch),
+  // not in a pass of their own before the integration: one pass over the bodies, not two.
+  const std::size_t first = static_cast<std::size_t>(b.first_disc[k]);
+  const L fx_applied = load<L>(b.fx_applied.data() + k),
+          fy_applied = load<L>(b.fy_applied.data() + k);
+  const L fx = load<L>(d.fx.data() + first) + fx_applied,
+          fy = load<L>(d.fy.data() + first) + fy_applied;
+  const L moment = load<L>(d.moment.data() + first);
+  store(b.fx.data() + k, fx);
+  store(b.fy.data() + k, fy);
+  store(b.moment.data() + k, moment);
   StepEnergyOf<L> e;
-  advance<kBook, kDamped>(vx, load<L>(b.fx.data() + k), load<L>(b.fx_applied.data() + k), inv_mass,
-                          dtl, al, e);
-  advance<kBook, kDamped>(vy, load<L>(b.fy.data() + k), load<L>(b.fy_applied.data() + k), inv_mass,
-                          dtl, al, e);
-  advance<kBook, kDamped>(w, load<L>(b.moment.data() + k), L{},
-                          load<L>(b.inv_inertia_dyn.data() + k), dtl, al, e);
+  advance<kBook, kDamped>(vx, fx, fx_applied, inv_mass, dtl, al, e);
+  advance<kBook, kDamped>(vy, fy, fy_applied, inv_mass, dtl, al, e);
+  advance<kBook, kDamped>(w, moment, L{}, load<L>(b.inv_inertia_dyn.data() + k), dtl, al, e);
   const L x = load<L>(b.x.data() + k) + dtl * vx, y = load<L>(b.y.data() + k) + dtl * vy;
   const L theta = load<L>(b.theta.data() + k) + dtl * w;
   store(b.vx.data() + k, vx);
@@ -173,6 +183,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
         continue;
       }
     }
+    gather_body_force(b, d, k);
     if (!b.prescribed[k]) {
       StepEnergyOf<double> e;
       advance<kBook, kDamped>(b.vx[k], b.fx[k], b.fx_applied[k], b.inv_mass_dyn[k], dt, alpha, e);

@@ -350,7 +350,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
                    static_cast<std::size_t>(wall_start_[disc_of(body_begin)]),
                    static_cast<std::size_t>(wall_start_[disc_of(body_end)]));
     if (!stop && body_begin < body_end) {
-      gather_body_forces(bodies, discs, body_begin, body_end);
       // Likewise thread 0's energy sums are the start of the chain over the bodies.
       lane.motion =
           integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, body_begin, body_end,

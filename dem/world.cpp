@@ -474,7 +474,6 @@ void World::step() {
     if (book) book_step_energy(threaded.motion, dt_, energy_);
     motion = step_motion(bodies_, threaded.motion, dt_);
   } else {
-    gather_body_forces(bodies_, discs_);
     motion = integrate(bodies_, discs_, dt_, settings_.local_damping, book ? &energy_ : nullptr,
                        settings_.lanes);
   }
