@@ -25,17 +25,16 @@ T local_damping(T force, T velocity, T alpha) {
   return force - select(is_nonzero(velocity), damping, T{});
 }
 
-// Each body's force and moment first: its discs' sums about its centroid plus the applied
-// loads, into bodies.fx/fy/moment (gathered body by body in the integration's loop, not in a
-// pass of their own). Then v(t + dt/2) = v(t - dt/2) + dt F_damped / m; x(t + dt) = x(t) + dt v(t +
-// dt/2); likewise for the rotation. Prescribed bodies keep their velocity. Then carries the body
-// motion to the discs (pebble positions from their offsets). With a ledger, adds to it the energy
-// removed by damping and the work of the applied loads (force . mean of the two half-step
-// velocities . dt, which is exactly what the kinetic energy at the half step sees) and of the
-// prescribed bodies; nullptr skips them (they were 17 % of the integration's CPU time with the
-// contact power, which strain_to_half_step now forms only when read; docs/performance.md). Returns
-// the first non-finite body and a bound on how far any disc moved (the neighbour list's rebuild
-// check sums it).
+// Each body's force and moment first: its discs' sums about its centroid plus the applied loads,
+// into bodies.fx/fy/moment (gathered body by body in the integration's loop, not in a pass of their
+// own). Then v(t + dt/2) = v(t - dt/2) + dt F_damped / m; x(t + dt) = x(t) + dt v(t + dt/2);
+// likewise for the rotation. Prescribed bodies keep their velocity. Then carries the body motion to
+// the discs (pebble positions from their offsets). With a ledger, adds to it the energy removed by
+// damping and the work of the applied loads (force . mean of the two half-step velocities . dt,
+// which is exactly what the kinetic energy at the half step sees) and of the prescribed bodies;
+// nullptr skips them (they were 17 % of the integration's CPU time with the contact power, which
+// strain_to_half_step now forms only when read; docs/performance.md). Returns the first non-finite
+// body and a bound on how far any disc moved (the neighbour list's rebuild check sums it).
 struct StepMotion {
   long bad_body = -1;           // the first body whose state became non-finite, or -1
   double max_displacement = 0;  // m, bound on the largest disc displacement of the step

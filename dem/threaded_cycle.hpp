@@ -16,14 +16,14 @@
 // that the threads reach the barrier and the end together; no result depends on the cuts.
 //
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
-// thread for any thread count. The scalar totals (virial, slip work, released energy, energy
-// ledger terms) are summed in pair or body order: thread 0, whose pairs and bodies come first,
-// sums its own slip work as it goes and goes on with the chain over the others' stored terms in
-// its phase 2; in a step that keeps its per-pair results (the virial is one of them) every
-// thread stores each pair's virial and thread 0 chains them in its phase 2; the other chains go
-// on after the job. In a step where a bond broke or a
-// guard tripped the job stops before the integration: the caller records the cracks (which read the
-// positions of the step) or stops, and integrates afterwards, as the one-thread cycle does.
+// thread for any thread count. The scalar totals (virial, slip work, released energy, energy ledger
+// terms) are summed in pair or body order: thread 0, whose pairs and bodies come first, sums its
+// own slip work as it goes and goes on with the chain over the others' stored terms in its phase 2;
+// in a step that keeps its per-pair results (the virial is one of them) every thread stores each
+// pair's virial and thread 0 chains them in its phase 2; the other chains go on after the job. In a
+// step where a bond broke or a guard tripped the job stops before the integration: the caller
+// records the cracks (which read the positions of the step) or stops, and integrates afterwards, as
+// the one-thread cycle does.
 #include <cstdint>
 #include <vector>
 
@@ -139,8 +139,8 @@ class ThreadedCycle {
   // the range's first pair on (thread 0 chains them on in its phase 2).
   std::vector<double> slip_terms_;
   // Per shared disc s: shared_terms_[shared_term_start_[s], shared_term_mid_[s]) are the parts
-  // (indices into special_pairs_) of its pairs as second disc, then up to shared_term_start_[s + 1]
-  // as first disc, each ascending: the order of the one-thread pass.
+  // (indices into special_pairs_) of its pairs as second disc, then up to
+  // shared_term_start_[s + 1] as first disc, each ascending: the order of the one-thread pass.
   std::vector<std::int32_t> shared_terms_, shared_term_start_, shared_term_mid_;
   // Scratch of plan_shared and rebalance (inside the step loop), kept so that they do not
   // allocate: per range its rate (s per unit work), the cumulative estimate (s), the cuts a
