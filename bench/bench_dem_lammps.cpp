@@ -78,8 +78,8 @@ void BM_CdemSameStateAsLammps(benchmark::State& state) {
   }
   state.counters["discs"] = static_cast<double>(w.discs().size());
   state.counters["steps"] = static_cast<double>(steps);
-  state.counters["touching"] = static_cast<double>(cdem::bench::touching_contacts_after_step(w));
   state.counters["dt"] = w.time_step();
+  state.counters["touching"] = static_cast<double>(cdem::bench::touching_contacts_after_step(w));
 }
 
 BENCHMARK(BM_CdemSameStateAsLammps)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
