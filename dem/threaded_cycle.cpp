@@ -51,32 +51,23 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
     first_start_[i + 1] += first_start_[i];
     wall_start_[i + 1] += wall_start_[i];
   }
-  // Work estimates: per disc, the pairs it is first of (its thread evaluates them) and a little
-  // for clearing its sums; per body, its discs (gathered and placed) and the body itself.
-  pair_work_.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    pair_work_[i] = 0.05 + (first_start_[i + 1] - first_start_[i]);
-  body_work_.resize(bodies.size());
-  for (std::size_t b = 0; b < bodies.size(); ++b) body_work_[b] = 1.0 + bodies.disc_count[b];
+  place_bodies(bodies, discs, list);
   const auto parts = static_cast<std::size_t>(threads) + 1;
   // The scratch of the cuts, sized here so that rebalance (inside the step loop) allocates
   // nothing.
   rate_.assign(static_cast<std::size_t>(threads), 1.0);
-  cut_before_.reserve(std::max(n, bodies.size()) + 1);
+  cut_before_.reserve(bodies.size() + 1);
   target_cuts_.reserve(parts);
-  // The cuts stay where the measured times put them while the discs and the team do.
+  // The cuts stay where the measured times put them while the bodies and the team do.
   if (planned_discs_ != n || planned_threads_ != threads || cuts_.size() != parts ||
-      body_cuts_.size() != parts || body_cuts_.back() != bodies.size()) {
-    target_cuts_.assign(parts, n);  // one range holding every disc
+      cuts_.back() != bodies.size()) {
+    target_cuts_.assign(parts, bodies.size());  // one range holding every body
     target_cuts_[0] = 0;
-    equal_time_cuts(pair_work_, target_cuts_, rate_, cut_before_, cuts_);
-    target_cuts_.assign(parts, bodies.size());
-    target_cuts_[0] = 0;
-    equal_time_cuts(body_work_, target_cuts_, rate_, cut_before_, body_cuts_);
+    equal_time_cuts(work_, target_cuts_, rate_, cut_before_, cuts_);
     samples_ = 0;
   }
-  snap_cuts_to_bodies(bodies, discs);
-  plan_shared(discs, list);
+  assign_owners();
+  plan_shared(bodies, discs, list);
   wall_slip_.resize(walls);
   planned_build_ = list.merge_count;
   planned_pairs_ = count;
@@ -85,59 +76,112 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
   planned_threads_ = threads;
 }
 
-void ThreadedCycle::snap_cuts_to_bodies(const Bodies& bodies, const Discs& discs) {
-  const std::size_t n = discs.size();
-  for (std::size_t t = 1; t + 1 < cuts_.size(); ++t) {
-    std::size_t i = std::max(cuts_[t], cuts_[t - 1]);
-    while (i < n && bodies.first_disc[static_cast<std::size_t>(discs.body[i])] !=
-                        static_cast<std::int32_t>(i))
-      ++i;
-    cuts_[t] = std::min(i, n);
+void ThreadedCycle::place_bodies(const Bodies& bodies, const Discs& discs,
+                                 const ContactStore& list) {
+  const std::size_t nb = bodies.size(), count = list.keys.size();
+  // A clump's place: the mean index of the free discs it touches (the mortar around it), or
+  // its first disc's index if it touches none.
+  place_.assign(nb, 0.0);
+  touches_.assign(nb, 0);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = list.first[k], j = list.second[k];
+    const auto bi = static_cast<std::size_t>(discs.body[static_cast<std::size_t>(i)]),
+               bj = static_cast<std::size_t>(discs.body[static_cast<std::size_t>(j)]);
+    if (bodies.is_clump[bi] == bodies.is_clump[bj]) continue;
+    const std::size_t clump = bodies.is_clump[bi] ? bi : bj;
+    place_[clump] += bodies.is_clump[bi] ? j : i;
+    ++touches_[clump];
+  }
+  // The free discs keep body order (their places are their indices, ascending with it); the
+  // clumps, sorted by place, are merged in.
+  order_.clear();
+  clumps_.clear();
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (bodies.is_clump[b] && touches_[b] > 0) {
+      place_[b] /= touches_[b];
+    } else {
+      place_[b] = bodies.first_disc[b];
+    }
+    (bodies.is_clump[b] ? clumps_ : order_).push_back(static_cast<std::int32_t>(b));
+  }
+  const auto by_place = [this](std::int32_t a, std::int32_t b) {
+    const auto pa = place_[static_cast<std::size_t>(a)], pb = place_[static_cast<std::size_t>(b)];
+    return pa < pb || (pa == pb && a < b);
+  };
+  std::sort(clumps_.begin(), clumps_.end(), by_place);
+  std::size_t free_left = order_.size(), clumps_left = clumps_.size();
+  order_.resize(nb);
+  for (std::size_t p = nb; p-- > 0;) {
+    if (clumps_left > 0 &&
+        (free_left == 0 || by_place(order_[free_left - 1], clumps_[clumps_left - 1])))
+      order_[p] = clumps_[--clumps_left];
+    else
+      order_[p] = order_[--free_left];
+  }
+  // Work estimates per position: the pairs of its discs and a little for clearing their sums
+  // (phase 1), and its integration, about a third of a pair per disc (session 37: 4.3 ns per
+  // free disc against 11.6 ns per pair).
+  work_.resize(nb);
+  for (std::size_t p = 0; p < nb; ++p) {
+    const auto b = static_cast<std::size_t>(order_[p]);
+    const auto first = static_cast<std::size_t>(bodies.first_disc[b]);
+    const auto last = first + static_cast<std::size_t>(bodies.disc_count[b]);
+    work_[p] = 0.05 * static_cast<double>(last - first) +
+               (first_start_[last] - first_start_[first]) +
+               0.35 * (1.0 + static_cast<double>(last - first));
   }
 }
 
-void ThreadedCycle::measured_rates(const std::vector<double>& work,
-                                   const std::vector<std::size_t>& cuts, double Lane::*seconds,
-                                   double& imbalance) {
-  const std::size_t threads = cuts.size() - 1;
+void ThreadedCycle::assign_owners() {
+  owner_.resize(order_.size());
+  for (std::size_t t = 0; t + 1 < cuts_.size(); ++t)
+    for (std::size_t p = cuts_[t]; p < cuts_[t + 1]; ++p)
+      owner_[static_cast<std::size_t>(order_[p])] = static_cast<std::int32_t>(t);
+}
+
+void ThreadedCycle::rebalance(const Bodies& bodies, const Discs& discs, const ContactStore& list) {
+  const std::size_t threads = cuts_.size() - 1;
   double total = 0, total_work = 0, longest = 0;
   for (std::size_t t = 0; t < threads; ++t) {
     double w = 0;
-    for (std::size_t i = cuts[t]; i < cuts[t + 1]; ++i) w += work[i];
-    const double time = lanes_[t].*seconds;
+    for (std::size_t p = cuts_[t]; p < cuts_[t + 1]; ++p) w += work_[p];
+    const double time = lanes_[t].seconds;
     total += time;
     total_work += w;
     longest = std::max(longest, time);
     rate_[t] = w > 0 ? time / w : -1;
   }
+  // An empty range takes the mean rate.
   const double mean_rate = total_work > 0 ? total / total_work : 1;
   for (std::size_t t = 0; t < threads; ++t)
     if (!(rate_[t] > 0)) rate_[t] = mean_rate > 0 ? mean_rate : 1;
-  imbalance = total > 0 ? longest * static_cast<double>(threads) / total - 1 : 0;
-}
-
-void ThreadedCycle::rebalance(const Bodies& bodies, const Discs& discs, const ContactStore& list) {
-  const std::size_t threads = cuts_.size() - 1;
-  double imbalance = 0;
-  measured_rates(pair_work_, cuts_, &Lane::pair_seconds, imbalance);
+  const double imbalance = total > 0 ? longest * static_cast<double>(threads) / total - 1 : 0;
   if (imbalance > kTolerance) {
-    equal_time_cuts(pair_work_, cuts_, rate_, cut_before_, target_cuts_);
+    equal_time_cuts(work_, cuts_, rate_, cut_before_, target_cuts_);
     // Half-way: the rate of a range is not uniform over it, so a full step can overshoot.
     for (std::size_t t = 1; t < threads; ++t) cuts_[t] = (cuts_[t] + target_cuts_[t]) / 2;
-    snap_cuts_to_bodies(bodies, discs);
-    plan_shared(discs, list);
+    assign_owners();
+    plan_shared(bodies, discs, list);
   }
-  measured_rates(body_work_, body_cuts_, &Lane::body_seconds, imbalance);
-  if (imbalance > kTolerance) {
-    equal_time_cuts(body_work_, body_cuts_, rate_, cut_before_, target_cuts_);
-    for (std::size_t t = 1; t < threads; ++t) body_cuts_[t] = (body_cuts_[t] + target_cuts_[t]) / 2;
-  }
-  for (Lane& lane : lanes_) lane.pair_seconds = lane.body_seconds = 0;
+  for (Lane& lane : lanes_) lane.seconds = 0;
   samples_ = 0;
 }
 
-void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
-  const std::size_t n = discs.size(), count = list.keys.size();
+void ThreadedCycle::plan_shared(const Bodies& bodies, const Discs& discs,
+                                const ContactStore& list) {
+  const std::size_t n = discs.size(), count = list.keys.size(), nb = bodies.size();
+  // The runs of consecutive bodies of one owner.
+  chunks_.clear();
+  for (std::size_t b = 0; b < nb;) {
+    std::size_t e = b + 1;
+    while (e < nb && owner_[e] == owner_[b]) ++e;
+    const auto disc_begin = static_cast<std::size_t>(bodies.first_disc[b]);
+    const std::size_t disc_end = e < nb ? static_cast<std::size_t>(bodies.first_disc[e]) : n;
+    chunks_.push_back({b, e, disc_begin, disc_end,
+                       static_cast<std::size_t>(first_start_[disc_begin]),
+                       static_cast<std::size_t>(first_start_[disc_end]), owner_[b], 0});
+    b = e;
+  }
   // Scratch members: assign / clear reuse their capacity, so a call from rebalance between
   // two list rebuilds allocates nothing.
   std::vector<std::int32_t>& second_start = second_start_;
@@ -153,20 +197,16 @@ void ThreadedCycle::plan_shared(const Discs& discs, const ContactStore& list) {
   for (std::size_t k = 0; k < count; ++k)
     second_pairs[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
         static_cast<std::int32_t>(k);
-  // Discs that receive a pair of an earlier thread's range (its first disc is below the
-  // disc's range): their sums wait for the barrier. Every other disc gets all its pairs from
-  // its own thread, in pair order, so that thread adds them as it evaluates them.
-  const auto threads = cuts_.size() - 1;
+  // Discs that receive a pair of another thread (the owner of its first disc evaluates a pair):
+  // their sums wait for the barrier. Every other disc gets all its pairs from its own thread, in
+  // pair order, so that thread adds them as it evaluates them.
+  const auto owner = [&](std::int32_t i) {
+    return owner_[static_cast<std::size_t>(discs.body[static_cast<std::size_t>(i)])];
+  };
   shared_.assign(n, 0);
-  std::vector<std::size_t>& range_of = range_of_;
-  range_of.resize(n);
-  for (std::size_t t = 0; t < threads; ++t)
-    for (std::size_t i = cuts_[t]; i < cuts_[t + 1]; ++i) range_of[i] = t;
-  for (std::size_t k = 0; k < count; ++k) {
-    const auto i = static_cast<std::size_t>(list.first[k]),
-               j = static_cast<std::size_t>(list.second[k]);
-    if (range_of[i] != range_of[j]) shared_[j] = 1;
-  }
+  for (std::size_t k = 0; k < count; ++k)
+    if (owner(list.first[k]) != owner(list.second[k]))
+      shared_[static_cast<std::size_t>(list.second[k])] = 1;
   // The pairs that reach a shared disc, ascending, each with the ends its thread adds at once;
   // every other pair is added onto both discs as it is evaluated.
   special_pairs_.clear();
@@ -238,7 +278,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   if (lanes_.size() < static_cast<std::size_t>(nt)) lanes_.resize(static_cast<std::size_t>(nt));
   if (s.book_energy) body_energy_.resize(bodies.size());
   const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard, s.pass);
-  const std::size_t count = list.keys.size();
+  const std::size_t count = list.keys.size(), chunk_count = chunks_.size();
   const LinearContact& wall_law = (*s.laws)[static_cast<int>(ContactClass::Wall)];
   long bad_wall = -1;
   bool integrated = false;
@@ -251,21 +291,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const double start = sample ? thread_cpu_seconds() : 0;
     lane.broken.clear();
     lane.bad = -1;
+    lane.slip_work = 0;
     lane.motion = {};
-    const std::size_t disc_begin = cuts_[static_cast<std::size_t>(t)];
-    const std::size_t disc_end = cuts_[static_cast<std::size_t>(t) + 1];
-    // Phase 1: the pairs whose first disc is this thread's, in blocks of kGeometryBlock as in
-    // one thread, added at once onto the discs no other thread touches.
-    std::fill(disc_fx + disc_begin, disc_fx + disc_end, 0.0);
-    std::fill(disc_fy + disc_begin, disc_fy + disc_end, 0.0);
-    std::fill(disc_m + disc_begin, disc_m + disc_end, 0.0);
-    const auto pair_begin = static_cast<std::size_t>(first_start_[disc_begin]);
-    const auto pair_end = static_cast<std::size_t>(first_start_[disc_end]);
-    // Pairs that reach no shared disc are added onto both discs at once, as the one-thread pass
-    // adds them; the others (special_pairs_, ascending) store their part for the shared disc.
-    SpecialPair* special = &*std::lower_bound(
-        special_pairs_.begin(), special_pairs_.end(), static_cast<std::int32_t>(pair_begin),
-        [](const SpecialPair& p, std::int32_t k) { return p.pair < k; });
     // The take's pointers are copied into locals of this function: reached through the step's
     // frame (which escapes to the team) or through `this`, each was loaded again at every pair
     // (the take may call the allocator, which could change them). 5 % fewer instructions in
@@ -275,44 +302,70 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // thread 0 chains them in its phase 2 (one pointer here where a sum, a flag and a pointer
     // held registers the pair loop needed: docs/performance.md "Session 35").
     double* const pair_virial = keep_virial ? virial_.data() : nullptr;
-    // Slip work: thread 0 sums its pairs' in pair order, as the one-thread pass does; the others
-    // pack their non-zero terms without a branch. Which pairs slip looks random to a branch
-    // predictor, and later in the loading up to a third of them do: a list appended behind a
-    // branch cost about 10 % of the two-thread step there (docs/performance.md "Session 34").
-    // Leaving out the zeros keeps the sum's bits (x + 0 = x for every x of the chain).
-    double* const slip_out = t == 0 ? nullptr : slip_terms_.data() + pair_begin;
+    // Slip work: the first chunk's owner sums its pairs' in pair order, as the one-thread pass
+    // does; the other chunks pack their non-zero terms without a branch. Which pairs slip looks
+    // random to a branch predictor, and later in the loading up to a third of them do: a list
+    // appended behind a branch cost about 10 % of the two-thread step there (docs/performance.md
+    // "Session 34"). Leaving out the zeros keeps the sum's bits (x + 0 = x for every x of the
+    // chain).
+    double* slip_out = nullptr;
     std::size_t slip_terms = 0;
-    double slip_work = 0;  // J, thread 0 only
+    double slip_work = 0;  // J, the first chunk's
     std::vector<std::int32_t>& broken = lane.broken;
-    const std::size_t bad = kernel.evaluate_range(
-        pair_begin, pair_end,
-        // Inlined into evaluate_range (see there): a call per pair cost 3x the additions.
-        [&](std::size_t k, const Geometry& gk, const PairForce& f) __attribute__((always_inline)) {
-          if (pair_virial) pair_virial[k] = f.normal * (gk.ri + gk.rj - f.overlap);
-          const std::int32_t i = gk.i, j = gk.j;
-          if (k != static_cast<std::size_t>(special->pair)) {
-            add_onto_discs(fx, fy, m, i, j, f);
-          } else {
-            special->part = {f.fx, f.fy, f.moment_i, f.moment_j};
-            if (special->direct & kDirectSecond) add_onto_second(fx[j], fy[j], m[j], f);
-            if (special->direct & kDirectFirst) add_onto_first(fx[i], fy[i], m[i], f);
-            ++special;
-          }
-          if (slip_out) {
-            slip_out[slip_terms] = f.slip_work;
-            slip_terms += f.slip_work != 0;
-          } else {
-            slip_work += f.slip_work;
-          }
-          if (f.failure != BondFailure::None) broken.push_back(static_cast<std::int32_t>(k));
-        });
+    SpecialPair* special = nullptr;
+    // Pairs that reach no shared disc are added onto both discs at once, as the one-thread pass
+    // adds them; the others (special_pairs_, ascending) store their part for the shared disc.
+    // Inlined into evaluate_range (see there): a call per pair cost 3x the additions.
+    const auto take = [&](std::size_t k, const Geometry& gk, const PairForce& f)
+        __attribute__((always_inline)) {
+      if (pair_virial) pair_virial[k] = f.normal * (gk.ri + gk.rj - f.overlap);
+      const std::int32_t i = gk.i, j = gk.j;
+      if (k != static_cast<std::size_t>(special->pair)) {
+        add_onto_discs(fx, fy, m, i, j, f);
+      } else {
+        special->part = {f.fx, f.fy, f.moment_i, f.moment_j};
+        if (special->direct & kDirectSecond) add_onto_second(fx[j], fy[j], m[j], f);
+        if (special->direct & kDirectFirst) add_onto_first(fx[i], fy[i], m[i], f);
+        ++special;
+      }
+      if (slip_out) {
+        slip_out[slip_terms] = f.slip_work;
+        slip_terms += f.slip_work != 0;
+      } else {
+        slip_work += f.slip_work;
+      }
+      if (f.failure != BondFailure::None) broken.push_back(static_cast<std::int32_t>(k));
+    };
+    // Phase 1: the pairs whose first disc is one of this thread's, chunk by chunk, in blocks of
+    // kGeometryBlock as in one thread, added at once onto the discs no other thread touches.
+    // Every sum is cleared first: a chunk's pairs reach the discs of this thread's later chunks.
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+      const Chunk& chunk = chunks_[c];
+      if (chunk.thread != t) continue;
+      std::fill(fx + chunk.disc_begin, fx + chunk.disc_end, 0.0);
+      std::fill(fy + chunk.disc_begin, fy + chunk.disc_end, 0.0);
+      std::fill(m + chunk.disc_begin, m + chunk.disc_end, 0.0);
+    }
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+      Chunk& chunk = chunks_[c];
+      if (chunk.thread != t) continue;
+      special = &*std::lower_bound(special_pairs_.begin(), special_pairs_.end(),
+                                   static_cast<std::int32_t>(chunk.pair_begin),
+                                   [](const SpecialPair& p, std::int32_t k) { return p.pair < k; });
+      slip_out = c == 0 ? nullptr : slip_terms_.data() + chunk.pair_begin;
+      slip_terms = 0;
+      // After a pair tripped the guard the thread evaluates no more (the run stops).
+      const std::size_t bad = lane.bad >= 0
+                                  ? chunk.pair_end
+                                  : kernel.evaluate_range(chunk.pair_begin, chunk.pair_end, take);
+      chunk.slip_terms = slip_terms;
+      if (bad < chunk.pair_end) lane.bad = static_cast<long>(bad);
+    }
     lane.slip_work = slip_work;
-    lane.slip_terms = slip_terms;
-    if (bad < pair_end) lane.bad = static_cast<long>(bad);
     if (t == nt - 1)
       bad_wall = disc_wall_forces(discs, walls, list, wall_pair, wall_law, s.dt, s.guard,
                                   unused_slip, wall_slip_.data());
-    if (sample) lane.pair_seconds += thread_cpu_seconds() - start;
+    if (sample) lane.seconds += thread_cpu_seconds() - start;
     team.barrier();
     const double phase2_start = sample ? thread_cpu_seconds() : 0;
     // Phase 2: this thread's discs and bodies. Every thread reads the same flags, so all take
@@ -322,12 +375,12 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       const Lane& other = lanes_[static_cast<std::size_t>(u)];
       stop = stop || other.bad >= 0 || !other.broken.empty();
     }
-    if (t == 0) {
-      // The slip work chain goes on over the other threads' terms, in pair order.
-      double w = lane.slip_work;
-      for (int u = 1; u < nt; ++u) {
-        const double* terms = slip_terms_.data() + first_start_[cuts_[static_cast<std::size_t>(u)]];
-        const std::size_t n = lanes_[static_cast<std::size_t>(u)].slip_terms;
+    if (t == 0 && chunk_count > 0) {
+      // The slip work chain goes on over the other chunks' terms, in pair order.
+      double w = lanes_[static_cast<std::size_t>(chunks_[0].thread)].slip_work;
+      for (std::size_t c = 1; c < chunk_count; ++c) {
+        const double* terms = slip_terms_.data() + chunks_[c].pair_begin;
+        const std::size_t n = chunks_[c].slip_terms;
         for (std::size_t q = 0; q < n; ++q) w += terms[q];
       }
       lane.slip_work = w;
@@ -338,24 +391,28 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       for (std::size_t k = 0; k < count; ++k) v += virial_[k];
       lane.virial = v;
     }
-    // This thread's bodies (a cut of its own, balanced on the measured time of this phase) and
-    // their discs.
-    const std::size_t body_begin = body_cuts_[static_cast<std::size_t>(t)];
-    const std::size_t body_end = body_cuts_[static_cast<std::size_t>(t) + 1];
-    const auto disc_of = [&](std::size_t b) {
-      return b < bodies.size() ? static_cast<std::size_t>(bodies.first_disc[b]) : discs.size();
-    };
-    sum_shared_discs(discs, disc_of(body_begin), disc_of(body_end));
-    add_wall_pairs(discs, list, wall_pair,
-                   static_cast<std::size_t>(wall_start_[disc_of(body_begin)]),
-                   static_cast<std::size_t>(wall_start_[disc_of(body_end)]));
-    if (!stop && body_begin < body_end) {
-      // Likewise thread 0's energy sums are the start of the chain over the bodies.
-      lane.motion =
-          integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, body_begin, body_end,
-                          s.book_energy && t > 0 ? body_energy_.data() : nullptr, s.pass.lanes);
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+      const Chunk& chunk = chunks_[c];
+      if (chunk.thread != t) continue;
+      sum_shared_discs(discs, chunk.disc_begin, chunk.disc_end);
+      add_wall_pairs(discs, list, wall_pair,
+                     static_cast<std::size_t>(wall_start_[chunk.disc_begin]),
+                     static_cast<std::size_t>(wall_start_[chunk.disc_end]));
+      if (stop) continue;
+      // The first chunk's energy sums are the start of the chain over the bodies; the others'
+      // are stored per body.
+      const RangeMotion r = integrate_range(
+          bodies, discs, s.dt, s.alpha, s.book_energy, chunk.body_begin, chunk.body_end,
+          s.book_energy && c > 0 ? body_energy_.data() : nullptr, s.pass.lanes);
+      if (c == 0) {
+        lane.motion = r;
+      } else {
+        lane.motion.position_sum += r.position_sum;
+        lane.motion.disc_speed2 = std::max(lane.motion.disc_speed2, r.disc_speed2);
+        lane.motion.pebble_speed = std::max(lane.motion.pebble_speed, r.pebble_speed);
+      }
     }
-    if (sample) lane.body_seconds += thread_cpu_seconds() - phase2_start;
+    if (sample) lane.seconds += thread_cpu_seconds() - phase2_start;
     if (t == 0) integrated = !stop;
   };
   team.run(job);
@@ -367,9 +424,11 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   long bad = -1;
   for (int u = 0; u < nt; ++u) {
     const Lane& lane = lanes_[static_cast<std::size_t>(u)];
-    if (bad < 0) bad = lane.bad;
+    if (lane.bad >= 0 && (bad < 0 || lane.bad < bad)) bad = lane.bad;
     pair.broken.insert(pair.broken.end(), lane.broken.begin(), lane.broken.end());
   }
+  // Each thread's list ascends; their chunks interleave.
+  std::sort(pair.broken.begin(), pair.broken.end());
   for (const std::int32_t k : pair.broken) {
     r.bond_energy_released += pair.bond_energy_released[static_cast<std::size_t>(k)];
     const std::uint32_t elements = pair.failed_elements[static_cast<std::size_t>(k)];
@@ -382,11 +441,12 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   r.bad_wall_pair = bad_wall;
   wall_totals(walls, list, wall_pair, discs, r);
   out.integrated = integrated;
-  if (integrated) {
+  if (integrated && chunk_count > 0) {
     RangeMotion& m = out.motion;
-    m.damped = lanes_[0].motion.damped;
-    m.applied = lanes_[0].motion.applied;
-    m.prescribed = lanes_[0].motion.prescribed;
+    const RangeMotion& first = lanes_[static_cast<std::size_t>(chunks_[0].thread)].motion;
+    m.damped = first.damped;
+    m.applied = first.applied;
+    m.prescribed = first.prescribed;
     for (int u = 0; u < nt; ++u) {
       const RangeMotion& lane = lanes_[static_cast<std::size_t>(u)].motion;
       m.position_sum += lane.position_sum;
@@ -394,7 +454,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       m.pebble_speed = std::max(m.pebble_speed, lane.pebble_speed);
     }
     if (s.book_energy)
-      for (std::size_t b = body_cuts_[1]; b < bodies.size(); ++b) {
+      for (std::size_t b = chunks_[0].body_end; b < bodies.size(); ++b) {
         m.damped += body_energy_[b].damped;
         m.applied += body_energy_[b].applied;
         m.prescribed -= body_energy_[b].prescribed;

@@ -3,27 +3,38 @@
 // and bodies and the integration in one job of a persistent thread team per step
 // (dem/worker_team.hpp), with one barrier inside it.
 //
-// Phase 1: each thread owns a contiguous range of discs (cut at a body start) and so of the
-// sorted pair list (the pairs whose first disc is its). It evaluates its pairs with the pair
-// kernel of the one-thread pass and adds each at once onto the discs that no other thread's
-// pair reaches, which therefore get all their pairs from it in pair order; for a shared disc
-// (reached from an earlier range: discs near a cut, and the clumps' pebbles, numbered after the
-// mortar) it stores the pair's part. Thread `threads - 1` also evaluates the disc-wall pairs.
-// Barrier. Phase 2: each thread owns a contiguous range of bodies (a cut of its own): it sums
-// their shared discs in pair order from the stored parts (pairs where the disc is second, then
-// where it is first: the order of the one-thread pass), adds their wall pairs and integrates
-// them. Both cuts follow the CPU time each thread measures for each phase (sampled steps), so
-// that the threads reach the barrier and the end together; no result depends on the cuts.
+// Each body has one owning thread for the whole step: it evaluates the pairs whose first disc is
+// one of the body's, and after the barrier it sums the body's discs and integrates it. So a
+// disc's position, velocity and force sums are written by one core only, and the other core
+// reads only the discs along the border of the two regions: where a disc's pairs were evaluated
+// on one core and its body integrated on the other, its data crossed between the cores twice a
+// step, which on a host whose two cores share no cache cost more than the second core gave
+// (docs/performance.md "Session 37"). The owners follow a place per body: a free disc's is its
+// index (the mortar is numbered along the specimen), a clump's the mean index of the free discs
+// it touches; thread t owns a contiguous run of the bodies in place order, so a clump goes with
+// the mortar around it. A thread's bodies are therefore runs of consecutive bodies (chunks),
+// which it takes in ascending order.
+//
+// Phase 1: each thread zeroes the sums of its discs, evaluates its chunks' pairs with the pair
+// kernel of the one-thread pass and adds each at once onto the discs that no other thread's pair
+// reaches, which therefore get all their pairs from it in pair order; for a shared disc (one that
+// another thread's pair reaches) it stores the pair's part. Thread `threads - 1` also evaluates
+// the disc-wall pairs. Barrier. Phase 2: each thread sums the shared discs of its chunks in pair
+// order from the stored parts (pairs where the disc is second, then where it is first: the order
+// of the one-thread pass), adds their wall pairs and integrates its bodies. The place-order cuts
+// follow the CPU time each thread measures for its step (sampled steps), so that the threads
+// reach the end together; no result depends on the owners.
 //
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
 // thread for any thread count. The scalar totals (virial, slip work, released energy, energy ledger
-// terms) are summed in pair or body order: thread 0, whose pairs and bodies come first, sums its
-// own slip work as it goes and goes on with the chain over the others' stored terms in its phase 2;
-// in a step that keeps its per-pair results (the virial is one of them) every thread stores each
-// pair's virial and thread 0 chains them in its phase 2; the other chains go on after the job. In a
-// step where a bond broke or a guard tripped the job stops before the integration: the caller
-// records the cracks (which read the positions of the step) or stops, and integrates afterwards, as
-// the one-thread cycle does.
+// terms) are summed in pair or body order: thread 0 sums the slip work of the first chunk (its
+// own when it owns body 0) as it goes, the other chunks pack their non-zero terms and thread 0
+// goes on with the chain over them, chunk by chunk, in its phase 2; in a step that keeps its
+// per-pair results (the virial is one of them) every thread stores each pair's virial and thread
+// 0 chains them in its phase 2; the energy terms of the bodies past the first chunk are stored
+// per body and chained after the job. In a step where a bond broke or a guard tripped the job
+// stops before the integration: the caller records the cracks (which read the positions of the
+// step) or stops, and integrates afterwards, as the one-thread cycle does.
 #include <cstdint>
 #include <vector>
 
@@ -67,7 +78,7 @@ class ThreadedCycle {
  private:
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
   friend MemoryFootprint memory_footprint(const World& world);
-  // Sets the cuts of a test (tests/world_test_access.hpp): any cuts must give the same bits.
+  // Sets the owners of a test (tests/world_test_access.hpp): any owners must give the same bits.
   friend struct WorldTestAccess;
   // What one pair puts on its discs: forces on the second disc, moments on each.
   struct PairSum {
@@ -85,33 +96,41 @@ class ThreadedCycle {
   // One thread's results of a step (padded so two threads never share a cache line).
   struct alignas(64) Lane {
     std::vector<std::int32_t> broken;  // pairs whose bond broke, ascending
-    // J, thread 0 only: the slip work of every pair, in pair order (its own, then in its phase 2
-    // the others' packed terms).
+    // J, thread 0 only: the slip work of every pair, in pair order (the first chunk's, then in
+    // its phase 2 the other chunks' packed terms).
     double slip_work = 0;
-    std::size_t slip_terms = 0;  // threads 1..: how many terms they packed into slip_terms_
-    long bad = -1;
+    long bad = -1;      // the thread's first pair tripping the guard (it evaluates no more)
     double virial = 0;  // N m, thread 0 only: the virial of every pair, in pair order
+    // The sums of the thread's bodies; the energy terms only of the first chunk (thread 0's, when
+    // it owns body 0: the start of the chain over the bodies).
     RangeMotion motion;
-    double pair_seconds = 0, body_seconds = 0;  // s, CPU time of phase 1 and 2, sampled steps
+    double seconds = 0;  // s, CPU time of the job, sampled steps
   };
   // SpecialPair::direct bits: the pair's thread adds it onto its first / second disc as it
   // evaluates it (the other end is shared).
   static constexpr std::uint8_t kDirectFirst = 1, kDirectSecond = 2;
 
-  // Per-disc first pair and first wall pair, the work estimates, the first cuts (kept while
-  // the discs and the team are) and the shared discs; rebuilt when the list or the team is.
+  // A run of consecutive bodies of one owner, and its discs and pairs (those whose first disc
+  // is one of its discs).
+  struct Chunk {
+    std::size_t body_begin, body_end, disc_begin, disc_end, pair_begin, pair_end;
+    int thread;
+    std::size_t slip_terms;  // chunks but the first: how many slip work terms it packed
+  };
+
+  // Per-disc first pair and first wall pair, the place order and its work estimates, the first
+  // cuts (kept while the bodies and the team are), the owners and the shared discs; rebuilt
+  // when the list or the team is.
   void plan(const Bodies& bodies, const Discs& discs, const ContactStore& list, int threads);
-  // Keeps the cuts, finds the shared discs and the special pairs of the cut list.
-  void plan_shared(const Discs& discs, const ContactStore& list);
-  // Moves each disc cut up to the next body start.
-  void snap_cuts_to_bodies(const Bodies& bodies, const Discs& discs);
-  // Moves the cuts half-way towards equal measured times of each phase, where they differ by
-  // more than kTolerance.
+  // The bodies in place order (order_) and the work estimate of each position (work_).
+  void place_bodies(const Bodies& bodies, const Discs& discs, const ContactStore& list);
+  // owner_ from the cuts of the place order.
+  void assign_owners();
+  // The chunks of owner_, the shared discs and the special pairs of the list.
+  void plan_shared(const Bodies& bodies, const Discs& discs, const ContactStore& list);
+  // Moves the cuts half-way towards equal measured step times, where they differ by more than
+  // kTolerance.
   void rebalance(const Bodies& bodies, const Discs& discs, const ContactStore& list);
-  // Writes to rate_ the measured seconds per unit of estimated work of each range of `cuts`
-  // (an empty range takes the mean) and to `imbalance` the longest / mean time - 1.
-  void measured_rates(const std::vector<double>& work, const std::vector<std::size_t>& cuts,
-                      double Lane::*seconds, double& imbalance);
   // Sums, in pair order, the stored parts of the shared discs of [begin, end).
   void sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const;
 
@@ -119,38 +138,42 @@ class ThreadedCycle {
   std::size_t planned_pairs_ = 0, planned_discs_ = 0, planned_walls_ = 0;
   int planned_threads_ = 0;
   std::vector<std::int32_t> first_start_, wall_start_;  // per disc: first pair, first wall pair
-  // Phase 1: thread t evaluates the pairs of discs [cuts_[t], cuts_[t + 1]) (cut at body
-  // starts); phase 2: it sums and integrates bodies [body_cuts_[t], body_cuts_[t + 1]).
-  std::vector<std::size_t> cuts_, body_cuts_;
-  // Work estimates per disc (phase 1) and per body (phase 2); the measured CPU time of each
-  // thread's phase, sampled every kSampleEvery steps, scales them, kSamples samples at a time.
-  std::vector<double> pair_work_, body_work_;
+  // Thread t owns the bodies order_[cuts_[t]], ..., order_[cuts_[t + 1] - 1] of the place
+  // order; work_ estimates each position's work, and the measured CPU time of each thread's
+  // step, sampled every kSampleEvery steps, scales it, kSamples samples at a time.
+  std::vector<std::int32_t> order_;
+  std::vector<double> work_;
+  std::vector<std::size_t> cuts_;
+  std::vector<std::int32_t> owner_;  // per body: its thread
+  std::vector<Chunk> chunks_;        // every thread's, ascending
   static constexpr long kSampleEvery = 8;
   static constexpr int kSamples = 16;
-  static constexpr double kTolerance = 0.02;  // longest / mean phase time - 1 left as it is
+  static constexpr double kTolerance = 0.02;  // longest / mean step time - 1 left as it is
   long steps_ = 0;
   int samples_ = 0;
-  std::vector<std::uint8_t> shared_;        // per disc: 1 if an earlier range's pair reaches it
+  std::vector<std::uint8_t> shared_;        // per disc: 1 if another thread's pair reaches it
   std::vector<std::int32_t> shared_discs_;  // the shared discs, ascending
   // The pairs reaching a shared disc, ascending, then a sentinel whose pair is the pair count.
   std::vector<SpecialPair> special_pairs_;
   std::vector<double> virial_;  // N m, per pair: normal force x centre distance
-  // J. Threads 1..: the non-zero slip works of the range's pairs, in pair order, packed from
-  // the range's first pair on (thread 0 chains them on in its phase 2).
+  // J. Chunks but the first: the non-zero slip works of the chunk's pairs, in pair order, packed
+  // from the chunk's first pair on (thread 0 chains them on in its phase 2).
   std::vector<double> slip_terms_;
   // Per shared disc s: shared_terms_[shared_term_start_[s], shared_term_mid_[s]) are the parts
   // (indices into special_pairs_) of its pairs as second disc, then up to
   // shared_term_start_[s + 1] as first disc, each ascending: the order of the one-thread pass.
   std::vector<std::int32_t> shared_terms_, shared_term_start_, shared_term_mid_;
-  // Scratch of plan_shared and rebalance (inside the step loop), kept so that they do not
-  // allocate: per range its rate (s per unit work), the cumulative estimate (s), the cuts a
-  // rebalance aims at; per disc its first second-disc pair, the pairs by second disc, the
-  // counting sort's next slot, its range; per pair its rank among the special pairs.
-  std::vector<double> rate_, cut_before_;
-  std::vector<std::size_t> target_cuts_, range_of_;
+  // Scratch of place_bodies, plan_shared and rebalance (inside the step loop), kept so that they
+  // do not allocate: per body its place and the free discs it touches; the clumps; per range its
+  // rate (s per unit work), the cumulative estimate (s), the cuts a rebalance aims at; per disc its
+  // first second-disc pair, the pairs by second disc, the counting sort's next slot; per pair its
+  // rank among the special pairs.
+  std::vector<double> place_, rate_, cut_before_;
+  std::vector<std::int32_t> touches_, clumps_;
+  std::vector<std::size_t> target_cuts_;
   std::vector<std::int32_t> second_start_, second_pairs_, next_second_, rank_;
-  std::vector<BodyStepEnergy> body_energy_;
-  std::vector<double> wall_slip_;  // J, per disc-wall pair
+  std::vector<BodyStepEnergy> body_energy_;  // per body past the first chunk
+  std::vector<double> wall_slip_;            // J, per disc-wall pair
   std::vector<Lane> lanes_;
 };
 

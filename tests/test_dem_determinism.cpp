@@ -105,31 +105,29 @@ World jostling_discs_and_clumps(int threads) {
   return w;
 }
 
-// The cuts between the threads' ranges follow measured times, so no run can rely on where they
-// are: cuts drawn at random every 10 steps (pairs and bodies cut independently, ranges empty
-// or holding every clump included) must give the bits of one thread. Fails if a disc were
-// summed by a thread other than the one whose phase 2 integrates its body, or a chain started
-// from another range's total.
-TEST(Determinism, AnyThreadCutsGiveTheSameBits) {
+// The owners of the bodies follow measured times, so no run can rely on who owns what: owners
+// drawn at random every 10 steps (each body its own draw, or runs of bodies, or every body on one
+// thread, clumps included) must give the bits of one thread. Fails if a disc were summed by a
+// thread other than the one that integrates its body, a disc another thread reaches were added
+// at once, or a chain started from another chunk's total.
+TEST(Determinism, AnyThreadOwnersGiveTheSameBits) {
   World one = jostling_discs_and_clumps(1);
   World three = jostling_discs_and_clumps(3);
   one.cycle(1);
   three.cycle(1);
   cdem::Rng rng(5);
-  const double n = static_cast<double>(three.discs().size()),
-               bodies = static_cast<double>(three.bodies().size());
+  const std::size_t bodies = three.bodies().size();
   for (int round = 0; round < 20; ++round) {
-    std::vector<std::size_t> discs = {0, static_cast<std::size_t>(rng.uniform(0, n)),
-                                      static_cast<std::size_t>(rng.uniform(0, n)),
-                                      static_cast<std::size_t>(n)};
-    std::vector<std::size_t> body = {0, static_cast<std::size_t>(rng.uniform(0, bodies)),
-                                     static_cast<std::size_t>(rng.uniform(0, bodies)),
-                                     static_cast<std::size_t>(bodies)};
-    if (round % 5 == 0) discs[1] = discs[2] = 0;  // thread 0 idle in phase 1
-    if (round % 5 == 1) body[1] = body[2] = static_cast<std::size_t>(bodies);  // all on thread 0
-    std::sort(discs.begin(), discs.end());
-    std::sort(body.begin(), body.end());
-    cdem::dem::WorldTestAccess::set_thread_cuts(three, discs, body);
+    std::vector<std::int32_t> owners(bodies);
+    const double run = round % 4 == 0 ? 1.0 : 40.0;  // bodies per random run
+    std::int32_t owner = 0;
+    for (std::size_t b = 0; b < bodies; ++b) {
+      if (rng.uniform(0, 1) < 1.0 / run) owner = static_cast<std::int32_t>(rng.uniform(0, 3));
+      owners[b] = std::min(owner, 2);
+    }
+    if (round % 5 == 1) std::fill(owners.begin(), owners.end(), 2);  // thread 0 idle
+    if (round % 5 == 2) std::fill(owners.begin(), owners.end(), 0);  // all on thread 0
+    cdem::dem::WorldTestAccess::set_thread_owners(three, owners);
     one.cycle(10);
     three.cycle(10);
   }

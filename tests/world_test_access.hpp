@@ -3,6 +3,7 @@
 // methods never make, such as a contact stiffness raised without a time-step update (the
 // instability diagnosis must still name it) or a clump body moved without its pebbles. Not for
 // set-ups the methods can express.
+#include <cstdint>
 #include <vector>
 
 #include "dem/world.hpp"
@@ -14,17 +15,13 @@ struct WorldTestAccess {
   static WorldSettings& stale_settings(World& w) { return w.settings_; }
   // The bodies, changed in place: the discs do not follow.
   static Bodies& bodies(World& w) { return w.bodies_; }
-  // Puts the cuts of a multi-thread world's cycle (it must have stepped once with its team)
-  // where a test wants them: thread t evaluates the pairs of discs [disc_cuts[t],
-  // disc_cuts[t + 1]) (moved up to a body start) and integrates bodies [body_cuts[t],
-  // body_cuts[t + 1]). They stay until the cycle's next rebalance.
-  static void set_thread_cuts(World& w, const std::vector<std::size_t>& disc_cuts,
-                              const std::vector<std::size_t>& body_cuts) {
+  // Gives the bodies of a multi-thread world's cycle (it must have stepped once with its team)
+  // the owners a test wants: thread owners[b] evaluates the pairs of body b's discs and
+  // integrates it. They stay until the cycle's next rebalance or neighbour-list rebuild.
+  static void set_thread_owners(World& w, const std::vector<std::int32_t>& owners) {
     ThreadedCycle& c = w.threaded_;
-    c.cuts_ = disc_cuts;
-    c.body_cuts_ = body_cuts;
-    c.snap_cuts_to_bodies(w.bodies_, w.discs_);
-    c.plan_shared(w.discs_, w.contacts_);
+    c.owner_ = owners;
+    c.plan_shared(w.bodies_, w.discs_, w.contacts_);
   }
 };
 
