@@ -1,8 +1,10 @@
 #include "dem/threaded_cycle.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <limits>
+#include <thread>
 
 #include "dem/disc_pair_kernel.hpp"
 
@@ -30,6 +32,21 @@ void equal_time_cuts(const std::vector<double>& weight, const std::vector<std::s
         cuts[t - 1], static_cast<std::size_t>(
                          std::lower_bound(before.begin(), before.end(), target) - before.begin()));
     cuts[t] = std::min(cuts[t], n);
+  }
+}
+
+// Waits until `flag` holds `stamp` (written by another member of the team with release):
+// spins, then yields (a descheduled partner may be waiting for this core).
+void wait_for_stamp(std::uint64_t& flag, std::uint64_t stamp) {
+  const std::atomic_ref<std::uint64_t> done(flag);
+  for (int spin = 0; done.load(std::memory_order_acquire) != stamp; ++spin) {
+    if (spin < 20000) {
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+    } else {
+      std::this_thread::yield();
+    }
   }
 }
 
@@ -182,6 +199,7 @@ void ThreadedCycle::plan_shared(const Bodies& bodies, const Discs& discs,
                        static_cast<std::size_t>(first_start_[disc_end]), owner_[b], 0});
     b = e;
   }
+  chunk_done_.assign(chunks_.size(), 0);
   // Scratch members: assign / clear reuse their capacity, so a call from rebalance between
   // two list rebuilds allocates nothing.
   std::vector<std::int32_t>& second_start = second_start_;
@@ -286,6 +304,10 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   double *disc_fx = discs.fx.data(), *disc_fy = discs.fy.data(), *disc_m = discs.moment.data();
   const bool sample = steps_++ % kSampleEvery == 0;
   const bool keep_virial = s.pass.pair_results;
+  // Each chunk's owner marks it integrated with this step's stamp; thread 0 chains the energy
+  // terms behind them.
+  const bool chain_energy = s.book_energy && chunk_count > 0;
+  const auto stamp = static_cast<std::uint64_t>(steps_);
   auto job = [&](int t) {
     Lane& lane = lanes_[static_cast<std::size_t>(t)];
     const double start = sample ? thread_cpu_seconds() : 0;
@@ -411,9 +433,28 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
         lane.motion.disc_speed2 = std::max(lane.motion.disc_speed2, r.disc_speed2);
         lane.motion.pebble_speed = std::max(lane.motion.pebble_speed, r.pebble_speed);
       }
+      if (chain_energy) std::atomic_ref(chunk_done_[c]).store(stamp, std::memory_order_release);
     }
     if (sample) lane.seconds += thread_cpu_seconds() - phase2_start;
     if (t == 0) integrated = !stop;
+    if (t == 0 && chain_energy && !stop) {
+      // The energy chain over the bodies, in body order, chunk by chunk as their owners finish
+      // them: it overlaps the other threads' integration instead of following the job (where it
+      // held thread 0 alone while the others waited: docs/performance.md "Session 37"). Not
+      // counted in the phase's time, which balances the integration.
+      wait_for_stamp(chunk_done_[0], stamp);
+      const RangeMotion& first = lanes_[static_cast<std::size_t>(chunks_[0].thread)].motion;
+      BodyStepEnergy e{first.damped, first.applied, first.prescribed};
+      for (std::size_t c = 1; c < chunk_count; ++c) {
+        wait_for_stamp(chunk_done_[c], stamp);
+        for (std::size_t b = chunks_[c].body_begin; b < chunks_[c].body_end; ++b) {
+          e.damped += body_energy_[b].damped;
+          e.applied += body_energy_[b].applied;
+          e.prescribed -= body_energy_[b].prescribed;
+        }
+      }
+      lane.energy_chain = e;
+    }
   };
   team.run(job);
 
@@ -444,21 +485,16 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   if (integrated && chunk_count > 0) {
     RangeMotion& m = out.motion;
     const RangeMotion& first = lanes_[static_cast<std::size_t>(chunks_[0].thread)].motion;
-    m.damped = first.damped;
-    m.applied = first.applied;
-    m.prescribed = first.prescribed;
+    const BodyStepEnergy& chain = lanes_[0].energy_chain;
+    m.damped = chain_energy ? chain.damped : first.damped;
+    m.applied = chain_energy ? chain.applied : first.applied;
+    m.prescribed = chain_energy ? chain.prescribed : first.prescribed;
     for (int u = 0; u < nt; ++u) {
       const RangeMotion& lane = lanes_[static_cast<std::size_t>(u)].motion;
       m.position_sum += lane.position_sum;
       m.disc_speed2 = std::max(m.disc_speed2, lane.disc_speed2);
       m.pebble_speed = std::max(m.pebble_speed, lane.pebble_speed);
     }
-    if (s.book_energy)
-      for (std::size_t b = chunks_[0].body_end; b < bodies.size(); ++b) {
-        m.damped += body_energy_[b].damped;
-        m.applied += body_energy_[b].applied;
-        m.prescribed -= body_energy_[b].prescribed;
-      }
   }
   if (sample && ++samples_ == kSamples) rebalance(bodies, discs, list);
   return out;

@@ -105,6 +105,9 @@ class ThreadedCycle {
     // it owns body 0: the start of the chain over the bodies).
     RangeMotion motion;
     double seconds = 0;  // s, CPU time of the job, sampled steps
+    // J, thread 0 only: the energy terms of every body, in body order (the first chunk's sums,
+    // then the other chunks' stored terms).
+    BodyStepEnergy energy_chain;
   };
   // SpecialPair::direct bits: the pair's thread adds it onto its first / second disc as it
   // evaluates it (the other end is shared).
@@ -146,6 +149,9 @@ class ThreadedCycle {
   std::vector<std::size_t> cuts_;
   std::vector<std::int32_t> owner_;  // per body: its thread
   std::vector<Chunk> chunks_;        // every thread's, ascending
+  // Per chunk: the step (steps_) whose integration its owner finished, in a step that books the
+  // energy terms (thread 0 chains them behind the owners).
+  std::vector<std::uint64_t> chunk_done_;
   static constexpr long kSampleEvery = 8;
   static constexpr int kSamples = 16;
   static constexpr double kTolerance = 0.02;  // longest / mean step time - 1 left as it is
