@@ -27,14 +27,15 @@
 //
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
 // thread for any thread count. The scalar totals (virial, slip work, released energy, energy ledger
-// terms) are summed in pair or body order: thread 0 sums the slip work of the first chunk (its
-// own when it owns body 0) as it goes, the other chunks pack their non-zero terms and thread 0
-// goes on with the chain over them, chunk by chunk, in its phase 2; in a step that keeps its
-// per-pair results (the virial is one of them) every thread stores each pair's virial and thread
-// 0 chains them in its phase 2; the energy terms of the bodies past the first chunk are stored
-// per body and chained after the job. In a step where a bond broke or a guard tripped the job
-// stops before the integration: the caller records the cracks (which read the positions of the
-// step) or stops, and integrates afterwards, as the one-thread cycle does.
+// terms) are summed in pair or body order: the first chunk's owner sums its slip work as it goes,
+// the other chunks pack their non-zero terms and thread 0 goes on with the chain over them, chunk
+// by chunk, in its phase 2; in a step that keeps its per-pair results (the virial is one of them)
+// every thread stores each pair's virial and thread 0 chains them in its phase 2; the energy
+// terms of the bodies past the first chunk are stored per body, and thread 0 chains them after
+// its own integration, each chunk once its owner marks it done. In a step where a bond broke or
+// a guard tripped the job stops before the integration: the caller records the cracks (which
+// read the positions of the step) or stops, and integrates afterwards, as the one-thread cycle
+// does.
 #include <cstdint>
 #include <vector>
 
