@@ -1,6 +1,7 @@
 // A campaign killed with SIGKILL (its whole process group: the campaign and its running jobs)
 // and started again re-executes exactly the runs that had not completed, each once.
 #include <chrono>
+#include <map>
 #include <set>
 #include <thread>
 
@@ -61,14 +62,19 @@ TEST(CampaignResume, SigkillMidwayThenRestartRunsOnlyUnfinished) {
   const pid_t pid = spawn_group(argv, dir / "first.err");
   ASSERT_GT(pid, 0);
   // Kill once a few runs are complete and another is under way (10 runs of 0.4 s, 2 at a time):
-  // started (in the jobs' log) but not completed. Waiting for the completions alone could kill
-  // in the gap between one run ending and the next starting on a loaded machine.
+  // started (in the jobs' log) less than 0.15 s ago, so its job still sleeps for 0.25 s when the
+  // signal lands. Waiting for the completions alone could kill in the gap between one run ending
+  // and the next starting on a loaded machine; a run merely logged and not yet completed could be
+  // one whose job had ended and whose completion the campaign was about to write.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  std::map<std::string, std::chrono::steady_clock::time_point> first_seen;
   const auto under_way = [&] {
+    const auto now = std::chrono::steady_clock::now();
+    for (const auto& run : executions(read_lines(dir / "log.txt"))) first_seen.emplace(run, now);
     const std::set<std::string> done = completed_runs(runs);
     if (done.size() < 3) return false;
-    for (const auto& run : executions(read_lines(dir / "log.txt")))
-      if (!done.count(run)) return true;
+    for (const auto& [run, seen] : first_seen)
+      if (!done.count(run) && now - seen < std::chrono::milliseconds(150)) return true;
     return false;
   };
   while (!under_way() && std::chrono::steady_clock::now() < deadline)
