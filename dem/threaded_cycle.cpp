@@ -1,10 +1,8 @@
 #include "dem/threaded_cycle.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <limits>
-#include <thread>
 
 #include "dem/disc_pair_kernel.hpp"
 
@@ -32,21 +30,6 @@ void equal_time_cuts(const std::vector<double>& weight, const std::vector<std::s
         cuts[t - 1], static_cast<std::size_t>(
                          std::lower_bound(before.begin(), before.end(), target) - before.begin()));
     cuts[t] = std::min(cuts[t], n);
-  }
-}
-
-// Waits until `flag` holds `stamp` (written by another member of the team with release):
-// spins, then yields (a descheduled partner may be waiting for this core).
-void wait_for_stamp(std::uint64_t& flag, std::uint64_t stamp) {
-  const std::atomic_ref<std::uint64_t> done(flag);
-  for (int spin = 0; done.load(std::memory_order_acquire) != stamp; ++spin) {
-    if (spin < 20000) {
-#if defined(__x86_64__) || defined(__i386__)
-      __builtin_ia32_pause();
-#endif
-    } else {
-      std::this_thread::yield();
-    }
   }
 }
 
@@ -433,7 +416,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
         lane.motion.disc_speed2 = std::max(lane.motion.disc_speed2, r.disc_speed2);
         lane.motion.pebble_speed = std::max(lane.motion.pebble_speed, r.pebble_speed);
       }
-      if (chain_energy) std::atomic_ref(chunk_done_[c]).store(stamp, std::memory_order_release);
+      if (chain_energy) WorkerTeam::publish(chunk_done_[c], stamp);
     }
     if (sample) lane.seconds += thread_cpu_seconds() - phase2_start;
     if (t == 0) integrated = !stop;
@@ -442,11 +425,11 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       // them: it overlaps the other threads' integration instead of following the job (where it
       // held thread 0 alone while the others waited: docs/performance.md "Session 37"). Not
       // counted in the phase's time, which balances the integration.
-      wait_for_stamp(chunk_done_[0], stamp);
+      team.wait_for(chunk_done_[0], stamp);
       const RangeMotion& first = lanes_[static_cast<std::size_t>(chunks_[0].thread)].motion;
       BodyStepEnergy e{first.damped, first.applied, first.prescribed};
       for (std::size_t c = 1; c < chunk_count; ++c) {
-        wait_for_stamp(chunk_done_[c], stamp);
+        team.wait_for(chunk_done_[c], stamp);
         for (std::size_t b = chunks_[c].body_begin; b < chunks_[c].body_end; ++b) {
           e.damped += body_energy_[b].damped;
           e.applied += body_energy_[b].applied;

@@ -97,13 +97,13 @@ class ThreadedCycle {
   // One thread's results of a step (padded so two threads never share a cache line).
   struct alignas(64) Lane {
     std::vector<std::int32_t> broken;  // pairs whose bond broke, ascending
-    // J, thread 0 only: the slip work of every pair, in pair order (the first chunk's, then in
-    // its phase 2 the other chunks' packed terms).
+    // J: the first chunk's owner, the slip work of its pairs; thread 0 after its phase 2, that of
+    // every pair, in pair order (chained on over the other chunks' packed terms).
     double slip_work = 0;
     long bad = -1;      // the thread's first pair tripping the guard (it evaluates no more)
     double virial = 0;  // N m, thread 0 only: the virial of every pair, in pair order
-    // The sums of the thread's bodies; the energy terms only of the first chunk (thread 0's, when
-    // it owns body 0: the start of the chain over the bodies).
+    // The sums of the thread's bodies; the energy terms only of the first chunk, for its owner
+    // (the start of the chain over the bodies).
     RangeMotion motion;
     double seconds = 0;  // s, CPU time of the job, sampled steps
     // J, thread 0 only: the energy terms of every body, in body order (the first chunk's sums,

@@ -28,24 +28,32 @@ int allowed_cpus() {
 constexpr int kShortSpins = 2000, kLongSpins = 20000, kYields = 20, kBackOffWaits = 256;
 thread_local int short_waits_left = 0;  // per thread: waits left on short spins
 
-// Waits until `a` no longer holds `old`: a spin (the partner is usually a few microseconds
-// away when both run), then yields (a descheduled partner may be waiting for this core), then
-// sleeps until notified.
-void wait_while_equal(const std::atomic<std::uint32_t>& a, std::uint32_t old, bool team_fits) {
+// Spins until `done()` (the partner is usually a few microseconds away when both run), then
+// yields kYields times (a descheduled partner may be waiting for this core); false if `done()`
+// still does not hold.
+template <class Done>
+bool spin_then_yield(Done done, bool team_fits) {
   const bool long_spin = team_fits && short_waits_left == 0;
   if (short_waits_left > 0) --short_waits_left;
   const int spins = long_spin ? kLongSpins : kShortSpins;
   for (int i = 0; i < spins; ++i) {
-    if (a.load(std::memory_order_acquire) != old) return;
+    if (done()) return true;
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
 #endif
   }
   if (long_spin) short_waits_left = kBackOffWaits;
   for (int i = 0; i < kYields; ++i) {
-    if (a.load(std::memory_order_acquire) != old) return;
+    if (done()) return true;
     std::this_thread::yield();
   }
+  return done();
+}
+
+// Waits until `a` no longer holds `old`: spins and yields, then sleeps until notified.
+void wait_while_equal(const std::atomic<std::uint32_t>& a, std::uint32_t old, bool team_fits) {
+  const auto moved = [&] { return a.load(std::memory_order_acquire) != old; };
+  if (spin_then_yield(moved, team_fits)) return;
   while (a.load(std::memory_order_acquire) == old) a.wait(old, std::memory_order_acquire);
 }
 
@@ -89,6 +97,18 @@ void WorkerTeam::work(int t) {
     call_(job_, t);
     running_.fetch_sub(1, std::memory_order_acq_rel);
     running_.notify_all();
+  }
+}
+
+void WorkerTeam::publish(std::uint64_t& flag, std::uint64_t stamp) {
+  std::atomic_ref<std::uint64_t>(flag).store(stamp, std::memory_order_release);
+}
+
+void WorkerTeam::wait_for(std::uint64_t& flag, std::uint64_t stamp) const {
+  const std::atomic_ref<std::uint64_t> a(flag);
+  const auto published = [&] { return a.load(std::memory_order_acquire) == stamp; };
+  // No sleep: a publisher would have to notify (a system call) on every flag.
+  while (!spin_then_yield(published, size_ <= allowed_cpus())) {
   }
 }
 

@@ -38,6 +38,11 @@ class WorkerTeam {
   }
   // Inside a job: returns when every member has reached it.
   void barrier();
+  // Inside a job, a flag one member sets and another waits on (a plain integer, so an array of
+  // them can be sized like any other): publish stores `stamp` with release; wait_for returns
+  // once `flag` holds `stamp`, after spins and yields as the team's other waits.
+  static void publish(std::uint64_t& flag, std::uint64_t stamp);
+  void wait_for(std::uint64_t& flag, std::uint64_t stamp) const;
 
  private:
   void run(void (*call)(void*, int), void* job);
