@@ -3,6 +3,11 @@
 # glance"), with the machine's load before every run. Not a CTest test: run it by hand on a
 # quiet machine, after building (Release):
 #   bash bench/acceptance.sh [build-dir] [rounds] [large-specimen.h5]
+# 0. bench_host_caches: the memory latency each CPU sees by working-set size, before and after
+#    the runs (on a shared or paravirtualised host the CPUs can differ, and change within
+#    minutes; docs/performance.md "Session 38"). Every
+#    one-thread run below is pinned to one CPU (`taskset`), round r to the r-th allowed CPU in
+#    turn, and says which; the summary gives the one-thread medians per CPU too.
 # 1. `cdem generate samples/c30_specimen.toml`, 1 and 2 threads alternated, `rounds` rounds (3):
 #    wall, user and peak resident size per run, medians; every specimen must be byte-identical,
 #    and its coordination, floating fraction, residual stress and porosity inside the ranges the
@@ -25,7 +30,8 @@ build="$(cd "${1:-$repo/build}" && pwd)"
 rounds="${2:-3}"
 large="${3:-}"
 cdem="$build/bin/cdem"
-for exe in "$cdem" "$build/bin/bench_scale" "$build/bin/bench_dem_lammps"; do
+for exe in "$cdem" "$build/bin/bench_scale" "$build/bin/bench_dem_lammps" \
+  "$build/bin/bench_host_caches"; do
   [ -x "$exe" ] || fail 2 "$exe not found; build first (scripts/setup.sh)"
 done
 [[ "$rounds" =~ ^[1-9][0-9]*$ ]] || fail 2 "rounds must be a positive integer, got '$rounds'"
@@ -41,14 +47,31 @@ load() { cut -d' ' -f1-3 /proc/loadavg; }
 version="$(git -C "$repo" describe --always --dirty 2> /dev/null || echo 'no git')"
 echo "acceptance.sh: $(date -u '+%Y-%m-%d %H:%M:%S') UTC, $(nproc) CPUs, load $(load), $version"
 
+echo "== 0. memory latency per CPU (bench_host_caches, ns per dependent load)"
+"$build/bin/bench_host_caches" | sed 's/^/  /'
+read -r -a cpus <<< "$(taskset -pc $$ | sed 's/.*: //' | tr ',' '\n' |
+  awk -F- '{ for (c = $1; c <= ($2 == "" ? $1 : $2); ++c) printf "%d ", c }')"
+# run KIND THREADS ROUND COMMAND...: times one run (one thread: pinned to the round's CPU; two:
+# wherever the scheduler puts them, cpu "any") into $work/times and prints it.
+run() {
+  local kind="$1" t="$2" r="$3" cpu=any l
+  shift 3
+  local pin=()
+  if [ "$t" = 1 ]; then
+    cpu="${cpus[$(((r - 1) % ${#cpus[@]}))]}"
+    pin=(taskset -c "$cpu")
+  fi
+  l="$(load)"
+  /usr/bin/time -o "$work/time" -f "%e %U %M" "${pin[@]}" "$@" > /dev/null
+  echo "$kind $t $r $(cat "$work/time") $cpu" >> "$work/times"
+  echo "  round $r, $t thread(s) on cpu $cpu, load before $l: $(cat "$work/time")"
+}
+
 echo "== 1. cdem generate samples/c30_specimen.toml (wall s, user s, peak KB)"
 for r in $(seq "$rounds"); do
   for t in 1 2; do
-    l="$(load)"
-    /usr/bin/time -o "$work/time" -f "%e %U %M" "$cdem" generate "$repo/samples/c30_specimen.toml" \
-      -o "$work/gen_${t}_$r.h5" --summary "$work/gen_${t}_$r.json" --threads "$t" -q > /dev/null
-    echo "generate $t $r $(cat "$work/time")" >> "$work/times"
-    echo "  round $r, $t thread(s), load before $l: $(cat "$work/time")"
+    run generate "$t" "$r" "$cdem" generate "$repo/samples/c30_specimen.toml" \
+      -o "$work/gen_${t}_$r.h5" --summary "$work/gen_${t}_$r.json" --threads "$t" -q
   done
 done
 for f in "$work"/gen_*.h5; do
@@ -64,12 +87,9 @@ for t in 1 2; do
 done
 for r in $(seq "$rounds"); do
   for t in 1 2; do
-    l="$(load)"
-    /usr/bin/time -o "$work/time" -f "%e %U %M" "$cdem" run "$work/ucs_$t.toml" \
-      -o "$work/ucs.h5" --summary "$work/ucs_${t}_$r.json" -q > /dev/null
+    run ucs "$t" "$r" "$cdem" run "$work/ucs_$t.toml" -o "$work/ucs.h5" \
+      --summary "$work/ucs_${t}_$r.json" -q
     rm -f "$work"/ucs.h5 "$work"/ucs.xmf "$work"/ucs*.png
-    echo "ucs $t $r $(cat "$work/time")" >> "$work/times"
-    echo "  round $r, $t thread(s), load before $l: $(cat "$work/time")"
   done
 done
 
@@ -92,16 +112,22 @@ import glob, json, os, statistics, sys
 work = sys.argv[1]
 runs = {}
 for line in open(os.path.join(work, "times")):
-    kind, threads, _, wall, user, peak = line.split()
-    runs.setdefault((kind, int(threads)), []).append((float(wall), float(user), int(peak)))
-med = {k: statistics.median(w for w, _, _ in v) for k, v in runs.items()}
+    kind, threads, _, wall, user, peak, cpu = line.split()
+    runs.setdefault((kind, int(threads)), []).append((float(wall), float(user), int(peak), cpu))
+med = {k: statistics.median(w for w, _, _, _ in v) for k, v in runs.items()}
 ok = True
 print("== summary (medians of the walls)")
 for kind, target in (("generate", "3 s"), ("ucs", "45 s on 1 thread, 30 s on 2, 1.7x")):
     print(f"  {kind}: 1 thread {med[(kind, 1)]:.2f} s, 2 threads {med[(kind, 2)]:.2f} s, "
           f"{med[(kind, 1)] / med[(kind, 2)]:.2f}x (target {target}); peak "
-          f"{max(p for _, _, p in runs[(kind, 1)]) / 1024:.1f} / "
-          f"{max(p for _, _, p in runs[(kind, 2)]) / 1024:.1f} MB")
+          f"{max(p for _, _, p, _ in runs[(kind, 1)]) / 1024:.1f} / "
+          f"{max(p for _, _, p, _ in runs[(kind, 2)]) / 1024:.1f} MB")
+    by_cpu = {}
+    for wall, _, _, cpu in runs[(kind, 1)]:
+        by_cpu.setdefault(cpu, []).append(wall)
+    print(f"    1 thread by cpu: " + ", ".join(
+        f"cpu {cpu} {statistics.median(w):.2f} s ({len(w)} run{'s' if len(w) > 1 else ''})"
+        for cpu, w in sorted(by_cpu.items())))
 # The ranges the stability suite asserts (tests/stability/test_stability_packing.cpp,
 # ReferenceMould: floating discs over the packing's discs, sigma0 and its tolerance as in
 # samples/c30_specimen.toml).
@@ -135,4 +161,6 @@ if large:
           f"{large['accounted_B_per_disc']} B per disc (target 600)")
 sys.exit(0 if ok else 1)
 PY
+echo "== memory latency per CPU again, after the runs (ns per dependent load)"
+"$build/bin/bench_host_caches" | sed 's/^/  /'
 echo "acceptance.sh: done, load $(load)"
