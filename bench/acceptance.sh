@@ -5,9 +5,9 @@
 #   bash bench/acceptance.sh [build-dir] [rounds] [large-specimen.h5]
 # 0. bench_host_caches: the memory latency each CPU sees by working-set size, before and after
 #    the runs (on a shared or paravirtualised host the CPUs can differ, and change within
-#    minutes; docs/performance.md "Session 38"). Every
-#    one-thread run below is pinned to one CPU (`taskset`), round r to the r-th allowed CPU in
-#    turn, and says which; the summary gives the one-thread medians per CPU too.
+#    minutes; docs/performance.md "Session 38"). Every one-thread run below is pinned to one CPU
+#    (`taskset`), round r to the r-th allowed CPU in turn, and says which; the summary gives the
+#    one-thread medians per CPU too.
 # 1. `cdem generate samples/c30_specimen.toml`, 1 and 2 threads alternated, `rounds` rounds (3):
 #    wall, user and peak resident size per run, medians; every specimen must be byte-identical,
 #    and its coordination, floating fraction, residual stress and porosity inside the ranges the

@@ -2,10 +2,10 @@
 // random cycle of cache lines, the thread pinned to one CPU at a time. On a shared or
 // paravirtualised host the CPUs of one machine can differ: on session 38's Zen 5 guest, CPU 1 saw
 // DRAM latency at 8 MB where CPU 0 still hit its last-level cache (138 against 35 ns), and the C30
-// step ran 1.4x slower on CPU 1 (docs/performance.md "Session 38"). A one-thread time measured
-// there without its CPU says as much about the scheduler's draw as about the code, and two
-// threads run at the pace of the slower CPU's share. bench/acceptance.sh prints this table before
-// its runs and pins each one-thread run to a CPU.
+// step ran 1.4x slower on CPU 1; minutes later the two had changed places (docs/performance.md
+// "Session 38"). A one-thread time measured there without its CPU says as much about the
+// scheduler's draw and the neighbours of the minute as about the code. bench/acceptance.sh prints
+// this table before and after its runs and pins each one-thread run to a CPU.
 //
 //   build/bin/bench_host_caches [chases per point=4000000]
 // Prints one row per working-set size: the mean time of one dependent load on each CPU (ns).
