@@ -13,23 +13,27 @@ namespace {
 // Cuts items [0, n) into `ranges` contiguous ranges of equal estimated time, the estimate of
 // item i being its weight times the measured time per unit weight (`rate`) of the range that
 // holds it under the `old` cuts. Writes the cuts (ranges + 1 entries, 0 first, n last) to
-// `cuts`; `before` is scratch (n + 1 cumulative estimates, s). Neither allocates once sized.
+// `cuts`: cut t is the first item whose cumulative estimate before it reaches t / ranges of the
+// total. Allocates nothing once `cuts` is sized.
 void equal_time_cuts(const std::vector<double>& weight, const std::vector<std::size_t>& old,
-                     const std::vector<double>& rate, std::vector<double>& before,
-                     std::vector<std::size_t>& cuts) {
+                     const std::vector<double>& rate, std::vector<std::size_t>& cuts) {
   const std::size_t n = weight.size(), ranges = old.size() - 1;
-  before.assign(n + 1, 0.0);
-  for (std::size_t t = 0; t < ranges; ++t)
-    for (std::size_t i = old[t]; i < old[t + 1]; ++i)
-      before[i + 1] = before[i] + rate[t] * weight[i];
+  double total = 0;  // s
+  for (std::size_t r = 0; r < ranges; ++r)
+    for (std::size_t i = old[r]; i < old[r + 1]; ++i) total += rate[r] * weight[i];
   cuts.assign(ranges + 1, n);
   cuts[0] = 0;
+  // One pass on, forming the cumulative estimate in the order of the total (the targets rise
+  // with t, and no estimate is negative).
+  std::size_t i = 0, r = 0;
+  double before = 0;  // s, the estimate of items [0, i)
   for (std::size_t t = 1; t < ranges; ++t) {
-    const double target = before[n] * static_cast<double>(t) / static_cast<double>(ranges);
-    cuts[t] = std::max(
-        cuts[t - 1], static_cast<std::size_t>(
-                         std::lower_bound(before.begin(), before.end(), target) - before.begin()));
-    cuts[t] = std::min(cuts[t], n);
+    const double target = total * static_cast<double>(t) / static_cast<double>(ranges);
+    for (; i < n && before < target; ++i) {
+      while (i >= old[r + 1]) ++r;
+      before += rate[r] * weight[i];
+    }
+    cuts[t] = i;
   }
 }
 
@@ -56,14 +60,13 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
   // The scratch of the cuts, sized here so that rebalance (inside the step loop) allocates
   // nothing.
   rate_.assign(static_cast<std::size_t>(threads), 1.0);
-  cut_before_.reserve(bodies.size() + 1);
   target_cuts_.reserve(parts);
   // The cuts stay where the measured times put them while the bodies and the team do.
   if (planned_discs_ != n || planned_threads_ != threads || cuts_.size() != parts ||
       cuts_.back() != bodies.size()) {
     target_cuts_.assign(parts, bodies.size());  // one range holding every body
     target_cuts_[0] = 0;
-    equal_time_cuts(work_, target_cuts_, rate_, cut_before_, cuts_);
+    equal_time_cuts(work_, target_cuts_, rate_, cuts_);
     samples_ = 0;
   }
   assign_owners();
@@ -79,44 +82,49 @@ void ThreadedCycle::plan(const Bodies& bodies, const Discs& discs, const Contact
 void ThreadedCycle::place_bodies(const Bodies& bodies, const Discs& discs,
                                  const ContactStore& list) {
   const std::size_t nb = bodies.size(), count = list.keys.size();
-  // A clump's place: the mean index of the free discs it touches (the mortar around it), or
-  // its first disc's index if it touches none.
-  place_.assign(nb, 0.0);
-  touches_.assign(nb, 0);
+  // A free body's place is its first disc's index; a clump's the mean index of the free discs it
+  // touches (the mortar around it), or its first disc's index if it touches none. Kept per clump
+  // (clumps_, ascending by body until sorted by place): a packing's world holds no clump.
+  clumps_.clear();
+  for (std::size_t b = 0; b < nb; ++b)
+    if (bodies.is_clump[b]) clumps_.push_back({0.0, static_cast<std::int32_t>(b), 0});
+  const auto clump_of = [&](std::size_t b) -> ClumpPlace& {
+    return *std::lower_bound(clumps_.begin(), clumps_.end(), static_cast<std::int32_t>(b),
+                             [](const ClumpPlace& c, std::int32_t body) { return c.body < body; });
+  };
   for (std::size_t k = 0; k < count; ++k) {
     const auto i = list.first[k], j = list.second[k];
     const auto bi = static_cast<std::size_t>(discs.body[static_cast<std::size_t>(i)]),
                bj = static_cast<std::size_t>(discs.body[static_cast<std::size_t>(j)]);
     if (bodies.is_clump[bi] == bodies.is_clump[bj]) continue;
-    const std::size_t clump = bodies.is_clump[bi] ? bi : bj;
-    place_[clump] += bodies.is_clump[bi] ? j : i;
-    ++touches_[clump];
+    ClumpPlace& clump = clump_of(bodies.is_clump[bi] ? bi : bj);
+    clump.place += bodies.is_clump[bi] ? j : i;
+    ++clump.touches;
   }
-  // The free discs keep body order (their places are their indices, ascending with it); the
-  // clumps, sorted by place, are merged in.
-  order_.clear();
-  clumps_.clear();
-  for (std::size_t b = 0; b < nb; ++b) {
-    if (bodies.is_clump[b] && touches_[b] > 0) {
-      place_[b] /= touches_[b];
-    } else {
-      place_[b] = bodies.first_disc[b];
-    }
-    (bodies.is_clump[b] ? clumps_ : order_).push_back(static_cast<std::int32_t>(b));
-  }
-  const auto by_place = [this](std::int32_t a, std::int32_t b) {
-    const auto pa = place_[static_cast<std::size_t>(a)], pb = place_[static_cast<std::size_t>(b)];
+  for (ClumpPlace& c : clumps_)
+    c.place =
+        c.touches > 0 ? c.place / c.touches : bodies.first_disc[static_cast<std::size_t>(c.body)];
+  const auto before = [](double pa, std::int32_t a, double pb, std::int32_t b) {
     return pa < pb || (pa == pb && a < b);
   };
-  std::sort(clumps_.begin(), clumps_.end(), by_place);
+  std::sort(clumps_.begin(), clumps_.end(), [&](const ClumpPlace& a, const ClumpPlace& b) {
+    return before(a.place, a.body, b.place, b.body);
+  });
+  // The free bodies keep body order (their places are ascending with it); the clumps, sorted by
+  // place, are merged in.
+  order_.clear();
+  for (std::size_t b = 0; b < nb; ++b)
+    if (!bodies.is_clump[b]) order_.push_back(static_cast<std::int32_t>(b));
   std::size_t free_left = order_.size(), clumps_left = clumps_.size();
   order_.resize(nb);
   for (std::size_t p = nb; p-- > 0;) {
-    if (clumps_left > 0 &&
-        (free_left == 0 || by_place(order_[free_left - 1], clumps_[clumps_left - 1])))
-      order_[p] = clumps_[--clumps_left];
-    else
-      order_[p] = order_[--free_left];
+    bool clump = clumps_left > 0;
+    if (clump && free_left > 0) {
+      const std::int32_t b = order_[free_left - 1];
+      const ClumpPlace& c = clumps_[clumps_left - 1];
+      clump = before(bodies.first_disc[static_cast<std::size_t>(b)], b, c.place, c.body);
+    }
+    order_[p] = clump ? clumps_[--clumps_left].body : order_[--free_left];
   }
   // Work estimates per position: the pairs of its discs and a little for clearing their sums
   // (phase 1), and its integration, about a third of a pair per disc (session 37: 4.3 ns per
@@ -157,7 +165,7 @@ void ThreadedCycle::rebalance(const Bodies& bodies, const Discs& discs, const Co
     if (!(rate_[t] > 0)) rate_[t] = mean_rate > 0 ? mean_rate : 1;
   const double imbalance = total > 0 ? longest * static_cast<double>(threads) / total - 1 : 0;
   if (imbalance > kTolerance) {
-    equal_time_cuts(work_, cuts_, rate_, cut_before_, target_cuts_);
+    equal_time_cuts(work_, cuts_, rate_, target_cuts_);
     // Half-way: the rate of a range is not uniform over it, so a full step can overshoot.
     for (std::size_t t = 1; t < threads; ++t) cuts_[t] = (cuts_[t] + target_cuts_[t]) / 2;
     assign_owners();
@@ -183,24 +191,11 @@ void ThreadedCycle::plan_shared(const Bodies& bodies, const Discs& discs,
     b = e;
   }
   chunk_done_.assign(chunks_.size(), 0);
-  // Scratch members: assign / clear reuse their capacity, so a call from rebalance between
-  // two list rebuilds allocates nothing.
-  std::vector<std::int32_t>& second_start = second_start_;
-  std::vector<std::int32_t>& second_pairs = second_pairs_;
-  second_start.assign(n + 1, 0);
-  second_pairs.resize(count);
-  for (std::size_t k = 0; k < count; ++k)
-    ++second_start[static_cast<std::size_t>(list.second[k]) + 1];
-  for (std::size_t i = 0; i < n; ++i) second_start[i + 1] += second_start[i];
-  // Pairs where each disc is the second, in ascending pair order (a stable counting sort).
-  std::vector<std::int32_t>& next = next_second_;
-  next.assign(second_start.begin(), second_start.end() - 1);
-  for (std::size_t k = 0; k < count; ++k)
-    second_pairs[static_cast<std::size_t>(next[static_cast<std::size_t>(list.second[k])]++)] =
-        static_cast<std::int32_t>(k);
   // Discs that receive a pair of another thread (the owner of its first disc evaluates a pair):
   // their sums wait for the barrier. Every other disc gets all its pairs from its own thread, in
-  // pair order, so that thread adds them as it evaluates them.
+  // pair order, so that thread adds them as it evaluates them. The scratch members (assign,
+  // resize and clear reuse their capacity) keep a call from rebalance between two list rebuilds
+  // from allocating.
   const auto owner = [&](std::int32_t i) {
     return owner_[static_cast<std::size_t>(discs.body[static_cast<std::size_t>(i)])];
   };
@@ -220,29 +215,54 @@ void ThreadedCycle::plan_shared(const Bodies& bodies, const Discs& discs,
                               static_cast<std::uint8_t>((shared_[i] ? 0 : kDirectFirst) |
                                                         (shared_[j] ? 0 : kDirectSecond))});
   }
+  const std::size_t specials = special_pairs_.size();
   special_pairs_.push_back({{}, static_cast<std::int32_t>(count), 0});  // never reached
-  std::vector<std::int32_t>& rank = rank_;
-  rank.assign(count, -1);
-  for (std::size_t s = 0; s + 1 < special_pairs_.size(); ++s)
-    rank[static_cast<std::size_t>(special_pairs_[s].pair)] = static_cast<std::int32_t>(s);
   shared_discs_.clear();
-  shared_terms_.clear();
-  shared_term_start_.clear();
-  shared_term_mid_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!shared_[i]) continue;
-    shared_discs_.push_back(static_cast<std::int32_t>(i));
-    shared_term_start_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
-    for (std::int32_t s = second_start[i]; s < second_start[i + 1]; ++s)
-      shared_terms_.push_back(
-          rank[static_cast<std::size_t>(second_pairs[static_cast<std::size_t>(s)])]);
-    shared_term_mid_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
-    for (std::int32_t k = first_start_[i]; k < first_start_[i + 1]; ++k)
-      shared_terms_.push_back(rank[static_cast<std::size_t>(k)]);
+  for (std::size_t i = 0; i < n; ++i)
+    if (shared_[i]) shared_discs_.push_back(static_cast<std::int32_t>(i));
+  // Each shared disc's terms: the special pairs where it is the second disc, then those where it
+  // is the first, each in ascending pair order (the order of the one-thread pass). A counting
+  // sort of the special pairs, which are ascending and far fewer than the pairs: first the counts
+  // (as second disc in shared_term_mid_[s], as first disc in shared_term_start_[s + 1]), then
+  // the offsets, then the terms.
+  const std::size_t ns = shared_discs_.size();
+  const auto slot = [&](std::int32_t i) {
+    return static_cast<std::size_t>(
+        std::lower_bound(shared_discs_.begin(), shared_discs_.end(), i) - shared_discs_.begin());
+  };
+  const auto is_shared = [&](std::int32_t i) { return shared_[static_cast<std::size_t>(i)] != 0; };
+  shared_term_start_.assign(ns + 1, 0);
+  shared_term_mid_.assign(ns, 0);
+  for (std::size_t q = 0; q < specials; ++q) {
+    const auto k = static_cast<std::size_t>(special_pairs_[q].pair);
+    if (is_shared(list.second[k])) ++shared_term_mid_[slot(list.second[k])];
+    if (is_shared(list.first[k])) ++shared_term_start_[slot(list.first[k]) + 1];
   }
-  shared_term_start_.push_back(static_cast<std::int32_t>(shared_terms_.size()));
+  std::int32_t at = 0;
+  for (std::size_t s = 0; s < ns; ++s) {
+    const std::int32_t as_second = shared_term_mid_[s], as_first = shared_term_start_[s + 1];
+    shared_term_start_[s] = at;
+    shared_term_mid_[s] = at + as_second;
+    at += as_second + as_first;
+  }
+  shared_term_start_[ns] = at;
+  next_term_.resize(2 * ns);
+  for (std::size_t s = 0; s < ns; ++s) {
+    next_term_[2 * s] = shared_term_start_[s];
+    next_term_[2 * s + 1] = shared_term_mid_[s];
+  }
+  shared_terms_.resize(static_cast<std::size_t>(at));
+  for (std::size_t q = 0; q < specials; ++q) {
+    const auto k = static_cast<std::size_t>(special_pairs_[q].pair);
+    if (is_shared(list.second[k]))
+      shared_terms_[static_cast<std::size_t>(next_term_[2 * slot(list.second[k])]++)] =
+          static_cast<std::int32_t>(q);
+    if (is_shared(list.first[k]))
+      shared_terms_[static_cast<std::size_t>(next_term_[2 * slot(list.first[k]) + 1]++)] =
+          static_cast<std::int32_t>(q);
+  }
   virial_.resize(count);
-  slip_terms_.resize(count);
+  slip_terms_.reserve(count);
 }
 
 void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const {

@@ -44,6 +44,7 @@
 #include "dem/discs.hpp"
 #include "dem/integrator.hpp"
 #include "dem/neighbor_list.hpp"
+#include "dem/unwritten_array.hpp"
 #include "dem/wall.hpp"
 #include "dem/worker_team.hpp"
 
@@ -164,21 +165,26 @@ class ThreadedCycle {
   std::vector<SpecialPair> special_pairs_;
   std::vector<double> virial_;  // N m, per pair: normal force x centre distance
   // J. Chunks but the first: the non-zero slip works of the chunk's pairs, in pair order, packed
-  // from the chunk's first pair on (thread 0 chains them on in its phase 2).
-  std::vector<double> slip_terms_;
+  // from the chunk's first pair on (thread 0 chains them on in its phase 2). Room for every pair,
+  // but only the packed terms are written (and backed by memory).
+  UnwrittenArray<double> slip_terms_;
   // Per shared disc s: shared_terms_[shared_term_start_[s], shared_term_mid_[s]) are the parts
   // (indices into special_pairs_) of its pairs as second disc, then up to
   // shared_term_start_[s + 1] as first disc, each ascending: the order of the one-thread pass.
   std::vector<std::int32_t> shared_terms_, shared_term_start_, shared_term_mid_;
   // Scratch of place_bodies, plan_shared and rebalance (inside the step loop), kept so that they
-  // do not allocate: per body its place and the free discs it touches; the clumps; per range its
-  // rate (s per unit work), the cumulative estimate (s), the cuts a rebalance aims at; per disc its
-  // first second-disc pair, the pairs by second disc, the counting sort's next slot; per pair its
-  // rank among the special pairs.
-  std::vector<double> place_, rate_, cut_before_;
-  std::vector<std::int32_t> touches_, clumps_;
+  // do not allocate: per clump its place and the free discs it touches; per range its rate
+  // (s per unit work) and the cuts a rebalance aims at; per shared disc the next slot of its
+  // terms as second disc, then as first disc. None is per pair, nor per disc (a 10^6-disc
+  // packing's peak: docs/performance.md "Session 39").
+  struct ClumpPlace {
+    double place;  // the sum of the touched free discs' indices until it is their mean
+    std::int32_t body, touches;
+  };
+  std::vector<ClumpPlace> clumps_;
+  std::vector<double> rate_;
   std::vector<std::size_t> target_cuts_;
-  std::vector<std::int32_t> second_start_, second_pairs_, next_second_, rank_;
+  std::vector<std::int32_t> next_term_;
   std::vector<BodyStepEnergy> body_energy_;  // per body past the first chunk
   std::vector<double> wall_slip_;            // J, per disc-wall pair
   std::vector<Lane> lanes_;
