@@ -22,7 +22,8 @@ class UnwrittenArray {
 
  public:
   UnwrittenArray() = default;
-  // A copy gets the same room, unwritten: the values are scratch, written before they are read.
+  // A copy gets room for as many values (an assigned-to array keeps more if it had more),
+  // unwritten: the values are scratch, written before they are read.
   UnwrittenArray(const UnwrittenArray& other) { reserve(other.capacity_); }
   UnwrittenArray& operator=(const UnwrittenArray& other) {
     reserve(other.capacity_);
