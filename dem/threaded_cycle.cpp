@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <limits>
+#include <utility>
 
 #include "dem/disc_pair_kernel.hpp"
 
@@ -222,45 +223,41 @@ void ThreadedCycle::plan_shared(const Bodies& bodies, const Discs& discs,
     if (shared_[i]) shared_discs_.push_back(static_cast<std::int32_t>(i));
   // Each shared disc's terms: the special pairs where it is the second disc, then those where it
   // is the first, each in ascending pair order (the order of the one-thread pass). A counting
-  // sort of the special pairs, which are ascending and far fewer than the pairs: first the counts
-  // (as second disc in shared_term_mid_[s], as first disc in shared_term_start_[s + 1]), then
-  // the offsets, then the terms.
+  // sort of the special pairs, which are ascending and far fewer than the pairs, into the 2 ns
+  // groups (shared disc, as second 0 / as first 1): next_term_ holds each group's count, then
+  // its next slot.
   const std::size_t ns = shared_discs_.size();
-  const auto slot = [&](std::int32_t i) {
-    return static_cast<std::size_t>(
-        std::lower_bound(shared_discs_.begin(), shared_discs_.end(), i) - shared_discs_.begin());
-  };
-  const auto is_shared = [&](std::int32_t i) { return shared_[static_cast<std::size_t>(i)] != 0; };
-  shared_term_start_.assign(ns + 1, 0);
-  shared_term_mid_.assign(ns, 0);
-  for (std::size_t q = 0; q < specials; ++q) {
+  // Calls group(g) for the groups special pair q belongs to, in the order above.
+  const auto for_each_group = [&](std::size_t q, auto&& group) {
     const auto k = static_cast<std::size_t>(special_pairs_[q].pair);
-    if (is_shared(list.second[k])) ++shared_term_mid_[slot(list.second[k])];
-    if (is_shared(list.first[k])) ++shared_term_start_[slot(list.first[k]) + 1];
-  }
+    const std::int32_t ends[2] = {list.second[k], list.first[k]};
+    for (std::size_t as = 0; as < 2; ++as) {
+      const std::int32_t i = ends[as];
+      if (!shared_[static_cast<std::size_t>(i)]) continue;
+      const auto slot = static_cast<std::size_t>(
+          std::lower_bound(shared_discs_.begin(), shared_discs_.end(), i) - shared_discs_.begin());
+      group(2 * slot + as);
+    }
+  };
+  next_term_.assign(2 * ns, 0);
+  for (std::size_t q = 0; q < specials; ++q)
+    for_each_group(q, [&](std::size_t g) { ++next_term_[g]; });
+  shared_term_start_.resize(ns + 1);
+  shared_term_mid_.resize(ns);
   std::int32_t at = 0;
-  for (std::size_t s = 0; s < ns; ++s) {
-    const std::int32_t as_second = shared_term_mid_[s], as_first = shared_term_start_[s + 1];
-    shared_term_start_[s] = at;
-    shared_term_mid_[s] = at + as_second;
-    at += as_second + as_first;
+  for (std::size_t g = 0; g < 2 * ns; ++g) {
+    if (g % 2 == 0)
+      shared_term_start_[g / 2] = at;
+    else
+      shared_term_mid_[g / 2] = at;
+    at += std::exchange(next_term_[g], at);
   }
   shared_term_start_[ns] = at;
-  next_term_.resize(2 * ns);
-  for (std::size_t s = 0; s < ns; ++s) {
-    next_term_[2 * s] = shared_term_start_[s];
-    next_term_[2 * s + 1] = shared_term_mid_[s];
-  }
   shared_terms_.resize(static_cast<std::size_t>(at));
-  for (std::size_t q = 0; q < specials; ++q) {
-    const auto k = static_cast<std::size_t>(special_pairs_[q].pair);
-    if (is_shared(list.second[k]))
-      shared_terms_[static_cast<std::size_t>(next_term_[2 * slot(list.second[k])]++)] =
-          static_cast<std::int32_t>(q);
-    if (is_shared(list.first[k]))
-      shared_terms_[static_cast<std::size_t>(next_term_[2 * slot(list.first[k]) + 1]++)] =
-          static_cast<std::int32_t>(q);
-  }
+  for (std::size_t q = 0; q < specials; ++q)
+    for_each_group(q, [&](std::size_t g) {
+      shared_terms_[static_cast<std::size_t>(next_term_[g]++)] = static_cast<std::int32_t>(q);
+    });
   virial_.resize(count);
   slip_terms_.reserve(count);
 }
