@@ -215,9 +215,9 @@ class DiscPairKernel {
     return g;
   }
 
-  // options.lanes: evaluate the unbonded and parallel-bonded pairs eight (AVX-512) or four
-  // (AVX2) at a time, the widest the CPU has up to options.lanes (usable_lanes()); the results
-  // are the same bits either way.
+  // options.lanes: evaluate the unbonded, parallel-bonded and flat-jointed pairs eight (AVX-512)
+  // or four (AVX2) at a time, the widest the CPU has up to options.lanes (usable_lanes()); the
+  // results are the same bits either way.
   // options.pair_results: store every pair's normal, overlap, fx, fy in `out` (else only those
   // of the pairs whose bond breaks).
   DiscPairKernel(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
@@ -273,6 +273,14 @@ class DiscPairKernel {
       by_class_.cohesion[c] = p.cohesion;
       by_class_.radius_multiplier[c] = p.radius_multiplier;
       by_class_.moment_factor[c] = p.moment_factor;
+      const FlatJointParams& j = bonds[c].flat_joint;
+      by_class_.kappa[c] = laws[c].kappa;
+      by_class_.joint_radius_multiplier[c] = j.radius_multiplier;
+      by_class_.joint_elements[c] = j.elements;
+      by_class_.joint_tensile_strength[c] = j.tensile_strength;
+      by_class_.joint_cohesion[c] = j.cohesion;
+      by_class_.tan_joint_friction_angle[c] = tan_joint_friction_angle_[c];
+      flat_joint_laws_ = flat_joint_laws_ || bonds[c].kind == BondKind::FlatJoint;
     }
   }
 
@@ -439,12 +447,14 @@ class DiscPairKernel {
   };
 
   // Groups of n pairs in lanes (n = 8 for AVX-512, 4 for AVX2): the unbonded ones with the law
-  // of `linear`, those with an intact parallel bond with the law of `parallel_bonded`, the same
-  // operations in the same order, so each lane gets the bits of its one-pair evaluation. A lane of
-  // another bond kind, or whose bond breaks in this step, writes nothing and is left out of `done`,
-  // for the one-pair path. The discs' data come as their records (a line each, transposed into
-  // lanes), the class constants by a permutation of a register holding the classes' values. One
-  // body (evaluate_lanes_of) compiled for AVX-512 and for AVX2.
+  // of `linear`, those with an intact parallel bond with the law of `parallel_bonded`, those with
+  // a flat joint with the law of `flat_joint` (flat_joint_group), the same operations in the
+  // same order, so each lane gets the bits of its one-pair evaluation. A lane of another bond
+  // kind, whose bond or joint element breaks in this step, or whose joint comes apart (removed),
+  // writes nothing and is left out of `done`, for the one-pair path. The discs' data come as their
+  // records (a line each, transposed into lanes), the class constants by a permutation of a
+  // register holding the classes' values. One body (evaluate_lanes_of) compiled for AVX-512 and
+  // for AVX2.
   CDEM_LANES8_TARGET void evaluate_lanes(std::size_t k, std::size_t groups,
                                          PairLanes<8>* out) const {
     evaluate_lanes_of<Lanes8>(k, groups, out);
@@ -466,6 +476,8 @@ class DiscPairKernel {
     PairMotionOf<L> m[kGeometryBlock / n];
     for (std::size_t q = 0; q < groups; ++q) lane_geometry<L>(k + q * n, g[q], m[q]);
     for (std::size_t q = 0; q < groups; ++q) lane_law<L>(k + q * n, g[q], m[q], out[q]);
+    if (flat_joint_laws_)
+      for (std::size_t q = 0; q < groups; ++q) flat_joint_group<L>(k + q * n, g[q], m[q], out[q]);
   }
 
   // The geometry and velocities of pairs k .. k + n - 1, from their discs' records (a line
@@ -548,6 +560,151 @@ class DiscPairKernel {
     store(out.slip_work, select(keeps_shear, c.slip_work, L{}));
     out.done = done;
     out.within_guard = lane_bits(is_at_most(g.overlap, guard_ * min_of(g.ri, g.rj)));
+  }
+
+  // The flat-jointed pairs of the group k .. k + n - 1 of geometry g and velocities m, after
+  // lane_law (which leaves them out of `done`): those flat_joint_lanes does are written and added
+  // to `done`, as lane_law writes the others. A pass of laws without flat joints (a
+  // parallel-bonded specimen, a packing) skips this at one branch per block. Kept apart from
+  // lane_law, whose registers its code crowded: inside it, the parallel-bonded C30 pass ran 9 %
+  // more instructions in evaluate_lanes (docs/performance.md "Session 40").
+  template <class L>
+  void flat_joint_group(std::size_t k, const PairGeometryOf<L>& g, const PairMotionOf<L>& m,
+                        PairLanes<kLanes<L>>& out) const {
+    const unsigned flat =
+        lane_bits(lanes_equal<L>(bond_ + k, static_cast<std::uint8_t>(BondKind::FlatJoint)));
+    if (!flat) return;
+    FlatJointLoadOf<L> joint{};
+    const unsigned done =
+        flat_joint_lanes<L>(k, flat, g, m, lookup<L>(by_class_.mu, contact_class_ + k), joint);
+    if (!done) return;
+    const ResolvedPairOf<L> f = dem::resolve(g, -joint.fn, joint.fs, joint.moment);
+    store_where(done, shear_ + k, L{});  // the joint's elements hold the shear force
+    if (pair_results_) {
+      store_where(done, normal_ + k, f.normal);
+      store_where(done, overlap_ + k, f.overlap);
+      store_where(done, fx_ + k, f.fx);
+      store_where(done, fy_ + k, f.fy);
+    }
+    store_where(done, out.normal, f.normal);
+    store_where(done, out.fx, f.fx);
+    store_where(done, out.fy, f.fy);
+    store_where(done, out.moment_i, f.moment_i);
+    store_where(done, out.moment_j, f.moment_j);
+    store_where(done, out.slip_work, joint.slip_work);
+    out.done |= done;
+  }
+
+  // Normal force (N, tension positive), shear force along t (N), moment on disc 2 (N m) and slip
+  // work (J) of flat-jointed pairs in lanes.
+  template <class L>
+  struct FlatJointLoadOf {
+    L fn{}, fs{}, moment{}, slip_work{};
+  };
+
+  // The flat joints among pairs k .. k + n - 1 (`lanes`, bit l: pair k + l), evaluated with the
+  // law of flat_joint_update in lanes (the same operations in the same order, so each lane gets
+  // the bits of its one-pair evaluation), into `out`. Returns the lanes done: those none of
+  // whose elements breaks in this step and that stay installed, whose joint state (rotation,
+  // element shear forces) is then written. A joint with an element breaking in the step, or one
+  // with no bonded element that has come apart (removed), writes nothing and takes the one-pair
+  // path (flat_joint), which alone books failures and removes joints.
+  template <class L>
+  unsigned flat_joint_lanes(std::size_t k, unsigned lanes, const PairGeometryOf<L>& g,
+                            const PairMotionOf<L>& m, L mu, FlatJointLoadOf<L>& out) const {
+    constexpr std::size_t n = kLanes<L>;
+    // The joints' state, gathered by lane (zeros in the lanes left out).
+    alignas(64) double theta_before[n] = {}, gap0[n] = {};
+    alignas(64) double shear[kMaxFlatJointElements][n];
+    std::int32_t joint[n] = {};
+    std::uint32_t bonded_bits[n] = {};
+    unsigned none_bonded = 0;
+    bool loose = false;  // some joint has an unbonded element
+    int most = 0;        // elements of the largest joint
+    for (std::size_t l = 0; l < n; ++l) {
+      const int elements = bonds_[contact_class_[k + l]].flat_joint.elements;
+      if (lanes >> l & 1) most = std::max(most, elements);
+    }
+    for (int e = 0; e < most; ++e) std::fill(shear[e], shear[e] + n, 0.0);
+    for (std::size_t l = 0; l < n; ++l) {
+      if (!(lanes >> l & 1)) continue;
+      const int elements = bonds_[contact_class_[k + l]].flat_joint.elements;
+      const std::int32_t q = joint[l] = joint_[k + l];
+      theta_before[l] = joint_theta_[q];
+      gap0[l] = joint_gap0_[q];
+      const std::uint32_t bits = bonded_bits[l] = joint_bonded_[q];
+      loose = loose || bits != (1u << elements) - 1u;
+      if (bits == 0) none_bonded |= 1u << l;
+      const double* element_shear = joint_element_shear_ + joint_first_element_[q];
+      for (int e = 0; e < elements; ++e) shear[e][l] = element_shear[e];
+    }
+    const std::uint8_t* cls = contact_class_ + k;
+    const L dt = splat<L>(dt_), elements = lookup<L>(by_class_.joint_elements, cls);
+    const FlatJointGeometryOf<L> jg = flat_joint_geometry_of(
+        lookup<L>(by_class_.joint_radius_multiplier, cls), elements, lookup<L>(by_class_.emod, cls),
+        lookup<L>(by_class_.kappa, cls), g.ri, g.rj, g.inverse_length);
+    const L theta = load<L>(theta_before) + (m.wj - m.wi) * dt;
+    const L gap = -g.overlap - load<L>(gap0);
+    const L d_shear = tangential_velocity(g, m) * dt;
+    const L area = jg.element_length * kThickness;
+    const L dfs = -jg.ks * area * d_shear;
+    const L tensile = lookup<L>(by_class_.joint_tensile_strength, cls),
+            cohesion = lookup<L>(by_class_.joint_cohesion, cls),
+            tan_friction = lookup<L>(by_class_.tan_joint_friction_angle, cls);
+    MaskOf<L> breaks{};
+    // The element loop, with the unbonded elements' law (kLoose) only for a group that has one:
+    // every group until the first element breaks goes without it, which keeps its registers.
+    const auto evaluate_elements = [&]<bool kLoose>() {
+      for (int e = 0; e < most; ++e) {
+        // Element e of the joints that have it; the sums of the others take nothing.
+        const L at = splat<L>(e);
+        const MaskOf<L> has = is_less(at, elements);
+        MaskOf<L> held = has;
+        if constexpr (kLoose) {
+          alignas(64) double bonded[n];
+          for (std::size_t l = 0; l < n; ++l) bonded[l] = bonded_bits[l] >> e & 1u;
+          held = has & is_positive(load<L>(bonded));
+        }
+        const L old = load<L>(shear[e]), trial = old + dfs;
+        const FlatJointElementSpanOf<L> span = flat_joint_element_span(jg, at, gap, theta);
+        FlatJointElementLoadOf<L> f = flat_joint_bonded_element(jg, span);
+        const FlatJointElementStressOf<L> s = flat_joint_element_stress(area, f.fn, trial);
+        breaks = breaks | (held & (flat_joint_breaks_in_tension(s, tensile) |
+                                   flat_joint_breaks_in_shear(s, cohesion, tan_friction)));
+        L fs = trial;
+        if constexpr (kLoose) {
+          const MaskOf<L> unbonded = has & ~held;
+          const FlatJointElementLoadOf<L> u = flat_joint_unbonded_element(jg, span);
+          const FlatJointElementSlipOf<L> slip =
+              flat_joint_unbonded_shear(old, trial, u.fn, mu, jg.ks * area);
+          f.fn = select(held, f.fn, u.fn);
+          f.moment = select(held, f.moment, u.moment);
+          fs = select(held, trial, slip.fs);
+          out.slip_work = select(unbonded, out.slip_work + slip.slip_work, out.slip_work);
+        }
+        store(shear[e], fs);
+        out.fn = select(has, out.fn + f.fn, out.fn);
+        out.fs = select(has, out.fs + fs, out.fs);
+        out.moment = select(has, out.moment + f.moment, out.moment);
+      }
+    };
+    if (loose)
+      evaluate_elements.template operator()<true>();
+    else
+      evaluate_elements.template operator()<false>();
+    lanes &= ~lane_bits(breaks);
+    if (none_bonded) lanes &= ~(none_bonded & lane_bits(flat_joint_apart(jg, gap, theta)));
+    alignas(64) double theta_after[n];
+    store(theta_after, theta);
+    for (std::size_t l = 0; l < n; ++l) {
+      if (!(lanes >> l & 1)) continue;
+      const std::int32_t q = joint[l];
+      joint_theta_[q] = theta_after[l];
+      double* element_shear = joint_element_shear_ + joint_first_element_[q];
+      const int count = bonds_[contact_class_[k + l]].flat_joint.elements;
+      for (int e = 0; e < count; ++e) element_shear[e] = shear[e][l];
+    }
+    return lanes;
   }
 
   PairMotionOf<double> motion(const Geometry& g) const {
@@ -742,10 +899,14 @@ class DiscPairKernel {
     double emod[8]{}, shear_per_normal_stiffness[8]{}, mu[8]{}, tan_friction_angle[8]{},
         modulus[8]{}, stiffness_ratio[8]{}, tensile_strength[8]{}, cohesion[8]{},
         radius_multiplier[8]{}, moment_factor[8]{};
+    // The flat joint's (kappa is the linear law's kn / ks, which its ks divides by).
+    double kappa[8]{}, joint_radius_multiplier[8]{}, joint_elements[8]{},
+        joint_tensile_strength[8]{}, joint_cohesion[8]{}, tan_joint_friction_angle[8]{};
   } by_class_;
   double dt_, guard_;
   LaneIsa lanes_;
   bool pair_results_;
+  bool flat_joint_laws_ = false;  // some class installs flat joints
 };
 
 }  // namespace cdem::dem

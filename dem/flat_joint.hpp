@@ -52,23 +52,40 @@ struct FlatJointParams {
   double slit_fraction = 0;
 };
 
-// Geometry and stiffness of one interface, from the radii (fixed at installation).
-struct FlatJointGeometry {
-  double half_length = 0;     // R = lambda min(R1, R2), m
-  double element_length = 0;  // l = 2 R / N_r, m (element area A_e = l t)
-  double kn = 0;              // Pa/m, normal stiffness per unit area, E* / (R1 + R2)
-  double ks = 0;              // Pa/m, kn / kappa*
-  int elements = 0;           // N_r
+// Geometry and stiffness of one interface, from the radii (fixed at installation). T = double
+// for one pair, Lanes8 or Lanes4 for several (dem/lanes.hpp): the law of an interface is written
+// once, over T, so that each lane of the pair kernel (DiscPairKernel::flat_joint_lanes) gets the
+// bits of its one-pair evaluation.
+template <class T>
+struct FlatJointGeometryOf {
+  T half_length{};     // R = lambda min(R1, R2), m
+  T element_length{};  // l = 2 R / N_r, m (element area A_e = l t)
+  T kn{};              // Pa/m, normal stiffness per unit area, E* / (R1 + R2)
+  T ks{};              // Pa/m, kn / kappa*
 };
 
-// `emod` E* (Pa) and `kappa` kn/ks are the class's deformability (the linear keys emod, kratio).
+struct FlatJointGeometry : FlatJointGeometryOf<double> {
+  int elements = 0;  // N_r
+};
+
+// `lambda` the radius multiplier, `elements` N_r, `emod` E* (Pa) and `kappa` kn/ks (the class's
+// linear keys emod, kratio), `inverse_length` 1 / (R1 + R2) (1/m).
+template <class T>
+FlatJointGeometryOf<T> flat_joint_geometry_of(T lambda, T elements, T emod, T kappa, T r1, T r2,
+                                              T inverse_length) {
+  FlatJointGeometryOf<T> g;
+  g.half_length = lambda * min_of(r1, r2);
+  g.element_length = 2.0 * g.half_length / elements;
+  g.kn = emod * inverse_length;
+  g.ks = g.kn / kappa;
+  return g;
+}
+
 inline FlatJointGeometry flat_joint_geometry(const FlatJointParams& p, double emod, double kappa,
                                              double r1, double r2, double inverse_length) {
   FlatJointGeometry g;
-  g.half_length = p.radius_multiplier * std::min(r1, r2);
-  g.element_length = 2 * g.half_length / p.elements;
-  g.kn = emod * inverse_length;
-  g.ks = g.kn / kappa;
+  static_cast<FlatJointGeometryOf<double>&>(g) = flat_joint_geometry_of<double>(
+      p.radius_multiplier, p.elements, emod, kappa, r1, r2, inverse_length);
   g.elements = p.elements;
   return g;
 }
@@ -87,22 +104,113 @@ inline FlatJointStiffness flat_joint_stiffness(const FlatJointGeometry& g) {
 
 // Integrals over [u, v] of a function f linear between f(u) = fu and f(v) = fv: int f dx,
 // int x f dx and int f^2 dx (exact for a linear f; no division by the slope).
-struct LinearIntegrals {
-  double f = 0, xf = 0, ff = 0;
+template <class T>
+struct LinearIntegralsOf {
+  T f{}, xf{}, ff{};
 };
+using LinearIntegrals = LinearIntegralsOf<double>;
 
-inline LinearIntegrals integrate_linear(double u, double v, double fu, double fv) {
-  const double l = v - u;
-  return {0.5 * l * (fu + fv), l * (u * (2 * fu + fv) + v * (fu + 2 * fv)) / 6.0,
+template <class T>
+LinearIntegralsOf<T> integrate_linear(T u, T v, T fu, T fv) {
+  const T l = v - u;
+  return {0.5 * l * (fu + fv), l * (u * (2.0 * fu + fv) + v * (fu + 2.0 * fv)) / 6.0,
           l * (fu * fu + fu * fv + fv * fv) / 3.0};
 }
 
-// The same for the positive part f+ = max(f, 0).
-inline LinearIntegrals integrate_positive(double u, double v, double fu, double fv) {
-  if (fu >= 0 && fv >= 0) return integrate_linear(u, v, fu, fv);
-  if (fu <= 0 && fv <= 0) return {};
-  const double root = u + (v - u) * fu / (fu - fv);  // f changes sign once, inside (u, v)
-  return fu > 0 ? integrate_linear(u, root, fu, 0.0) : integrate_linear(root, v, 0.0, fv);
+// The same for the positive part f+ = max(f, 0). Every case is evaluated and the one that holds
+// selected (lanes cannot branch), as one pair does too: the same bits either way.
+template <class T>
+LinearIntegralsOf<T> integrate_positive(T u, T v, T fu, T fv) {
+  const T zero{};
+  const auto whole = is_at_least(fu, zero) & is_at_least(fv, zero);
+  const auto nothing = is_at_most(fu, zero) & is_at_most(fv, zero);
+  // Where f changes sign, once inside (u, v): the part on the side where it is positive.
+  const T root = u + (v - u) * fu / (fu - fv);
+  const auto left = is_positive(fu);
+  const LinearIntegralsOf<T> all = integrate_linear(u, v, fu, fv);
+  const LinearIntegralsOf<T> part = integrate_linear(
+      select(left, u, root), select(left, root, v), select(left, fu, zero), select(left, zero, fv));
+  const auto pick = [&](T LinearIntegralsOf<T>::*field) {
+    return select(whole, all.*field, select(nothing, zero, part.*field));
+  };
+  return {pick(&LinearIntegralsOf<T>::f), pick(&LinearIntegralsOf<T>::xf),
+          pick(&LinearIntegralsOf<T>::ff)};
+}
+
+// The ends a, b of element e (m, along t from the contact point) and the opening there (m) of an
+// interface with surface gap `gap` (m) and relative rotation `theta` (rad).
+template <class T>
+struct FlatJointElementSpanOf {
+  T a{}, b{}, ga{}, gb{};
+};
+
+template <class T>
+FlatJointElementSpanOf<T> flat_joint_element_span(const FlatJointGeometryOf<T>& g, T e, T gap,
+                                                  T theta) {
+  const T a = -g.half_length + e * g.element_length, b = a + g.element_length;
+  return {a, b, gap - theta * a, gap - theta * b};
+}
+
+// Normal force (N, tension positive) and moment on disc 2 (N m) of a bonded element, from its
+// span: it carries the whole opening, tension included.
+template <class T>
+struct FlatJointElementLoadOf {
+  T fn{}, moment{};
+};
+
+template <class T>
+FlatJointElementLoadOf<T> flat_joint_bonded_element(const FlatJointGeometryOf<T>& g,
+                                                    const FlatJointElementSpanOf<T>& s) {
+  const LinearIntegralsOf<T> i = integrate_linear(s.a, s.b, s.ga, s.gb);
+  return {g.kn * i.f, g.kn * i.xf};
+}
+
+// The same for an unbonded element: compression only, where the interface closes.
+template <class T>
+FlatJointElementLoadOf<T> flat_joint_unbonded_element(const FlatJointGeometryOf<T>& g,
+                                                      const FlatJointElementSpanOf<T>& s) {
+  const LinearIntegralsOf<T> i = integrate_positive(s.a, s.b, -s.ga, -s.gb);
+  return {-g.kn * i.f, -g.kn * i.xf};
+}
+
+// The shear force (N) of an unbonded element from its trial force (N) and normal force fn (N,
+// <= 0): Coulomb friction mu (-fn); the slip work (J) of the step from its old force and ks A
+// (N/m).
+template <class T>
+struct FlatJointElementSlipOf {
+  T fs{}, slip_work{};
+};
+
+template <class T>
+FlatJointElementSlipOf<T> flat_joint_unbonded_shear(T old, T trial, T fn, T mu, T ks_area) {
+  const T limit = mu * -fn;
+  const T fs = clamp_of(trial, -limit, limit);
+  return {fs, linear_slip_work(old, trial, fs, ks_area)};
+}
+
+// Stresses at a bonded element's centroid (Pa): sigma (tension positive) from its normal force
+// fn (N), tau from its shear force fs (N), on its area (m^2).
+template <class T>
+struct FlatJointElementStressOf {
+  T sigma{}, tau{};
+};
+
+template <class T>
+FlatJointElementStressOf<T> flat_joint_element_stress(T area, T fn, T fs) {
+  return {fn / area, abs_of(fs) / area};
+}
+
+// The strength tests of a bonded element (bool for one pair, a lane mask for lanes): tension
+// when sigma >= sigma_c, shear when tau >= c - sigma tan phi. Tension is checked first, as in
+// PFC (flat_joint_element_failure).
+template <class T>
+auto flat_joint_breaks_in_tension(const FlatJointElementStressOf<T>& s, T tensile_strength) {
+  return is_at_least(s.sigma, tensile_strength);
+}
+template <class T>
+auto flat_joint_breaks_in_shear(const FlatJointElementStressOf<T>& s, T cohesion,
+                                T tan_friction_angle) {
+  return is_at_least(s.tau, cohesion - s.sigma * tan_friction_angle);
 }
 
 // Normal force (N, tension positive), moment on disc 2 (N m) and normal strain energy (J/m) of
@@ -113,23 +221,22 @@ struct FlatJointElementForce {
 
 inline FlatJointElementForce flat_joint_element_force(const FlatJointGeometry& g, int e,
                                                       bool bonded, double gap, double theta) {
-  const double a = -g.half_length + e * g.element_length, b = a + g.element_length;
-  const double ga = gap - theta * a, gb = gap - theta * b;  // opening at the two ends, m
+  const FlatJointElementSpanOf<double> s = flat_joint_element_span<double>(g, e, gap, theta);
   if (bonded) {
-    const LinearIntegrals i = integrate_linear(a, b, ga, gb);
-    return {g.kn * i.f, g.kn * i.xf, 0.5 * g.kn * i.ff};
+    const FlatJointElementLoadOf<double> f = flat_joint_bonded_element<double>(g, s);
+    return {f.fn, f.moment, 0.5 * g.kn * integrate_linear(s.a, s.b, s.ga, s.gb).ff};
   }
-  const LinearIntegrals i = integrate_positive(a, b, -ga, -gb);  // closure, where it is > 0
-  return {-g.kn * i.f, -g.kn * i.xf, 0.5 * g.kn * i.ff};
+  const FlatJointElementLoadOf<double> f = flat_joint_unbonded_element<double>(g, s);
+  return {f.fn, f.moment, 0.5 * g.kn * integrate_positive(s.a, s.b, -s.ga, -s.gb).ff};
 }
 
 // The failure of a bonded element with normal force fn (N, tension positive) and shear force
 // fs (N); tension is checked first, as in PFC.
 inline BondFailure flat_joint_element_failure(const FlatJointParams& p, double area, double fn,
                                               double fs, double tan_friction_angle) {
-  const double sigma = fn / area, tau = std::fabs(fs) / area;
-  if (sigma >= p.tensile_strength) return BondFailure::Tension;
-  if (tau >= p.cohesion - sigma * tan_friction_angle) return BondFailure::Shear;
+  const FlatJointElementStressOf<double> s = flat_joint_element_stress(area, fn, fs);
+  if (flat_joint_breaks_in_tension(s, p.tensile_strength)) return BondFailure::Tension;
+  if (flat_joint_breaks_in_shear(s, p.cohesion, tan_friction_angle)) return BondFailure::Shear;
   return BondFailure::None;
 }
 
@@ -173,9 +280,10 @@ inline FlatJointForce flat_joint_update(const FlatJointGeometry& g, const FlatJo
       }
     }
     if (!(bonded & bit)) {
-      const double limit = mu * -f.fn;  // f.fn <= 0 for an unbonded element
-      fs = std::clamp(trial, -limit, limit);
-      out.slip_work += linear_slip_work(shear[e], trial, fs, g.ks * area);
+      const FlatJointElementSlipOf<double> slip =
+          flat_joint_unbonded_shear(shear[e], trial, f.fn, mu, g.ks * area);
+      fs = slip.fs;
+      out.slip_work += slip.slip_work;
     }
     shear[e] = fs;
     out.fn += f.fn;
@@ -200,9 +308,13 @@ inline double flat_joint_strain_energy(const FlatJointGeometry& g, std::uint32_t
 // True when an interface has no bonded element and is open over its whole length: the flat
 // joint is then removed and the pair becomes a plain linear contact (PFC's activity-deletion
 // criterion), which carries no force while apart.
+template <class T>
+auto flat_joint_apart(const FlatJointGeometryOf<T>& g, T gap, T theta) {
+  return is_positive(gap - abs_of(theta) * g.half_length);
+}
 inline bool flat_joint_is_open(const FlatJointGeometry& g, std::uint32_t bonded, double gap,
                                double theta) {
-  return bonded == 0 && gap - std::fabs(theta) * g.half_length > 0;
+  return bonded == 0 && flat_joint_apart<double>(g, gap, theta);
 }
 
 // Centroid of element e along t from the contact point, m.

@@ -315,6 +315,55 @@ TYPED_TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
   EXPECT_GT(apart, 1000);
 }
 
+// The pass over every pair of `w`, on copies of its discs and contacts: [0] in `lanes`, [1] one
+// pair at a time.
+struct TwoPasses {
+  explicit TwoPasses(const World& w)
+      : discs{w.discs(), w.discs()}, store{w.contacts(), w.contacts()} {}
+  Discs discs[2];
+  ContactStore store[2];
+  ContactForces out[2], wall_out[2];
+  std::vector<PairForce> forces[2];
+  std::size_t bad[2] = {};
+};
+
+TwoPasses pass_in_lanes_and_alone(const World& w, LaneIsa lanes) {
+  TwoPasses p(w);
+  const std::size_t count = p.store[0].keys.size();
+  for (int c = 0; c < 2; ++c) {
+    prepare_force_results(p.out[c], p.wall_out[c], p.store[c]);
+    const DiscPairKernel kernel(p.discs[c], p.store[c], p.out[c], w.settings().laws,
+                                w.settings().bonds, w.time_step(), w.settings().max_overlap_ratio,
+                                PassOptions{.lanes = c == 0 ? lanes : LaneIsa::None});
+    std::vector<PairForce>& to = p.forces[c];
+    to.resize(count);
+    p.bad[c] = kernel.evaluate_range(
+        0, count, [&](std::size_t k, const auto&, const PairForce& f) { to[k] = f; });
+  }
+  return p;
+}
+
+// Pair k's results of the two passes, field by field.
+void expect_same_pair_force(const TwoPasses& p, std::size_t k) {
+  const PairForce &a = p.forces[0][k], &b = p.forces[1][k];
+  const double fa[] = {a.normal,   a.overlap,  a.fx,        a.fy,
+                       a.moment_i, a.moment_j, a.slip_work, a.released};
+  const double fb[] = {b.normal,   b.overlap,  b.fx,        b.fy,
+                       b.moment_i, b.moment_j, b.slip_work, b.released};
+  for (std::size_t q = 0; q < std::size(fa); ++q)
+    ASSERT_EQ(bits(fa[q]), bits(fb[q])) << "pair " << k << " field " << q;
+  ASSERT_EQ(a.failure, b.failure) << k;
+  ASSERT_EQ(a.failed_elements, b.failed_elements) << k;
+}
+
+// Two arrays of the passes' state or results, element by element.
+template <class A>
+void expect_same_elements(const A& x, const A& y) {
+  ASSERT_EQ(x.size(), y.size());
+  for (std::size_t k = 0; k < x.size(); ++k)
+    ASSERT_EQ(bits(static_cast<double>(x[k])), bits(static_cast<double>(y[k]))) << k;
+}
+
 // The whole kernel on a jostled lattice, part of it bonded: the pass in lanes (evaluate_range)
 // leaves every per-pair result and state with the bits of evaluating each pair alone, bonds
 // that break in the step (they take the one-pair path) and unbonded pairs of a class with and
@@ -332,77 +381,122 @@ TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
   cdem::test::jostle(w);
   w.cycle(20);  // bonds loaded, some broken (their pairs unbonded now), contacts slipping
 
-  Discs discs[2] = {w.discs(), w.discs()};
-  ContactStore store[2] = {w.contacts(), w.contacts()};
-  ContactForces out[2], wall_out[2];
-  const ContactLaws& laws = w.settings().laws;
-  const BondModels& bonds = w.settings().bonds;
-  const double dt = w.time_step(), guard = w.settings().max_overlap_ratio;
-  const std::size_t count = store[0].keys.size();
-  std::vector<PairForce> lane_forces(count), alone(count);
+  const ContactStore& store = w.contacts();
+  const std::size_t count = store.keys.size();
   long parallel = 0, unbonded = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    parallel += store[0].state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel);
-    unbonded += store[0].state.bond[k] == static_cast<std::uint8_t>(BondKind::None);
+    parallel += store.state.bond[k] == static_cast<std::uint8_t>(BondKind::Parallel);
+    unbonded += store.state.bond[k] == static_cast<std::uint8_t>(BondKind::None);
   }
   ASSERT_GT(parallel, 32);  // several groups of lanes each
   ASSERT_GT(unbonded, 32);
   std::cout << parallel << " parallel-bonded and " << unbonded << " unbonded pairs\n";
-  std::size_t bad[2];
-  for (int c = 0; c < 2; ++c) {
-    prepare_force_results(out[c], wall_out[c], store[c]);
-    const DiscPairKernel kernel(discs[c], store[c], out[c], laws, bonds, dt, guard,
-                                PassOptions{.lanes = c == 0 ? lanes : LaneIsa::None});
-    std::vector<PairForce>& to = c == 0 ? lane_forces : alone;
-    bad[c] = kernel.evaluate_range(
-        0, count, [&](std::size_t k, const auto&, const PairForce& f) { to[k] = f; });
-  }
-  EXPECT_EQ(bad[0], bad[1]);
+  const TwoPasses p = pass_in_lanes_and_alone(w, lanes);
+  EXPECT_EQ(p.bad[0], p.bad[1]);
   long broke = 0, slipped = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    const PairForce &a = lane_forces[k], &b = alone[k];
-    const double fa[] = {a.normal,   a.overlap,  a.fx,        a.fy,
-                         a.moment_i, a.moment_j, a.slip_work, a.released};
-    const double fb[] = {b.normal,   b.overlap,  b.fx,        b.fy,
-                         b.moment_i, b.moment_j, b.slip_work, b.released};
-    for (std::size_t q = 0; q < std::size(fa); ++q)
-      ASSERT_EQ(bits(fa[q]), bits(fb[q])) << "pair " << k << " field " << q;
-    ASSERT_EQ(a.failure, b.failure) << k;
-    broke += b.failure != BondFailure::None;
-    slipped += b.slip_work != 0;
+    expect_same_pair_force(p, k);
+    broke += p.forces[1][k].failure != BondFailure::None;
+    slipped += p.forces[1][k].slip_work != 0;
   }
   EXPECT_GT(broke, 0);  // the one-pair path of a breaking bond was exercised
   if (friction > 0) {
     EXPECT_GT(slipped, 0);
   }
-  const auto same = [](const auto& x, const auto& y) {
-    ASSERT_EQ(x.size(), y.size());
-    for (std::size_t k = 0; k < x.size(); ++k)
-      ASSERT_EQ(bits(static_cast<double>(x[k])), bits(static_cast<double>(y[k]))) << k;
-  };
-  same(out[0].normal, out[1].normal);
-  same(out[0].overlap, out[1].overlap);
-  same(out[0].fx, out[1].fx);
-  same(out[0].fy, out[1].fy);
-  same(out[0].failure, out[1].failure);
-  same(out[0].bond_energy_released, out[1].bond_energy_released);
-  same(store[0].state.shear_force, store[1].state.shear_force);
-  same(store[0].state.bond_normal, store[1].state.bond_normal);
-  same(store[0].state.bond_shear, store[1].state.bond_shear);
-  same(store[0].state.bond_moment, store[1].state.bond_moment);
-  same(store[0].state.bond, store[1].state.bond);
-  same(store[0].state.bond_gap, store[1].state.bond_gap);
+  expect_same_elements(p.out[0].normal, p.out[1].normal);
+  expect_same_elements(p.out[0].overlap, p.out[1].overlap);
+  expect_same_elements(p.out[0].fx, p.out[1].fx);
+  expect_same_elements(p.out[0].fy, p.out[1].fy);
+  expect_same_elements(p.out[0].failure, p.out[1].failure);
+  expect_same_elements(p.out[0].bond_energy_released, p.out[1].bond_energy_released);
+  const ContactStates &a = p.store[0].state, &b = p.store[1].state;
+  expect_same_elements(a.shear_force, b.shear_force);
+  expect_same_elements(a.bond_normal, b.bond_normal);
+  expect_same_elements(a.bond_shear, b.bond_shear);
+  expect_same_elements(a.bond_moment, b.bond_moment);
+  expect_same_elements(a.bond, b.bond);
+  expect_same_elements(a.bond_gap, b.bond_gap);
 }
 
 INSTANTIATE_TEST_SUITE_P(FrictionAndLanes, PairLanesPass,
                          testing::Combine(testing::Values(0.5, 0.0),
                                           testing::Values(LaneIsa::Avx2, LaneIsa::Avx512)));
 
+// The same for flat joints (DiscPairKernel::flat_joint_group): a jostled lattice of flat-jointed
+// pairs, some installed slit and some with elements broken before the compared pass, so that
+// lanes of intact joints, of damaged ones (the unbonded elements' law) and of joints breaking in
+// the pass (the one-pair path) meet in the same groups; N_r = 3 (its element length a true
+// division) and 2.
+// The element count and the lane set.
+class FlatJointLanesPass : public testing::TestWithParam<std::tuple<int, LaneIsa>> {};
+
+BondModel jostled_flat_joint(int elements) {
+  BondModel bond;
+  bond.kind = BondKind::FlatJoint;
+  bond.flat_joint.tensile_strength = 4e6;
+  bond.flat_joint.cohesion = 8e6;
+  bond.flat_joint.friction_angle = 0.5;
+  bond.flat_joint.radius_multiplier = 0.9;
+  bond.flat_joint.elements = elements;
+  bond.flat_joint.slit_fraction = 0.2;
+  return bond;
+}
+
+TEST_P(FlatJointLanesPass, GivesTheBitsOfOnePairAtATime) {
+  const auto [elements, lanes] = GetParam();
+  SKIP_WITHOUT_LANE_SET(lanes);
+  World w(cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, 0.5},
+                                       jostled_flat_joint(elements)));
+  cdem::test::add_hex_lattice(w);
+  install_bonds(w, BondInstallation{0.03});
+  cdem::test::jostle(w);
+  w.cycle(20);  // joints loaded, some elements broken
+
+  const ContactStore& store = w.contacts();
+  const std::size_t count = store.keys.size();
+  const std::uint32_t all = (1u << elements) - 1u;
+  long intact = 0, damaged = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (store.state.bond[k] != static_cast<std::uint8_t>(BondKind::FlatJoint)) continue;
+    const std::uint32_t bonded = store.flat_joints.bonded[store.state.joint[k]];
+    intact += bonded == all;
+    damaged += bonded != all;
+  }
+  ASSERT_GT(intact, 32);  // several groups of lanes each
+  ASSERT_GT(damaged, 8);
+  std::cout << intact << " intact and " << damaged << " damaged or slit flat joints\n";
+  const TwoPasses p = pass_in_lanes_and_alone(w, lanes);
+  EXPECT_EQ(p.bad[0], p.bad[1]);
+  long broke = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    expect_same_pair_force(p, k);
+    broke += p.forces[1][k].failure != BondFailure::None;
+  }
+  EXPECT_GT(broke, 0);  // joints breaking in the pass took the one-pair path
+  expect_same_elements(p.out[0].normal, p.out[1].normal);
+  expect_same_elements(p.out[0].fx, p.out[1].fx);
+  expect_same_elements(p.out[0].fy, p.out[1].fy);
+  expect_same_elements(p.store[0].state.shear_force, p.store[1].state.shear_force);
+  expect_same_elements(p.store[0].state.bond, p.store[1].state.bond);
+  expect_same_elements(p.store[0].state.joint, p.store[1].state.joint);
+  const FlatJointStates &a = p.store[0].flat_joints, &b = p.store[1].flat_joints;
+  expect_same_elements(a.theta, b.theta);
+  expect_same_elements(a.bonded, b.bonded);
+  expect_same_elements(a.element_shear, b.element_shear);
+}
+
+INSTANTIATE_TEST_SUITE_P(ElementsAndLanes, FlatJointLanesPass,
+                         testing::Combine(testing::Values(3, 2),
+                                          testing::Values(LaneIsa::Avx2, LaneIsa::Avx512)));
+
 // A whole run, 1 and 2 threads: worlds without lanes and with each lane set the CPU has end with
 // the same bits.
-TEST(PairLanesRun, RunsWithAndWithoutLanesEndAlike) {
+class PairLanesRun : public testing::TestWithParam<BondKind> {};
+
+TEST_P(PairLanesRun, RunsWithAndWithoutLanesEndAlike) {
   if (lane_isa_of_cpu() == LaneIsa::None) GTEST_SKIP() << "this CPU has no lanes";
-  const BondModel bond = cdem::test::weak_parallel_bond();
+  const BondModel bond =
+      GetParam() == BondKind::Parallel ? cdem::test::weak_parallel_bond() : jostled_flat_joint(3);
   std::vector<double> reference;
   for (int threads : {1, 2})
     for (LaneIsa lanes : {LaneIsa::None, LaneIsa::Avx2, LaneIsa::Avx512}) {
@@ -423,5 +517,11 @@ TEST(PairLanesRun, RunsWithAndWithoutLanesEndAlike) {
       }
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(ParallelBondAndFlatJoint, PairLanesRun,
+                         testing::Values(BondKind::Parallel, BondKind::FlatJoint),
+                         [](const testing::TestParamInfo<BondKind>& info) {
+                           return info.param == BondKind::Parallel ? "ParallelBond" : "FlatJoint";
+                         });
 
 }  // namespace
