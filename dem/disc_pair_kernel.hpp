@@ -618,17 +618,19 @@ class DiscPairKernel {
     alignas(64) double shear[kMaxFlatJointElements][n];
     std::int32_t joint[n] = {};
     std::uint32_t bonded_bits[n] = {};
+    int element_count[n] = {};  // N_r of each lane's joint
     unsigned none_bonded = 0;
     bool loose = false;  // some joint has an unbonded element
     int most = 0;        // elements of the largest joint
-    for (std::size_t l = 0; l < n; ++l) {
-      const int elements = bonds_[contact_class_[k + l]].flat_joint.elements;
-      if (lanes >> l & 1) most = std::max(most, elements);
-    }
+    for (std::size_t l = 0; l < n; ++l)
+      if (lanes >> l & 1) {
+        element_count[l] = bonds_[contact_class_[k + l]].flat_joint.elements;
+        most = std::max(most, element_count[l]);
+      }
     for (int e = 0; e < most; ++e) std::fill(shear[e], shear[e] + n, 0.0);
     for (std::size_t l = 0; l < n; ++l) {
       if (!(lanes >> l & 1)) continue;
-      const int elements = bonds_[contact_class_[k + l]].flat_joint.elements;
+      const int elements = element_count[l];
       const std::int32_t q = joint[l] = joint_[k + l];
       theta_before[l] = joint_theta_[q];
       gap0[l] = joint_gap0_[q];
@@ -701,8 +703,7 @@ class DiscPairKernel {
       const std::int32_t q = joint[l];
       joint_theta_[q] = theta_after[l];
       double* element_shear = joint_element_shear_ + joint_first_element_[q];
-      const int count = bonds_[contact_class_[k + l]].flat_joint.elements;
-      for (int e = 0; e < count; ++e) element_shear[e] = shear[e][l];
+      for (int e = 0; e < element_count[l]; ++e) element_shear[e] = shear[e][l];
     }
     return lanes;
   }

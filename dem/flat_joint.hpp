@@ -151,18 +151,19 @@ FlatJointElementSpanOf<T> flat_joint_element_span(const FlatJointGeometryOf<T>& 
   return {a, b, gap - theta * a, gap - theta * b};
 }
 
-// Normal force (N, tension positive) and moment on disc 2 (N m) of a bonded element, from its
-// span: it carries the whole opening, tension included.
+// Normal force (N, tension positive), moment on disc 2 (N m) and normal strain energy (J/m) of
+// a bonded element, from its span: it carries the whole opening, tension included. (The energy
+// is read only when an element breaks; the lanes never read it, and the compiler drops it there.)
 template <class T>
 struct FlatJointElementLoadOf {
-  T fn{}, moment{};
+  T fn{}, moment{}, energy{};
 };
 
 template <class T>
 FlatJointElementLoadOf<T> flat_joint_bonded_element(const FlatJointGeometryOf<T>& g,
                                                     const FlatJointElementSpanOf<T>& s) {
   const LinearIntegralsOf<T> i = integrate_linear(s.a, s.b, s.ga, s.gb);
-  return {g.kn * i.f, g.kn * i.xf};
+  return {g.kn * i.f, g.kn * i.xf, 0.5 * g.kn * i.ff};
 }
 
 // The same for an unbonded element: compression only, where the interface closes.
@@ -170,7 +171,7 @@ template <class T>
 FlatJointElementLoadOf<T> flat_joint_unbonded_element(const FlatJointGeometryOf<T>& g,
                                                       const FlatJointElementSpanOf<T>& s) {
   const LinearIntegralsOf<T> i = integrate_positive(s.a, s.b, -s.ga, -s.gb);
-  return {-g.kn * i.f, -g.kn * i.xf};
+  return {-g.kn * i.f, -g.kn * i.xf, 0.5 * g.kn * i.ff};
 }
 
 // The shear force (N) of an unbonded element from its trial force (N) and normal force fn (N,
@@ -215,19 +216,13 @@ auto flat_joint_breaks_in_shear(const FlatJointElementStressOf<T>& s, T cohesion
 
 // Normal force (N, tension positive), moment on disc 2 (N m) and normal strain energy (J/m) of
 // element e of an interface with surface gap `gap` (m) and relative rotation `theta` (rad).
-struct FlatJointElementForce {
-  double fn = 0, moment = 0, energy = 0;
-};
+using FlatJointElementForce = FlatJointElementLoadOf<double>;
 
 inline FlatJointElementForce flat_joint_element_force(const FlatJointGeometry& g, int e,
                                                       bool bonded, double gap, double theta) {
   const FlatJointElementSpanOf<double> s = flat_joint_element_span<double>(g, e, gap, theta);
-  if (bonded) {
-    const FlatJointElementLoadOf<double> f = flat_joint_bonded_element<double>(g, s);
-    return {f.fn, f.moment, 0.5 * g.kn * integrate_linear(s.a, s.b, s.ga, s.gb).ff};
-  }
-  const FlatJointElementLoadOf<double> f = flat_joint_unbonded_element<double>(g, s);
-  return {f.fn, f.moment, 0.5 * g.kn * integrate_positive(s.a, s.b, -s.ga, -s.gb).ff};
+  return bonded ? flat_joint_bonded_element<double>(g, s)
+                : flat_joint_unbonded_element<double>(g, s);
 }
 
 // The failure of a bonded element with normal force fn (N, tension positive) and shear force
