@@ -11,21 +11,33 @@ namespace cdem::dem {
 
 namespace {
 
-// Evaluates all disc-disc pairs and adds them onto the discs (whose accumulators must be zero),
-// block by block, each pair's result still in registers. Returns the first pair tripping the
-// guard, or -1.
+// The pairs [0, count) of `kernel` added onto the discs (whose accumulators must be zero) and
+// onto `result`, block by block, each pair's result still in registers; kVirial: sum the
+// virial too (about 5 of the take's instructions per pair). Returns the first pair tripping the
+// guard, or `count`.
+template <bool kVirial>
+std::size_t add_disc_pairs(const DiscPairKernel& kernel, std::size_t count,
+                           std::vector<std::int32_t>& broken, ForcePassResult& result) {
+  ForcePassResult totals = result;  // a local of this function, so the sums stay in registers
+  const std::size_t bad = kernel.evaluate_range(
+      0, count, [&](std::size_t k, const DiscPairKernel::Geometry& g, const PairForce& f) {
+        kernel.add<kVirial>(k, g, f, totals, broken);
+      });
+  result = totals;
+  return bad;
+}
+
+// Evaluates all disc-disc pairs and adds them onto the discs. Returns the first pair tripping
+// the guard, or -1.
 long disc_disc_pass(Discs& d, ContactStore& list, ContactForces& out, const ContactLaws& laws,
                     const BondModels& bonds, double dt, double guard, PassOptions options,
                     ForcePassResult& result) {
   const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard, options);
   const std::size_t count = list.keys.size();
   out.broken.clear();
-  ForcePassResult totals = result;  // a local, so the sums stay in registers
-  const std::size_t bad = kernel.evaluate_range(
-      0, count, [&](std::size_t k, const DiscPairKernel::Geometry& g, const PairForce& f) {
-        kernel.add(k, g, f, totals, out.broken);
-      });
-  result = totals;
+  const std::size_t bad = options.pair_results
+                              ? add_disc_pairs<true>(kernel, count, out.broken, result)
+                              : add_disc_pairs<false>(kernel, count, out.broken, result);
   return bad == count ? -1 : static_cast<long>(bad);
 }
 

@@ -397,12 +397,14 @@ class DiscPairKernel {
 
   // Adds pair k onto its discs and onto `totals`, the pass totals (a local of the pass, so they
   // stay in registers). Pairs apart carry zeros, so adding them unconditionally keeps the loop
-  // branch-free. The virial uses the centre distance reach - overlap (a bonded pair may be
-  // apart).
+  // branch-free. kVirial: sum the virial, which uses the centre distance reach - overlap (a
+  // bonded pair may be apart); a pass without per-pair results reports none (ForcePassResult),
+  // and its loop is compiled without the sum.
+  template <bool kVirial>
   void add(std::size_t k, const Geometry& g, const PairForce& f, ForcePassResult& totals,
            std::vector<std::int32_t>& broken) const {
     add_onto_discs(disc_fx_, disc_fy_, disc_m_, g.i, g.j, f);
-    totals.virial += f.normal * (g.ri + g.rj - f.overlap);
+    if constexpr (kVirial) totals.virial += f.normal * (g.ri + g.rj - f.overlap);
     totals.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {
       broken.push_back(static_cast<std::int32_t>(k));

@@ -134,9 +134,11 @@ TEST(PairResultsOnRequest, KernelWritesOnlyBrokenPairs) {
                                 w.time_step(), w.settings().max_overlap_ratio,
                                 PassOptions{.lanes = LaneIsa::Avx512, .pair_results = c == 0});
     ForcePassResult totals;
-    kernel.evaluate_range(0, store[c].keys.size(),
-                          [&](std::size_t k, const DiscPairKernel::Geometry& g,
-                              const PairForce& f) { kernel.add(k, g, f, totals, broken[c]); });
+    kernel.evaluate_range(
+        0, store[c].keys.size(),
+        [&](std::size_t k, const DiscPairKernel::Geometry& g, const PairForce& f) {
+          kernel.add<true>(k, g, f, totals, broken[c]);
+        });
   }
   ASSERT_EQ(broken[0], broken[1]);
   EXPECT_GT(broken[1].size(), 0u);
