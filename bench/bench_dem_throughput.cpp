@@ -26,11 +26,11 @@ double solver_bytes(const cdem::dem::World& w) {
   const auto& d = w.discs();
   const auto& n = w.contacts();
   double sum = 0;
-  for (const auto* v : {&b.x, &b.y, &b.theta, &b.vx, &b.vy, &b.omega, &b.fx, &b.fy, &b.moment,
-                        &b.fx_applied, &b.fy_applied, &b.mass, &b.inertia, &b.inv_mass_dyn,
-                        &b.inv_inertia_dyn, &d.fx, &d.fy, &d.moment})
+  for (const auto* v :
+       {&b.x, &b.y, &b.theta, &b.vx, &b.vy, &b.omega, &b.fx, &b.fy, &b.moment, &b.fx_applied,
+        &b.fy_applied, &b.mass, &b.inertia, &b.inv_mass_dyn, &b.inv_inertia_dyn})
     sum += bytes(*v);
-  sum += bytes(d.state);
+  sum += bytes(d.state) + bytes(d.load);
   sum += bytes(b.first_disc) + bytes(b.disc_count) + bytes(b.is_clump) + bytes(b.prescribed);
   sum += bytes(d.body) + bytes(d.active) + bytes(d.material);
   sum += bytes(n.keys) + bytes(n.first) + bytes(n.second) + bytes(n.contact_class) +

@@ -180,9 +180,7 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
   ForcePassResult result;
   prepare_force_results(pair, wall_pair, list);
   // Disc accumulators are summed in the sorted pair order, then the walls (deterministic).
-  std::fill(discs.fx.begin(), discs.fx.end(), 0.0);
-  std::fill(discs.fy.begin(), discs.fy.end(), 0.0);
-  std::fill(discs.moment.begin(), discs.moment.end(), 0.0);
+  std::fill(discs.load.begin(), discs.load.end(), DiscLoad{});
   result.bad_pair =
       disc_disc_pass(discs, list, pair, laws, bonds, dt, max_overlap_ratio, options, result);
   result.bad_wall_pair =

@@ -11,6 +11,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "dem/contact_solver.hpp"
@@ -187,14 +188,36 @@ void add_onto_first(double& fx, double& fy, double& m, const F& f) {
   m += f.moment_i;
 }
 
+// Adds a force (N) and a moment (N m) onto a disc's record, (fx, fy) as one two-double vector.
+inline void add_onto(DiscLoad& sum, double fx, double fy, double moment) {
+  using Double2 = double __attribute__((vector_size(16)));
+  const Double2 force = {fx, fy};
+  Double2 s;
+  std::memcpy(&s, &sum.fx, sizeof s);
+  s += force;
+  std::memcpy(&sum.fx, &s, sizeof s);
+  sum.moment += moment;
+}
+
+// A pair's force onto the record of its second disc j (+f and moment_j) and of its first disc i
+// (-f and moment_i). x + -y is x - y in every bit, so each sum takes the additions of the
+// scalar add_onto_second / add_onto_first above.
+template <class F>
+void add_onto_second(DiscLoad& sum, const F& f) {
+  add_onto(sum, f.fx, f.fy, f.moment_j);
+}
+template <class F>
+void add_onto_first(DiscLoad& sum, const F& f) {
+  add_onto(sum, -f.fx, -f.fy, f.moment_i);
+}
+
 // Adds a pair's force onto both discs' sums. Straight onto memory: the pairs of a first disc
 // run one after another, and keeping that disc's sums in registers over its run cost a
 // mispredicted branch at every run's end, more than the store-to-load round trips it saved
 // (docs/performance.md "Session 32"). Each sum takes its additions in pair order either way.
-inline void add_onto_discs(double* fx, double* fy, double* m, std::int32_t i, std::int32_t j,
-                           const PairForce& f) {
-  add_onto_second(fx[j], fy[j], m[j], f);
-  add_onto_first(fx[i], fy[i], m[i], f);
+inline void add_onto_discs(DiscLoad* load, std::int32_t i, std::int32_t j, const PairForce& f) {
+  add_onto_second(load[j], f);
+  add_onto_first(load[i], f);
 }
 
 class DiscPairKernel {
@@ -247,9 +270,7 @@ class DiscPairKernel {
         released_(out.bond_energy_released.data()),
         failed_elements_(out.failed_elements.data()),
         failed_shear_(out.failed_shear.data()),
-        disc_fx_(d.fx.data()),
-        disc_fy_(d.fy.data()),
-        disc_m_(d.moment.data()),
+        disc_load_(d.load.data()),
         laws_(laws),
         bonds_(bonds),
         dt_(dt),
@@ -300,11 +321,11 @@ class DiscPairKernel {
     std::size_t bad = end;
     for (std::size_t start = begin; start < end; start += kGeometryBlock) {
       const std::size_t stop = std::min(start + kGeometryBlock, end);
-      // The next block's second discs (a record, one line, and the three force sums), requested
-      // now so that they arrive while this block is evaluated. A pair's second disc lies up to a
-      // row of the numbering ahead of its first (the pairs run in the order of their first discs),
-      // so on a specimen beyond the last-level cache its data come from DRAM along a path the
-      // hardware prefetcher does not follow: on the 10^6-disc section the loads of the second
+      // The next block's second discs (a record, one line, and its force sums, half a line),
+      // requested now so that they arrive while this block is evaluated. A pair's second disc lies
+      // up to a row of the numbering ahead of its first (the pairs run in the order of their first
+      // discs), so on a specimen beyond the last-level cache its data come from DRAM along a path
+      // the hardware prefetcher does not follow: on the 10^6-disc section the loads of the second
       // disc's position and velocity held 28 % of the pass's samples, and this cut the step to
       // 0.70x (docs/performance.md "Session 21"; within the cache, as on C30, it costs nothing
       // measurable). The loop stays written out here: GCC 12 drops a call to a function that only
@@ -313,9 +334,7 @@ class DiscPairKernel {
         for (std::size_t k = stop; k < stop + kGeometryBlock; ++k) {
           const std::int32_t j = second_[k];
           __builtin_prefetch(disc_ + j);
-          __builtin_prefetch(disc_fx_ + j, 1);  // read and written: the pass adds onto them
-          __builtin_prefetch(disc_fy_ + j, 1);
-          __builtin_prefetch(disc_m_ + j, 1);
+          __builtin_prefetch(disc_load_ + j, 1);  // read and written: the pass adds onto it
         }
       std::size_t k = start;
       if (lanes_ == LaneIsa::Avx512)
@@ -403,7 +422,7 @@ class DiscPairKernel {
   template <bool kVirial>
   void add(std::size_t k, const Geometry& g, const PairForce& f, ForcePassResult& totals,
            std::vector<std::int32_t>& broken) const {
-    add_onto_discs(disc_fx_, disc_fy_, disc_m_, g.i, g.j, f);
+    add_onto_discs(disc_load_, g.i, g.j, f);
     if constexpr (kVirial) totals.virial += f.normal * (g.ri + g.rj - f.overlap);
     totals.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {
@@ -890,7 +909,7 @@ class DiscPairKernel {
   std::uint8_t* failure_;
   double* released_;
   std::uint32_t *failed_elements_, *failed_shear_;
-  double *disc_fx_, *disc_fy_, *disc_m_;
+  DiscLoad* disc_load_;
   const ContactLaws& laws_;
   const BondModels& bonds_;
   std::array<double, kContactClassCount> tan_friction_angle_{};          // tan(phi_b) by class

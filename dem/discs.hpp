@@ -35,9 +35,24 @@ struct alignas(64) DiscState {
 };
 static_assert(sizeof(DiscState) == DiscState::kFields * sizeof(double));
 
-// One field of every disc's record, used as an array of doubles: indexed, sized, iterated.
-template <double DiscState::*kField>
-class DiscField {
+// The contact forces the last force pass put on one disc, and their moment about its centre,
+// in one 32-byte record: the pass adds each pair onto both its discs, and with the three sums of
+// a disc in one cache line (two discs a line) a pair touches two lines where three arrays took
+// six, and adds (fx, fy) as one two-double vector (dem/disc_pair_kernel.hpp add_onto_discs).
+struct alignas(32) DiscLoad {
+  double fx = 0, fy = 0;  // N
+  double moment = 0;      // N m
+  double unused = 0;      // pads the record to 32 bytes: never split across two lines
+
+  static constexpr std::size_t kFx = 0, kFy = 1, kMoment = 2;  // positions, for the lanes
+  static constexpr std::size_t kFields = 4;
+};
+static_assert(sizeof(DiscLoad) == DiscLoad::kFields * sizeof(double));
+
+// One field of every record of an array (DiscState, DiscLoad), used as an array of doubles:
+// indexed, sized, iterated.
+template <class Record, double Record::*kField>
+class RecordField {
  public:
   // Steps through one field of consecutive records.
   template <class Value>
@@ -53,7 +68,7 @@ class DiscField {
     explicit Iterator(Value* at) : at_(at) {}
     Value& operator*() const { return *at_; }
     Iterator& operator++() {
-      at_ += DiscState::kFields;
+      at_ += Record::kFields;
       return *this;
     }
     Iterator operator++(int) {
@@ -72,7 +87,7 @@ class DiscField {
   using iterator = Iterator<double>;
   using const_iterator = Iterator<const double>;
 
-  explicit DiscField(StaggeredArray<DiscState>* records) : records_(records) {}
+  explicit RecordField(StaggeredArray<Record>* records) : records_(records) {}
 
   double& operator[](std::size_t i) { return (*records_)[i].*kField; }
   const double& operator[](std::size_t i) const { return (*records_)[i].*kField; }
@@ -83,7 +98,7 @@ class DiscField {
   Iterator<const double> begin() const { return Iterator<const double>(field(0)); }
   Iterator<const double> end() const { return Iterator<const double>(field(size())); }
   // Element by element, as std::vector's ==.
-  bool operator==(const DiscField& o) const {
+  bool operator==(const RecordField& o) const {
     if (size() != o.size()) return false;
     for (std::size_t i = 0; i < size(); ++i)
       if (!((*this)[i] == o[i])) return false;
@@ -93,12 +108,15 @@ class DiscField {
  private:
   // The field of record i, i <= size() (one past the end for end()); records are standard
   // layout, so a field's address plus kFields doubles is the same field of the next record.
-  double* field(std::size_t i) const {
-    return &(records_->data()->*kField) + i * DiscState::kFields;
-  }
+  double* field(std::size_t i) const { return &(records_->data()->*kField) + i * Record::kFields; }
 
-  StaggeredArray<DiscState>* records_;
+  StaggeredArray<Record>* records_;
 };
+
+template <double DiscState::*kField>
+using DiscField = RecordField<DiscState, kField>;
+template <double DiscLoad::*kField>
+using LoadField = RecordField<DiscLoad, kField>;
 
 // The arrays of the discs; Discs adds the field views onto them.
 struct DiscArrays {
@@ -107,7 +125,7 @@ struct DiscArrays {
   StaggeredArray<std::uint8_t> active;  // 0: never in contact detection (buried pebble)
   StaggeredArray<DiscMaterial> material;
   // Force and moment (about the disc centre) from the contacts of the last force pass.
-  StaggeredArray<double> fx, fy, moment;  // N, N m
+  StaggeredArray<DiscLoad> load;
 };
 
 struct Discs : DiscArrays {
@@ -120,6 +138,10 @@ struct Discs : DiscArrays {
   DiscField<&DiscState::omega> omega{&state};
   DiscField<&DiscState::offset_x> offset_x{&state};
   DiscField<&DiscState::offset_y> offset_y{&state};
+  // The fields of `load` as arrays (N, N m as in DiscLoad).
+  LoadField<&DiscLoad::fx> fx{&load};
+  LoadField<&DiscLoad::fy> fy{&load};
+  LoadField<&DiscLoad::moment> moment{&load};
 
   Discs() = default;
   // The arrays are copied or moved; the fields keep viewing this object's records.
@@ -138,7 +160,7 @@ struct Discs : DiscArrays {
   // Room for n discs in every array, so a world built disc by disc holds no growth slack.
   void reserve(std::size_t n) {
     state.reserve(n);
-    for (auto* v : {&fx, &fy, &moment}) v->reserve(n);
+    load.reserve(n);
     body.reserve(n);
     active.reserve(n);
     material.reserve(n);

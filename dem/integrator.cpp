@@ -104,9 +104,10 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::
   const std::size_t first = static_cast<std::size_t>(b.first_disc[k]);
   const L fx_applied = load<L>(b.fx_applied.data() + k),
           fy_applied = load<L>(b.fy_applied.data() + k);
-  const L fx = load<L>(d.fx.data() + first) + fx_applied,
-          fy = load<L>(d.fy.data() + first) + fy_applied;
-  const L moment = load<L>(d.moment.data() + first);
+  L sums[DiscLoad::kFields];
+  load_quads(reinterpret_cast<const double*>(d.load.data() + first), sums);
+  const L fx = sums[DiscLoad::kFx] + fx_applied, fy = sums[DiscLoad::kFy] + fy_applied;
+  const L moment = sums[DiscLoad::kMoment];
   store(b.fx.data() + k, fx);
   store(b.fy.data() + k, fy);
   store(b.moment.data() + k, moment);

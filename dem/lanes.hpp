@@ -331,6 +331,26 @@ CDEM_AVX2 inline void load_records(const double* records, const std::int32_t* in
   transpose4(field + 4);
 }
 
+// field[f] lane l = the f-th double of the l-th of kLanes<L> consecutive records of four doubles
+// (32-byte aligned) at `records`: a DiscLoad per lane (dem/discs.hpp). A load per record and a
+// transpose.
+CDEM_AVX2 inline void load_quads(const double* records, Lanes4 (&field)[4]) {
+  for (std::size_t l = 0; l < 4; ++l) field[l] = _mm256_load_pd(records + 4 * l);
+  transpose4(field);
+}
+CDEM_AVX512 inline void load_quads(const double* records, Lanes8 (&field)[4]) {
+  // Records 0-3 and 4-7 as two 4 x 4 blocks, each transposed, then joined lane-wise.
+  Lanes4 low[4], high[4];
+  for (std::size_t l = 0; l < 4; ++l) {
+    low[l] = _mm256_load_pd(records + 4 * l);
+    high[l] = _mm256_load_pd(records + 16 + 4 * l);
+  }
+  transpose4(low);
+  transpose4(high);
+  for (std::size_t f = 0; f < 4; ++f)
+    field[f] = _mm512_insertf64x4(_mm512_castpd256_pd512(low[f]), high[f], 1);
+}
+
 // The reverse of load_records: the f-th double of record index[l] = field[f] lane l, for the
 // fields f whose bit is set in `fields` (the others keep their memory). The indices are
 // distinct; `field` is used up (transposed in place).

@@ -27,7 +27,7 @@ MemoryFootprint memory_footprint(const World& world) {
                      b.first_disc, b.disc_count, b.is_clump, b.prescribed) +
       world.stiffness_.body_bytes();
   const Discs& d = world.discs_;
-  m.discs = capacity_bytes(d.state, d.body, d.active, d.material, d.fx, d.fy, d.moment);
+  m.discs = capacity_bytes(d.state, d.body, d.active, d.material, d.load);
   const ContactStore& c = world.contacts_;
   m.pairs = capacity_bytes(c.keys, c.first, c.second, c.contact_class) + state_bytes(c.state) +
             force_bytes(world.pair_forces_);

@@ -280,9 +280,7 @@ void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_
       add_onto_second(fx, fy, m, specials[terms[e]].part);
     for (std::int32_t e = shared_term_mid_[s]; e < shared_term_start_[s + 1]; ++e)
       add_onto_first(fx, fy, m, specials[terms[e]].part);
-    discs.fx[i] = fx;
-    discs.fy[i] = fy;
-    discs.moment[i] = m;
+    discs.load[i] = DiscLoad{.fx = fx, .fy = fy, .moment = m};
   }
 }
 
@@ -301,7 +299,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   long bad_wall = -1;
   bool integrated = false;
   double unused_slip = 0;
-  double *disc_fx = discs.fx.data(), *disc_fy = discs.fy.data(), *disc_m = discs.moment.data();
+  DiscLoad* const disc_load = discs.load.data();
   const bool sample = steps_++ % kSampleEvery == 0;
   const bool keep_virial = s.pass.pair_results;
   // Each chunk's owner marks it integrated with this step's stamp; thread 0 chains the energy
@@ -319,7 +317,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // frame (which escapes to the team) or through `this`, each was loaded again at every pair
     // (the take may call the allocator, which could change them). 5 % fewer instructions in
     // the pass (docs/performance.md "Session 33").
-    double *const fx = disc_fx, *const fy = disc_fy, *const m = disc_m;
+    DiscLoad* const load = disc_load;
     // In a step that keeps the per-pair results every thread stores each pair's virial, and
     // thread 0 chains them in its phase 2 (one pointer here where a sum, a flag and a pointer
     // held registers the pair loop needed: docs/performance.md "Session 35").
@@ -343,11 +341,11 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       if (pair_virial) pair_virial[k] = f.normal * (gk.ri + gk.rj - f.overlap);
       const std::int32_t i = gk.i, j = gk.j;
       if (k != static_cast<std::size_t>(special->pair)) {
-        add_onto_discs(fx, fy, m, i, j, f);
+        add_onto_discs(load, i, j, f);
       } else {
         special->part = {f.fx, f.fy, f.moment_i, f.moment_j};
-        if (special->direct & kDirectSecond) add_onto_second(fx[j], fy[j], m[j], f);
-        if (special->direct & kDirectFirst) add_onto_first(fx[i], fy[i], m[i], f);
+        if (special->direct & kDirectSecond) add_onto_second(load[j], f);
+        if (special->direct & kDirectFirst) add_onto_first(load[i], f);
         ++special;
       }
       if (slip_out) {
@@ -364,9 +362,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     for (std::size_t c = 0; c < chunk_count; ++c) {
       const Chunk& chunk = chunks_[c];
       if (chunk.thread != t) continue;
-      std::fill(fx + chunk.disc_begin, fx + chunk.disc_end, 0.0);
-      std::fill(fy + chunk.disc_begin, fy + chunk.disc_end, 0.0);
-      std::fill(m + chunk.disc_begin, m + chunk.disc_end, 0.0);
+      std::fill(load + chunk.disc_begin, load + chunk.disc_end, DiscLoad{});
     }
     for (std::size_t c = 0; c < chunk_count; ++c) {
       Chunk& chunk = chunks_[c];

@@ -68,7 +68,7 @@ int World::add_disc(double x, double y, double r, double density, DiscMaterial m
   disc.y = y;
   disc.r = r;
   discs_.state.push_back(disc);
-  push_zero<double>({&discs_.fx, &discs_.fy, &discs_.moment});
+  discs_.load.push_back(DiscLoad{});
   discs_.body.push_back(body);
   discs_.active.push_back(1);
   discs_.material.push_back(material);
@@ -101,7 +101,7 @@ int World::add_clump(double cx, double cy, double mass, double inertia,
     disc.offset_x = px[k] - cx;
     disc.offset_y = py[k] - cy;
     discs_.state.push_back(disc);
-    push_zero<double>({&discs_.fx, &discs_.fy, &discs_.moment});
+    discs_.load.push_back(DiscLoad{});
     discs_.body.push_back(body);
     discs_.active.push_back(active[k]);
     discs_.material.push_back(DiscMaterial::Aggregate);

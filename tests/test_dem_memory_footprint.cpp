@@ -20,9 +20,9 @@ using cdem::dem::World;
 // mass, inertia, inv_mass_dyn, inv_inertia_dyn), first_disc and disc_count (int32), is_clump and
 // prescribed (uint8), and the two doubles of the time-step scratch.
 constexpr std::size_t kBytesPerBody = 15 * 8 + 2 * 4 + 2 * 1 + 2 * 8;
-// Per disc: 11 doubles (x, y, r, vx, vy, omega, offset_x, offset_y, fx, fy, moment), body
-// (int32), active and material (uint8).
-constexpr std::size_t kBytesPerDisc = 11 * 8 + 4 + 1 + 1;
+// Per disc: 12 doubles (x, y, r, vx, vy, omega, offset_x, offset_y; fx, fy, moment and the
+// padding of their 32-byte record), body (int32), active and material (uint8).
+constexpr std::size_t kBytesPerDisc = 12 * 8 + 4 + 1 + 1;
 // Per disc-disc pair: key (uint64), first and second (int32), class (uint8); the persistent
 // state (shear_force, bond_normal, bond_shear, bond_moment, bond_gap: double; bond: uint8;
 // joint: int32); the force results (normal, overlap, fx, fy, bond_energy_released: double;
