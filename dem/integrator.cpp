@@ -73,7 +73,12 @@ void advance(T& v, T force, T applied, T inv_inertia, T dt, T alpha, StepEnergyO
 // terms of the range sums, each summed into the totals in body order by the caller.
 template <std::size_t n>
 struct FreeDiscLanes {
-  alignas(64) double damped[n], applied[n];
+  // J before the factor dt / 2: lane l's damping term at 2 l, its applied work at 2 l + 1
+  // (store_interleaved). As two arrays, GCC summed each lane's two terms as one vector whose
+  // 16-byte load straddled two of the lane function's vector stores, and the load waited for
+  // them to retire: 41 % of the two-thread integration's samples sat behind it
+  // (docs/performance.md "Session 41").
+  alignas(64) double energy[2 * n];
   alignas(64) double position[n];  // m, x + y + theta after the step
   alignas(64) double speed2[n];    // m^2/s^2, squared speed
 };
@@ -95,7 +100,7 @@ bool free_discs(const Bodies& b, std::size_t k) {
 // Lane code: called only from the integrate_free_discs below, which inline it.
 template <bool kBook, bool kDamped, class L>
 void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::size_t k,
-                             FreeDiscLanes<kLanes<L>>& out) {
+                             const BodyEnergyArrays* per_body, FreeDiscLanes<kLanes<L>>& out) {
   const L dtl = splat<L>(dt), al = splat<L>(alpha);
   L vx = load<L>(b.vx.data() + k), vy = load<L>(b.vy.data() + k), w = load<L>(b.omega.data() + k);
   const L inv_mass = load<L>(b.inv_mass_dyn.data() + k);
@@ -123,8 +128,14 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::
   store(b.x.data() + k, x);
   store(b.y.data() + k, y);
   store(b.theta.data() + k, theta);
-  store(out.damped, e.damped);
-  store(out.applied, e.applied);
+  if constexpr (kBook) {
+    store_interleaved(out.energy, e.damped, e.applied);
+    if (per_body) {
+      store(per_body->damped + k, e.damped);
+      store(per_body->applied + k, e.applied);
+      store(per_body->prescribed + k, L{});
+    }
+  }
   store(out.position, x + y + theta);
   store(out.speed2, vx * vx + vy * vy);
   // Onto the discs' records: position and velocity; radius and offset keep theirs.
@@ -142,13 +153,15 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::
 
 template <bool kBook, bool kDamped>
 CDEM_LANES8_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
-                                             std::size_t k, FreeDiscLanes<8>& out) {
-  integrate_free_discs_of<kBook, kDamped, Lanes8>(b, d, dt, alpha, k, out);
+                                             std::size_t k, const BodyEnergyArrays* per_body,
+                                             FreeDiscLanes<8>& out) {
+  integrate_free_discs_of<kBook, kDamped, Lanes8>(b, d, dt, alpha, k, per_body, out);
 }
 template <bool kBook, bool kDamped>
 CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
-                                             std::size_t k, FreeDiscLanes<4>& out) {
-  integrate_free_discs_of<kBook, kDamped, Lanes4>(b, d, dt, alpha, k, out);
+                                             std::size_t k, const BodyEnergyArrays* per_body,
+                                             FreeDiscLanes<4>& out) {
+  integrate_free_discs_of<kBook, kDamped, Lanes4>(b, d, dt, alpha, k, per_body, out);
 }
 
 // kBook = false is the same loop without the energy terms, kDamped = false without local
@@ -158,7 +171,7 @@ CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, dou
 // runs of n free discs in lanes (8: AVX-512, 4: AVX2).
 template <bool kBook, bool kDamped, std::size_t n>
 RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::size_t begin,
-                             std::size_t end, BodyStepEnergy* per_body) {
+                             std::size_t end, const BodyEnergyArrays* per_body) {
   RangeMotion m;
   // Sum of every position: non-finite exactly when some position is (positions are far from
   // overflow), so the loop carries one addition per body instead of a test and a branch; the
@@ -170,12 +183,11 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
     if constexpr (n > 1) {
       if (k + n <= end && free_discs<n>(b, k)) {
         FreeDiscLanes<n> out;
-        integrate_free_discs<kBook, kDamped>(b, d, dt, alpha, k, out);
+        integrate_free_discs<kBook, kDamped>(b, d, dt, alpha, k, per_body, out);
         for (std::size_t l = 0; l < n; ++l) {
           if constexpr (kBook) {
-            m.damped += out.damped[l];
-            m.applied += out.applied[l];
-            if (per_body) per_body[k + l] = {out.damped[l], out.applied[l], 0.0};
+            m.damped += out.energy[2 * l];
+            m.applied += out.energy[2 * l + 1];
           }
           position_sum += out.position[l];
           disc_speed2 = std::max(disc_speed2, out.speed2[l]);
@@ -193,14 +205,21 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
       if constexpr (kBook) {
         m.damped += e.damped;
         m.applied += e.applied;
-        if (per_body) per_body[k] = {e.damped, e.applied, 0.0};
+        if (per_body) {
+          per_body->damped[k] = e.damped;
+          per_body->applied[k] = e.applied;
+          per_body->prescribed[k] = 0;
+        }
       }
     } else if constexpr (kBook) {
       // The contacts push on the body with F - F_applied; it does the opposite work on them.
       const double work = (b.fx[k] - b.fx_applied[k]) * b.vx[k] +
                           (b.fy[k] - b.fy_applied[k]) * b.vy[k] + b.moment[k] * b.omega[k];
       m.prescribed -= work;
-      if (per_body) per_body[k] = {0.0, 0.0, work};
+      if (per_body) {
+        per_body->damped[k] = per_body->applied[k] = 0;
+        per_body->prescribed[k] = work;
+      }
     }
     b.x[k] += dt * b.vx[k];
     b.y[k] += dt * b.vy[k];
@@ -243,7 +262,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
 }  // namespace
 
 RangeMotion integrate_range(Bodies& b, Discs& d, double dt, double alpha, bool book,
-                            std::size_t begin, std::size_t end, BodyStepEnergy* per_body,
+                            std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
                             LaneIsa lanes) {
   // Each combination of energy terms, damping and lane count is its own loop, with no branch on
   // them per body.

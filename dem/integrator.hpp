@@ -48,6 +48,15 @@ StepMotion integrate(Bodies& bodies, Discs& discs, double dt, double alpha, Ener
 struct BodyStepEnergy {
   double damped = 0, applied = 0, prescribed = 0;
 };
+// The same terms of every body, one array each (indexed by body): what the ranges integrated by
+// several threads store for the sum over all bodies in body order. Arrays, not records: a run of
+// free discs in lanes stores each term as one vector, where the records were filled lane by lane
+// from the lane function's results read back from the stack (docs/performance.md "Session 41").
+struct BodyEnergyArrays {
+  double* damped = nullptr;
+  double* applied = nullptr;
+  double* prescribed = nullptr;
+};
 // Sums over a range, in body order, and the motion bounds (m/s, squared for free discs) and the
 // running position sum of the non-finite test.
 struct RangeMotion {
@@ -55,12 +64,12 @@ struct RangeMotion {
   double position_sum = 0, disc_speed2 = 0, pebble_speed = 0;
 };
 // Integrates bodies [begin, end); with `book` it forms the energy terms, and with `per_body`
-// (indexed by body) also stores each body's, so that ranges integrated by several threads can
+// also stores each body's, so that ranges integrated by several threads can
 // be summed in body order afterwards, with the bits of one loop.
 // Runs of eight (AVX-512) or four (AVX2) free discs are integrated at once, the widest set up to
 // `lanes` that the CPU has (dem/lanes.hpp; the same bits).
 RangeMotion integrate_range(Bodies& bodies, Discs& discs, double dt, double alpha, bool book,
-                            std::size_t begin, std::size_t end, BodyStepEnergy* per_body,
+                            std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
                             LaneIsa lanes = LaneIsa::Avx512);
 // Adds the sums of a whole step (all bodies, in body order) to the ledger.
 void book_step_energy(const RangeMotion& step, double dt, EnergyLedger& ledger);

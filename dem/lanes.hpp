@@ -451,6 +451,22 @@ CDEM_AVX2 inline void store(double* at, Lanes4 v) {
   _mm256_storeu_pd(at, v);
 }
 
+// at[2 l] = a lane l, at[2 l + 1] = b lane l, for l < kLanes<L> (at: 2 kLanes<L> doubles,
+// 64-byte aligned). A scalar loop reading each lane's pair as one 16-byte load then reads inside
+// one 16-byte unit of one store, which the store can forward to it.
+CDEM_AVX512 inline void store_interleaved(double* at, Lanes8 a, Lanes8 b) {
+  const Lanes8 even = _mm512_unpacklo_pd(a, b), odd = _mm512_unpackhi_pd(a, b);
+  _mm512_store_pd(at,
+                  _mm512_permutex2var_pd(even, _mm512_set_epi64(11, 10, 3, 2, 9, 8, 1, 0), odd));
+  _mm512_store_pd(at + 8,
+                  _mm512_permutex2var_pd(even, _mm512_set_epi64(15, 14, 7, 6, 13, 12, 5, 4), odd));
+}
+CDEM_AVX2 inline void store_interleaved(double* at, Lanes4 a, Lanes4 b) {
+  const Lanes4 even = _mm256_unpacklo_pd(a, b), odd = _mm256_unpackhi_pd(a, b);
+  _mm256_store_pd(at, _mm256_permute2f128_pd(even, odd, 0x20));
+  _mm256_store_pd(at + 4, _mm256_permute2f128_pd(even, odd, 0x31));
+}
+
 }  // namespace cdem::dem
 
 #pragma GCC diagnostic pop

@@ -292,7 +292,11 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   const int nt = team.size();
   plan(bodies, discs, list, nt);
   if (lanes_.size() < static_cast<std::size_t>(nt)) lanes_.resize(static_cast<std::size_t>(nt));
-  if (s.book_energy) body_energy_.resize(bodies.size());
+  if (s.book_energy)
+    for (auto* terms : {&body_damped_, &body_applied_, &body_prescribed_})
+      terms->resize(bodies.size());
+  const BodyEnergyArrays body_energy{body_damped_.data(), body_applied_.data(),
+                                     body_prescribed_.data()};
   const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard, s.pass);
   const std::size_t count = list.keys.size(), chunk_count = chunks_.size();
   const LinearContact& wall_law = (*s.laws)[static_cast<int>(ContactClass::Wall)];
@@ -421,7 +425,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       // are stored per body.
       const RangeMotion r = integrate_range(
           bodies, discs, s.dt, s.alpha, s.book_energy, chunk.body_begin, chunk.body_end,
-          s.book_energy && c > 0 ? body_energy_.data() : nullptr, s.pass.lanes);
+          s.book_energy && c > 0 ? &body_energy : nullptr, s.pass.lanes);
       if (c == 0) {
         lane.motion = r;
       } else {
@@ -444,9 +448,9 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       for (std::size_t c = 1; c < chunk_count; ++c) {
         team.wait_for(chunk_done_[c], stamp);
         for (std::size_t b = chunks_[c].body_begin; b < chunks_[c].body_end; ++b) {
-          e.damped += body_energy_[b].damped;
-          e.applied += body_energy_[b].applied;
-          e.prescribed -= body_energy_[b].prescribed;
+          e.damped += body_damped_[b];
+          e.applied += body_applied_[b];
+          e.prescribed -= body_prescribed_[b];
         }
       }
       lane.energy_chain = e;

@@ -185,8 +185,9 @@ class ThreadedCycle {
   std::vector<double> rate_;
   std::vector<std::size_t> target_cuts_;
   std::vector<std::int32_t> next_term_;
-  std::vector<BodyStepEnergy> body_energy_;  // per body past the first chunk
-  std::vector<double> wall_slip_;            // J, per disc-wall pair
+  // Per body past the first chunk: its energy terms (BodyEnergyArrays).
+  std::vector<double> body_damped_, body_applied_, body_prescribed_;
+  std::vector<double> wall_slip_;  // J, per disc-wall pair
   std::vector<Lane> lanes_;
 };
 
