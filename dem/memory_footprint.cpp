@@ -48,7 +48,7 @@ MemoryFootprint memory_footprint(const World& world) {
   const ThreadedCycle& t = world.threaded_;
   m.thread_plan = capacity_bytes(
       t.first_start_, t.wall_start_, t.order_, t.work_, t.cuts_, t.owner_, t.chunks_, t.chunk_done_,
-      t.shared_, t.shared_discs_, t.special_pairs_, t.virial_, t.shared_terms_,
+      t.links_, t.shared_, t.shared_discs_, t.special_pairs_, t.virial_, t.shared_terms_,
       t.shared_term_start_, t.shared_term_mid_, t.rate_, t.clumps_, t.target_cuts_, t.next_term_,
       t.body_damped_, t.body_applied_, t.body_prescribed_, t.wall_slip_, t.lanes_);
   // Its room, written or not (the resident size counts only the written pages).

@@ -192,6 +192,7 @@ void ThreadedCycle::plan_shared(const Bodies& bodies, const Discs& discs,
     b = e;
   }
   chunk_done_.assign(chunks_.size(), 0);
+  links_.assign(chunks_.size(), ChainLink{});
   // Discs that receive a pair of another thread (the owner of its first disc evaluates a pair):
   // their sums wait for the barrier. Every other disc gets all its pairs from its own thread, in
   // pair order, so that thread adds them as it evaluates them. The scratch members (assign,
@@ -428,6 +429,10 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
           s.book_energy && c > 0 ? &body_energy : nullptr, s.pass.lanes);
       if (c == 0) {
         lane.motion = r;
+        if (chain_energy) {
+          links_[0].sums = {r.damped, r.applied, r.prescribed};
+          WorkerTeam::publish(links_[0].stamp, stamp);
+        }
       } else {
         lane.motion.position_sum += r.position_sum;
         lane.motion.disc_speed2 = std::max(lane.motion.disc_speed2, r.disc_speed2);
@@ -437,21 +442,39 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     }
     if (sample) lane.seconds += thread_cpu_seconds() - phase2_start;
     if (t == 0) integrated = !stop;
-    if (t == 0 && chain_energy && !stop) {
-      // The energy chain over the bodies, in body order, chunk by chunk as their owners finish
-      // them: it overlaps the other threads' integration instead of following the job (where it
-      // held thread 0 alone while the others waited: docs/performance.md "Session 37"). Not
-      // counted in the phase's time, which balances the integration.
-      team.wait_for(chunk_done_[0], stamp);
-      const RangeMotion& first = lanes_[static_cast<std::size_t>(chunks_[0].thread)].motion;
-      BodyStepEnergy e{first.damped, first.applied, first.prescribed};
-      for (std::size_t c = 1; c < chunk_count; ++c) {
-        team.wait_for(chunk_done_[c], stamp);
-        for (std::size_t b = chunks_[c].body_begin; b < chunks_[c].body_end; ++b) {
-          e.damped += body_damped_[b];
-          e.applied += body_applied_[b];
-          e.prescribed -= body_prescribed_[b];
+    // The energy chain over the bodies, in body order, chunk by chunk as their owners finish
+    // them: it overlaps the other threads' integration instead of following the job (where it
+    // held thread 0 alone while the others waited: docs/performance.md "Session 37"). Not
+    // counted in the phase's time, which balances the integration. Every link waits only for
+    // lower chunks, and thread 0 chains after its own integration, so no thread waits on one
+    // that waits on it.
+    const auto chain = [&](std::size_t c, BodyStepEnergy e) {
+      for (std::size_t b = chunks_[c].body_begin; b < chunks_[c].body_end; ++b) {
+        e.damped += body_damped_[b];
+        e.applied += body_applied_[b];
+        e.prescribed -= body_prescribed_[b];
+      }
+      links_[c].sums = e;
+      WorkerTeam::publish(links_[c].stamp, stamp);
+      return e;
+    };
+    if (t != 0 && chain_energy && !stop)
+      for (std::size_t c = 1; c < chunk_count; ++c)
+        if (chunks_[c].thread == t && owner_chains(c)) {
+          team.wait_for(links_[c - 1].stamp, stamp);
+          chain(c, links_[c - 1].sums);
         }
+    if (t == 0 && chain_energy && !stop) {
+      team.wait_for(links_[0].stamp, stamp);
+      BodyStepEnergy e = links_[0].sums;
+      for (std::size_t c = 1; c < chunk_count; ++c) {
+        if (owner_chains(c)) {
+          team.wait_for(links_[c].stamp, stamp);
+          e = links_[c].sums;
+          continue;
+        }
+        team.wait_for(chunk_done_[c], stamp);
+        e = chain(c, e);
       }
       lane.energy_chain = e;
     }

@@ -154,6 +154,20 @@ class ThreadedCycle {
   // Per chunk: the step (steps_) whose integration its owner finished, in a step that books the
   // energy terms (thread 0 chains them behind the owners).
   std::vector<std::uint64_t> chunk_done_;
+  // The energy chain's sums through chunk c and the step that wrote them, one line per chunk.
+  // A large chunk of a thread other than 0 is chained by its owner, in its own cache, from the
+  // previous link; thread 0 chains the others. Read across the vCPUs, the per-body terms of a
+  // large chunk cost 8-9 % of a two-thread step (docs/performance.md "Session 41").
+  struct alignas(64) ChainLink {
+    BodyStepEnergy sums;
+    std::uint64_t stamp = 0;
+  };
+  std::vector<ChainLink> links_;
+  static constexpr std::size_t kOwnerChainBodies = 1024;
+  bool owner_chains(std::size_t c) const {
+    return c > 0 && chunks_[c].thread != 0 &&
+           chunks_[c].body_end - chunks_[c].body_begin >= kOwnerChainBodies;
+  }
   static constexpr long kSampleEvery = 8;
   static constexpr int kSamples = 16;
   static constexpr double kTolerance = 0.02;  // longest / mean step time - 1 left as it is
