@@ -299,7 +299,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   const BodyEnergyArrays body_energy{body_damped_.data(), body_applied_.data(),
                                      body_prescribed_.data()};
   const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard, s.pass);
-  const std::size_t count = list.keys.size(), chunk_count = chunks_.size();
+  const std::size_t chunk_count = chunks_.size();
   const LinearContact& wall_law = (*s.laws)[static_cast<int>(ContactClass::Wall)];
   long bad_wall = -1;
   bool integrated = false;
@@ -307,25 +307,27 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   DiscLoad* const disc_load = discs.load.data();
   const bool sample = steps_++ % kSampleEvery == 0;
   const bool keep_virial = s.pass.pair_results;
-  // Each chunk's owner marks it integrated with this step's stamp; thread 0 chains the energy
+  // Each chunk's owner marks it integrated with this step's stamp; the chain takes the energy
   // terms behind them.
   const bool chain_energy = s.book_energy && chunk_count > 0;
+  BodyStepEnergy energy_chain;  // J, the chain's end: thread 0 writes it, the caller reads it
+  double slip_chain = 0;        // J, likewise
+  double virial_chain = 0;      // N m, likewise
   const auto stamp = static_cast<std::uint64_t>(steps_);
   auto job = [&](int t) {
     Lane& lane = lanes_[static_cast<std::size_t>(t)];
     const double start = sample ? thread_cpu_seconds() : 0;
     lane.broken.clear();
     lane.bad = -1;
-    lane.slip_work = 0;
     lane.motion = {};
     // The take's pointers are copied into locals of this function: reached through the step's
     // frame (which escapes to the team) or through `this`, each was loaded again at every pair
     // (the take may call the allocator, which could change them). 5 % fewer instructions in
     // the pass (docs/performance.md "Session 33").
     DiscLoad* const load = disc_load;
-    // In a step that keeps the per-pair results every thread stores each pair's virial, and
-    // thread 0 chains them in its phase 2 (one pointer here where a sum, a flag and a pointer
-    // held registers the pair loop needed: docs/performance.md "Session 35").
+    // In a step that keeps the per-pair results every thread stores each pair's virial for the
+    // chain (one pointer here where a sum, a flag and a pointer held registers the pair loop
+    // needed: docs/performance.md "Session 35").
     double* const pair_virial = keep_virial ? virial_.data() : nullptr;
     // Slip work: the first chunk's owner sums its pairs' in pair order, as the one-thread pass
     // does; the other chunks pack their non-zero terms without a branch. Which pairs slip looks
@@ -384,7 +386,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       chunk.slip_terms = slip_terms;
       if (bad < chunk.pair_end) lane.bad = static_cast<long>(bad);
     }
-    lane.slip_work = slip_work;
     if (t == nt - 1)
       bad_wall = disc_wall_forces(discs, walls, list, wall_pair, wall_law, s.dt, s.guard,
                                   unused_slip, wall_slip_.data());
@@ -398,22 +399,27 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       const Lane& other = lanes_[static_cast<std::size_t>(u)];
       stop = stop || other.bad >= 0 || !other.broken.empty();
     }
-    if (t == 0 && chunk_count > 0) {
-      // The slip work chain goes on over the other chunks' terms, in pair order.
-      double w = lanes_[static_cast<std::size_t>(chunks_[0].thread)].slip_work;
-      for (std::size_t c = 1; c < chunk_count; ++c) {
-        const double* terms = slip_terms_.data() + chunks_[c].pair_begin;
-        const std::size_t n = chunks_[c].slip_terms;
-        for (std::size_t q = 0; q < n; ++q) w += terms[q];
-      }
-      lane.slip_work = w;
-    }
-    if (t == 0 && keep_virial) {
-      // The virial chain over every pair, in pair order.
-      double v = 0;
-      for (std::size_t k = 0; k < count; ++k) v += virial_[k];
-      lane.virial = v;
-    }
+    // The chain over chunk c's pairs (its packed slip terms; its stored virials) and, once it
+    // is integrated, its bodies' stored energy terms, from the previous chunk's sums: in pair
+    // and body order, as the one-thread pass adds them.
+    const auto chain = [&](std::size_t c, ChainLink sums) {
+      const Chunk& chunk = chunks_[c];
+      const double* terms = slip_terms_.data() + chunk.pair_begin;
+      for (std::size_t q = 0; q < chunk.slip_terms; ++q) sums.slip_work += terms[q];
+      if (keep_virial)
+        for (std::size_t k = chunk.pair_begin; k < chunk.pair_end; ++k) sums.virial += virial_[k];
+      if (chain_energy && !stop)
+        for (std::size_t b = chunk.body_begin; b < chunk.body_end; ++b) {
+          sums.energy.damped += body_damped_[b];
+          sums.energy.applied += body_applied_[b];
+          sums.energy.prescribed -= body_prescribed_[b];
+        }
+      links_[c].energy = sums.energy;
+      links_[c].slip_work = sums.slip_work;
+      links_[c].virial = sums.virial;
+      WorkerTeam::publish(links_[c].stamp, stamp);
+      return sums;
+    };
     for (std::size_t c = 0; c < chunk_count; ++c) {
       const Chunk& chunk = chunks_[c];
       if (chunk.thread != t) continue;
@@ -421,62 +427,59 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       add_wall_pairs(discs, list, wall_pair,
                      static_cast<std::size_t>(wall_start_[chunk.disc_begin]),
                      static_cast<std::size_t>(wall_start_[chunk.disc_end]));
-      if (stop) continue;
       // The first chunk's energy sums are the start of the chain over the bodies; the others'
       // are stored per body.
-      const RangeMotion r = integrate_range(
-          bodies, discs, s.dt, s.alpha, s.book_energy, chunk.body_begin, chunk.body_end,
-          s.book_energy && c > 0 ? &body_energy : nullptr, s.pass.lanes);
+      RangeMotion r;
+      if (!stop)
+        r = integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, chunk.body_begin,
+                            chunk.body_end, s.book_energy && c > 0 ? &body_energy : nullptr,
+                            s.pass.lanes);
       if (c == 0) {
         lane.motion = r;
-        if (chain_energy) {
-          links_[0].sums = {r.damped, r.applied, r.prescribed};
-          WorkerTeam::publish(links_[0].stamp, stamp);
-        }
-      } else {
+        // The chain's first link: this chunk's slip work (summed as it went), its virials and
+        // its bodies' energy sums.
+        double virial = 0;
+        if (keep_virial)
+          for (std::size_t k = chunk.pair_begin; k < chunk.pair_end; ++k) virial += virial_[k];
+        links_[0].energy = {r.damped, r.applied, r.prescribed};
+        links_[0].slip_work = slip_work;
+        links_[0].virial = virial;
+        WorkerTeam::publish(links_[0].stamp, stamp);
+      } else if (!stop) {
         lane.motion.position_sum += r.position_sum;
         lane.motion.disc_speed2 = std::max(lane.motion.disc_speed2, r.disc_speed2);
         lane.motion.pebble_speed = std::max(lane.motion.pebble_speed, r.pebble_speed);
+        if (chain_energy) WorkerTeam::publish(chunk_done_[c], stamp);
       }
-      if (chain_energy) WorkerTeam::publish(chunk_done_[c], stamp);
     }
     if (sample) lane.seconds += thread_cpu_seconds() - phase2_start;
     if (t == 0) integrated = !stop;
-    // The energy chain over the bodies, in body order, chunk by chunk as their owners finish
-    // them: it overlaps the other threads' integration instead of following the job (where it
-    // held thread 0 alone while the others waited: docs/performance.md "Session 37"). Not
-    // counted in the phase's time, which balances the integration. Every link waits only for
-    // lower chunks, and thread 0 chains after its own integration, so no thread waits on one
-    // that waits on it.
-    const auto chain = [&](std::size_t c, BodyStepEnergy e) {
-      for (std::size_t b = chunks_[c].body_begin; b < chunks_[c].body_end; ++b) {
-        e.damped += body_damped_[b];
-        e.applied += body_applied_[b];
-        e.prescribed -= body_prescribed_[b];
-      }
-      links_[c].sums = e;
-      WorkerTeam::publish(links_[c].stamp, stamp);
-      return e;
-    };
-    if (t != 0 && chain_energy && !stop)
+    // The chain, chunk by chunk as their owners finish them: it overlaps the other threads'
+    // integration instead of following the job (where it held thread 0 alone while the others
+    // waited: docs/performance.md "Session 37"). Not counted in the phase's time, which
+    // balances the integration. Every link waits only for lower chunks, and thread 0 chains
+    // after its own integration, so no thread waits on one that waits on it.
+    if (t != 0)
       for (std::size_t c = 1; c < chunk_count; ++c)
         if (chunks_[c].thread == t && owner_chains(c)) {
           team.wait_for(links_[c - 1].stamp, stamp);
-          chain(c, links_[c - 1].sums);
+          chain(c, links_[c - 1]);
         }
-    if (t == 0 && chain_energy && !stop) {
+    if (t == 0 && chunk_count > 0) {
       team.wait_for(links_[0].stamp, stamp);
-      BodyStepEnergy e = links_[0].sums;
+      ChainLink sums = links_[0];
       for (std::size_t c = 1; c < chunk_count; ++c) {
         if (owner_chains(c)) {
           team.wait_for(links_[c].stamp, stamp);
-          e = links_[c].sums;
+          sums = links_[c];
           continue;
         }
-        team.wait_for(chunk_done_[c], stamp);
-        e = chain(c, e);
+        if (chain_energy && !stop) team.wait_for(chunk_done_[c], stamp);
+        sums = chain(c, sums);
       }
-      lane.energy_chain = e;
+      energy_chain = sums.energy;
+      slip_chain = sums.slip_work;
+      virial_chain = sums.virial;
     }
   };
   team.run(job);
@@ -498,8 +501,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const std::uint32_t elements = pair.failed_elements[static_cast<std::size_t>(k)];
     r.bonds_broken += elements ? std::popcount(elements) : 1;
   }
-  r.slip_work = lanes_[0].slip_work;
-  r.virial = keep_virial ? lanes_[0].virial : std::numeric_limits<double>::quiet_NaN();
+  r.slip_work = slip_chain;
+  r.virial = keep_virial ? virial_chain : std::numeric_limits<double>::quiet_NaN();
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;
   r.bad_wall_pair = bad_wall;
@@ -508,10 +511,9 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   if (integrated && chunk_count > 0) {
     RangeMotion& m = out.motion;
     const RangeMotion& first = lanes_[static_cast<std::size_t>(chunks_[0].thread)].motion;
-    const BodyStepEnergy& chain = lanes_[0].energy_chain;
-    m.damped = chain_energy ? chain.damped : first.damped;
-    m.applied = chain_energy ? chain.applied : first.applied;
-    m.prescribed = chain_energy ? chain.prescribed : first.prescribed;
+    m.damped = chain_energy ? energy_chain.damped : first.damped;
+    m.applied = chain_energy ? energy_chain.applied : first.applied;
+    m.prescribed = chain_energy ? energy_chain.prescribed : first.prescribed;
     for (int u = 0; u < nt; ++u) {
       const RangeMotion& lane = lanes_[static_cast<std::size_t>(u)].motion;
       m.position_sum += lane.position_sum;

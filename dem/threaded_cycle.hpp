@@ -26,14 +26,14 @@
 // reach the end together; no result depends on the owners.
 //
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
-// thread for any thread count. The scalar totals (virial, slip work, released energy, energy ledger
-// terms) are summed in pair or body order: the first chunk's owner sums its slip work as it goes,
-// the other chunks pack their non-zero terms and thread 0 goes on with the chain over them, chunk
-// by chunk, in its phase 2; in a step that keeps its per-pair results (the virial is one of them)
-// every thread stores each pair's virial and thread 0 chains them in its phase 2; the energy
-// terms of the bodies past the first chunk are stored per body, and thread 0 chains them after
-// its own integration, each chunk once its owner marks it done. In a step where a bond broke or
-// a guard tripped the job stops before the integration: the caller records the cracks (which
+// thread for any thread count. The scalar totals (slip work, virial, energy ledger terms) are one
+// chain in pair or body order, chunk by chunk: the first chunk's owner sums its slip work as it
+// goes and its stored virials after the barrier, and publishes them with its bodies' energy
+// terms (ChainLink); a large chunk of a thread other than 0 goes on with the chain itself, from
+// the previous chunk's link, over its packed non-zero slip terms, stored virials and stored
+// per-body energy terms, which stay in its core's cache; thread 0 chains the other chunks after
+// its own integration, each once its owner marks it done. In a step where a bond broke or a
+// guard tripped the job stops before the integration: the caller records the cracks (which
 // read the positions of the step) or stops, and integrates afterwards, as the one-thread cycle
 // does.
 #include <cstdint>
@@ -98,18 +98,11 @@ class ThreadedCycle {
   // One thread's results of a step (padded so two threads never share a cache line).
   struct alignas(64) Lane {
     std::vector<std::int32_t> broken;  // pairs whose bond broke, ascending
-    // J: the first chunk's owner, the slip work of its pairs; thread 0 after its phase 2, that of
-    // every pair, in pair order (chained on over the other chunks' packed terms).
-    double slip_work = 0;
-    long bad = -1;      // the thread's first pair tripping the guard (it evaluates no more)
-    double virial = 0;  // N m, thread 0 only: the virial of every pair, in pair order
+    long bad = -1;  // the thread's first pair tripping the guard (it evaluates no more)
     // The sums of the thread's bodies; the energy terms only of the first chunk, for its owner
     // (the start of the chain over the bodies).
     RangeMotion motion;
     double seconds = 0;  // s, CPU time of the job, sampled steps
-    // J, thread 0 only: the energy terms of every body, in body order (the first chunk's sums,
-    // then the other chunks' stored terms).
-    BodyStepEnergy energy_chain;
   };
   // SpecialPair::direct bits: the pair's thread adds it onto its first / second disc as it
   // evaluates it (the other end is shared).
@@ -154,12 +147,15 @@ class ThreadedCycle {
   // Per chunk: the step (steps_) whose integration its owner finished, in a step that books the
   // energy terms (thread 0 chains them behind the owners).
   std::vector<std::uint64_t> chunk_done_;
-  // The energy chain's sums through chunk c and the step that wrote them, one line per chunk.
-  // A large chunk of a thread other than 0 is chained by its owner, in its own cache, from the
-  // previous link; thread 0 chains the others. Read across the vCPUs, the per-body terms of a
-  // large chunk cost 8-9 % of a two-thread step (docs/performance.md "Session 41").
+  // The chain's sums through chunk c and the step that wrote them, one line per chunk. A large
+  // chunk of a thread other than 0 is chained by its owner, in its own cache, from the previous
+  // link; thread 0 chains the others. Read across the vCPUs, the per-body terms of a large chunk
+  // cost 8-9 % of a two-thread step, and its per-pair virials held thread 0 alone for
+  // about a tenth of a packing's two-thread step (docs/performance.md "Sessions 41 and 42").
   struct alignas(64) ChainLink {
-    BodyStepEnergy sums;
+    BodyStepEnergy energy;  // J, the bodies' terms (in a step that books them and integrates)
+    double slip_work = 0;   // J
+    double virial = 0;      // N m, in a step that keeps the per-pair results
     std::uint64_t stamp = 0;
   };
   std::vector<ChainLink> links_;
@@ -179,7 +175,7 @@ class ThreadedCycle {
   std::vector<SpecialPair> special_pairs_;
   std::vector<double> virial_;  // N m, per pair: normal force x centre distance
   // J. Chunks but the first: the non-zero slip works of the chunk's pairs, in pair order, packed
-  // from the chunk's first pair on (thread 0 chains them on in its phase 2). Room for every pair,
+  // from the chunk's first pair on (for the chain, after the integration). Room for every pair,
   // but only the packed terms are written (and backed by memory).
   UnwrittenArray<double> slip_terms_;
   // Per shared disc s: shared_terms_[shared_term_start_[s], shared_term_mid_[s]) are the parts
