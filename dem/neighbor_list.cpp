@@ -99,28 +99,39 @@ void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t
   // consecutive in cell_discs_. The test of a partner is branch-free (every key of the block is
   // written, the count advances only for a partner): about half the block precedes i and a third
   // of the rest is out of reach, in no order a branch predictor could learn.
+  // The grid and the output vector are held in locals: member 0's output is pair_keys_, whose
+  // end moves at every disc and shares a cache line with the grid's pointers, which the other
+  // members read at every disc too. Reached through this object, the line crossed between the
+  // cores at every disc: on two threads each member's search cost about what the one-thread
+  // search of all discs did (docs/performance.md "Session 42").
+  const std::int32_t* const disc_cell = disc_cell_.data();
+  const std::int32_t* const cell_start = cell_start_.data();
+  const std::int32_t* const cell_discs = cell_discs_.data();
+  const int nx = nx_, ny = ny_;
+  const double reach_skin = skin;
+  std::vector<std::uint64_t> out_keys = std::move(keys);
   for (std::size_t i = begin; i < end; ++i) {
-    if (disc_cell_[i] < 0) continue;
-    const int cx = disc_cell_[i] % nx_, cy = disc_cell_[i] / nx_;
-    const int gx0 = std::max(cx - 1, 0), gx1 = std::min(cx + 1, nx_ - 1);
-    const int gy0 = std::max(cy - 1, 0), gy1 = std::min(cy + 1, ny_ - 1);
-    const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + skin;
+    if (disc_cell[i] < 0) continue;
+    const int cx = disc_cell[i] % nx, cy = disc_cell[i] / nx;
+    const int gx0 = std::max(cx - 1, 0), gx1 = std::min(cx + 1, nx - 1);
+    const int gy0 = std::max(cy - 1, 0), gy1 = std::min(cy + 1, ny - 1);
+    const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + reach_skin;
     const std::int32_t bi = discs.body[i];
-    // The discs of block row gy are cell_discs_[row_begin[gy - gy0], row_end[gy - gy0]).
+    // The discs of block row gy are cell_discs[row_begin[gy - gy0], row_end[gy - gy0]).
     int row_begin[3], row_end[3];
     std::size_t block = 0;
     for (int gy = gy0; gy <= gy1; ++gy) {
-      row_begin[gy - gy0] = cell_start_[gy * nx_ + gx0];
-      row_end[gy - gy0] = cell_start_[gy * nx_ + gx1 + 1];
+      row_begin[gy - gy0] = cell_start[gy * nx + gx0];
+      row_end[gy - gy0] = cell_start[gy * nx + gx1 + 1];
       block += static_cast<std::size_t>(row_end[gy - gy0] - row_begin[gy - gy0]);
     }
-    const std::size_t start = keys.size();
-    keys.resize(start + block);
-    std::uint64_t* out = keys.data() + start;
+    const std::size_t start = out_keys.size();
+    out_keys.resize(start + block);
+    std::uint64_t* out = out_keys.data() + start;
     std::size_t found = 0;
     for (int row = 0; row <= gy1 - gy0; ++row) {
       for (int k = row_begin[row]; k < row_end[row]; ++k) {
-        const std::int32_t j = cell_discs_[k];
+        const std::int32_t j = cell_discs[k];
         const double dx = discs.x[j] - xi, dy = discs.y[j] - yi, reach = ri + discs.r[j];
         const bool partner = (static_cast<std::size_t>(j) > i) & (discs.body[j] != bi) &
                              (dx * dx + dy * dy < reach * reach);
@@ -128,9 +139,10 @@ void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t
         found += partner;
       }
     }
-    keys.resize(start + found);
-    std::sort(keys.begin() + static_cast<std::ptrdiff_t>(start), keys.end());
+    out_keys.resize(start + found);
+    std::sort(out_keys.begin() + static_cast<std::ptrdiff_t>(start), out_keys.end());
   }
+  keys = std::move(out_keys);
 }
 
 void NeighborList::build(const Discs& discs, const Walls& walls, WorkerTeam* team) {
