@@ -414,16 +414,21 @@ class DiscPairKernel {
     return f;
   }
 
+  // A pair's term of the virial (N m): its normal force times its centre distance, reach -
+  // overlap (a bonded pair may be apart).
+  static double virial(const Geometry& g, const PairForce& f) {
+    return f.normal * (g.ri + g.rj - f.overlap);
+  }
+
   // Adds pair k onto its discs and onto `totals`, the pass totals (a local of the pass, so they
   // stay in registers). Pairs apart carry zeros, so adding them unconditionally keeps the loop
-  // branch-free. kVirial: sum the virial, which uses the centre distance reach - overlap (a
-  // bonded pair may be apart); a pass without per-pair results reports none (ForcePassResult),
-  // and its loop is compiled without the sum.
+  // branch-free. kVirial: sum the virial; a pass without per-pair results reports none
+  // (ForcePassResult), and its loop is compiled without the sum.
   template <bool kVirial>
   void add(std::size_t k, const Geometry& g, const PairForce& f, ForcePassResult& totals,
            std::vector<std::int32_t>& broken) const {
     add_onto_discs(disc_load_, g.i, g.j, f);
-    if constexpr (kVirial) totals.virial += f.normal * (g.ri + g.rj - f.overlap);
+    if constexpr (kVirial) totals.virial += virial(g, f);
     totals.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {
       broken.push_back(static_cast<std::int32_t>(k));

@@ -325,19 +325,19 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // (the take may call the allocator, which could change them). 5 % fewer instructions in
     // the pass (docs/performance.md "Session 33").
     DiscLoad* const load = disc_load;
-    // In a step that keeps the per-pair results every thread stores each pair's virial for the
-    // chain (one pointer here where a sum, a flag and a pointer held registers the pair loop
-    // needed: docs/performance.md "Session 35").
+    // The first chunk's owner sums its pairs' slip work and, in a step that keeps the per-pair
+    // results, their virial as it goes, in pair order, as the one-thread pass does: the sums
+    // are ready for the chain's first link at the barrier (summed from stored virials after it,
+    // the chain held a packing's two-thread step about 20 us longer: docs/performance.md
+    // "Session 42"). The other chunks store each pair's virial and pack their non-zero slip
+    // terms without a branch. Which pairs slip looks random to a branch predictor, and later in
+    // the loading up to a third of them do: a list appended behind a branch cost about 10 % of
+    // the two-thread step there (docs/performance.md "Session 34"). Leaving out the zeros keeps
+    // the sum's bits (x + 0 = x for every x of the chain).
     double* const pair_virial = keep_virial ? virial_.data() : nullptr;
-    // Slip work: the first chunk's owner sums its pairs' in pair order, as the one-thread pass
-    // does; the other chunks pack their non-zero terms without a branch. Which pairs slip looks
-    // random to a branch predictor, and later in the loading up to a third of them do: a list
-    // appended behind a branch cost about 10 % of the two-thread step there (docs/performance.md
-    // "Session 34"). Leaving out the zeros keeps the sum's bits (x + 0 = x for every x of the
-    // chain).
     double* slip_out = nullptr;
     std::size_t slip_terms = 0;
-    double slip_work = 0;  // J, the first chunk's
+    double slip_work = 0, virial = 0;  // J, N m: the first chunk's
     std::vector<std::int32_t>& broken = lane.broken;
     SpecialPair* special = nullptr;
     // Pairs that reach no shared disc are added onto both discs at once, as the one-thread pass
@@ -345,7 +345,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // Inlined into evaluate_range (see there): a call per pair cost 3x the additions.
     const auto take = [&](std::size_t k, const Geometry& gk, const PairForce& f)
         __attribute__((always_inline)) {
-      if (pair_virial) pair_virial[k] = f.normal * (gk.ri + gk.rj - f.overlap);
       const std::int32_t i = gk.i, j = gk.j;
       if (k != static_cast<std::size_t>(special->pair)) {
         add_onto_discs(load, i, j, f);
@@ -355,13 +354,20 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
         if (special->direct & kDirectFirst) add_onto_first(load[i], f);
         ++special;
       }
-      if (slip_out) {
-        slip_out[slip_terms] = f.slip_work;
-        slip_terms += f.slip_work != 0;
-      } else {
-        slip_work += f.slip_work;
-      }
       if (f.failure != BondFailure::None) broken.push_back(static_cast<std::int32_t>(k));
+    };
+    const auto take_first = [&](std::size_t k, const Geometry& gk, const PairForce& f)
+        __attribute__((always_inline)) {
+      if (pair_virial) virial += DiscPairKernel::virial(gk, f);
+      slip_work += f.slip_work;
+      take(k, gk, f);
+    };
+    const auto take_other = [&](std::size_t k, const Geometry& gk, const PairForce& f)
+        __attribute__((always_inline)) {
+      if (pair_virial) pair_virial[k] = DiscPairKernel::virial(gk, f);
+      slip_out[slip_terms] = f.slip_work;
+      slip_terms += f.slip_work != 0;
+      take(k, gk, f);
     };
     // Phase 1: the pairs whose first disc is one of this thread's, chunk by chunk, in blocks of
     // kGeometryBlock as in one thread, added at once onto the discs no other thread touches.
@@ -377,12 +383,13 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       special = &*std::lower_bound(special_pairs_.begin(), special_pairs_.end(),
                                    static_cast<std::int32_t>(chunk.pair_begin),
                                    [](const SpecialPair& p, std::int32_t k) { return p.pair < k; });
-      slip_out = c == 0 ? nullptr : slip_terms_.data() + chunk.pair_begin;
+      slip_out = slip_terms_.data() + chunk.pair_begin;
       slip_terms = 0;
       // After a pair tripped the guard the thread evaluates no more (the run stops).
-      const std::size_t bad = lane.bad >= 0
-                                  ? chunk.pair_end
-                                  : kernel.evaluate_range(chunk.pair_begin, chunk.pair_end, take);
+      const std::size_t bad =
+          lane.bad >= 0 ? chunk.pair_end
+          : c == 0      ? kernel.evaluate_range(chunk.pair_begin, chunk.pair_end, take_first)
+                        : kernel.evaluate_range(chunk.pair_begin, chunk.pair_end, take_other);
       chunk.slip_terms = slip_terms;
       if (bad < chunk.pair_end) lane.bad = static_cast<long>(bad);
     }
@@ -436,11 +443,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
                             s.pass.lanes);
       if (c == 0) {
         lane.motion = r;
-        // The chain's first link: this chunk's slip work (summed as it went), its virials and
-        // its bodies' energy sums.
-        double virial = 0;
-        if (keep_virial)
-          for (std::size_t k = chunk.pair_begin; k < chunk.pair_end; ++k) virial += virial_[k];
+        // The chain's first link: this chunk's slip work and virial (summed as it went) and its
+        // bodies' energy sums.
         links_[0].energy = {r.damped, r.applied, r.prescribed};
         links_[0].slip_work = slip_work;
         links_[0].virial = virial;
