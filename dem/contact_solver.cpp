@@ -180,7 +180,7 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
   ForcePassResult result;
   prepare_force_results(pair, wall_pair, list);
   // Disc accumulators are summed in the sorted pair order, then the walls (deterministic).
-  std::fill(discs.load.begin(), discs.load.end(), DiscLoad{});
+  clear_loads(discs.load.data(), discs.load.data() + discs.load.size());
   result.bad_pair =
       disc_disc_pass(discs, list, pair, laws, bonds, dt, max_overlap_ratio, options, result);
   result.bad_wall_pair =

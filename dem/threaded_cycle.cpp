@@ -375,7 +375,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     for (std::size_t c = 0; c < chunk_count; ++c) {
       const Chunk& chunk = chunks_[c];
       if (chunk.thread != t) continue;
-      std::fill(load + chunk.disc_begin, load + chunk.disc_end, DiscLoad{});
+      clear_loads(load + chunk.disc_begin, load + chunk.disc_end);
     }
     for (std::size_t c = 0; c < chunk_count; ++c) {
       Chunk& chunk = chunks_[c];
