@@ -328,12 +328,12 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // The first chunk's owner sums its pairs' slip work and, in a step that keeps the per-pair
     // results, their virial as it goes, in pair order, as the one-thread pass does: the sums
     // are ready for the chain's first link at the barrier (summed from stored virials after it,
-    // the chain held a packing's two-thread step about 20 us longer: docs/performance.md
-    // "Session 42"). The other chunks store each pair's virial and pack their non-zero slip
-    // terms without a branch. Which pairs slip looks random to a branch predictor, and later in
-    // the loading up to a third of them do: a list appended behind a branch cost about 10 % of
-    // the two-thread step there (docs/performance.md "Session 34"). Leaving out the zeros keeps
-    // the sum's bits (x + 0 = x for every x of the chain).
+    // a serial chain over half the pairs: the two-thread packing took 1.03x the time,
+    // docs/performance.md "Session 42"). The other chunks store each pair's virial and pack their
+    // non-zero slip terms without a branch. Which pairs slip looks random to a branch predictor,
+    // and later in the loading up to a third of them do: a list appended behind a branch cost about
+    // 10 % of the two-thread step there (docs/performance.md "Session 34"). Leaving out the zeros
+    // keeps the sum's bits (x + 0 = x for every x of the chain).
     double* const pair_virial = keep_virial ? virial_.data() : nullptr;
     double* slip_out = nullptr;
     std::size_t slip_terms = 0;

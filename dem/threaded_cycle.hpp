@@ -150,8 +150,8 @@ class ThreadedCycle {
   // The chain's sums through chunk c and the step that wrote them, one line per chunk. A large
   // chunk of a thread other than 0 is chained by its owner, in its own cache, from the previous
   // link; thread 0 chains the others. Read across the vCPUs, the per-body terms of a large chunk
-  // cost 8-9 % of a two-thread step, and its per-pair virials held thread 0 alone for
-  // about a tenth of a packing's two-thread step (docs/performance.md "Sessions 41 and 42").
+  // cost 8-9 % of a two-thread step, and its per-pair virials, which a packing keeps every
+  // cycle, 12.8 % of the two-thread take's samples (docs/performance.md "Sessions 41 and 42").
   struct alignas(64) ChainLink {
     BodyStepEnergy energy;  // J, the bodies' terms (in a step that books them and integrates)
     double slip_work = 0;   // J
