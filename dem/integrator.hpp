@@ -63,9 +63,9 @@ struct RangeMotion {
   double damped = 0, applied = 0, prescribed = 0;
   double position_sum = 0, disc_speed2 = 0, pebble_speed = 0;
 };
-// Integrates bodies [begin, end); with `book` it forms the energy terms, and with `per_body`
-// also stores each body's, so that ranges integrated by several threads can
-// be summed in body order afterwards, with the bits of one loop.
+// Integrates bodies [begin, end); with `book` it forms the energy terms, and with `per_body` also
+// stores each body's, so that ranges integrated by several threads can be summed in body order
+// afterwards, with the bits of one loop.
 // Runs of eight (AVX-512) or four (AVX2) free discs are integrated at once, the widest set up to
 // `lanes` that the CPU has (dem/lanes.hpp; the same bits).
 RangeMotion integrate_range(Bodies& bodies, Discs& discs, double dt, double alpha, bool book,

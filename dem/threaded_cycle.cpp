@@ -453,7 +453,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
         lane.motion.position_sum += r.position_sum;
         lane.motion.disc_speed2 = std::max(lane.motion.disc_speed2, r.disc_speed2);
         lane.motion.pebble_speed = std::max(lane.motion.pebble_speed, r.pebble_speed);
-        if (chain_energy) WorkerTeam::publish(chunk_done_[c], stamp);
+        if (chain_energy && !owner_chains(c)) WorkerTeam::publish(chunk_done_[c], stamp);
       }
     }
     if (sample) lane.seconds += thread_cpu_seconds() - phase2_start;

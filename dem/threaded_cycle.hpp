@@ -27,15 +27,14 @@
 //
 // Every sum runs in the order of the one-thread pass, so the results are bitwise those of one
 // thread for any thread count. The scalar totals (slip work, virial, energy ledger terms) are one
-// chain in pair or body order, chunk by chunk: the first chunk's owner sums its slip work as it
-// goes and its stored virials after the barrier, and publishes them with its bodies' energy
-// terms (ChainLink); a large chunk of a thread other than 0 goes on with the chain itself, from
-// the previous chunk's link, over its packed non-zero slip terms, stored virials and stored
-// per-body energy terms, which stay in its core's cache; thread 0 chains the other chunks after
-// its own integration, each once its owner marks it done. In a step where a bond broke or a
-// guard tripped the job stops before the integration: the caller records the cracks (which
-// read the positions of the step) or stops, and integrates afterwards, as the one-thread cycle
-// does.
+// chain in pair or body order, chunk by chunk: the first chunk's owner sums its slip work and
+// virial as it goes and publishes them with its bodies' energy terms (ChainLink); a large chunk of
+// a thread other than 0 goes on with the chain itself, from the previous chunk's link, over its
+// packed non-zero slip terms, stored virials and stored per-body energy terms, which stay in its
+// core's cache; thread 0 chains the other chunks after its own integration, each once its owner
+// marks it done. In a step where a bond broke or a guard tripped the job stops before the
+// integration: the caller records the cracks (which read the positions of the step) or stops, and
+// integrates afterwards, as the one-thread cycle does.
 #include <cstdint>
 #include <vector>
 
@@ -144,8 +143,8 @@ class ThreadedCycle {
   std::vector<std::size_t> cuts_;
   std::vector<std::int32_t> owner_;  // per body: its thread
   std::vector<Chunk> chunks_;        // every thread's, ascending
-  // Per chunk: the step (steps_) whose integration its owner finished, in a step that books the
-  // energy terms (thread 0 chains them behind the owners).
+  // Per chunk that thread 0 chains: the step (steps_) whose integration its owner finished, in a
+  // step that books the energy terms (thread 0 chains them behind the owners).
   std::vector<std::uint64_t> chunk_done_;
   // The chain's sums through chunk c and the step that wrote them, one line per chunk. A large
   // chunk of a thread other than 0 is chained by its owner, in its own cache, from the previous
@@ -159,6 +158,8 @@ class ThreadedCycle {
     std::uint64_t stamp = 0;
   };
   std::vector<ChainLink> links_;
+  // Bodies from which a chunk of a thread other than 0 is chained by its owner: on C30 the mortar
+  // halves (about 7,400 bodies each) are, the clump chunks (a few clumps each) are not.
   static constexpr std::size_t kOwnerChainBodies = 1024;
   bool owner_chains(std::size_t c) const {
     return c > 0 && chunks_[c].thread != 0 &&
