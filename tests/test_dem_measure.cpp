@@ -1,4 +1,5 @@
-// Measurements against hand-computed values on small static scenes.
+// Measurements against hand-computed values on small static scenes, and the contact stress over
+// a region against its definition written out.
 #include <cmath>
 #include <cstring>
 #include <iterator>
@@ -113,9 +114,8 @@ Eigen::Matrix2d region_stress_by_definition(const World& w, const cdem::dem::Box
 }
 
 // contact_stress over a region leaves out the pairs whose first disc lies too far from it before
-// forming their contact points: on a jostled bonded lattice, boxes whose edges cut
-// through discs and contacts (and one that holds no contact point) give the bits of the
-// definition, and the counts of contacts inside them differ, so a pair left out wrongly shows.
+// forming their contact points: on a jostled bonded lattice, boxes whose edges cut through discs
+// and contacts (and one that holds no contact point) give the bits of the definition.
 TEST(Measure, RegionStressHasTheBitsOfItsDefinition) {
   World w(cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, 0.5},
                                        cdem::test::weak_parallel_bond()));
@@ -131,9 +131,8 @@ TEST(Measure, RegionStressHasTheBitsOfItsDefinition) {
                                   {-r, 6.05 * r, 41 * r, 6.95 * r},
                                   {9.6 * r, -r, 10.6 * r, 40 * r},
                                   {50 * r, 50 * r, 60 * r, 60 * r}};
-  // And left edges swept past the contact points of a column (a lattice row's horizontal
-  // neighbours touch at odd multiples of r, less half their overlap): a point just inside an
-  // edge whose first disc lies just outside it.
+  // And left edges swept in steps of r / 200 across the contact points between the discs
+  // around x = 10 r.
   std::vector<cdem::dem::Box> regions(std::begin(boxes), std::end(boxes));
   for (int step = 0; step < 40; ++step) {
     const double x0 = (9.8 + 0.005 * step) * r;
