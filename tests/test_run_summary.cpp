@@ -50,10 +50,15 @@ void expect_round_trip(const RunSummary& s, const fs::path& dir, const std::stri
   EXPECT_EQ(to_json(back).dump(2) + "\n", text) << name;
 }
 
-// A uniaxial run on the small specimen (seconds), its summary as `cdem run` makes it.
+// A uniaxial run on the small specimen (seconds), its summary as `cdem run` makes it. Its
+// directory is the calling test's own: CTest runs each test in a process of its own, two at once,
+// and several tests make this run (in one shared directory one process's run read the input file
+// another was rewriting: CI on 3d0d990).
 const RunSummary& real_uniaxial_summary() {
   static const RunSummary s = [] {
-    const auto dir = cdem::test::scratch_dir("test_run_summary", "uniaxial_run");
+    const auto dir = cdem::test::scratch_dir(
+        "test_run_summary", std::string("uniaxial_run_") +
+                                testing::UnitTest::GetInstance()->current_test_info()->name());
     const cdem::Specimen& specimen = cdem::test::small_rectangle_specimen();
     const auto in = cdem::test::lab_test_input(
         dir, specimen, "[test]\ntype = \"uniaxial\"\nhistory_interval = 20\nmax_steps = 400000\n");
