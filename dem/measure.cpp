@@ -69,11 +69,7 @@ Eigen::Matrix2d contact_stress(const World& world, double area) {
 Eigen::Matrix2d contact_stress(const World& world, const Box& region) {
   Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
   for_each_contact(
-      world,
-      [&](double x, double y, double reach) {
-        return x >= region.xmin - reach && x <= region.xmax + reach && y >= region.ymin - reach &&
-               y <= region.ymax + reach;
-      },
+      world, [&](double x, double y, double reach) { return region.contains(x, y, reach); },
       [&](const Eigen::Vector2d& c, const Eigen::Vector2d& l, const Eigen::Vector2d& f) {
         if (region.contains(c.x(), c.y())) s += l * f.transpose();
       });

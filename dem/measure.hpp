@@ -12,8 +12,9 @@ namespace cdem::dem {
 struct Box {
   double xmin, ymin, xmax, ymax;
   double area() const { return (xmax - xmin) * (ymax - ymin); }
-  bool contains(double x, double y) const {
-    return x >= xmin && x <= xmax && y >= ymin && y <= ymax;
+  // (x, y) lies in the box widened by `margin` (m) on every side.
+  bool contains(double x, double y, double margin = 0) const {
+    return x >= xmin - margin && x <= xmax + margin && y >= ymin - margin && y <= ymax + margin;
   }
 };
 
