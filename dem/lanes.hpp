@@ -420,16 +420,26 @@ CDEM_AVX2 inline LaneMask4 lanes_equal<Lanes4>(const std::uint8_t* code, std::ui
   return {reinterpret_cast<LaneBits4>(_mm256_cmpeq_epi64(codes4(code), _mm256_set1_epi64x(value)))};
 }
 
-// at[0 .. kLanes - 1] where `lanes` has the bit, +0 elsewhere (nothing is read there).
+// at[0 .. kLanes - 1] where `lanes` has the bit, +0 elsewhere. Every slot is read, so all
+// kLanes must exist: the lanes are loaded whole and the others then cleared. As one masked load,
+// on the 10^6-disc section (arrays beyond the cache) the pass's three masked loads of the bond
+// state stalled on memory while its plain loads of neighbouring streams did not: 39 % of the
+// pass's samples, which an explicit prefetch did not remove (docs/performance.md "Session 44").
+// The empty asm statement marks the loaded lanes as changed, so GCC cannot fold the load and the
+// clearing back into one masked load.
 template <class L>
 L load_where(unsigned lanes, const double* at);
 template <>
 CDEM_AVX512 inline Lanes8 load_where<Lanes8>(unsigned lanes, const double* at) {
-  return _mm512_maskz_loadu_pd(static_cast<__mmask8>(lanes), at);
+  __m512d whole = _mm512_loadu_pd(at);
+  asm("" : "+v"(whole));
+  return _mm512_maskz_mov_pd(static_cast<__mmask8>(lanes), whole);
 }
 template <>
 CDEM_AVX2 inline Lanes4 load_where<Lanes4>(unsigned lanes, const double* at) {
-  return _mm256_maskload_pd(at, lane_mask4(lanes));
+  __m256d whole = _mm256_loadu_pd(at);
+  asm("" : "+v"(whole));
+  return _mm256_and_pd(whole, reinterpret_cast<__m256d>(lane_mask4(lanes)));
 }
 
 // at[0 .. kLanes - 1].
