@@ -15,9 +15,12 @@
 # 2. samples/c30_ucs.toml on that specimen, `[test] threads` 1 and 2 alternated: wall per run,
 #    medians and their ratio; every run must give the same peak stress and steps, bit for bit.
 # 3. bench/lammps_compare.sh (1,000 steps, 5 pairs): LAMMPS / cdem per disc-step.
-# 4. bench_scale on the C30 specimen (and on the large specimen if one is given, e.g. one made
-#    with `cdem generate bench/bench_scale_million.toml`): ns per disc-step and solver bytes per
-#    disc, and the large / C30 ratio.
+# 4. bench_scale, one thread pinned to the first allowed CPU: the C30 specimen (1,000 steps) and
+#    the same specimen tiled 7 x 7 (1,043,945 discs, 300 steps), alternated `rounds` times (the
+#    10^6 step as sessions 38-44 measured it, docs/performance.md), each run the median of 3
+#    repeats; ns per disc-step, solver bytes per disc, the medians and the 10^6 / C30 ratio of
+#    the medians and of each round. And once the large specimen if one is given (e.g. one made
+#    with `cdem generate bench/bench_scale_million.toml`, 50 steps).
 # Exits non-zero if a run fails or a bitwise or statistics check does not hold. Writes only into
 # a temporary directory, removed at exit. Installs the Debian `time` package if /usr/bin/time is
 # missing, and bench/lammps_compare.sh the `lammps` package (both need root).
@@ -99,12 +102,17 @@ bash "$here/lammps_compare.sh" "$build" 1000 5 > "$work/lammps.out" 2> "$work/la
   { cat "$work/lammps.err" >&2; exit 1; }
 sed -n '/^wall time/,/^CPU time/p' "$work/lammps.out" | sed '$d' | sed 's/^/  /'
 
-echo "== 4. bench_scale (one thread)"
-scale() {  # specimen steps -> the RESULT line
+echo "== 4. bench_scale (one thread, cpu ${cpus[0]})"
+scale() {  # specimen steps [bench_scale options] -> the RESULT line
   echo "  load before $(load)" >&2
-  "$build/bin/bench_scale" "$1" --steps "$2" --repeats 3 | grep '^RESULT'
+  taskset -c "${cpus[0]}" "$build/bin/bench_scale" "$1" --steps "$2" --repeats 3 "${@:3}" |
+    grep '^RESULT'
 }
-scale "$work/gen_1_1.h5" 100 | tee "$work/scale_c30" | sed 's/^/  C30: /'
+for r in $(seq "$rounds"); do
+  scale "$work/gen_1_1.h5" 1000 | tee "$work/scale_c30_$r" | sed "s/^/  round $r, C30: /"
+  scale "$work/gen_1_1.h5" 300 --tile 7 7 | tee "$work/scale_tiled_$r" |
+    sed "s/^/  round $r, C30 tiled 7 x 7: /"
+done
 [ -z "$large" ] || scale "$large" 50 | tee "$work/scale_large" | sed 's/^/  large: /'
 
 /usr/bin/python3 - "$work" <<'PY'
@@ -153,11 +161,21 @@ def result(name):
         return None
     fields = open(path).read().split()[1:]
     return dict(zip(fields[::2], fields[1::2]))
-c30, large = result("scale_c30"), result("scale_large")
-print(f"  C30 step: {c30['ns_wall']} ns per disc-step, {c30['accounted_B_per_disc']} B per disc")
+rounds = sorted(int(f.rsplit("_", 1)[1]) for f in glob.glob(os.path.join(work, "scale_c30_*")))
+c30 = [result(f"scale_c30_{r}") for r in rounds]
+tiled = [result(f"scale_tiled_{r}") for r in rounds]
+c30_ns = statistics.median(float(c["ns_wall"]) for c in c30)
+tiled_ns = statistics.median(float(t["ns_wall"]) for t in tiled)
+print(f"  C30 step: {c30_ns:.2f} ns per disc-step (median of {len(rounds)}), "
+      f"{c30[0]['accounted_B_per_disc']} B per disc")
+print(f"  C30 tiled 7 x 7: {tiled[0]['discs']} discs, {tiled_ns:.2f} ns per disc-step (median), "
+      f"{tiled_ns / c30_ns:.2f}x C30 (target within 1.25x; by round "
+      + ", ".join(f"{float(t['ns_wall']) / float(c['ns_wall']):.2f}" for c, t in zip(c30, tiled))
+      + f"), {tiled[0]['accounted_B_per_disc']} B per disc (target 600)")
+large = result("scale_large")
 if large:
     print(f"  large step: {large['discs']} discs, {large['ns_wall']} ns per disc-step "
-          f"({float(large['ns_wall']) / float(c30['ns_wall']):.2f}x C30; target within 1.25x), "
+          f"({float(large['ns_wall']) / c30_ns:.2f}x C30; target within 1.25x), "
           f"{large['accounted_B_per_disc']} B per disc (target 600)")
 sys.exit(0 if ok else 1)
 PY
