@@ -422,9 +422,10 @@ CDEM_AVX2 inline LaneMask4 lanes_equal<Lanes4>(const std::uint8_t* code, std::ui
 
 // at[0 .. kLanes - 1] where `lanes` has the bit, +0 elsewhere. Every slot is read, so all
 // kLanes must exist: the lanes are loaded whole and the others then cleared. As one masked load,
-// on the 10^6-disc section (arrays beyond the cache) the pass's three masked loads of the bond
-// state stalled on memory while its plain loads of neighbouring streams did not: 39 % of the
-// pass's samples, which an explicit prefetch did not remove (docs/performance.md "Session 44").
+// on the 10^6-disc section (arrays beyond the cache) the law's three masked loads of the bond
+// state stalled on memory while its plain loads of neighbouring streams did not: 39 % of
+// evaluate_lanes' samples, which an explicit prefetch did not remove (docs/performance.md
+// "Session 44").
 // The empty asm statement marks the loaded lanes as changed, so GCC cannot fold the load and the
 // clearing back into one masked load.
 template <class L>
