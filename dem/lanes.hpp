@@ -341,17 +341,32 @@ CDEM_AVX2 inline void load_quads(const double* records, Lanes4 (&field)[4]) {
   for (std::size_t l = 0; l < 4; ++l) field[l] = _mm256_load_pd(records + 4 * l);
   transpose4(field);
 }
+// The eight records as four lines of two, transposed by two rounds of two-register permutes. As
+// two 4 x 4 transposes of half-line loads joined lane-wise, GCC 12 merged each two loads into
+// one line load and took its halves back through the stack: 8.5 % of integrate_free_discs'
+// samples on the C30 UCS (docs/performance.md "Session 44").
 CDEM_AVX512 inline void load_quads(const double* records, Lanes8 (&field)[4]) {
-  // Records 0-3 and 4-7 as two 4 x 4 blocks, each transposed, then joined lane-wise.
-  Lanes4 low[4], high[4];
-  for (std::size_t l = 0; l < 4; ++l) {
-    low[l] = _mm256_load_pd(records + 4 * l);
-    high[l] = _mm256_load_pd(records + 16 + 4 * l);
-  }
-  transpose4(low);
-  transpose4(high);
-  for (std::size_t f = 0; f < 4; ++f)
-    field[f] = _mm512_insertf64x4(_mm512_castpd256_pd512(low[f]), high[f], 1);
+  // Line q: records 2q (doubles 0-3) and 2q + 1 (doubles 4-7), 64 bytes that start on a 32-byte
+  // boundary (unaligned loads). Named, not an array: GCC 12 kept an array of the four in memory,
+  // a store and a reload per line.
+  const __m512d line0 = _mm512_loadu_pd(records), line1 = _mm512_loadu_pd(records + 8);
+  const __m512d line2 = _mm512_loadu_pd(records + 16), line3 = _mm512_loadu_pd(records + 24);
+  // Round 1, two records' lines into one: fields 0 and 1 (or 2 and 3) of records r .. r + 3,
+  // e.g. r0f0 r1f0 r2f0 r3f0 r0f1 r1f1 r2f1 r3f1. Indices 0-7 pick from the first line, 8-15
+  // from the second.
+  const __m512i even = _mm512_setr_epi64(0, 4, 8, 12, 1, 5, 9, 13);
+  const __m512i odd = _mm512_setr_epi64(2, 6, 10, 14, 3, 7, 11, 15);
+  const __m512d f01_low = _mm512_permutex2var_pd(line0, even, line1);
+  const __m512d f01_high = _mm512_permutex2var_pd(line2, even, line3);
+  const __m512d f23_low = _mm512_permutex2var_pd(line0, odd, line1);
+  const __m512d f23_high = _mm512_permutex2var_pd(line2, odd, line3);
+  // Round 2: records 0-3 of a field from the first, 4-7 from the second.
+  const __m512i first = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11);
+  const __m512i second = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
+  field[0] = _mm512_permutex2var_pd(f01_low, first, f01_high);
+  field[1] = _mm512_permutex2var_pd(f01_low, second, f01_high);
+  field[2] = _mm512_permutex2var_pd(f23_low, first, f23_high);
+  field[3] = _mm512_permutex2var_pd(f23_low, second, f23_high);
 }
 
 // The reverse of load_records: the f-th double of record index[l] = field[f] lane l, for the
