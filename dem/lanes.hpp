@@ -254,7 +254,8 @@ CDEM_AVX2 inline unsigned lane_bits(LaneMask4 condition) {
   return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(condition.lanes)));
 }
 
-// The lanes l < 4 whose bit is set in `lanes`, as AVX2's masked loads and stores read them.
+// The lanes l < 4 whose bit is set in `lanes`, all 64 bits set in such a lane and none in the
+// others: a blend reads the sign bit, load_where's `and` every bit.
 CDEM_AVX2 inline __m256i lane_mask4(unsigned lanes) {
   const LaneBits4 bit{1, 2, 4, 8};
   return reinterpret_cast<__m256i>((bit & static_cast<std::int64_t>(lanes)) != 0);
