@@ -97,8 +97,10 @@ bool free_discs(const Bodies& b, std::size_t k) {
 }
 
 // The free-disc branch of integrate_bodies on lanes, the same operations in the same order.
+// kApplied = false (Bodies::any_applied false: every applied load is +0) adds a constant +0 for
+// the applied loads instead of reading them, which gives the same bits.
 // Lane code: called only from the integrate_free_discs below, which inline it.
-template <bool kBook, bool kDamped, class L>
+template <bool kBook, bool kDamped, bool kApplied, class L>
 void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::size_t k,
                              const BodyEnergyArrays* per_body, FreeDiscLanes<kLanes<L>>& out) {
   const L dtl = splat<L>(dt), al = splat<L>(alpha);
@@ -107,8 +109,8 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::
   // The bodies' forces gathered from their discs here (gather_body_force's free-disc branch),
   // not in a pass of their own before the integration: one pass over the bodies, not two.
   const std::size_t first = static_cast<std::size_t>(b.first_disc[k]);
-  const L fx_applied = load<L>(b.fx_applied.data() + k),
-          fy_applied = load<L>(b.fy_applied.data() + k);
+  const L fx_applied = kApplied ? load<L>(b.fx_applied.data() + k) : splat<L>(0.0),
+          fy_applied = kApplied ? load<L>(b.fy_applied.data() + k) : splat<L>(0.0);
   L sums[DiscLoad::kFields];
   load_quads(reinterpret_cast<const double*>(d.load.data() + first), sums);
   const L fx = sums[DiscLoad::kFx] + fx_applied, fy = sums[DiscLoad::kFy] + fy_applied;
@@ -151,17 +153,17 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::
   store_records(reinterpret_cast<double*>(d.state.data()), b.first_disc.data() + k, fields, kMoved);
 }
 
-template <bool kBook, bool kDamped>
+template <bool kBook, bool kDamped, bool kApplied>
 CDEM_LANES8_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
                                              std::size_t k, const BodyEnergyArrays* per_body,
                                              FreeDiscLanes<8>& out) {
-  integrate_free_discs_of<kBook, kDamped, Lanes8>(b, d, dt, alpha, k, per_body, out);
+  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes8>(b, d, dt, alpha, k, per_body, out);
 }
-template <bool kBook, bool kDamped>
+template <bool kBook, bool kDamped, bool kApplied>
 CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
                                              std::size_t k, const BodyEnergyArrays* per_body,
                                              FreeDiscLanes<4>& out) {
-  integrate_free_discs_of<kBook, kDamped, Lanes4>(b, d, dt, alpha, k, per_body, out);
+  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes4>(b, d, dt, alpha, k, per_body, out);
 }
 
 // kBook = false is the same loop without the energy terms, kDamped = false without local
@@ -183,7 +185,10 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
     if constexpr (n > 1) {
       if (k + n <= end && free_discs<n>(b, k)) {
         FreeDiscLanes<n> out;
-        integrate_free_discs<kBook, kDamped>(b, d, dt, alpha, k, per_body, out);
+        if (b.any_applied)
+          integrate_free_discs<kBook, kDamped, true>(b, d, dt, alpha, k, per_body, out);
+        else
+          integrate_free_discs<kBook, kDamped, false>(b, d, dt, alpha, k, per_body, out);
         for (std::size_t l = 0; l < n; ++l) {
           if constexpr (kBook) {
             m.damped += out.energy[2 * l];

@@ -152,6 +152,7 @@ class World {
   void set_applied_force(int body, double fx, double fy) {
     bodies_.fx_applied[body] = fx;
     bodies_.fy_applied[body] = fy;
+    bodies_.any_applied = true;
   }
   // A wall's velocity (m/s); it moves by velocity x dt after every step. A servo on the wall
   // overrides it at the next step.

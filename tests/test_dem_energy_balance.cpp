@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -116,6 +117,45 @@ TEST(EnergyBalance, AppliedLoadWorkBalancesAFallingDisc) {
   EXPECT_GT(e.damping, 0);
   EXPECT_LT(e.relative_error(), 1e-3);
   EXPECT_NEAR(e.applied_work / (weight * (y0 - w.bodies().y[body])), 1, 1e-3);
+}
+
+TEST(EnergyBalance, AppliedLoadsMoveFreeDiscsIntegratedTogether) {
+  // Sixteen free discs far apart (no contacts), undamped, each under its own constant applied
+  // load: the integration takes runs of consecutive free discs together (dem/integrator.cpp,
+  // lanes of 4 or 8) and must read each disc's load there too. Leapfrog from rest under a
+  // constant force F gives v_n = n dt F / m and x_n = x_0 + dt^2 F / m n (n + 1) / 2 exactly up
+  // to rounding; the ledger's work of the loads, F . (v_k + v_k+1) dt / 2 summed, is then
+  // m v_n^2 / 2, the kinetic energy at the half step.
+  WorldSettings s;
+  s.local_damping = 0;
+  s.fixed_time_step = 1e-6;
+  s.laws.fill(LinearContact{kE, 1.0, 0.0});
+  World w(s);
+  constexpr int kDiscs = 16;
+  const double r = 1e-3, rho = 2500;  // m, kg/m3
+  std::vector<double> fx(kDiscs), fy(kDiscs);
+  for (int i = 0; i < kDiscs; ++i) {
+    const int b = w.add_disc(10 * r * i, 0, r, rho);
+    fx[i] = 1e-3 * (i + 1);             // N
+    fy[i] = -2e-3 * ((i * 7) % 5 + 1);  // N
+    w.set_applied_force(b, fx[i], fy[i]);
+  }
+  const long n = 1000;
+  w.cycle(n);
+  const double dt = s.fixed_time_step, m = w.bodies().mass[0];
+  double work = 0;
+  for (int i = 0; i < kDiscs; ++i) {
+    const double ax = fx[i] / m, ay = fy[i] / m;  // m/s^2
+    EXPECT_NEAR(w.bodies().vx[i], n * dt * ax, 1e-9 * n * dt * std::abs(ax)) << "disc " << i;
+    EXPECT_NEAR(w.bodies().vy[i], n * dt * ay, 1e-9 * n * dt * std::abs(ay)) << "disc " << i;
+    const double sx = dt * dt * ax * n * (n + 1) / 2, sy = dt * dt * ay * n * (n + 1) / 2;  // m
+    EXPECT_NEAR(w.bodies().x[i] - 10 * r * i, sx, 1e-9 * std::abs(sx)) << "disc " << i;
+    EXPECT_NEAR(w.bodies().y[i], sy, 1e-9 * std::abs(sy)) << "disc " << i;
+    EXPECT_EQ(w.discs().x[i], w.bodies().x[i]);  // the disc follows its body
+    work += 0.5 * m * n * n * dt * dt * (ax * ax + ay * ay);
+  }
+  const cdem::dem::Energies e = cdem::dem::energies(w);
+  EXPECT_NEAR(e.applied_work, work, 1e-6 * work);
 }
 
 TEST(EnergyBalance, PrescribedBodyWorkIsCounted) {
