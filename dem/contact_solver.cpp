@@ -35,9 +35,8 @@ long disc_disc_pass(Discs& d, ContactStore& list, ContactForces& out, const Cont
   const DiscPairKernel kernel(d, list, out, laws, bonds, dt, guard, options);
   const std::size_t count = list.keys.size();
   out.broken.clear();
-  const std::size_t bad = options.pair_results
-                              ? add_disc_pairs<true>(kernel, count, out.broken, result)
-                              : add_disc_pairs<false>(kernel, count, out.broken, result);
+  const std::size_t bad = options.virial ? add_disc_pairs<true>(kernel, count, out.broken, result)
+                                         : add_disc_pairs<false>(kernel, count, out.broken, result);
   return bad == count ? -1 : static_cast<long>(bad);
 }
 
@@ -188,7 +187,7 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
                        dt, max_overlap_ratio, result.slip_work, nullptr);
   add_wall_pairs(discs, list, wall_pair, 0, list.wall_keys.size());
   wall_totals(walls, list, wall_pair, discs, result);
-  if (!options.pair_results) result.virial = std::numeric_limits<double>::quiet_NaN();
+  if (!options.virial) result.virial = std::numeric_limits<double>::quiet_NaN();
   return result;
 }
 

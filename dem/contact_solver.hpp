@@ -54,8 +54,7 @@ struct ContactForces {
 struct ForcePassResult {
   // Sum over touching contacts of (branch vector . force), the trace of the contact stress
   // tensor times the area (N m). Disc-disc branch = centre to centre; disc-wall branch =
-  // centre to contact point. NaN when the pass kept no per-pair results
-  // (PassOptions::pair_results): it is one of them, summed.
+  // centre to contact point. NaN when the pass did not sum it (PassOptions::virial).
   double virial = 0;
   // Disc-wall contacts with overlap > 0. The disc-disc ones are not counted in the pass (a
   // step reads them nowhere; 4 instructions per pair): overlap_statistics (dem/measure.hpp)
@@ -78,12 +77,15 @@ struct PassOptions {
   // Disc pairs in lanes: the widest set up to this one that the CPU has (dem/lanes.hpp; the
   // same bits either way).
   LaneIsa lanes = LaneIsa::Avx512;
-  // Write every disc pair's normal, overlap, fx and fy into ContactForces (32 bytes per pair)
-  // and sum the virial. Without, only the pairs whose bond broke get them (the crack log reads
-  // their overlap) and the virial is NaN: a loop that reads the per-pair results at its records
-  // only asks for them on those steps (World::request_pair_results). The forces on the discs,
-  // the other totals and the state are the same bits either way.
+  // Write every disc pair's normal, overlap, fx and fy into ContactForces (32 bytes per pair).
+  // Without, only the pairs whose bond broke get them (the crack log reads their overlap): a
+  // loop that reads the per-pair results at its records only asks for them on those steps
+  // (World::request_pair_results). The forces on the discs, the totals and the state are the
+  // same bits either way.
   bool pair_results = true;
+  // Sum the virial (ForcePassResult::virial; else NaN), about 5 of the take's instructions per
+  // pair: a packing's stress servo reads it every cycle, a lab test at its records only.
+  bool virial = true;
 };
 
 // Evaluates all contacts, updates the persistent shear and bond state (breaking bonds that

@@ -306,7 +306,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   double unused_slip = 0;
   DiscLoad* const disc_load = discs.load.data();
   const bool sample = steps_++ % kSampleEvery == 0;
-  const bool keep_virial = s.pass.pair_results;
+  const bool keep_virial = s.pass.virial;
   // Each chunk's owner marks it integrated with this step's stamp; the chain takes the energy
   // terms behind them.
   const bool chain_energy = s.book_energy && chunk_count > 0;
@@ -325,10 +325,10 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // (the take may call the allocator, which could change them). 5 % fewer instructions in
     // the pass (docs/performance.md "Session 33").
     DiscLoad* const load = disc_load;
-    // The first chunk's owner sums its pairs' slip work and, in a step that keeps the per-pair
-    // results, their virial as it goes, in pair order, as the one-thread pass does: the sums
-    // are ready for the chain's first link at the barrier (summed from stored virials after it,
-    // a serial chain over half the pairs: the two-thread packing took 1.03x the time,
+    // The first chunk's owner sums its pairs' slip work and, in a step that sums the virial
+    // (PassOptions::virial), their virial as it goes, in pair order, as the one-thread pass does:
+    // the sums are ready for the chain's first link at the barrier (summed from stored virials
+    // after it, a serial chain over half the pairs: the two-thread packing took 1.03x the time,
     // docs/performance.md "Session 42"). The other chunks store each pair's virial and pack their
     // non-zero slip terms without a branch. Which pairs slip looks random to a branch predictor,
     // and later in the loading up to a third of them do: a list appended behind a branch cost about

@@ -66,7 +66,7 @@ struct ThreadedStepSettings {
   double guard = 0;          // max overlap / radius
   double alpha = 0;          // local damping
   bool book_energy = false;  // form the integration's energy terms
-  PassOptions pass;          // lanes (WorldSettings::lanes) and per-pair results
+  PassOptions pass;          // lanes (WorldSettings::lanes), per-pair results, virial
 };
 
 class ThreadedCycle {
@@ -154,7 +154,7 @@ class ThreadedCycle {
   struct alignas(64) ChainLink {
     BodyStepEnergy energy;  // J, the bodies' terms (in a step that books them and integrates)
     double slip_work = 0;   // J
-    double virial = 0;      // N m, in a step that keeps the per-pair results
+    double virial = 0;      // N m, in a step that sums it (PassOptions::virial)
     std::uint64_t stamp = 0;
   };
   std::vector<ChainLink> links_;

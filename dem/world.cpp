@@ -415,9 +415,11 @@ void World::step() {
   if (rebuild_pending_ || neighbors_.needs_rebuild(discs_, walls_, moved_bound_)) rebuild();
   const bool book = settings_.energy_tracking;
   // The energy check reads the contacts' strain energy, from the per-pair results.
-  const PassOptions pass{
-      .lanes = settings_.lanes,
-      .pair_results = !pair_results_on_request_ || pair_results_requested_ || energy_check_due()};
+  const bool pair_results =
+      !pair_results_on_request_ || pair_results_requested_ || energy_check_due();
+  const PassOptions pass{.lanes = settings_.lanes,
+                         .pair_results = pair_results,
+                         .virial = pair_results || virial_every_step_};
   pair_results_requested_ = false;
   ThreadedStep threaded;
   if (WorkerTeam* shared = team()) {

@@ -251,6 +251,10 @@ class World {
   // state and every total are the same bits either way.
   void set_pair_results_on_request(bool on);
   void request_pair_results() { pair_results_requested_ = true; }
+  // The virial (last_force_pass().virial) is summed in every step that keeps the per-pair
+  // results, and in every step when this is on (a packing's stress servo, which reads it each
+  // cycle and the per-pair results every few cycles).
+  void set_virial_every_step(bool on) { virial_every_step_ = on; }
 
  private:
   // Engine parts that edit the arrays in place and carry their own side effects.
@@ -292,6 +296,7 @@ class World {
   long steps_ = 0;
   bool rebuild_pending_ = true;
   bool pair_results_on_request_ = false, pair_results_requested_ = false;
+  bool virial_every_step_ = false;
   bool pair_results_current_ = true;  // pair_forces_ holds the last step's results
   // m, bound on the largest disc displacement since the last neighbour build, summed from the
   // integration's speeds; infinite until the first build and after a radius growth. Lets the

@@ -53,6 +53,9 @@ constexpr double kDecompressionCellDiameters = 100.0;
 constexpr double kHoldGain = 0.5;     // fraction of the wall-stress error corrected per interval
 constexpr long kCheckEvery = 50;      // cycles between convergence checks
 constexpr long kStiffnessEvery = 10;  // cycles between updates of the servo's stiffness estimate
+// The damped servo keeps the per-pair results every kStiffnessEvery cycles only, its checks'
+// among them.
+static_assert(kCheckEvery % kStiffnessEvery == 0);
 // relaxation = "fire" (relax_fire).
 constexpr long kFireCheckEvery = 10;  // FIRE cycles between unbalanced-ratio checks
 // The jamming check of a stage: the most the fraction of floating discs (fewer than 3 contacts)
@@ -225,6 +228,11 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
     return out;
   };
   while (world.step_count() < c.max_steps) {
+    // The per-pair results of the steps whose are read: the stiffness estimates (the cells', the
+    // common factor's, the hold's at its checks) and the statistics of the last check.
+    const long next = world.step_count() + 1;
+    if (next % kStiffnessEvery == 0 || stiffness <= 0 || (by_cells && !cells.updated()))
+      world.request_pair_results();
     world.step();
     const double sigma = world.last_force_pass().virial / (2.0 * area);
     report_progress(world, area, c);
@@ -473,6 +481,11 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   settings.laws.fill(law);
   out.time_step_safety = settings.time_step_safety;
   dem::World world(settings);
+  // The stress servo reads the virial every cycle and the per-pair results (32 bytes per pair)
+  // every few (relax_damped requests them): 0.97-0.98x the C30 packing's time on 1 and 2
+  // threads (docs/performance.md "Session 46"). The same bits either way.
+  world.set_pair_results_on_request(true);
+  world.set_virial_every_step(true);
   // The discs along serpentine rows of cells along x (neighbours in space near in memory).
   // Deterministic. Rows across a wide mould's shorter side (as the world numbers a specimen of
   // more than dem::kSpatialOrderAboveDiscs discs) were measured and did not pay: no difference
@@ -499,6 +512,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
       report_progress(world, area, c);
     }
     while (world.step_count() < c.max_steps) {
+      if ((world.step_count() + 1) % kCheckEvery == 0) world.request_pair_results();
       world.step();
       report_progress(world, area, c);
       if (world.step_count() % kCheckEvery == 0 &&
@@ -517,6 +531,8 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   out.expansion_and_calming_steps = world.step_count();
   out.expansion_and_calming_builds = world.neighbors().build_count;
   world.set_neighbor_skin(0.2 * r_min);
+  // FIRE reads the per-pair results at every stage's end: kept every cycle.
+  if (c.relaxation == MortarRelaxation::Fire) world.set_pair_results_on_request(false);
   int restored_stages = 0;
   const RelaxedState end = c.relaxation == MortarRelaxation::Fire
                                ? relax_fire(world, mould, c, restored_stages)

@@ -95,6 +95,36 @@ TEST(PairResultsOnRequest, VirialIsTheSameOnOneAndTwoThreads) {
   }
 }
 
+// The virial every step without the per-pair results (World::set_virial_every_step, a
+// packing's stress servo): each step's virial has the bits of a run that keeps everything, on
+// one thread and on two, and the per-pair results are still not kept.
+TEST(PairResultsOnRequest, VirialEveryStepWithoutThePerPairResults) {
+  for (int threads : {1, 2}) {
+    World every = jostled_world(threads, LaneIsa::Avx512),
+          servo = jostled_world(threads, LaneIsa::Avx512);
+    servo.set_pair_results_on_request(true);
+    servo.set_virial_every_step(true);
+    long without_results = 0;
+    for (int step = 0; step < 60; ++step) {
+      if (step == 59) servo.request_pair_results();  // world_bits reads them
+      every.step();
+      servo.step();
+      ASSERT_TRUE(std::isfinite(servo.last_force_pass().virial)) << threads << " " << step;
+      ASSERT_EQ(bits(every.last_force_pass().virial), bits(servo.last_force_pass().virial))
+          << threads << " " << step;
+      try {
+        servo.pair_forces();
+      } catch (const std::logic_error&) {
+        ++without_results;
+      }
+    }
+    // Every step but the energy check's (every energy_check_interval = 100 steps: the first)
+    // and the last kept none.
+    EXPECT_EQ(without_results, 58) << threads;
+    cdem::test::expect_same_bits(cdem::test::world_bits(every), cdem::test::world_bits(servo));
+  }
+}
+
 TEST(PairResultsOnRequest, ReadingResultsNotKeptThrows) {
   World w = jostled_world(1, LaneIsa::Avx512);
   w.set_pair_results_on_request(true);
