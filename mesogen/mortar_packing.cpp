@@ -228,8 +228,9 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
     return out;
   };
   while (world.step_count() < c.max_steps) {
-    // The per-pair results of the steps whose are read: the stiffness estimates (the cells', the
-    // common factor's, the hold's at its checks) and the statistics of the last check.
+    // Per-pair results only for the steps whose results are read: the stiffness estimates (the
+    // cells', the common factor's, the hold's at its checks) and the statistics of the last
+    // check.
     const long next = world.step_count() + 1;
     if (next % kStiffnessEvery == 0 || stiffness <= 0 || (by_cells && !cells.updated()))
       world.request_pair_results();
