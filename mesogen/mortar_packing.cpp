@@ -483,7 +483,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   out.time_step_safety = settings.time_step_safety;
   dem::World world(settings);
   // The stress servo reads the virial every cycle and the per-pair results (32 bytes per pair)
-  // every few (relax_damped requests them): 0.97-0.98x the C30 packing's time on 1 and 2
+  // every few (relax_damped requests them): 0.95-0.98x the C30 packing's time on 1 and 2
   // threads (docs/performance.md "Session 46"). The same bits either way.
   world.set_pair_results_on_request(true);
   world.set_virial_every_step(true);
