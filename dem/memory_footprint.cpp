@@ -41,9 +41,9 @@ MemoryFootprint memory_footprint(const World& world) {
       capacity_bytes(c.merged_keys_, c.member_offsets_) + state_bytes(c.merged_state_);
   m.wall_pairs += capacity_bytes(c.merged_wall_keys_) + state_bytes(c.merged_wall_state_);
   const NeighborList& n = world.neighbors_;
-  m.neighbor_list =
-      capacity_bytes(n.x0_, n.y0_, n.r0_, n.wall_ax0_, n.wall_ay0_, n.cell_start_, n.cell_discs_,
-                     n.disc_cell_, n.pair_keys_, n.wall_keys_, n.scratch_, n.member_keys_);
+  m.neighbor_list = capacity_bytes(n.ref_x_, n.ref_y_, n.ref_r_, n.wall_ax0_, n.wall_ay0_,
+                                   n.cell_start_, n.cell_discs_, n.disc_cell_, n.pair_keys_,
+                                   n.wall_keys_, n.scratch_, n.member_keys_);
   for (const auto& keys : n.member_keys_) m.neighbor_list += capacity_bytes(keys);
   const ThreadedCycle& t = world.threaded_;
   m.thread_plan = capacity_bytes(

@@ -39,14 +39,17 @@ bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls) const {
 bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls,
                                  double& moved_bound) const {
   const std::size_t n = discs.size();
-  if (x0_.size() != n || wall_ax0_.size() != walls.size()) return true;
+  if (ref_x_.size() != n || wall_ax0_.size() != walls.size()) return true;
   const double wall = largest_wall_move(walls, wall_ax0_, wall_ay0_);
   if (gap_closure(moved_bound, wall) <= skin * (1 - 1e-6)) return false;
+  // Maxima, so the same in any order of the discs (a NaN is never taken: max keeps the
+  // running value when the comparison fails).
   double move2 = 0, grow = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double dx = discs.x[i] - x0_[i], dy = discs.y[i] - y0_[i];
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t i = cell_discs_[k];
+    const double dx = discs.x[i] - ref_x_[k], dy = discs.y[i] - ref_y_[k];
     move2 = std::max(move2, dx * dx + dy * dy);
-    grow = std::max(grow, discs.r[i] - r0_[i]);
+    grow = std::max(grow, discs.r[i] - ref_r_[k]);
   }
   if (std::isfinite(moved_bound)) moved_bound = std::sqrt(move2);
   return gap_closure(std::sqrt(move2) + grow, wall) > skin;
@@ -85,63 +88,154 @@ void NeighborList::build_grid(const Discs& discs) {
     ++cell_start_[disc_cell_[i] + 1];
   }
   for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
-  cell_discs_.resize(cell_start_[cells]);
+  cell_discs_.resize(n);
   scratch_.assign(cell_start_.begin(), cell_start_.end() - 1);
-  // Discs in ascending index within each cell, so the build order is deterministic.
+  // Discs in ascending index within each cell, so the build order is deterministic; the
+  // inactive ones after the last cell's.
+  std::size_t inactive = static_cast<std::size_t>(cell_start_[cells]);
   for (std::size_t i = 0; i < n; ++i)
-    if (disc_cell_[i] >= 0) cell_discs_[scratch_[disc_cell_[i]]++] = static_cast<std::int32_t>(i);
+    cell_discs_[disc_cell_[i] >= 0 ? static_cast<std::size_t>(scratch_[disc_cell_[i]]++)
+                                   : inactive++] = static_cast<std::int32_t>(i);
+  ref_x_.resize(n);
+  ref_y_.resize(n);
+  ref_r_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t i = cell_discs_[k];
+    ref_x_[k] = discs.x[i];
+    ref_y_[k] = discs.y[i];
+    ref_r_[k] = discs.r[i];
+  }
 }
 
-void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t end,
-                              std::vector<std::uint64_t>& keys) const {
-  // For each disc i (ascending) the partners j > i of the 3x3 block, sorted, so the
-  // concatenation is sorted without a global sort. The three cells of a block row are
-  // consecutive in cell_discs_. The test of a partner is branch-free (every key of the block is
-  // written, the count advances only for a partner): about half the block precedes i and a third
-  // of the rest is out of reach, in no order a branch predictor could learn.
-  // The grid and the output vector are held in locals: member 0's output is pair_keys_, whose
-  // end moves at every disc and shares a cache line with the grid's pointers, which the other
-  // members read at every disc too. Reached through this object, the line crossed between the
-  // cores at every disc: on two threads each member's search cost about what the one-thread
-  // search of all discs did (docs/performance.md "Session 42").
-  const std::int32_t* const disc_cell = disc_cell_.data();
-  const std::int32_t* const cell_start = cell_start_.data();
-  const std::int32_t* const cell_discs = cell_discs_.data();
-  const int nx = nx_, ny = ny_;
-  const double reach_skin = skin;
-  std::vector<std::uint64_t> out_keys = std::move(keys);
+namespace {
+
+// The grid find_pairs searches, held in locals: member 0's output is pair_keys_, whose end moves
+// at every disc and shares a cache line with the grid's pointers, which the other members read
+// at every disc too. Reached through the list, the line crossed between the cores at every disc:
+// on two threads each member's search cost about what the one-thread search of all discs did
+// (docs/performance.md "Session 42").
+struct Grid {
+  const std::int32_t* disc_cell;
+  const std::int32_t* cell_start;
+  const std::int32_t* cell_discs;
+  const double *x, *y, *r;  // m, in the order of cell_discs
+  int nx, ny;
+  double skin;  // m
+};
+
+// Disc i's partners in reach (gap below the skin) and of larger index among the discs at
+// positions [k, end) of the cell order: their keys go to out[found, ...); returns the new count.
+// Branch-free (every key is written, the count advances only for a partner): about half the
+// discs of a block precede i and a third of the rest is out of reach, in no order a branch
+// predictor could learn.
+inline std::size_t partners_of(const Grid& grid, int k, int end, std::size_t i, double xi,
+                               double yi, double ri, std::uint64_t* out, std::size_t found) {
+  for (; k < end; ++k) {
+    const std::int32_t j = grid.cell_discs[k];
+    const double dx = grid.x[k] - xi, dy = grid.y[k] - yi, reach = ri + grid.r[k];
+    const bool partner = (static_cast<std::size_t>(j) > i) & (dx * dx + dy * dy < reach * reach);
+    out[found] = pair_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+    found += partner;
+  }
+  return found;
+}
+
+// The same, eight discs at a time: the same operations in every lane (so the same partners),
+// and the partners' keys packed into the low lanes in a register and stored as one vector (a
+// compressing store runs in microcode on AMD's Zen 4), so `out` needs room for eight keys past
+// the last partner.
+CDEM_AVX512 inline std::size_t partners_of_lanes8(const Grid& grid, int k, int end, std::size_t i,
+                                                  double xi, double yi, double ri,
+                                                  std::uint64_t* out, std::size_t found) {
+  const __m512d x_i = _mm512_set1_pd(xi), y_i = _mm512_set1_pd(yi), r_i = _mm512_set1_pd(ri);
+  const __m512i index_i = _mm512_set1_epi32(static_cast<int>(i));
+  const __m512i key_i =
+      _mm512_set1_epi64(static_cast<long long>(pair_key(static_cast<std::uint32_t>(i), 0)));
+  for (; k < end; k += 8) {
+    const auto lanes = static_cast<__mmask16>((1u << std::min(8, end - k)) - 1);
+    const auto lanes8 = static_cast<__mmask8>(lanes);
+    const __m512i j = _mm512_maskz_loadu_epi32(lanes, grid.cell_discs + k);
+    const __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(lanes8, grid.x + k), x_i);
+    const __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(lanes8, grid.y + k), y_i);
+    const __m512d reach = _mm512_add_pd(r_i, _mm512_maskz_loadu_pd(lanes8, grid.r + k));
+    const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
+    const auto partner = static_cast<__mmask8>(
+        _mm512_mask_cmpgt_epi32_mask(lanes, j, index_i) &
+        _mm512_mask_cmp_pd_mask(lanes8, d2, _mm512_mul_pd(reach, reach), _CMP_LT_OQ));
+    const __m512i keys = _mm512_or_si512(key_i, _mm512_cvtepu32_epi64(_mm512_castsi512_si256(j)));
+    _mm512_storeu_si512(out + found, _mm512_maskz_compress_epi64(partner, keys));
+    found += static_cast<std::size_t>(__builtin_popcount(partner));
+  }
+  return found;
+}
+
+// For each disc of [begin, end) (ascending) its partners of another body in the 3x3 block of
+// cells around it, sorted, so the concatenation is sorted without a global sort. The three cells
+// of a block row are consecutive in the cell order.
+template <bool kLanes8>
+[[gnu::always_inline]] inline void search(const Discs& discs, const Grid& grid, std::size_t begin,
+                                          std::size_t end, std::vector<std::uint64_t>& out_keys) {
+  constexpr std::size_t kSlack = kLanes8 ? 8 : 0;  // partners_of_lanes8's room
+  const int nx = grid.nx, ny = grid.ny;
   for (std::size_t i = begin; i < end; ++i) {
-    if (disc_cell[i] < 0) continue;
-    const int cx = disc_cell[i] % nx, cy = disc_cell[i] / nx;
+    if (grid.disc_cell[i] < 0) continue;
+    const int cx = grid.disc_cell[i] % nx, cy = grid.disc_cell[i] / nx;
     const int gx0 = std::max(cx - 1, 0), gx1 = std::min(cx + 1, nx - 1);
     const int gy0 = std::max(cy - 1, 0), gy1 = std::min(cy + 1, ny - 1);
-    const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + reach_skin;
-    const std::int32_t bi = discs.body[i];
-    // The discs of block row gy are cell_discs[row_begin[gy - gy0], row_end[gy - gy0]).
+    const double xi = discs.x[i], yi = discs.y[i], ri = discs.r[i] + grid.skin;
+    // The discs of block row gy are at [row_begin[gy - gy0], row_end[gy - gy0]).
     int row_begin[3], row_end[3];
     std::size_t block = 0;
     for (int gy = gy0; gy <= gy1; ++gy) {
-      row_begin[gy - gy0] = cell_start[gy * nx + gx0];
-      row_end[gy - gy0] = cell_start[gy * nx + gx1 + 1];
+      row_begin[gy - gy0] = grid.cell_start[gy * nx + gx0];
+      row_end[gy - gy0] = grid.cell_start[gy * nx + gx1 + 1];
       block += static_cast<std::size_t>(row_end[gy - gy0] - row_begin[gy - gy0]);
     }
     const std::size_t start = out_keys.size();
-    out_keys.resize(start + block);
+    out_keys.resize(start + block + kSlack);
     std::uint64_t* out = out_keys.data() + start;
     std::size_t found = 0;
     for (int row = 0; row <= gy1 - gy0; ++row) {
-      for (int k = row_begin[row]; k < row_end[row]; ++k) {
-        const std::int32_t j = cell_discs[k];
-        const double dx = discs.x[j] - xi, dy = discs.y[j] - yi, reach = ri + discs.r[j];
-        const bool partner = (static_cast<std::size_t>(j) > i) & (discs.body[j] != bi) &
-                             (dx * dx + dy * dy < reach * reach);
-        out[found] = pair_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
-        found += partner;
-      }
+      if constexpr (kLanes8)
+        found = partners_of_lanes8(grid, row_begin[row], row_end[row], i, xi, yi, ri, out, found);
+      else
+        found = partners_of(grid, row_begin[row], row_end[row], i, xi, yi, ri, out, found);
     }
-    out_keys.resize(start + found);
+    // The pebbles of i's own clump left out (none in a packing: every disc is its own body).
+    const std::int32_t bi = discs.body[i];
+    std::size_t kept = 0;
+    for (std::size_t q = 0; q < found; ++q) {
+      out[kept] = out[q];
+      kept += discs.body[static_cast<std::uint32_t>(out[q])] != bi;
+    }
+    out_keys.resize(start + kept);
     std::sort(out_keys.begin() + static_cast<std::ptrdiff_t>(start), out_keys.end());
   }
+}
+
+CDEM_LANES8_TARGET void search_lanes8(const Discs& discs, const Grid& grid, std::size_t begin,
+                                      std::size_t end, std::vector<std::uint64_t>& keys) {
+  search<true>(discs, grid, begin, end, keys);
+}
+
+}  // namespace
+
+void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t end,
+                              std::vector<std::uint64_t>& keys) const {
+  const Grid grid{.disc_cell = disc_cell_.data(),
+                  .cell_start = cell_start_.data(),
+                  .cell_discs = cell_discs_.data(),
+                  .x = ref_x_.data(),
+                  .y = ref_y_.data(),
+                  .r = ref_r_.data(),
+                  .nx = nx_,
+                  .ny = ny_,
+                  .skin = skin};
+  std::vector<std::uint64_t> out_keys = std::move(keys);
+  if (usable_lanes(lanes) == LaneIsa::Avx512)
+    search_lanes8(discs, grid, begin, end, out_keys);
+  else
+    search<false>(discs, grid, begin, end, out_keys);
   keys = std::move(out_keys);
 }
 
@@ -213,9 +307,6 @@ void NeighborList::build(const Discs& discs, const Walls& walls, WorkerTeam* tea
   }
   std::sort(wall_keys_.begin(), wall_keys_.end());
 
-  x0_.assign(discs.x.begin(), discs.x.end());
-  y0_.assign(discs.y.begin(), discs.y.end());
-  r0_.assign(discs.r.begin(), discs.r.end());
   wall_ax0_ = walls.ax;
   wall_ay0_ = walls.ay;
   ++build_count;

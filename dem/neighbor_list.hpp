@@ -9,6 +9,7 @@
 
 #include "dem/contact_store.hpp"
 #include "dem/discs.hpp"
+#include "dem/lanes.hpp"
 #include "dem/wall.hpp"
 
 namespace cdem::dem {
@@ -20,6 +21,9 @@ struct MemoryFootprint;  // dem/memory_footprint.hpp
 class NeighborList {
  public:
   double skin = 0;  // m, extra gap under which a pair is kept as a candidate
+  // The widest lanes the disc-disc search may use (WorldSettings::lanes): with AVX-512 it tests
+  // eight partners at once. The candidates are the same for any lanes.
+  LaneIsa lanes = LaneIsa::Avx512;
   long build_count = 0;
 
   // True when a disc (or wall) has moved or a disc grown so much since the last build that a
@@ -47,12 +51,14 @@ class NeighborList {
   // Appends to `keys` the disc-disc candidates of discs [begin, end), sorted.
   void find_pairs(const Discs& discs, std::size_t begin, std::size_t end,
                   std::vector<std::uint64_t>& keys) const;
-  // Reference positions and radii of the last build (walls: first end point).
-  std::vector<double> x0_, y0_, r0_, wall_ax0_, wall_ay0_;
-  // Cell grid (counting sort of the active discs by cell).
+  // Cell grid: the active discs sorted by cell (cell_discs_[cell_start_[c], cell_start_[c + 1])
+  // are cell c's, ascending), then the inactive ones, ascending.
   double cell_ = 0, xmin_ = 0, ymin_ = 0;
   int nx_ = 0, ny_ = 0;
   std::vector<std::int32_t> cell_start_, cell_discs_, disc_cell_;
+  // Centres and radii (m) of the last build in the order of cell_discs_: the references of
+  // needs_rebuild, and the partners' data the search reads in runs (walls: first end point).
+  std::vector<double> ref_x_, ref_y_, ref_r_, wall_ax0_, wall_ay0_;
   // The candidates, kept between builds so a rebuild allocates only when the lists grow.
   std::vector<std::uint64_t> pair_keys_, wall_keys_;
   std::vector<std::vector<std::uint64_t>> member_keys_;  // per team member but the first

@@ -234,6 +234,7 @@ void World::rebuild() {
       neighbors_.skin = discs_.size() ? 0.2 * sum / static_cast<double>(discs_.size()) : 0.0;
     }
   }
+  neighbors_.lanes = settings_.lanes;
   neighbors_.build(discs_, walls_, team());
   contacts_.merge(neighbors_.pair_candidates(), neighbors_.wall_candidates(), discs_, team());
   moved_bound_ = 0;

@@ -216,4 +216,40 @@ TEST(NeighborList, TeamFindsTheCandidatesOfOneThread) {
   }
 }
 
+// The search in lanes (eight partners at a time where the CPU has AVX-512, dem/neighbor_list.cpp)
+// finds the candidates of the one-at-a-time search: on a dense random packing whose block rows
+// hold more than eight discs (so some rows take several groups and a partial last one), with a
+// clump whose pebbles are skipped and an inactive pebble, and on rows of discs exactly one
+// reach apart (2 r + skin = 1 m with r = 0.25 m and skin = 0.5 m, all exact in binary), which
+// are not candidates (the gap must be below the skin) in either search.
+TEST(NeighborList, LanesFindTheCandidatesOfTheOneAtATimeSearch) {
+  const auto candidates = [](cdem::dem::LaneIsa lanes, bool at_reach) {
+    WorldSettings s = frictional(1e-12);
+    s.max_overlap_ratio = INFINITY;
+    s.lanes = lanes;
+    if (at_reach) s.skin = 0.5;
+    World w(s);
+    if (at_reach) {
+      for (int row = 0; row < 3; ++row)
+        for (int k = 0; k < 12; ++k) w.add_disc(k * 1.0, row * 1.0, 0.25, 2000);
+    } else {
+      cdem::Rng rng(5);
+      for (int k = 0; k < 1500; ++k)
+        w.add_disc(rng.uniform(0, 0.01), rng.uniform(0, 0.01), rng.uniform(3e-4, 5e-4), 2000);
+      w.add_clump(0.005, 0.005, 1.0, 1e-6, {-0.3e-3, 0, 0.3e-3}, {0, 0, 0},
+                  {0.4e-3, 0.4e-3, 0.4e-3}, {1, 0, 1});
+    }
+    w.invalidate_neighbors();
+    w.refresh_neighbors();
+    return w.neighbors().pair_candidates();
+  };
+  const auto dense = candidates(cdem::dem::LaneIsa::Avx512, false);
+  EXPECT_GT(dense.size(), 10000u);  // about 15 partners per disc at this density
+  EXPECT_EQ(dense, candidates(cdem::dem::LaneIsa::None, false));
+  // The clump's two active pebbles (bodies' discs 1500 and 1502) are not each other's partners.
+  EXPECT_FALSE(std::binary_search(dense.begin(), dense.end(), cdem::dem::pair_key(1500, 1502)));
+  EXPECT_TRUE(candidates(cdem::dem::LaneIsa::Avx512, true).empty());
+  EXPECT_TRUE(candidates(cdem::dem::LaneIsa::None, true).empty());
+}
+
 }  // namespace
