@@ -141,9 +141,8 @@ inline std::size_t partners_of(const Grid& grid, int k, int end, std::size_t i, 
 }
 
 // The same, eight discs at a time: the same operations in every lane (so the same partners),
-// and the partners' keys packed into the low lanes in a register and stored as one vector (a
-// compressing store runs in microcode on AMD's Zen 4), so `out` needs room for eight keys past
-// the last partner.
+// and the partners' keys packed into the low lanes of a register and stored as one plain vector,
+// so `out` needs room for eight keys past the last partner.
 CDEM_AVX512 inline std::size_t partners_of_lanes8(const Grid& grid, int k, int end, std::size_t i,
                                                   double xi, double yi, double ri,
                                                   std::uint64_t* out, std::size_t found) {
