@@ -205,7 +205,8 @@ TEST(SharedOut, CriticalStepAndScaledMassesDoNotDependOnTheThreads) {
 }
 
 // The packing's radius servo: both scale_radii overloads (a shrink for all, then per disc, some
-// growing), radii and masses against the products written out, with 1, 2 and 3 threads.
+// growing), radii, masses and their inverses against the products and quotients written out,
+// with 1, 2 and 3 threads.
 TEST(SharedOut, ScaledRadiiAndMassesDoNotDependOnTheThreads) {
   const World before = lattice_with_clump();
   const double common = 0.99;
@@ -231,6 +232,16 @@ TEST(SharedOut, ScaledRadiiAndMassesDoNotDependOnTheThreads) {
                                              : before.bodies().inertia[b] *
                                                    ((common * common) * (common * common)) *
                                                    ((f * f) * (f * f)))
+          << threads << ' ' << b;
+      // No density scaling here: the integration's inverses follow, by division.
+      ASSERT_EQ(w.bodies().inv_mass_dyn[b],
+                clump ? before.bodies().inv_mass_dyn[b]
+                      : before.bodies().inv_mass_dyn[b] / (common * common) / (f * f))
+          << threads << ' ' << b;
+      ASSERT_EQ(w.bodies().inv_inertia_dyn[b], clump ? before.bodies().inv_inertia_dyn[b]
+                                                     : before.bodies().inv_inertia_dyn[b] /
+                                                           ((common * common) * (common * common)) /
+                                                           ((f * f) * (f * f)))
           << threads << ' ' << b;
     }
   }
