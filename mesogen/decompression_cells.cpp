@@ -3,25 +3,33 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dem/worker_team.hpp"
 #include "dem/world.hpp"
 
 namespace cdem::mesogen {
 namespace {
 
-// Calls pair(k, i, j, kn L^2) for every disc-disc contact `which` counts (k its index in the
-// neighbour list, L = r_i + r_j), then wall(k, i, kw r_i^2) for every disc-wall one (N m): the
-// terms of the affine stiffness, in the order every sum of them is taken.
-template <class Pair, class Wall>
-void for_each_affine_term(const dem::World& w, AffineContacts which, Pair&& pair, Wall&& wall) {
+// Calls pair(k, i, j, kn L^2) for every disc-disc contact `which` counts among [begin, end)
+// (k its index in the neighbour list, L = r_i + r_j; N m), in ascending k.
+template <class Pair>
+void for_each_affine_pair_term(const dem::World& w, AffineContacts which, std::size_t begin,
+                               std::size_t end, Pair&& pair) {
   const bool touching_only = which == AffineContacts::Touching;
   const dem::Discs& d = w.discs();
   const dem::LinearContact& law = w.settings().laws[static_cast<int>(dem::ContactClass::Mortar)];
-  for (std::size_t k = 0; k < w.contacts().keys.size(); ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     if (touching_only && w.pair_forces().overlap[k] <= 0) continue;
     const std::int32_t i = w.contacts().first[k], j = w.contacts().second[k];
     const double l = d.r[i] + d.r[j];
     pair(k, i, j, law.normal_stiffness(d.r[i], d.r[j]) * l * l);
   }
+}
+
+// Calls wall(k, i, kw r_i^2) for every disc-wall contact `which` counts (N m), in ascending k.
+template <class Wall>
+void for_each_affine_wall_term(const dem::World& w, AffineContacts which, Wall&& wall) {
+  const bool touching_only = which == AffineContacts::Touching;
+  const dem::Discs& d = w.discs();
   const double kw =
       w.settings().laws[static_cast<int>(dem::ContactClass::Wall)].wall_normal_stiffness();
   for (std::size_t k = 0; k < w.contacts().wall_keys.size(); ++k) {
@@ -32,6 +40,15 @@ void for_each_affine_term(const dem::World& w, AffineContacts which, Pair&& pair
   }
 }
 
+// The terms of the affine stiffness, in the order every sum of them is taken: pair(k, i, j,
+// kn L^2) for every disc-disc contact `which` counts, then wall(k, i, kw r_i^2) for every
+// disc-wall one.
+template <class Pair, class Wall>
+void for_each_affine_term(const dem::World& w, AffineContacts which, Pair&& pair, Wall&& wall) {
+  for_each_affine_pair_term(w, which, 0, w.contacts().keys.size(), pair);
+  for_each_affine_wall_term(w, which, wall);
+}
+
 int cells_along(double length, double cell) {
   return std::max(1, static_cast<int>(std::ceil(length / cell)));
 }
@@ -39,10 +56,39 @@ int cells_along(double length, double cell) {
 }  // namespace
 
 double affine_stiffness(const dem::World& world, double area, AffineContacts which) {
+  // With a team, member 0 sums the first share of the disc-disc terms as it forms them; the
+  // others store their shares' terms (+0 for a contact not counted), and member 0 goes on over
+  // them after the join, in contact order. The sum starts at +0 and no term is negative, so an
+  // added +0 leaves it as the skip does: the bits of one thread. A packing on two threads asks
+  // for this every ten cycles, and its second thread waited through it (docs/performance.md
+  // "Session 48").
+  const std::size_t pairs = world.contacts().keys.size();
+  dem::WorkerTeam* const team = world.measure_team();
+  const int members = dem::share_out_members(team, pairs);
+  const std::size_t own_end = dem::member_range(pairs, 0, members).end;
+  thread_local std::vector<double> stored;  // N m, contact own_end + q at q; reused
+  stored.resize(pairs - own_end);
+  // Taken here, as a member on another thread would name its own `stored`.
+  double* const terms = stored.data();
+  // A member must not throw: the per-pair results' check (they are kept) runs here.
+  if (which == AffineContacts::Touching) static_cast<void>(world.pair_forces());
   double sum = 0;
-  for_each_affine_term(
-      world, which, [&sum](std::size_t, std::int32_t, std::int32_t, double s) { sum += s; },
-      [&sum](std::size_t, std::int32_t, double s) { sum += s; });
+  dem::share_out(team, pairs, [&](int t, int m) {
+    const dem::MemberRange share = dem::member_range(pairs, t, m);
+    if (t == 0) {
+      for_each_affine_pair_term(
+          world, which, share.begin, share.end,
+          [&sum](std::size_t, std::int32_t, std::int32_t, double s) { sum += s; });
+      return;
+    }
+    std::fill(terms + (share.begin - own_end), terms + (share.end - own_end), 0.0);
+    for_each_affine_pair_term(world, which, share.begin, share.end,
+                              [terms, own_end](std::size_t k, std::int32_t, std::int32_t,
+                                               double s) { terms[k - own_end] = s; });
+  });
+  for (const double s : stored) sum += s;
+  for_each_affine_wall_term(world, which,
+                            [&sum](std::size_t, std::int32_t, double s) { sum += s; });
   return sum / (2.0 * area);
 }
 

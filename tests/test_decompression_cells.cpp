@@ -1,15 +1,18 @@
 // The decompression of a wide mould cell by cell (mesogen/decompression_cells.hpp): each cell's
 // ratio of contact virial to affine stiffness against its closed form for touching equal discs
 // and for a disc on a wall, a contact across two cells shared half and half, a cell without
-// contacts on the mould's ratio.
+// contacts on the mould's ratio; the affine stiffness shared out on a team with the bits of the
+// sum in contact order.
 #include "mesogen/decompression_cells.hpp"
 
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/specimen.hpp"
 #include "dem/measure.hpp"
+#include "dem/worker_team.hpp"
 #include "dem/world.hpp"
 
 namespace {
@@ -92,6 +95,50 @@ TEST(DecompressionCells, EachCellShrinksByItsOwnVirialOverAffineStiffness) {
   // The whole mould's affine stiffness: sum S over 2A.
   EXPECT_NEAR(affine_stiffness(w, mould.area(), AffineContacts::Touching),
               (pairs_s + wall_s) / (2 * mould.area()), 1e-12 * kn);
+}
+
+// A packing on two threads asks for the affine stiffness every ten cycles, shared out
+// (affine_stiffness): on a lattice of discs of scattered radii, some touching and some not, long
+// enough to be shared out, it equals the sum over the contacts in contact order written here, to
+// the bit, on one, two and three threads.
+TEST(DecompressionCells, AffineStiffnessOnATeamHasTheBitsOfTheSumInContactOrder) {
+  constexpr int kSide = 100;              // discs per row and column
+  constexpr double kSpacing = 1.98 * kR;  // m: equal discs would overlap by 1 % of a diameter
+  const double area = (kSide * kSpacing) * (kSide * kSpacing);  // m^2
+  for (const int threads : {1, 2, 3}) {
+    cdem::dem::WorldSettings s;
+    s.laws.fill(cdem::dem::LinearContact{16e9, 1.0, 0.0});
+    s.threads = threads;
+    cdem::dem::World w(s);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> radius(0.97 * kR, 1.01 * kR);  // about half touch
+    for (int row = 0; row < kSide; ++row)
+      for (int col = 0; col < kSide; ++col)
+        w.add_disc(col * kSpacing, row * kSpacing, radius(rng), 2500);
+    w.step();
+    const cdem::dem::Discs& d = w.discs();
+    const cdem::dem::ContactStore& c = w.contacts();
+    ASSERT_GE(c.keys.size(), cdem::dem::kShareOutAbove) << "too few pairs to be shared out";
+    const cdem::dem::LinearContact& law = s.laws[0];
+    double touching = 0, candidates = 0;  // N m
+    std::size_t touching_pairs = 0;
+    for (std::size_t k = 0; k < c.keys.size(); ++k) {
+      const double ri = d.r[c.first[k]], rj = d.r[c.second[k]];
+      const double term = law.normal_stiffness(ri, rj) * (ri + rj) * (ri + rj);
+      candidates += term;
+      if (w.pair_forces().overlap[k] > 0) {
+        touching += term;
+        ++touching_pairs;
+      }
+    }
+    ASSERT_GT(touching_pairs, c.keys.size() / 4);
+    ASSERT_LT(touching_pairs, 3 * c.keys.size() / 4);
+    // Candidates first: a stored term left from it would show in the touching sum.
+    EXPECT_EQ(affine_stiffness(w, area, AffineContacts::Candidates), candidates / (2.0 * area))
+        << threads;
+    EXPECT_EQ(affine_stiffness(w, area, AffineContacts::Touching), touching / (2.0 * area))
+        << threads;
+  }
 }
 
 }  // namespace
