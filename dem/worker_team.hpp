@@ -93,6 +93,38 @@ void share_out(WorkerTeam* team, std::size_t items, Job&& job) {
   team->run(member);
 }
 
+// The sum of term(k) over k in [0, n) with the bits of `double sum = 0; for (k = 0; k < n; ++k)
+// sum += term(k);`, shared out on `team` (share_out's members). Member 0 runs own_work(), then
+// adds the terms of [0, own_end) as it forms them; the other members store the terms of
+// [own_end, n) in `stored`, and member 0 goes on over them after the join, in ascending k. Of
+// [0, n), member 0 takes `own_shares` shares (0 to 1: less for more own work) and every other
+// member one. A term that the loop would leave out may be given as +0: a sum that starts at +0
+// is never -0 (x + y is -0 only for x = y = -0), and s + (+0) = s for every other s. Neither
+// own_work nor term may throw.
+template <class Term, class OwnWork>
+double shared_ordered_sum(WorkerTeam* team, std::size_t n, double own_shares, Term&& term,
+                          OwnWork&& own_work, std::vector<double>& stored) {
+  const int members = share_out_members(team, n);
+  const std::size_t own_end =
+      members > 1 ? static_cast<std::size_t>(static_cast<double>(n) * own_shares /
+                                             (own_shares + static_cast<double>(members - 1)))
+                  : n;
+  stored.resize(n - own_end);
+  double* const terms = stored.data();  // term k at k - own_end
+  double sum = 0;
+  share_out(team, n, [&](int t, int m) {
+    if (t == 0) {
+      own_work();
+      for (std::size_t k = 0; k < own_end; ++k) sum += term(k);
+      return;
+    }
+    const MemberRange share = member_range(n - own_end, t - 1, m - 1);
+    for (std::size_t q = share.begin; q < share.end; ++q) terms[q] = term(own_end + q);
+  });
+  for (const double s : stored) sum += s;
+  return sum;
+}
+
 // CPU time of the calling thread (s): what a thread's work costs, whatever the machine's load.
 double thread_cpu_seconds();
 
