@@ -1,14 +1,15 @@
 #include "dem/contact_energy.hpp"
 
 #include <algorithm>
+#include <vector>
 
 namespace cdem::dem {
 
 namespace {
 
 // The strain energy of one disc pair (J per m), split as ContactEnergy books it: its linear
-// springs and its bond. A pair's two parts are formed separately, so that the two sums can run
-// on two threads, each whole and in pair order (the bits of one loop).
+// springs and its bond. A pair's two parts are formed separately, so that the two sums can be
+// shared out on a team, each in pair order (the bits of one loop).
 class PairStrain {
  public:
   explicit PairStrain(const World& world)
@@ -91,13 +92,6 @@ class PairStrain {
     return sum;
   }
 
-  double bond_sum() const {
-    double sum = 0, energy = 0;
-    for (std::size_t k = 0; k < pairs(); ++k)
-      if (bond(k, energy)) sum += energy;
-    return sum;
-  }
-
  private:
   const World& world_;
   const Discs& d_;
@@ -111,15 +105,21 @@ class PairStrain {
 ContactEnergy contact_energy(const World& world) {
   ContactEnergy e;
   const PairStrain strain(world);
-  // With a team, the two sums run at once, each on one thread (each whole: the same bits);
-  // otherwise one loop forms both.
-  if (WorkerTeam* team = world.measure_team();
-      team && team->size() >= 2 && strain.pairs() >= kShareOutAbove) {
-    auto job = [&](int t) {
-      if (t == 0) e.linear_strain = strain.linear_sum();
-      if (t == 1) e.bond_strain = strain.bond_sum();
-    };
-    team->run(job);
+  // With a team, member 0 forms the linear sum whole and then its share of the bond sum, the
+  // others the rest of the bond terms, each sum with the bits of its loop in pair order
+  // (shared_ordered_sum); otherwise one loop forms both. Member 0 takes a third of a share of the
+  // bond terms: a C30 specimen's bond term costs about twice a linear one, and with the bond
+  // sum whole on the second thread the first waited half its time (docs/performance.md
+  // "Session 48").
+  if (WorkerTeam* team = world.measure_team(); share_out_members(team, strain.pairs()) > 1) {
+    thread_local std::vector<double> stored;  // J/m, reused from call to call
+    e.bond_strain = shared_ordered_sum(
+        team, strain.pairs(), 1.0 / 3.0,
+        [&strain](std::size_t k) {
+          double energy = 0;
+          return strain.bond(k, energy) ? energy : 0.0;
+        },
+        [&] { e.linear_strain = strain.linear_sum(); }, stored);
   } else {
     double energy = 0;
     for (std::size_t k = 0; k < strain.pairs(); ++k) {
