@@ -34,8 +34,8 @@ bool grows(double factor) {
 // (its disc's radius scaled by sqrt(f2)); the integration's inverses too unless density scaling
 // sets them at every rebuild. Through local pointers (the arrays' data pointers were re-read at
 // every body, as a store could have changed them) and with a factor of 1 for a clump in place of
-// a skip (x * 1 and x / 1 are x: the same bits), so the loop runs without a branch; 0.7x the
-// samples of the packing's radius change (docs/performance.md "Session 48").
+// a skip (x * 1 and x / 1 are x: the same bits), so the loop runs without a branch; about 0.75x
+// the samples of the packing's radius change (docs/performance.md "Session 48").
 template <class F2>
 void scale_free_body_masses(Bodies& bodies, std::size_t begin, std::size_t end, F2&& f2_of,
                             bool density_scaling) {
