@@ -9,7 +9,9 @@
 namespace cdem::dem {
 
 struct Bodies {
-  // Kinematics, world frame.
+  // Kinematics, world frame. For a free disc, these and the resultants below are a copy of its
+  // disc's record and load sums, which the integration steps alone; World keeps the copy current
+  // for its readers (dem/integrator.hpp catch_up_free_bodies).
   StaggeredArray<double> x, y;    // m, centroid
   StaggeredArray<double> theta;   // rad, orientation (only clumps need it to place pebbles)
   StaggeredArray<double> vx, vy;  // m/s, at the half step t - dt/2 (central difference)

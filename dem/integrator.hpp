@@ -26,15 +26,17 @@ T local_damping(T force, T velocity, T alpha) {
 }
 
 // Each body's force and moment first: its discs' sums about its centroid plus the applied loads,
-// into bodies.fx/fy/moment (gathered body by body in the integration's loop, not in a pass of their
-// own). Then v(t + dt/2) = v(t - dt/2) + dt F_damped / m; x(t + dt) = x(t) + dt v(t + dt/2);
-// likewise for the rotation. Prescribed bodies keep their velocity. Then carries the body motion to
-// the discs (pebble positions from their offsets). With a ledger, adds to it the energy removed by
-// damping and the work of the applied loads (force . mean of the two half-step velocities . dt,
-// which is exactly what the kinetic energy at the half step sees) and of the prescribed bodies;
-// nullptr skips them (they were 17 % of the integration's CPU time with the contact power, which
-// strain_to_half_step now forms only when read; docs/performance.md). Returns the first non-finite
-// body and a bound on how far any disc moved (the neighbour list's rebuild check sums it).
+// into bodies.fx/fy/moment (in registers for free discs in lanes; gathered body by body in the
+// integration's loop, not in a pass of their own). Then v(t + dt/2) = v(t - dt/2) + dt F_damped /
+// m; x(t + dt) = x(t) + dt v(t + dt/2); likewise for the rotation, for a free disc on its record
+// (catch_up_free_bodies below). Prescribed bodies keep their velocity. Then carries a clump's
+// motion to its pebbles (positions from their offsets). With a ledger, adds to it the energy
+// removed by damping and the work of the applied loads (force . mean of the two half-step
+// velocities . dt, which is exactly what the kinetic energy at the half step sees) and of the
+// prescribed bodies; nullptr skips them (they were 17 % of the integration's CPU time with the
+// contact power, which strain_to_half_step now forms only when read; docs/performance.md). Returns
+// the first non-finite body and a bound on how far any disc moved (the neighbour list's rebuild
+// check sums it).
 struct StepMotion {
   long bad_body = -1;           // the first body whose state became non-finite, or -1
   double max_displacement = 0;  // m, bound on the largest disc displacement of the step
@@ -74,6 +76,26 @@ RangeMotion integrate_range(Bodies& bodies, Discs& discs, double dt, double alph
 // Adds the sums of a whole step (all bodies, in body order) to the ledger.
 void book_step_energy(const RangeMotion& step, double dt, EnergyLedger& ledger);
 // The step's result from its sums (the bad body is looked for only if the sum is non-finite).
-StepMotion step_motion(const Bodies& bodies, const RangeMotion& step, double dt);
+StepMotion step_motion(const Bodies& bodies, const Discs& discs, const RangeMotion& step,
+                       double dt);
+
+// Where a free disc's motion lives: the integration reads and writes a free disc's position and
+// velocity on its disc's record (DiscState) and its forces on its load sums (DiscLoad) only, not
+// on its body: the body's copy cost 128 bytes of traffic per free disc and step, about a fifth of
+// a 10^6-disc step's (docs/performance.md "Session 49"). Clumps keep their motion on their bodies.
+// After a step the free discs' x, y, vx, vy, omega, fx, fy and moment in Bodies are stale until
+// this copies them back (World does before anyone reads or changes its bodies): the same values,
+// bit for bit, that the integration used to store there (fx = load fx + applied fx, as
+// gather_body_force adds them). Theta, masses and the applied loads stay on the bodies.
+void catch_up_free_bodies(Bodies& bodies, const Discs& discs);
+// Body k's motion (m, m/s, rad/s) and resultant (N, N m per m of thickness) as a catch-up gives
+// them, read from where a step keeps them (`stepped`: a step ran since the last catch-up; else
+// from the body): for a reader of a few bodies every step (a test's grips), which a catch-up of
+// every body would cost a pass over all of them.
+struct BodyMotion {
+  double x, y, vx, vy, omega;
+  double fx, fy, moment;
+};
+BodyMotion body_motion(const Bodies& bodies, const Discs& discs, std::size_t k, bool stepped);
 
 }  // namespace cdem::dem

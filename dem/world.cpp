@@ -211,9 +211,16 @@ void World::scale_radii(const std::vector<double>& factor) {
   if (!settings_.density_scaling && settings_.fixed_time_step <= 0) rebuild_pending_ = true;
 }
 
+void World::catch_up_bodies() const {
+  if (!bodies_behind_) return;
+  catch_up_free_bodies(bodies_, discs_);
+  bodies_behind_ = false;
+}
+
 void World::translate_bodies(const std::vector<double>& dx, const std::vector<double>& dy) {
   if (dx.size() != bodies_.size() || dy.size() != bodies_.size())
     throw std::invalid_argument("World::translate_bodies: one displacement per body expected");
+  catch_up_bodies();
   double largest2 = 0;  // m^2
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     bodies_.x[b] += dx[b];
@@ -230,6 +237,7 @@ void World::translate_bodies(const std::vector<double>& dx, const std::vector<do
 }
 
 void World::set_body_velocity(int b, double vx, double vy, double omega) {
+  catch_up_bodies();
   bodies_.vx[b] = vx;
   bodies_.vy[b] = vy;
   bodies_.omega[b] = omega;
@@ -452,6 +460,8 @@ void World::step() {
     ts.pass = pass;
     threaded =
         threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts, *shared);
+    // The region integrated the free discs on their records (dem/integrator.hpp).
+    if (threaded.integrated) bodies_behind_ = true;
     last_pass_ = threaded.pass;
   } else {
     last_pass_ = compute_contact_forces(discs_, walls_, contacts_, pair_forces_, wall_forces_,
@@ -493,11 +503,12 @@ void World::step() {
   StepMotion motion;
   if (threaded.integrated) {  // the region integrated already (no bond broke, no guard tripped)
     if (book) book_step_energy(threaded.motion, dt_, energy_);
-    motion = step_motion(bodies_, threaded.motion, dt_);
+    motion = step_motion(bodies_, discs_, threaded.motion, dt_);
   } else {
     motion = integrate(bodies_, discs_, dt_, settings_.local_damping, book ? &energy_ : nullptr,
                        settings_.lanes);
   }
+  bodies_behind_ = true;
   if (motion.bad_body >= 0)
     fail("has a non-finite position or velocity", bodies_.first_disc[motion.bad_body]);
   moved_bound_ += motion.max_displacement;
@@ -519,6 +530,7 @@ void World::throw_pair_results_not_kept() const {
 }
 
 double World::sum_body_force() const {
+  catch_up_bodies();
   double sum = 0;
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     if (!bodies_.prescribed[b])

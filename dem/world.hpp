@@ -17,6 +17,7 @@
 #include "dem/crack_log.hpp"
 #include "dem/discs.hpp"
 #include "dem/energy.hpp"
+#include "dem/integrator.hpp"
 #include "dem/linear_contact.hpp"
 #include "dem/memory_footprint.hpp"
 #include "dem/neighbor_list.hpp"
@@ -145,11 +146,13 @@ class World {
   // until the next rebuild is at most the new critical step (safe), and direct tension's
   // results, whose grips are prescribed after genesis, keep their bits.
   void set_prescribed(int body, bool prescribed) {
+    catch_up_bodies();
     if (bodies_.prescribed[body] && !prescribed) rebuild_pending_ = true;
     bodies_.prescribed[body] = prescribed;
   }
   // External load on a body, added to every force pass (N per m of thickness).
   void set_applied_force(int body, double fx, double fy) {
+    catch_up_bodies();  // the last step's resultants, with the load it applied
     bodies_.fx_applied[body] = fx;
     bodies_.fy_applied[body] = fy;
     bodies_.any_applied = true;
@@ -225,7 +228,18 @@ class World {
 
   // Read-only views of the state (structure of arrays; units in their headers).
   const WorldSettings& settings() const { return settings_; }
-  const Bodies& bodies() const { return bodies_; }
+  // The bodies (a free disc's motion and forces caught up from its record and load sums first:
+  // the step keeps them there, dem/integrator.hpp catch_up_free_bodies). The first read after a
+  // step writes, so not from several threads at once.
+  const Bodies& bodies() const {
+    if (bodies_behind_) catch_up_bodies();
+    return bodies_;
+  }
+  // Body b's motion and resultant as bodies() gives them, without catching up every body (for a
+  // reader of a few bodies every step).
+  BodyMotion body_motion(int b) const {
+    return dem::body_motion(bodies_, discs_, static_cast<std::size_t>(b), bodies_behind_);
+  }
   const Discs& discs() const { return discs_; }
   const Walls& walls() const { return walls_; }
   const NeighborList& neighbors() const { return neighbors_; }  // the broad phase
@@ -271,6 +285,9 @@ class World {
 
   void rebuild();
   void update_time_step();
+  // Copies the free discs' motion and forces of the last step into bodies_ (const: bodies()
+  // does it on a read; the values are the step's, only their place changes).
+  void catch_up_bodies() const;
   // The team of a world that runs several threads, else null (dem/worker_team.hpp share_out).
   WorkerTeam* team() const {
     return settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr;
@@ -282,7 +299,10 @@ class World {
   [[noreturn]] void fail(const std::string& what, long disc) const;
 
   WorldSettings settings_;
-  Bodies bodies_;
+  // Mutable for catch_up_bodies, which a read of bodies() runs; bodies_behind_: the free discs'
+  // x, y, vx, vy, omega, fx, fy, moment in bodies_ are those before the last step.
+  mutable Bodies bodies_;
+  mutable bool bodies_behind_ = false;
   Discs discs_;
   Walls walls_;
   NeighborList neighbors_;  // reports the candidate pairs

@@ -400,8 +400,9 @@ struct Loading {
     if (bending) return w.walls().fy[top_wall];
     if (!grips) return 0.5 * (w.walls().fy[top_wall] - w.walls().fy[bottom_wall]);
     double top = 0, bottom = 0;
-    for (const std::int32_t b : top_grip) top += w.bodies().fy[b];
-    for (const std::int32_t b : bottom_grip) bottom += w.bodies().fy[b];
+    // Body by body, not bodies(): that would catch up every body each step (dem/world.hpp).
+    for (const std::int32_t b : top_grip) top += w.body_motion(b).fy;
+    for (const std::int32_t b : bottom_grip) bottom += w.body_motion(b).fy;
     return 0.5 * band_sense * (bottom - top);
   }
   // Sum of the supports' reactions on a beam (N per m), upward positive.
@@ -412,8 +413,8 @@ struct Loading {
   // the load point's deflection (the supports stand still).
   double travel(const World& w) const {
     if (!grips) return (top_y0 - bottom_y0) - (w.walls().ay[top_wall] - w.walls().ay[bottom_wall]);
-    return band_sense * ((w.bodies().y[top_grip.front()] - top_y0) -
-                         (w.bodies().y[bottom_grip.front()] - bottom_y0));
+    return band_sense * ((w.body_motion(top_grip.front()).y - top_y0) -
+                         (w.body_motion(bottom_grip.front()).y - bottom_y0));
   }
   // Work done on the specimen by the loading ends over one step of length dt (J per m).
   double work(const World& w, double dt) const {
@@ -423,8 +424,10 @@ struct Loading {
         if (k >= 0) p -= w.walls().fx[k] * w.walls().vx[k] + w.walls().fy[k] * w.walls().vy[k];
     } else {
       for (const auto* band : {&bottom_grip, &top_grip})
-        for (const std::int32_t b : *band)
-          p -= w.bodies().fx[b] * w.bodies().vx[b] + w.bodies().fy[b] * w.bodies().vy[b];
+        for (const std::int32_t b : *band) {
+          const BodyMotion m = w.body_motion(b);
+          p -= m.fx * m.vx + m.fy * m.vy;
+        }
     }
     return p * dt;
   }

@@ -14,7 +14,10 @@ struct WorldTestAccess {
   // The settings, changed in place: no neighbour-list rebuild, no time-step update.
   static WorldSettings& stale_settings(World& w) { return w.settings_; }
   // The bodies, changed in place: the discs do not follow.
-  static Bodies& bodies(World& w) { return w.bodies_; }
+  static Bodies& bodies(World& w) {
+    w.catch_up_bodies();
+    return w.bodies_;
+  }
   // Gives the bodies of a multi-thread world's cycle (it must have stepped once with its team)
   // the owners a test wants: thread owners[b] evaluates the pairs of body b's discs and
   // integrates it. They stay until the cycle's next rebalance or neighbour-list rebuild.
