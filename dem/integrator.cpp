@@ -313,23 +313,6 @@ void book_step_energy(const RangeMotion& m, double dt, EnergyLedger& ledger) {
   ledger.prescribed_work += dt * m.prescribed;
 }
 
-BodyMotion body_motion(const Bodies& b, const Discs& d, std::size_t k, bool stepped) {
-  if (b.is_clump[k] || !stepped)
-    return {b.x[k], b.y[k], b.vx[k], b.vy[k], b.omega[k], b.fx[k], b.fy[k], b.moment[k]};
-  const auto first = static_cast<std::size_t>(b.first_disc[k]);
-  const DiscState& disc = d.state[first];
-  const DiscLoad& load = d.load[first];
-  // gather_body_force's free-disc branch: the same sums, so the same bits.
-  return {disc.x,
-          disc.y,
-          disc.vx,
-          disc.vy,
-          disc.omega,
-          load.fx + b.fx_applied[k],
-          load.fy + b.fy_applied[k],
-          load.moment};
-}
-
 void catch_up_free_bodies(Bodies& b, const Discs& d) {
   for (std::size_t k = 0; k < b.size(); ++k) {
     if (b.is_clump[k]) continue;

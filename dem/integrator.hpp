@@ -96,6 +96,22 @@ struct BodyMotion {
   double x, y, vx, vy, omega;
   double fx, fy, moment;
 };
-BodyMotion body_motion(const Bodies& bodies, const Discs& discs, std::size_t k, bool stepped);
+// Inline: the catch-up calls it for every free disc.
+inline BodyMotion body_motion(const Bodies& b, const Discs& d, std::size_t k, bool stepped) {
+  if (b.is_clump[k] || !stepped)
+    return {b.x[k], b.y[k], b.vx[k], b.vy[k], b.omega[k], b.fx[k], b.fy[k], b.moment[k]};
+  const auto first = static_cast<std::size_t>(b.first_disc[k]);
+  const DiscState& disc = d.state[first];
+  const DiscLoad& load = d.load[first];
+  // gather_body_force's free-disc branch: the same sums, so the same bits.
+  return {disc.x,
+          disc.y,
+          disc.vx,
+          disc.vy,
+          disc.omega,
+          load.fx + b.fx_applied[k],
+          load.fy + b.fy_applied[k],
+          load.moment};
+}
 
 }  // namespace cdem::dem
