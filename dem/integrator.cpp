@@ -116,11 +116,11 @@ bool free_discs(const Bodies& b, std::size_t k) {
 
 // The free-disc branch of integrate_bodies on lanes, the same operations in the same order, on
 // the discs' records: a free disc's position, velocity and forces are not copied to its body
-// (FreeDiscKinematics, dem/bodies.hpp), which saves 128 bytes of traffic per disc-step (read and
-// write of x, y, vx, vy, omega; write of fx, fy, moment). kApplied = false (Bodies::any_applied
-// false: every applied load is +0) adds a constant +0 for the applied loads instead of reading
-// them, which gives the same bits.
-// Lane code: called only from the integrate_free_discs below, which inline it.
+// (catch_up_free_bodies, dem/integrator.hpp), which saves 128 bytes of traffic per free disc and
+// step (read and write of x, y, vx, vy, omega; write of fx, fy, moment). kApplied = false
+// (Bodies::any_applied false: every applied load is +0) adds a constant +0 for the applied loads
+// instead of reading them, which gives the same bits. Lane code: called only from the
+// integrate_free_discs below, which inline it.
 template <bool kBook, bool kDamped, bool kApplied, class L>
 void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::size_t k,
                              const BodyEnergyArrays* per_body, FreeDiscLanes<kLanes<L>>& out) {
@@ -316,15 +316,9 @@ void book_step_energy(const RangeMotion& m, double dt, EnergyLedger& ledger) {
 void catch_up_free_bodies(Bodies& b, const Discs& d) {
   for (std::size_t k = 0; k < b.size(); ++k) {
     if (b.is_clump[k]) continue;
-    const BodyMotion m = body_motion(b, d, k, true);
-    b.x[k] = m.x;
-    b.y[k] = m.y;
-    b.vx[k] = m.vx;
-    b.vy[k] = m.vy;
-    b.omega[k] = m.omega;
-    b.fx[k] = m.fx;
-    b.fy[k] = m.fy;
-    b.moment[k] = m.moment;
+    // What the disc-by-disc integration stores: the same copies and sums, so the same bits.
+    catch_up_free_disc(b, d, k);
+    gather_body_force(b, d, k);
   }
 }
 

@@ -96,7 +96,6 @@ struct BodyMotion {
   double x, y, vx, vy, omega;
   double fx, fy, moment;
 };
-// Inline: the catch-up calls it for every free disc.
 inline BodyMotion body_motion(const Bodies& b, const Discs& d, std::size_t k, bool stepped) {
   if (b.is_clump[k] || !stepped)
     return {b.x[k], b.y[k], b.vx[k], b.vy[k], b.omega[k], b.fx[k], b.fy[k], b.moment[k]};

@@ -13,7 +13,8 @@ namespace cdem::dem {
 struct WorldTestAccess {
   // The settings, changed in place: no neighbour-list rebuild, no time-step update.
   static WorldSettings& stale_settings(World& w) { return w.settings_; }
-  // The bodies, changed in place: the discs do not follow.
+  // The bodies, changed in place: the discs do not follow. A clump's only: a step reads a free
+  // disc's motion from its disc (dem/integrator.hpp catch_up_free_bodies).
   static Bodies& bodies(World& w) {
     w.catch_up_bodies();
     return w.bodies_;
