@@ -230,7 +230,8 @@ class World {
   const WorldSettings& settings() const { return settings_; }
   // The bodies (a free disc's motion and forces caught up from its record and load sums first:
   // the step keeps them there, dem/integrator.hpp catch_up_free_bodies). The first read after a
-  // step writes, so not from several threads at once.
+  // step writes, so not from several threads at once; and a reference kept across a step shows a
+  // free disc's motion and resultant of before it until bodies() is called again.
   const Bodies& bodies() const {
     if (bodies_behind_) catch_up_bodies();
     return bodies_;
