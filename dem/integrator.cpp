@@ -41,14 +41,6 @@ void catch_up_free_disc(Bodies& b, const Discs& d, std::size_t k) {
   b.omega[k] = disc.omega;
 }
 
-// Body k's centre (m), where it is kept: a free disc's on its record.
-double body_x(const Bodies& b, const Discs& d, std::size_t k) {
-  return b.is_clump[k] ? b.x[k] : d.x[static_cast<std::size_t>(b.first_disc[k])];
-}
-double body_y(const Bodies& b, const Discs& d, std::size_t k) {
-  return b.is_clump[k] ? b.y[k] : d.y[static_cast<std::size_t>(b.first_disc[k])];
-}
-
 // Energy terms of one body over one step, before the common factor dt / 2: damping and
 // applied work as force x (v_old + v_new). T = double for one body, Lanes8 or Lanes4 for several.
 template <class T>
@@ -327,7 +319,8 @@ StepMotion step_motion(const Bodies& b, const Discs& d, const RangeMotion& m, do
   motion.max_displacement = dt * std::max(std::sqrt(m.disc_speed2), m.pebble_speed);
   if (!std::isfinite(m.position_sum))
     for (std::size_t k = 0; k < b.size(); ++k)
-      if (!std::isfinite(body_x(b, d, k) + body_y(b, d, k) + b.theta[k])) {
+      if (const BodyMotion now = body_motion(b, d, k, true);
+          !std::isfinite(now.x + now.y + b.theta[k])) {
         motion.bad_body = static_cast<long>(k);
         break;
       }

@@ -507,8 +507,8 @@ void World::step() {
   } else {
     motion = integrate(bodies_, discs_, dt_, settings_.local_damping, book ? &energy_ : nullptr,
                        settings_.lanes);
+    bodies_behind_ = true;
   }
-  bodies_behind_ = true;
   if (motion.bad_body >= 0)
     fail("has a non-finite position or velocity", bodies_.first_disc[motion.bad_body]);
   moved_bound_ += motion.max_displacement;
