@@ -49,9 +49,8 @@ double wall_slip_velocity(const Discs& d, const Walls& walls, std::int32_t i, st
 
 long disc_wall_forces(const Discs& d, const Walls& walls, ContactStore& list, ContactForces& out,
                       const LinearContact& law, double dt, double guard, double& slip_work,
-                      double* slip_by_pair) {
+                      double* slip_by_pair, std::size_t begin, std::size_t end) {
   ContactStates& state = list.wall_state;
-  const std::size_t count = list.wall_keys.size();
   // The slip work of pair k, added to the pass total or stored (every pair: zeros too).
   const auto book_slip = [&](std::size_t k, double work) {
     if (slip_by_pair)
@@ -59,9 +58,9 @@ long disc_wall_forces(const Discs& d, const Walls& walls, ContactStore& list, Co
     else
       slip_work += work;
   };
-  long bad = static_cast<long>(count);
+  long bad = static_cast<long>(end);
   const double kn = law.wall_normal_stiffness(), ks = law.shear_stiffness(kn);
-  for (std::size_t k = 0; k < count; ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     const std::int32_t i = list.wall_disc[k], wi = list.wall_index[k];
     double px, py;
     closest_on_wall(walls, wi, d.x[i], d.y[i], px, py);
@@ -117,7 +116,7 @@ long disc_wall_forces(const Discs& d, const Walls& walls, ContactStore& list, Co
     out.cx[k] = d.x[i] - arm * nx;
     out.cy[k] = d.y[i] - arm * ny;
   }
-  return bad == static_cast<long>(count) ? -1 : bad;
+  return bad == static_cast<long>(end) ? -1 : bad;
 }
 
 void prepare_force_results(ContactForces& pair, ContactForces& wall_pair,
@@ -184,7 +183,7 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
       disc_disc_pass(discs, list, pair, laws, bonds, dt, max_overlap_ratio, options, result);
   result.bad_wall_pair =
       disc_wall_forces(discs, walls, list, wall_pair, laws[static_cast<int>(ContactClass::Wall)],
-                       dt, max_overlap_ratio, result.slip_work, nullptr);
+                       dt, max_overlap_ratio, result.slip_work, nullptr, 0, list.wall_keys.size());
   add_wall_pairs(discs, list, wall_pair, 0, list.wall_keys.size());
   wall_totals(walls, list, wall_pair, discs, result);
   if (!options.virial) result.virial = std::numeric_limits<double>::quiet_NaN();

@@ -101,13 +101,15 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
 
 // Sizes the per-pair results to the neighbour list.
 void prepare_force_results(ContactForces& pair, ContactForces& wall_pair, const ContactStore& list);
-// Evaluates every disc-wall pair into `wall_pair` (the wall is the first body, the disc the
-// second; n points from the closest point of the segment or arc to the disc centre) and updates
-// their shear state. Slip work is added to `slip_work` in pair order, or, with `slip_by_pair`,
-// stored per pair instead. Returns the first pair tripping the guard, or -1.
+// Evaluates the disc-wall pairs [begin, end) into `wall_pair` (the wall is the first body, the
+// disc the second; n points from the closest point of the segment or arc to the disc centre) and
+// updates their shear state. Slip work is added to `slip_work` in pair order, or, with
+// `slip_by_pair`, stored per pair instead. Reads the pairs' discs and walls, writes only the
+// pairs' entries, so disjoint ranges may run at once. Returns the first pair of the range tripping
+// the guard, or -1.
 long disc_wall_forces(const Discs& discs, const Walls& walls, ContactStore& list,
                       ContactForces& wall_pair, const LinearContact& law, double dt, double guard,
-                      double& slip_work, double* slip_by_pair);
+                      double& slip_work, double* slip_by_pair, std::size_t begin, std::size_t end);
 // False for a disc-wall pair that puts nothing on its disc (apart): the sums skip it.
 inline bool wall_pair_loaded(const ContactForces& wall_pair, std::size_t k) {
   return wall_pair.normal[k] != 0 || wall_pair.fx[k] != 0 || wall_pair.fy[k] != 0;

@@ -301,7 +301,6 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   const DiscPairKernel kernel(discs, list, pair, *s.laws, *s.bonds, s.dt, s.guard, s.pass);
   const std::size_t chunk_count = chunks_.size();
   const LinearContact& wall_law = (*s.laws)[static_cast<int>(ContactClass::Wall)];
-  long bad_wall = -1;
   bool integrated = false;
   double unused_slip = 0;
   DiscLoad* const disc_load = discs.load.data();
@@ -319,6 +318,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const double start = sample ? thread_cpu_seconds() : 0;
     lane.broken.clear();
     lane.bad = -1;
+    lane.bad_wall = -1;
     lane.motion = {};
     // The take's pointers are copied into locals of this function: reached through the step's
     // frame (which escapes to the team) or through `this`, each was loaded again at every pair
@@ -392,19 +392,23 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
                         : kernel.evaluate_range(chunk.pair_begin, chunk.pair_end, take_other);
       chunk.slip_terms = slip_terms;
       if (bad < chunk.pair_end) lane.bad = static_cast<long>(bad);
+      // The chunk's disc-wall pairs (those of its discs, which this thread integrates): each
+      // pair's slip work is stored, summed in pair order after the job.
+      const long bad_wall = disc_wall_forces(
+          discs, walls, list, wall_pair, wall_law, s.dt, s.guard, unused_slip, wall_slip_.data(),
+          static_cast<std::size_t>(wall_start_[chunk.disc_begin]),
+          static_cast<std::size_t>(wall_start_[chunk.disc_end]));
+      if (lane.bad_wall < 0) lane.bad_wall = bad_wall;
     }
-    if (t == nt - 1)
-      bad_wall = disc_wall_forces(discs, walls, list, wall_pair, wall_law, s.dt, s.guard,
-                                  unused_slip, wall_slip_.data());
     if (sample) lane.seconds += thread_cpu_seconds() - start;
     team.barrier();
     const double phase2_start = sample ? thread_cpu_seconds() : 0;
     // Phase 2: this thread's discs and bodies. Every thread reads the same flags, so all take
     // the same branch.
-    bool stop = bad_wall >= 0;
+    bool stop = false;
     for (int u = 0; u < nt; ++u) {
       const Lane& other = lanes_[static_cast<std::size_t>(u)];
-      stop = stop || other.bad >= 0 || !other.broken.empty();
+      stop = stop || other.bad >= 0 || other.bad_wall >= 0 || !other.broken.empty();
     }
     // The chain over chunk c's pairs (its packed slip terms; its stored virials) and, once it
     // is integrated, its bodies' stored energy terms, from the previous chunk's sums: in pair
@@ -492,10 +496,14 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   ThreadedStep out;
   ForcePassResult& r = out.pass;
   pair.broken.clear();
-  long bad = -1;
+  long bad = -1, bad_wall = -1;
+  const auto first_of = [](long& first, long k) {
+    if (k >= 0 && (first < 0 || k < first)) first = k;
+  };
   for (int u = 0; u < nt; ++u) {
     const Lane& lane = lanes_[static_cast<std::size_t>(u)];
-    if (lane.bad >= 0 && (bad < 0 || lane.bad < bad)) bad = lane.bad;
+    first_of(bad, lane.bad);
+    first_of(bad_wall, lane.bad_wall);
     pair.broken.insert(pair.broken.end(), lane.broken.begin(), lane.broken.end());
   }
   // Each thread's list ascends; their chunks interleave.

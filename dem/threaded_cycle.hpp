@@ -97,7 +97,8 @@ class ThreadedCycle {
   // One thread's results of a step (padded so two threads never share a cache line).
   struct alignas(64) Lane {
     std::vector<std::int32_t> broken;  // pairs whose bond broke, ascending
-    long bad = -1;  // the thread's first pair tripping the guard (it evaluates no more)
+    long bad = -1;       // the thread's first pair tripping the guard (it evaluates no more)
+    long bad_wall = -1;  // the first of its disc-wall pairs tripping the guard
     // The sums of the thread's bodies; the energy terms only of the first chunk, for its owner
     // (the start of the chain over the bodies).
     RangeMotion motion;

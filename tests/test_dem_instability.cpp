@@ -147,6 +147,26 @@ TEST(InstabilityDiagnostics, StaleDensityScalingIsNamed) {
   EXPECT_TRUE(has(what, "density scaling on")) << what;
 }
 
+// A wall jumping into a row of discs: every disc-wall pair trips the overlap guard in the same
+// step, and the run names the first of them (disc 0) on one thread and on two, where each thread
+// evaluates the wall pairs of its own discs and the first is taken over the threads.
+TEST(InstabilityDiagnostics, WallOverlapNamesTheFirstPairOnAnyThreadCount) {
+  constexpr double r = 1e-3;  // m
+  for (int threads : {1, 2}) {
+    WorldSettings s;
+    s.laws.fill(LinearContact{kE, 1.0, 0.0});
+    s.max_overlap_ratio = 0.5;
+    s.threads = threads;
+    World w(s);
+    w.add_wall(-1, 0, 1, 0);
+    for (int k = 0; k < 40; ++k) w.add_disc(3 * r * k, r, r, 2500);  // apart, touching the wall
+    w.step();
+    w.set_wall_velocity(0, 0, 0.8 * r / w.time_step());  // 0.8 r into every disc in one step
+    const std::string what = run_until_error(w, 3);
+    EXPECT_TRUE(has(what, "disc 0 overlaps wall 0")) << threads << " threads: " << what;
+  }
+}
+
 TEST(InstabilityDiagnostics, StiffnessRangeOfADisc) {
   WorldSettings s;
   s.laws.fill(LinearContact{kE, 1.0, 0.0});
