@@ -34,7 +34,9 @@ class NeighborList {
   // last build (m), finite only if no radius has grown since: while the bound alone rules a
   // rebuild out (with a margin of 1e-6 of the skin for rounding), the pass over every disc is
   // skipped; when the pass runs, a finite bound is tightened to the measured displacement.
-  bool needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound) const;
+  // The pass is shared out on `team` (if any).
+  bool needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound,
+                     WorkerTeam* team = nullptr) const;
   // Finds the candidates of the current positions (pair_candidates, wall_candidates). With a
   // team of more than one thread, each member searches the partners of a contiguous range of
   // discs into its own list and the lists are joined in range order: the keys are a sorted
@@ -63,6 +65,12 @@ class NeighborList {
   std::vector<std::uint64_t> pair_keys_, wall_keys_;
   std::vector<std::vector<std::uint64_t>> member_keys_;  // per team member but the first
   std::vector<std::int32_t> scratch_;
+  // Per team member, the largest squared displacement (m^2) and radius growth (m) of its share
+  // in needs_rebuild; a line each, as each member writes its own.
+  struct alignas(64) Reach {
+    double move2, grow;
+  };
+  mutable std::vector<Reach> reach_;
 };
 
 }  // namespace cdem::dem

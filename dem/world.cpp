@@ -379,7 +379,7 @@ void realign_results(ContactForces& f, const StaggeredArray<std::uint64_t>& old_
 // their pairs, so that what reads them before the next step (a lab test's first record) reads
 // each pair's own.
 void World::refresh_neighbors() {
-  if (!rebuild_pending_ && !neighbors_.needs_rebuild(discs_, walls_, moved_bound_)) return;
+  if (!rebuild_pending_ && !neighbors_.needs_rebuild(discs_, walls_, moved_bound_, team())) return;
   const StaggeredArray<std::uint64_t> pair_keys = contacts_.keys, wall_keys = contacts_.wall_keys;
   rebuild();
   realign_results(pair_forces_, pair_keys, contacts_.keys);
@@ -439,7 +439,7 @@ void World::check_energy() {
 }
 
 void World::step() {
-  if (rebuild_pending_ || neighbors_.needs_rebuild(discs_, walls_, moved_bound_)) rebuild();
+  if (rebuild_pending_ || neighbors_.needs_rebuild(discs_, walls_, moved_bound_, team())) rebuild();
   const bool book = settings_.energy_tracking;
   // The energy check reads the contacts' strain energy, from the per-pair results.
   const bool pair_results =

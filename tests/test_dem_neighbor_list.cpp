@@ -216,6 +216,36 @@ TEST(NeighborList, TeamFindsTheCandidatesOfOneThread) {
   }
 }
 
+// needs_rebuild's pass over the discs, shared out on a team (a world above kShareOutAbove
+// discs): a disc that moved 0.6 skin asks for a rebuild, on 1, 2 and 3 threads, whether it is the
+// first of the cell order (the first member's range) or the last (the last member's); one moved
+// out and back by 0.3 skin, whose bound (0.6 skin) makes the pass run, does not.
+TEST(NeighborList, TeamSeesTheMoveOfEveryDisc) {
+  constexpr int kSide = 100;  // discs 1 mm apart, radius 0.3 mm: none touching
+  constexpr int kCount = kSide * kSide;
+  for (const int threads : {1, 2, 3})
+    for (const int moved : {0, kCount - 1})
+      for (const bool back : {false, true}) {
+        WorldSettings s = frictional(1e-12);
+        s.threads = threads;
+        World w(s);
+        for (int k = 0; k < kCount; ++k)
+          w.add_disc((k % kSide) * 1e-3, (k / kSide) * 1e-3, 0.3e-3, 2000);
+        w.refresh_neighbors();
+        const long builds = w.neighbors().build_count;
+        std::vector<double> dx(kCount, 0.0), dy(kCount, 0.0);
+        dx[moved] = (back ? 0.3 : 0.6) * w.neighbors().skin;
+        w.translate_bodies(dx, dy);
+        if (back) {
+          dx[moved] = -dx[moved];
+          w.translate_bodies(dx, dy);
+        }
+        w.refresh_neighbors();
+        EXPECT_EQ(w.neighbors().build_count - builds, back ? 0 : 1)
+            << threads << " threads, disc " << moved << (back ? " moved out and back" : "");
+      }
+}
+
 // The search in lanes (eight partners at a time where the CPU has AVX-512, dem/neighbor_list.cpp)
 // finds the candidates of the one-at-a-time search: on a dense random packing whose block rows
 // hold more than eight discs (so some rows take several groups and a partial last one), with a
