@@ -43,7 +43,7 @@ MemoryFootprint memory_footprint(const World& world) {
   const NeighborList& n = world.neighbors_;
   m.neighbor_list = capacity_bytes(n.ref_x_, n.ref_y_, n.ref_r_, n.wall_ax0_, n.wall_ay0_,
                                    n.cell_start_, n.cell_discs_, n.disc_cell_, n.pair_keys_,
-                                   n.wall_keys_, n.scratch_, n.member_keys_, n.reach_);
+                                   n.wall_keys_, n.scratch_, n.member_keys_, n.reach_, n.extent_);
   for (const auto& keys : n.member_keys_) m.neighbor_list += capacity_bytes(keys);
   const ThreadedCycle& t = world.threaded_;
   m.thread_plan = capacity_bytes(

@@ -68,16 +68,34 @@ bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls, double&
   return gap_closure(std::sqrt(move2) + grow, wall) > skin;
 }
 
-void NeighborList::build_grid(const Discs& discs) {
+// The grid and the references, with the passes over the discs that need no order shared out
+// on `team` (the extent, a minimum and maximum; each disc's cell; the references): on the main
+// thread alone they read the discs the other thread had just moved, at twice their one-thread
+// cost, while it waited. The counting sort into cells stays in one thread, in disc order.
+void NeighborList::build_grid(const Discs& discs, WorkerTeam* team) {
   const std::size_t n = discs.size();
+  const auto members = static_cast<std::size_t>(share_out_members(team, n));
+  if (extent_.size() < members) extent_.resize(members);
+  share_out(team, n, [&](int t, int m) {
+    const MemberRange range = member_range(n, t, m);
+    Extent e;
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      if (!discs.active[i]) continue;
+      e.xmin = std::min(e.xmin, discs.x[i]);
+      e.xmax = std::max(e.xmax, discs.x[i]);
+      e.ymin = std::min(e.ymin, discs.y[i]);
+      e.ymax = std::max(e.ymax, discs.y[i]);
+      e.rmax = std::max(e.rmax, discs.r[i]);
+    }
+    extent_[static_cast<std::size_t>(t)] = e;
+  });
   double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY, rmax = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!discs.active[i]) continue;
-    xmin = std::min(xmin, discs.x[i]);
-    xmax = std::max(xmax, discs.x[i]);
-    ymin = std::min(ymin, discs.y[i]);
-    ymax = std::max(ymax, discs.y[i]);
-    rmax = std::max(rmax, discs.r[i]);
+  for (std::size_t t = 0; t < members; ++t) {
+    xmin = std::min(xmin, extent_[t].xmin);
+    xmax = std::max(xmax, extent_[t].xmax);
+    ymin = std::min(ymin, extent_[t].ymin);
+    ymax = std::max(ymax, extent_[t].ymax);
+    rmax = std::max(rmax, extent_[t].rmax);
   }
   if (!(xmax >= xmin)) xmin = xmax = ymin = ymax = 0;
   // A cell at least one contact range wide, so every partner is in the 3x3 block; the grid is
@@ -92,14 +110,21 @@ void NeighborList::build_grid(const Discs& discs) {
   ny_ = static_cast<int>((ymax - ymin) / cell_) + 1;
   const std::size_t cells = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
   cell_start_.assign(cells + 1, 0);
-  disc_cell_.assign(n, -1);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!discs.active[i]) continue;
-    const int cx = std::clamp(static_cast<int>((discs.x[i] - xmin_) / cell_), 0, nx_ - 1);
-    const int cy = std::clamp(static_cast<int>((discs.y[i] - ymin_) / cell_), 0, ny_ - 1);
-    disc_cell_[i] = cy * nx_ + cx;
-    ++cell_start_[disc_cell_[i] + 1];
-  }
+  disc_cell_.resize(n);
+  share_out(team, n, [&](int t, int m) {
+    const MemberRange range = member_range(n, t, m);
+    for (std::size_t i = range.begin; i < range.end; ++i) {
+      if (!discs.active[i]) {
+        disc_cell_[i] = -1;
+        continue;
+      }
+      const int cx = std::clamp(static_cast<int>((discs.x[i] - xmin_) / cell_), 0, nx_ - 1);
+      const int cy = std::clamp(static_cast<int>((discs.y[i] - ymin_) / cell_), 0, ny_ - 1);
+      disc_cell_[i] = cy * nx_ + cx;
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    if (disc_cell_[i] >= 0) ++cell_start_[disc_cell_[i] + 1];
   for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_discs_.resize(n);
   scratch_.assign(cell_start_.begin(), cell_start_.end() - 1);
@@ -112,12 +137,15 @@ void NeighborList::build_grid(const Discs& discs) {
   ref_x_.resize(n);
   ref_y_.resize(n);
   ref_r_.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::int32_t i = cell_discs_[k];
-    ref_x_[k] = discs.x[i];
-    ref_y_[k] = discs.y[i];
-    ref_r_[k] = discs.r[i];
-  }
+  share_out(team, n, [&](int t, int m) {
+    const MemberRange range = member_range(n, t, m);
+    for (std::size_t k = range.begin; k < range.end; ++k) {
+      const std::int32_t i = cell_discs_[k];
+      ref_x_[k] = discs.x[i];
+      ref_y_[k] = discs.y[i];
+      ref_r_[k] = discs.r[i];
+    }
+  });
 }
 
 namespace {
@@ -253,7 +281,7 @@ void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t
 
 void NeighborList::build(const Discs& discs, const Walls& walls, WorkerTeam* team) {
   const std::size_t n = discs.size();
-  build_grid(discs);
+  build_grid(discs, team);
 
   // Disc-disc: member t searches discs [n t / T, n (t + 1) / T); its keys all follow those of
   // member t - 1 (their first disc is larger), so joining the lists in member order keeps the

@@ -4,6 +4,7 @@
 // skin/2 (or a wall has come that close). It only reports the candidates, as keys sorted
 // ascending (disc-disc i << 32 | j with i < j; disc-wall disc << 32 | wall); the contacts and
 // their state live in the contact store (dem/contact_store.hpp), which merges them by key.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -49,7 +50,7 @@ class NeighborList {
  private:
   // Lists this object's arrays, private ones included (dem/memory_footprint.hpp).
   friend MemoryFootprint memory_footprint(const World& world);
-  void build_grid(const Discs& discs);
+  void build_grid(const Discs& discs, WorkerTeam* team);
   // Appends to `keys` the disc-disc candidates of discs [begin, end), sorted.
   void find_pairs(const Discs& discs, std::size_t begin, std::size_t end,
                   std::vector<std::uint64_t>& keys) const;
@@ -71,6 +72,11 @@ class NeighborList {
     double move2, grow;
   };
   mutable std::vector<Reach> reach_;
+  // Per team member, the extent of its share of the active discs in build_grid (m).
+  struct alignas(64) Extent {
+    double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY, rmax = 0;
+  };
+  std::vector<Extent> extent_;
 };
 
 }  // namespace cdem::dem
