@@ -18,8 +18,8 @@
 // Phase 1: each thread zeroes the sums of its discs, evaluates its chunks' pairs with the pair
 // kernel of the one-thread pass and adds each at once onto the discs that no other thread's pair
 // reaches, which therefore get all their pairs from it in pair order; for a shared disc (one that
-// another thread's pair reaches) it stores the pair's part. Thread `threads - 1` also evaluates
-// the disc-wall pairs. Barrier. Phase 2: each thread sums the shared discs of its chunks in pair
+// another thread's pair reaches) it stores the pair's part, and it evaluates the disc-wall pairs
+// of its chunks' discs. Barrier. Phase 2: each thread sums the shared discs of its chunks in pair
 // order from the stored parts (pairs where the disc is second, then where it is first: the order
 // of the one-thread pass), adds their wall pairs and integrates its bodies. The place-order cuts
 // follow the CPU time each thread measures for its step (sampled steps), so that the threads
