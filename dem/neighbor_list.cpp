@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <limits>
 
 #include "dem/linear_contact.hpp"
 #include "dem/worker_team.hpp"
@@ -31,13 +30,8 @@ double gap_closure(double disc, double wall) {
 
 }  // namespace
 
-bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls) const {
-  double moved = std::numeric_limits<double>::infinity();
-  return needs_rebuild(discs, walls, moved);
-}
-
 bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound,
-                                 WorkerTeam* team) const {
+                                 WorkerTeam* team) {
   const std::size_t n = discs.size();
   if (ref_x_.size() != n || wall_ax0_.size() != walls.size()) return true;
   const double wall = largest_wall_move(walls, wall_ax0_, wall_ay0_);

@@ -30,14 +30,13 @@ class NeighborList {
   // True when a disc (or wall) has moved or a disc grown so much since the last build that a
   // pair not in the list could be touching: 2 (max displacement + max radius growth) > skin, or
   // that plus the largest wall displacement > skin for disc-wall pairs. Walls only translate.
-  bool needs_rebuild(const Discs& discs, const Walls& walls) const;
-  // The same answer, given `moved_bound`, a bound on the largest disc displacement since the
-  // last build (m), finite only if no radius has grown since: while the bound alone rules a
-  // rebuild out (with a margin of 1e-6 of the skin for rounding), the pass over every disc is
-  // skipped; when the pass runs, a finite bound is tightened to the measured displacement.
-  // The pass is shared out on `team` (if any).
+  // `moved_bound` is a bound on the largest disc displacement since the last build (m), finite
+  // only if no radius has grown since (infinity: no bound): while the bound alone rules a rebuild
+  // out (with a margin of 1e-6 of the skin for rounding), the pass over every disc is skipped;
+  // when the pass runs, a finite bound is tightened to the measured displacement. The pass is
+  // shared out on `team` (if any).
   bool needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound,
-                     WorkerTeam* team = nullptr) const;
+                     WorkerTeam* team = nullptr);
   // Finds the candidates of the current positions (pair_candidates, wall_candidates). With a
   // team of more than one thread, each member searches the partners of a contiguous range of
   // discs into its own list and the lists are joined in range order: the keys are a sorted
@@ -71,7 +70,7 @@ class NeighborList {
   struct alignas(64) Reach {
     double move2, grow;
   };
-  mutable std::vector<Reach> reach_;
+  std::vector<Reach> reach_;
   // Per team member, the extent of its share of the active discs in build_grid (m).
   struct alignas(64) Extent {
     double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY, rmax = 0;
