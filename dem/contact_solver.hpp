@@ -104,9 +104,9 @@ void prepare_force_results(ContactForces& pair, ContactForces& wall_pair, const 
 // Evaluates the disc-wall pairs [begin, end) into `wall_pair` (the wall is the first body, the
 // disc the second; n points from the closest point of the segment or arc to the disc centre) and
 // updates their shear state. Slip work is added to `slip_work` in pair order, or, with
-// `slip_by_pair`, stored per pair instead. Reads the pairs' discs and walls, writes only the
-// pairs' entries, so disjoint ranges may run at once. Returns the first pair of the range tripping
-// the guard, or -1.
+// `slip_by_pair`, stored per pair instead. With `slip_by_pair` it reads the pairs' discs and
+// walls and writes only the pairs' entries, so disjoint ranges may run at once. Returns the first
+// pair of the range tripping the guard, or -1.
 long disc_wall_forces(const Discs& discs, const Walls& walls, ContactStore& list,
                       ContactForces& wall_pair, const LinearContact& law, double dt, double guard,
                       double& slip_work, double* slip_by_pair, std::size_t begin, std::size_t end);
