@@ -58,7 +58,8 @@ MemoryFootprint memory_footprint(const World& world) {
   m.other = capacity_bytes(w.ax, w.ay, w.bx, w.by, w.arc, w.vx, w.vy, w.friction, w.fx, w.fy, w.sxx,
                            w.sxy, w.syx, w.syy, world.servos_.servos, world.cracks_.cracks,
                            world.energy_.last_dx, world.energy_.last_dy) +
-            world.stiffness_.other_bytes() + capacity_bytes(world.member_dt_);
+            world.stiffness_.other_bytes() +
+            capacity_bytes(world.member_dt_, world.mass_scale_behind_);
   return m;
 }
 

@@ -32,27 +32,38 @@ bool grows(double factor) {
 
 // Scales the mass of every free body b of [begin, end) by f2_of(b) and its inertia by its square
 // (its disc's radius scaled by sqrt(f2)); the integration's inverses too unless density scaling
-// sets them at every rebuild. Through local pointers (the arrays' data pointers were re-read at
-// every body, as a store could have changed them) and with a factor of 1 for a clump in place of
-// a skip (x * 1 and x / 1 are x: the same bits), so the loop runs without a branch; about 0.75x
-// the samples of the packing's radius change (docs/performance.md "Session 48").
-template <class F2>
-void scale_free_body_masses(Bodies& bodies, std::size_t begin, std::size_t end, F2&& f2_of,
-                            bool density_scaling) {
-  const std::uint8_t* const clump = bodies.is_clump.data();
-  double* const mass = bodies.mass.data();
-  double* const inertia = bodies.inertia.data();
-  double* const inv_mass = bodies.inv_mass_dyn.data();
-  double* const inv_inertia = bodies.inv_inertia_dyn.data();
+// sets them at every rebuild. Through local pointers that alias nothing (the arrays' data pointers
+// were re-read at every body, as a store could have changed them), with a factor of 1 for a clump
+// in place of a skip (x * 1 and x / 1 are x: the same bits) and one loop per case, so that it runs
+// without a branch (about 0.75x the samples of the packing's radius change: docs/performance.md
+// "Session 48"); without clumps the select goes too, and a uniform factor runs in vector registers
+// (GCC 12 does not vectorise the select on a byte; "Session 51").
+template <bool kInverses, bool kClumps, class F2>
+void scale_masses(Bodies& bodies, std::size_t begin, std::size_t end, F2&& f2_of) {
+  const std::uint8_t* __restrict const clump = bodies.is_clump.data();
+  double* __restrict const mass = bodies.mass.data();
+  double* __restrict const inertia = bodies.inertia.data();
+  double* __restrict const inv_mass = bodies.inv_mass_dyn.data();
+  double* __restrict const inv_inertia = bodies.inv_inertia_dyn.data();
   for (std::size_t b = begin; b < end; ++b) {
-    const double f2 = clump[b] ? 1.0 : f2_of(b);
+    const double f2 = kClumps && clump[b] ? 1.0 : f2_of(b);
     mass[b] *= f2;
     inertia[b] *= f2 * f2;
-    if (!density_scaling) {
+    if constexpr (kInverses) {
       inv_mass[b] /= f2;
       inv_inertia[b] /= f2 * f2;
     }
   }
+}
+template <class F2>
+void scale_free_body_masses(Bodies& bodies, std::size_t begin, std::size_t end, F2&& f2_of,
+                            bool density_scaling, bool clumps) {
+  if (density_scaling)
+    clumps ? scale_masses<false, true>(bodies, begin, end, f2_of)
+           : scale_masses<false, false>(bodies, begin, end, f2_of);
+  else
+    clumps ? scale_masses<true, true>(bodies, begin, end, f2_of)
+           : scale_masses<true, false>(bodies, begin, end, f2_of);
 }
 
 }  // namespace
@@ -62,6 +73,7 @@ World::World(WorldSettings s) : settings_(s) {
 }
 
 int World::add_disc(double x, double y, double r, double density, DiscMaterial material) {
+  apply_mass_scale_behind();  // the factors are those of the bodies already there
   const int body = static_cast<int>(bodies_.size());
   const double mass = density * std::numbers::pi * r * r * kThickness;
   bodies_.x.push_back(x);
@@ -94,6 +106,8 @@ int World::add_disc(double x, double y, double r, double density, DiscMaterial m
 int World::add_clump(double cx, double cy, double mass, double inertia,
                      const std::vector<double>& px, const std::vector<double>& py,
                      const std::vector<double>& pr, const std::vector<std::uint8_t>& active) {
+  apply_mass_scale_behind();
+  clumps_ = true;
   const int body = static_cast<int>(bodies_.size());
   bodies_.x.push_back(cx);
   bodies_.y.push_back(cy);
@@ -132,6 +146,7 @@ void World::add_container_walls(const Container& mould, int polygon_sides) {
 
 void World::set_settings(const WorldSettings& s) {
   check_settings(s);
+  apply_mass_scale_behind();  // the masses of the radius changes under the old settings
   const bool unscale = settings_.density_scaling && !s.density_scaling;
   settings_ = s;
   // Density scaling overwrote the integration inertias at every rebuild; the true ones are the
@@ -168,14 +183,21 @@ void World::remove_wall_servos(int wall) {
 // own, so the bits do not depend on the share (the packing calls this every cycle).
 void World::scale_radii(double factor) {
   const double f2 = factor * factor;
+  // Under density scaling no step reads the physical masses (mass_scale_behind_).
+  const bool defer = settings_.density_scaling;
+  if (!defer) apply_mass_scale_behind();
   share_out(team(), discs_.size(), [&](int t, int members) {
     const MemberRange discs = member_range(discs_.size(), t, members);
     for (std::size_t i = discs.begin; i < discs.end; ++i) discs_.r[i] *= factor;
+    if (defer) return;
     const MemberRange bodies = member_range(bodies_.size(), t, members);
     scale_free_body_masses(
-        bodies_, bodies.begin, bodies.end, [f2](std::size_t) { return f2; },
-        settings_.density_scaling);
+        bodies_, bodies.begin, bodies.end, [f2](std::size_t) { return f2; }, false, clumps_);
   });
+  if (defer) {
+    mass_scale_behind_.push_back(f2);
+    if (mass_scale_behind_.size() >= kMassScaleBehindAtMost) apply_mass_scale_behind();
+  }
   if (grows(factor)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
   // Uniform scaling leaves every kn unchanged (kn depends on the radius ratio only), so the
@@ -186,6 +208,7 @@ void World::scale_radii(double factor) {
 void World::scale_radii(const std::vector<double>& factor) {
   if (factor.size() != discs_.r.size())
     throw std::invalid_argument("World::scale_radii: one factor per disc expected");
+  apply_mass_scale_behind();  // the earlier factors first: each body's products in call order
   std::atomic<bool> grew{false};
   share_out(team(), discs_.size(), [&](int t, int members) {
     const MemberRange discs = member_range(discs_.size(), t, members);
@@ -203,7 +226,7 @@ void World::scale_radii(const std::vector<double>& factor) {
           const double f = factor[static_cast<std::size_t>(first_disc[b])];
           return f * f;
         },
-        settings_.density_scaling);
+        settings_.density_scaling, clumps_);
   });
   if (grew.load(std::memory_order_relaxed)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
@@ -212,9 +235,25 @@ void World::scale_radii(const std::vector<double>& factor) {
 }
 
 void World::catch_up_bodies() const {
+  apply_mass_scale_behind();
   if (!bodies_behind_) return;
   catch_up_free_bodies(bodies_, discs_);
   bodies_behind_ = false;
+}
+
+// A block of bodies at a time, so that the block stays in the core's cache while every factor
+// passes over it; each body takes the factors one after another, in call order, through the
+// function the radius change would have called: the bits of applying each at its call.
+void World::apply_mass_scale_behind() const {
+  if (mass_scale_behind_.empty()) return;
+  constexpr std::size_t kBlock = 512;  // bodies: 8 KB of masses and inertias
+  for (std::size_t begin = 0; begin < bodies_.size(); begin += kBlock) {
+    const std::size_t end = std::min(bodies_.size(), begin + kBlock);
+    for (const double f2 : mass_scale_behind_)
+      scale_free_body_masses(
+          bodies_, begin, end, [f2](std::size_t) { return f2; }, true, clumps_);
+  }
+  mass_scale_behind_.clear();
 }
 
 void World::translate_bodies(const std::vector<double>& dx, const std::vector<double>& dy) {

@@ -233,7 +233,7 @@ class World {
   // step writes, so not from several threads at once; and a reference kept across a step shows a
   // free disc's motion and resultant of before it until bodies() is called again.
   const Bodies& bodies() const {
-    if (bodies_behind_) catch_up_bodies();
+    if (bodies_behind_ || !mass_scale_behind_.empty()) catch_up_bodies();
     return bodies_;
   }
   // Body b's motion and resultant as bodies() gives them, without catching up every body (for a
@@ -289,6 +289,8 @@ class World {
   // Copies the free discs' motion and forces of the last step into bodies_ (const: bodies()
   // does it on a read; the values are the step's, only their place changes).
   void catch_up_bodies() const;
+  // Applies mass_scale_behind_ to the free bodies' masses and inertias and empties it.
+  void apply_mass_scale_behind() const;
   // The team of a world that runs several threads, else null (dem/worker_team.hpp share_out).
   WorkerTeam* team() const {
     return settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr;
@@ -304,6 +306,16 @@ class World {
   // x, y, vx, vy, omega, fx, fy, moment in bodies_ are those before the last step.
   mutable Bodies bodies_;
   mutable bool bodies_behind_ = false;
+  bool clumps_ = false;  // a clump was added (the radius changes skip clumps' masses)
+  // The squared factors of the uniform radius changes under density scaling whose physical
+  // masses and inertias bodies_ does not hold yet, in call order. No step reads them (the
+  // integration uses the scaled inverse masses), and a packing changes every radius every cycle
+  // (4.6 % of the samples of a one-thread C30 packing were that radius change, about half of it
+  // the masses: docs/performance.md "Session 51"); a read of the bodies applies them, a block of
+  // bodies at a time, as does a change that needs them (settings, radius factors per disc, new
+  // bodies), and at most kMassScaleBehindAtMost wait.
+  mutable std::vector<double> mass_scale_behind_;
+  static constexpr std::size_t kMassScaleBehindAtMost = 1024;
   Discs discs_;
   Walls walls_;
   NeighborList neighbors_;  // reports the candidate pairs

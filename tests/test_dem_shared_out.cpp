@@ -247,4 +247,47 @@ TEST(SharedOut, ScaledRadiiAndMassesDoNotDependOnTheThreads) {
   }
 }
 
+// Under density scaling the uniform radius changes leave the physical masses to a later read
+// (World::mass_scale_behind_): what a read gives must be what applying each change at once gives,
+// the products taken one call after another (more calls than may wait, a read in between, and a
+// clump, whose mass no radius change touches), with 1, 2 and 3 threads. The integration's
+// inverses are the density scaling's, which a radius change leaves alone.
+TEST(SharedOut, MassesOfRadiusChangesUnderDensityScalingAreThoseOfEachChangeInTurn) {
+  const World before = lattice_with_clump();
+  std::vector<double> factors;
+  for (int k = 0; k < 1500; ++k) factors.push_back(k % 3 ? 0.9997 : 1.0004 + 1e-7 * (k % 11));
+  for (int threads : {1, 2, 3}) {
+    WorldSettings s;
+    s.threads = threads;
+    s.density_scaling = true;
+    s.scaled_time_step = 1e-5;  // s
+    World w = lattice_with_clump(s);
+    ASSERT_GE(w.discs().size(), kShareOutAbove);
+    const Bodies& b0 = w.bodies();
+    const std::vector<double> inv_mass(b0.inv_mass_dyn.begin(), b0.inv_mass_dyn.end());
+    const std::vector<double> mass(b0.mass.begin(), b0.mass.end());
+    const std::vector<double> inertia(b0.inertia.begin(), b0.inertia.end());
+    std::vector<double> expected_mass = mass, expected_inertia = inertia;
+    for (std::size_t k = 0; k < factors.size(); ++k) {
+      const double f2 = factors[k] * factors[k];
+      w.scale_radii(factors[k]);
+      // (is_clump from the other world: a read of w's bodies applies what waits.)
+      for (std::size_t b = 0; b < mass.size(); ++b)
+        if (!before.bodies().is_clump[b]) {
+          expected_mass[b] *= f2;
+          expected_inertia[b] *= f2 * f2;
+        }
+      if (k == 700) {
+        ASSERT_TRUE(same_bits(w.bodies().mass, expected_mass)) << threads;
+      }
+    }
+    EXPECT_TRUE(same_bits(w.bodies().mass, expected_mass)) << threads;
+    EXPECT_TRUE(same_bits(w.bodies().inertia, expected_inertia)) << threads;
+    EXPECT_TRUE(same_bits(w.bodies().inv_mass_dyn, inv_mass)) << threads;
+    const std::size_t clump = mass.size() - 1;
+    EXPECT_EQ(w.bodies().mass[clump], mass[clump]) << threads;
+    EXPECT_NE(w.bodies().mass[0], mass[0]) << threads;
+  }
+}
+
 }  // namespace

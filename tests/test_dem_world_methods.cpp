@@ -104,6 +104,36 @@ TEST(WorldMethods, RadiiScaledDiscByDiscCarryTheirMassesAndInertias) {
   EXPECT_THROW(w.scale_radii(std::vector<double>(3, 1.0)), std::invalid_argument);
 }
 
+// Under density scaling a uniform radius change leaves the physical masses to a later read; a
+// disc added after it and a switch back to the true masses see them as if applied at once: the
+// new disc's mass is that of its own radius, and the integration's inverses are those of the
+// changed masses.
+TEST(WorldMethods, MassesOfRadiusChangesUnderDensityScalingAreInPlaceForAnAddAndASwitch) {
+  World w = resting_square();
+  w.set_density_scaling(true, 1e-6);
+  w.step();
+  const std::vector<double> mass(w.bodies().mass.begin(), w.bodies().mass.end());
+  const std::vector<double> inertia(w.bodies().inertia.begin(), w.bodies().inertia.end());
+  for (double f : {0.99, 0.995, 1.001}) w.scale_radii(f);
+  const double f2[] = {0.99 * 0.99, 0.995 * 0.995, 1.001 * 1.001};
+  const double r_new = 0.5 * kR, density = 2500;  // m, kg/m3
+  const int added = w.add_disc(3 * kR, 3 * kR, r_new, density);
+  w.set_density_scaling(false, 1e-6);
+  const Bodies& b = w.bodies();
+  for (std::size_t k = 0; k < mass.size(); ++k) {
+    double m = mass[k], i = inertia[k];
+    for (double g : f2) {
+      m *= g;
+      i *= g * g;
+    }
+    EXPECT_EQ(b.mass[k], m) << k;
+    EXPECT_EQ(b.inertia[k], i) << k;
+    EXPECT_EQ(b.inv_mass_dyn[k], 1.0 / m) << k;
+  }
+  const double m_new = density * std::numbers::pi * r_new * r_new * kThickness;  // kg
+  EXPECT_DOUBLE_EQ(b.mass[static_cast<std::size_t>(added)], m_new);
+}
+
 TEST(WorldMethods, FixedStepTakesOverAtTheNextStepAndZeroGivesTheAutomaticOneBack) {
   World w = resting_square();
   w.step();
