@@ -229,9 +229,11 @@ class World {
   // Read-only views of the state (structure of arrays; units in their headers).
   const WorldSettings& settings() const { return settings_; }
   // The bodies (a free disc's motion and forces caught up from its record and load sums first:
-  // the step keeps them there, dem/integrator.hpp catch_up_free_bodies). The first read after a
-  // step writes, so not from several threads at once; and a reference kept across a step shows a
-  // free disc's motion and resultant of before it until bodies() is called again.
+  // the step keeps them there, dem/integrator.hpp catch_up_free_bodies; and the physical masses
+  // of the radius changes under density scaling, mass_scale_behind_). The first read after a
+  // step or such a radius change writes, so not from several threads at once; and a reference
+  // kept across either shows a free disc's motion and resultant, or the masses, of before it
+  // until bodies() is called again.
   const Bodies& bodies() const {
     if (bodies_behind_ || !mass_scale_behind_.empty()) catch_up_bodies();
     return bodies_;
