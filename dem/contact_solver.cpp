@@ -20,7 +20,7 @@ std::size_t add_disc_pairs(const DiscPairKernel& kernel, std::size_t count,
                            std::vector<std::int32_t>& broken, ForcePassResult& result) {
   ForcePassResult totals = result;  // a local of this function, so the sums stay in registers
   const std::size_t bad = kernel.evaluate_range(
-      0, count, [&](std::size_t k, const DiscPairKernel::Geometry& g, const PairForce& f) {
+      0, count, [&](std::size_t k, const DiscPairKernel::Geometry& g, const auto& f) {
         kernel.add<kVirial>(k, g, f, totals, broken);
       });
   result = totals;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include "dem/contact_solver.hpp"
@@ -96,6 +97,19 @@ ResolvedPairOf<T> resolve(const PairGeometryOf<T>& g, T normal, T shear, T bond_
   return f;
 }
 
+// The linear law's compression-only normal part: stiffness (N/m) and force (N) of a pair of
+// geometry g with the E* (Pa) of its class.
+template <class T>
+struct LinearNormalOf {
+  T kn, fn;
+};
+
+template <class T>
+LinearNormalOf<T> linear_normal(const PairGeometryOf<T>& g, T emod) {
+  const T kn = disc_normal_stiffness(emod, g.ri, g.rj, g.inverse_length);
+  return {kn, kn * max_of(g.overlap, T{})};
+}
+
 // The linear part of a pair: trial shear force of the step (N, along t) and the
 // compression-only normal force (N).
 template <class T>
@@ -112,13 +126,14 @@ struct LinearPartOf {
 template <class T>
 LinearPartOf<T> linear_part(const PairGeometryOf<T>& g, const PairMotionOf<T>& m, T emod,
                             T shear_per_normal_stiffness, T old_shear, T dt) {
+  const LinearNormalOf<T> normal = linear_normal(g, emod);
   LinearPartOf<T> l;
-  l.kn = disc_normal_stiffness(emod, g.ri, g.rj, g.inverse_length);
+  l.kn = normal.kn;
   l.ks = l.kn * shear_per_normal_stiffness;
   l.vt = tangential_velocity(g, m);
   l.old = old_shear;
   l.trial = linear_shear_increment(l.old, l.ks, l.vt, dt);
-  l.fn = l.kn * max_of(g.overlap, T{});
+  l.fn = normal.fn;
   return l;
 }
 
@@ -173,6 +188,16 @@ struct ParallelBondLanes {
   L modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
 };
 
+// The force of a pair that carries its normal force alone: an unbonded pair of a frictionless
+// class, evaluated in lanes (DiscPairKernel::normal_lane_law). Its moments are zeros, which the
+// additions onto the discs' sums leave out: a sum that starts at +0 is never -0 (x + y is -0
+// only if x and y both are), and adding +0 or -0 to any other value leaves its bits as they
+// are, so the sums keep the bits of adding them.
+struct NormalPairForce : PairForce {};
+
+template <class F>
+inline constexpr bool kNormalOnly = std::is_same_v<F, NormalPairForce>;
+
 // A pair's force onto the sums of its second disc j (+f and moment_j) and of its first disc i
 // (-f and moment_i), N and N m. F: a PairForce, or any record of fx, fy, moment_i, moment_j.
 template <class F>
@@ -188,34 +213,36 @@ void add_onto_first(double& fx, double& fy, double& m, const F& f) {
   m += f.moment_i;
 }
 
-// Adds a force (N) and a moment (N m) onto a disc's record, (fx, fy) as one two-double vector.
-inline void add_onto(DiscLoad& sum, double fx, double fy, double moment) {
+// Adds a force (N) onto a disc's record as one two-double vector.
+inline void add_onto(DiscLoad& sum, double fx, double fy) {
   using Double2 = double __attribute__((vector_size(16)));
   const Double2 force = {fx, fy};
   Double2 s;
   std::memcpy(&s, &sum.fx, sizeof s);
   s += force;
   std::memcpy(&sum.fx, &s, sizeof s);
-  sum.moment += moment;
 }
 
 // A pair's force onto the record of its second disc j (+f and moment_j) and of its first disc i
-// (-f and moment_i). x + -y is x - y in every bit, so each sum takes the additions of the
-// scalar add_onto_second / add_onto_first above.
+// (-f and moment_i); a NormalPairForce's zero moments left out. x + -y is x - y in every bit, so
+// each sum takes the additions of the scalar add_onto_second / add_onto_first above.
 template <class F>
 void add_onto_second(DiscLoad& sum, const F& f) {
-  add_onto(sum, f.fx, f.fy, f.moment_j);
+  add_onto(sum, f.fx, f.fy);
+  if constexpr (!kNormalOnly<F>) sum.moment += f.moment_j;
 }
 template <class F>
 void add_onto_first(DiscLoad& sum, const F& f) {
-  add_onto(sum, -f.fx, -f.fy, f.moment_i);
+  add_onto(sum, -f.fx, -f.fy);
+  if constexpr (!kNormalOnly<F>) sum.moment += f.moment_i;
 }
 
 // Adds a pair's force onto both discs' sums. Straight onto memory: the pairs of a first disc
 // run one after another, and keeping that disc's sums in registers over its run cost a
 // mispredicted branch at every run's end, more than the store-to-load round trips it saved
 // (docs/performance.md "Session 32"). Each sum takes its additions in pair order either way.
-inline void add_onto_discs(DiscLoad* load, std::int32_t i, std::int32_t j, const PairForce& f) {
+template <class F>
+void add_onto_discs(DiscLoad* load, std::int32_t i, std::int32_t j, const F& f) {
   add_onto_second(load[j], f);
   add_onto_first(load[i], f);
 }
@@ -302,6 +329,7 @@ class DiscPairKernel {
       by_class_.joint_cohesion[c] = j.cohesion;
       by_class_.tan_joint_friction_angle[c] = tan_joint_friction_angle_[c];
       flat_joint_laws_ = flat_joint_laws_ || bonds[c].kind == BondKind::FlatJoint;
+      frictionless_ = frictionless_ && !(laws[c].mu > 0);
     }
   }
 
@@ -356,18 +384,24 @@ class DiscPairKernel {
     constexpr std::size_t n = kLanes<L>;
     PairLanes<n> out[kGeometryBlock / n];
     const std::size_t groups = (stop - start) / n;
-    evaluate_lanes(start, groups, out);
-    std::size_t k = start;
-    for (std::size_t q = 0; q < groups; ++q, k += n)
-      for (std::size_t l = 0; l < n; ++l) {
-        if (!(out[q].done >> l & 1)) {
-          evaluate_one(k + l, geometry(k + l), bad, take);
-          continue;
+    const auto take_groups = [&]<class F>() __attribute__((always_inline)) {
+      std::size_t k = start;
+      for (std::size_t q = 0; q < groups; ++q, k += n)
+        for (std::size_t l = 0; l < n; ++l) {
+          if (!(out[q].done >> l & 1)) {
+            evaluate_one(k + l, geometry(k + l), bad, take);
+            continue;
+          }
+          if (!(out[q].within_guard >> l & 1)) bad = std::min(bad, k + l);
+          take(k + l, out[q].geometry(l, first_[k + l], second_[k + l]),
+               out[q].template force<F>(l));
         }
-        if (!(out[q].within_guard >> l & 1)) bad = std::min(bad, k + l);
-        take(k + l, out[q].geometry(l, first_[k + l], second_[k + l]), out[q].force(l));
-      }
-    return k;
+      return k;
+    };
+    // A block of normal forces alone (evaluate_lanes) is handed on as NormalPairForce.
+    if (evaluate_lanes(start, groups, out))
+      return take_groups.template operator()<NormalPairForce>();
+    return take_groups.template operator()<PairForce>();
   }
 
   // Pair k alone: evaluated, its guard test folded into `bad`, handed to `take`. Always inlined,
@@ -424,8 +458,8 @@ class DiscPairKernel {
   // stay in registers). Pairs apart carry zeros, so adding them unconditionally keeps the loop
   // branch-free. kVirial: sum the virial; a pass without per-pair results reports none
   // (ForcePassResult), and its loop is compiled without the sum.
-  template <bool kVirial>
-  void add(std::size_t k, const Geometry& g, const PairForce& f, ForcePassResult& totals,
+  template <bool kVirial, class F>
+  void add(std::size_t k, const Geometry& g, const F& f, ForcePassResult& totals,
            std::vector<std::int32_t>& broken) const {
     add_onto_discs(disc_load_, g.i, g.j, f);
     if constexpr (kVirial) totals.virial += virial(g, f);
@@ -459,8 +493,9 @@ class DiscPairKernel {
       g.inverse_length = inverse_length[l];
       return g;
     }
-    PairForce force(std::size_t l) const {
-      PairForce f;
+    template <class F>
+    F force(std::size_t l) const {
+      F f;
       f.normal = normal[l];
       f.overlap = overlap[l];
       f.fx = fx[l];
@@ -480,14 +515,15 @@ class DiscPairKernel {
   // writes nothing and is left out of `done`, for the one-pair path. The discs' data come as their
   // records (a line each, transposed into lanes), the class constants by a permutation of a
   // register holding the classes' values. One body (evaluate_lanes_of) compiled for AVX-512 and
-  // for AVX2.
-  CDEM_LANES8_TARGET void evaluate_lanes(std::size_t k, std::size_t groups,
+  // for AVX2. Returns true when every pair of the groups is unbonded and of a frictionless class
+  // (normal_lane_law: forces without moments).
+  CDEM_LANES8_TARGET bool evaluate_lanes(std::size_t k, std::size_t groups,
                                          PairLanes<8>* out) const {
-    evaluate_lanes_of<Lanes8>(k, groups, out);
+    return evaluate_lanes_of<Lanes8>(k, groups, out);
   }
-  CDEM_LANES4_TARGET void evaluate_lanes(std::size_t k, std::size_t groups,
+  CDEM_LANES4_TARGET bool evaluate_lanes(std::size_t k, std::size_t groups,
                                          PairLanes<4>* out) const {
-    evaluate_lanes_of<Lanes4>(k, groups, out);
+    return evaluate_lanes_of<Lanes4>(k, groups, out);
   }
 
   // Lane code: called only from the functions above, which inline it. The groups of pairs
@@ -496,14 +532,26 @@ class DiscPairKernel {
   // division; the groups' chains are independent, and they overlap only if no law stands
   // between them (docs/performance.md "Session 31").
   template <class L>
-  void evaluate_lanes_of(std::size_t k, std::size_t groups, PairLanes<kLanes<L>>* out) const {
+  bool evaluate_lanes_of(std::size_t k, std::size_t groups, PairLanes<kLanes<L>>* out) const {
     constexpr std::size_t n = kLanes<L>;
     PairGeometryOf<L> g[kGeometryBlock / n];
+    if (frictionless_ && unbonded_pairs(k, groups * n)) {
+      // Every pair carries its normal force alone (lane_law gives an unbonded pair of a
+      // frictionless class no shear force and no moment): no velocities, no shear history. The
+      // generator's packing runs every block this way.
+      for (std::size_t q = 0; q < groups; ++q) {
+        PairMotionOf<L> unread;  // its loads and transposes are dropped by the compiler
+        lane_geometry<L>(k + q * n, g[q], unread);
+      }
+      for (std::size_t q = 0; q < groups; ++q) normal_lane_law<L>(k + q * n, g[q], out[q]);
+      return true;
+    }
     PairMotionOf<L> m[kGeometryBlock / n];
     for (std::size_t q = 0; q < groups; ++q) lane_geometry<L>(k + q * n, g[q], m[q]);
     for (std::size_t q = 0; q < groups; ++q) lane_law<L>(k + q * n, g[q], m[q], out[q]);
     if (flat_joint_laws_)
       for (std::size_t q = 0; q < groups; ++q) flat_joint_group<L>(k + q * n, g[q], m[q], out[q]);
+    return false;
   }
 
   // The geometry and velocities of pairs k .. k + n - 1, from their discs' records (a line
@@ -566,12 +614,26 @@ class DiscPairKernel {
       store_where(bonded_done, bond_shear_ + k, r.state.fs);
       store_where(bonded_done, bond_moment_ + k, r.state.m);
     }
-    if (pair_results_) {
-      store_where(done, normal_ + k, f.normal);
-      store_where(done, overlap_ + k, f.overlap);
-      store_where(done, fx_ + k, f.fx);
-      store_where(done, fy_ + k, f.fy);
-    }
+    store_group(k, done, g, f, select(keeps_shear, c.slip_work, L{}), out);
+  }
+
+  // The law of lane_law for pairs k .. k + n - 1 that are all unbonded and of frictionless
+  // classes: the normal force of the linear law, no shear force (the history stays zero), no
+  // bond moment. The same operations on each pair's normal force as lane_law's, so the same bits.
+  template <class L>
+  void normal_lane_law(std::size_t k, const PairGeometryOf<L>& g, PairLanes<kLanes<L>>& out) const {
+    const LinearNormalOf<L> c = linear_normal(g, lookup<L>(by_class_.emod, contact_class_ + k));
+    store(shear_ + k, L{});
+    constexpr unsigned all = (1u << kLanes<L>)-1u;
+    store_group(k, all, g, dem::resolve(g, c.fn, L{}, L{}), L{}, out);
+  }
+
+  // Pairs k .. k + n - 1 of geometry g, force f and slip work (J per m) into `out` with the lanes
+  // `done` and the guard's test, and into the per-pair results where the pass keeps them.
+  template <class L>
+  void store_group(std::size_t k, unsigned done, const PairGeometryOf<L>& g,
+                   const ResolvedPairOf<L>& f, L slip_work, PairLanes<kLanes<L>>& out) const {
+    store_pair_results(k, done, f);
     store(out.ri, g.ri);
     store(out.rj, g.rj);
     store(out.overlap, g.overlap);
@@ -583,9 +645,26 @@ class DiscPairKernel {
     store(out.fy, f.fy);
     store(out.moment_i, f.moment_i);
     store(out.moment_j, f.moment_j);
-    store(out.slip_work, select(keeps_shear, c.slip_work, L{}));
+    store(out.slip_work, slip_work);
     out.done = done;
     out.within_guard = lane_bits(is_at_most(g.overlap, guard_ * min_of(g.ri, g.rj)));
+  }
+
+  // The per-pair results of the lanes `done` of pairs k .. k + n - 1, where the pass keeps them.
+  template <class L>
+  void store_pair_results(std::size_t k, unsigned done, const ResolvedPairOf<L>& f) const {
+    if (!pair_results_) return;
+    store_where(done, normal_ + k, f.normal);
+    store_where(done, overlap_ + k, f.overlap);
+    store_where(done, fx_ + k, f.fx);
+    store_where(done, fy_ + k, f.fy);
+  }
+
+  // True when none of pairs [k, k + count) has a bond (BondKind::None is 0).
+  bool unbonded_pairs(std::size_t k, std::size_t count) const {
+    std::uint8_t any = 0;
+    for (std::size_t q = k; q < k + count; ++q) any |= bond_[q];
+    return any == 0;
   }
 
   // The flat-jointed pairs of the group k .. k + n - 1 of geometry g and velocities m, after
@@ -606,12 +685,7 @@ class DiscPairKernel {
     if (!done) return;
     const ResolvedPairOf<L> f = dem::resolve(g, -joint.fn, joint.fs, joint.moment);
     store_where(done, shear_ + k, L{});  // the joint's elements hold the shear force
-    if (pair_results_) {
-      store_where(done, normal_ + k, f.normal);
-      store_where(done, overlap_ + k, f.overlap);
-      store_where(done, fx_ + k, f.fx);
-      store_where(done, fy_ + k, f.fy);
-    }
+    store_pair_results(k, done, f);
     store_where(done, out.normal, f.normal);
     store_where(done, out.fx, f.fx);
     store_where(done, out.fy, f.fy);
@@ -934,6 +1008,7 @@ class DiscPairKernel {
   LaneIsa lanes_;
   bool pair_results_;
   bool flat_joint_laws_ = false;  // some class installs flat joints
+  bool frictionless_ = true;      // no class has friction (mu > 0)
 };
 
 }  // namespace cdem::dem

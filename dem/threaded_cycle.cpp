@@ -343,7 +343,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // Pairs that reach no shared disc are added onto both discs at once, as the one-thread pass
     // adds them; the others (special_pairs_, ascending) store their part for the shared disc.
     // Inlined into evaluate_range (see there): a call per pair cost 3x the additions.
-    const auto take = [&](std::size_t k, const Geometry& gk, const PairForce& f)
+    const auto take = [&](std::size_t k, const Geometry& gk, const auto& f)
         __attribute__((always_inline)) {
       const std::int32_t i = gk.i, j = gk.j;
       if (k != static_cast<std::size_t>(special->pair)) {
@@ -356,13 +356,13 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       }
       if (f.failure != BondFailure::None) broken.push_back(static_cast<std::int32_t>(k));
     };
-    const auto take_first = [&](std::size_t k, const Geometry& gk, const PairForce& f)
+    const auto take_first = [&](std::size_t k, const Geometry& gk, const auto& f)
         __attribute__((always_inline)) {
       if (pair_virial) virial += DiscPairKernel::virial(gk, f);
       slip_work += f.slip_work;
       take(k, gk, f);
     };
-    const auto take_other = [&](std::size_t k, const Geometry& gk, const PairForce& f)
+    const auto take_other = [&](std::size_t k, const Geometry& gk, const auto& f)
         __attribute__((always_inline)) {
       if (pair_virial) pair_virial[k] = DiscPairKernel::virial(gk, f);
       slip_out[slip_terms] = f.slip_work;

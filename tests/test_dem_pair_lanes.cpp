@@ -422,6 +422,53 @@ INSTANTIATE_TEST_SUITE_P(FrictionAndLanes, PairLanesPass,
                          testing::Combine(testing::Values(0.5, 0.0),
                                           testing::Values(LaneIsa::Avx2, LaneIsa::Avx512)));
 
+// An unbonded packing of frictionless classes (the generator's): every group of the pass in lanes
+// takes the normal law alone (DiscPairKernel::normal_lane_law) and leaves every per-pair result
+// and state with the bits of evaluating each pair alone, including the shear forces the pairs
+// had under friction before (zeroed by both).
+class FrictionlessLanesPass : public testing::TestWithParam<LaneIsa> {};
+
+TEST_P(FrictionlessLanesPass, GivesTheBitsOfOnePairAtATime) {
+  const LaneIsa lanes = GetParam();
+  SKIP_WITHOUT_LANE_SET(lanes);
+  WorldSettings s = cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, 0.5}, BondModel{});
+  World w(s);
+  cdem::test::add_hex_lattice(w);
+  w.scale_radii(1.02);  // neighbours overlapping
+  cdem::test::jostle(w);
+  w.cycle(5);  // contacts slipping: shear forces in the store
+  const ContactStore& store = w.contacts();
+  const std::size_t count = store.keys.size();
+  long sheared = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    ASSERT_EQ(store.state.bond[k], static_cast<std::uint8_t>(BondKind::None));
+    sheared += store.state.shear_force[k] != 0;
+  }
+  ASSERT_GT(sheared, 32);
+  ASSERT_GT(count, 4 * kGeometryBlock);  // several blocks of groups
+  s.laws.fill(LinearContact{16e9, 1.45, 0.0});
+  w.set_settings(s);
+  const TwoPasses p = pass_in_lanes_and_alone(w, lanes);
+  EXPECT_EQ(p.bad[0], p.bad[1]);
+  long touching = 0, apart = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    expect_same_pair_force(p, k);
+    touching += p.forces[1][k].normal > 0;
+    apart += p.forces[1][k].normal == 0;
+  }
+  EXPECT_GT(touching, 0);  // pairs in contact and candidates apart, in the same groups
+  EXPECT_GT(apart, 0);
+  expect_same_elements(p.out[0].normal, p.out[1].normal);
+  expect_same_elements(p.out[0].overlap, p.out[1].overlap);
+  expect_same_elements(p.out[0].fx, p.out[1].fx);
+  expect_same_elements(p.out[0].fy, p.out[1].fy);
+  expect_same_elements(p.store[0].state.shear_force, p.store[1].state.shear_force);
+  for (std::size_t k = 0; k < count; ++k) ASSERT_EQ(p.store[0].state.shear_force[k], 0.0) << k;
+}
+
+INSTANTIATE_TEST_SUITE_P(Lanes, FrictionlessLanesPass,
+                         testing::Values(LaneIsa::Avx2, LaneIsa::Avx512));
+
 // The same for flat joints (DiscPairKernel::flat_joint_group): a jostled lattice of flat-jointed
 // pairs, some installed slit and some with elements broken before the compared pass, so that
 // lanes of intact joints, of damaged ones (the unbonded elements' law) and of joints breaking in
@@ -509,6 +556,32 @@ TEST_P(PairLanesRun, RunsWithAndWithoutLanesEndAlike) {
       cdem::test::jostle(w);
       w.cycle(300);
       ASSERT_GT(w.cracks().size(), 0u);
+      const std::vector<double> b = cdem::test::world_bits(w);
+      if (reference.empty()) {
+        reference = b;
+      } else {
+        cdem::test::expect_same_bits(reference, b);
+      }
+    }
+}
+
+// The same for an unbonded frictionless packing whose discs grow (the generator's expansion):
+// its pass in lanes takes the normal law alone.
+TEST(PairLanesRun, AFrictionlessPackingRunsWithAndWithoutLanesAlike) {
+  if (lane_isa_of_cpu() == LaneIsa::None) GTEST_SKIP() << "this CPU has no lanes";
+  std::vector<double> reference;
+  for (int threads : {1, 2})
+    for (LaneIsa lanes : {LaneIsa::None, LaneIsa::Avx2, LaneIsa::Avx512}) {
+      if (usable_lanes(lanes) != lanes) continue;
+      WorldSettings s = cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.0}, {});
+      s.lanes = lanes;
+      World w(s);
+      cdem::test::add_hex_lattice(w);
+      cdem::test::jostle(w);
+      for (int c = 0; c < 300; ++c) {
+        w.scale_radii(1.0001);
+        w.step();
+      }
       const std::vector<double> b = cdem::test::world_bits(w);
       if (reference.empty()) {
         reference = b;
