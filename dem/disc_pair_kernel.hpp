@@ -189,7 +189,8 @@ struct ParallelBondLanes {
 };
 
 // The force of a pair that carries its normal force alone: an unbonded pair of a frictionless
-// class, evaluated in lanes (DiscPairKernel::normal_lane_law). Its moments are zeros, which the
+// class, evaluated in lanes (DiscPairKernel::normal_lane_law). Its moments are zeros (of a finite
+// geometry; a pair with a non-finite overlap trips the guard, which stops the run), which the
 // additions onto the discs' sums leave out: a sum that starts at +0 is never -0 (x + y is -0
 // only if x and y both are), and adding +0 or -0 to any other value leaves its bits as they
 // are, so the sums keep the bits of adding them.
@@ -329,7 +330,8 @@ class DiscPairKernel {
       by_class_.joint_cohesion[c] = j.cohesion;
       by_class_.tan_joint_friction_angle[c] = tan_joint_friction_angle_[c];
       flat_joint_laws_ = flat_joint_laws_ || bonds[c].kind == BondKind::FlatJoint;
-      frictionless_ = frictionless_ && !(laws[c].mu > 0);
+      if (c != static_cast<int>(ContactClass::Wall))  // no disc pair has the walls' class
+        frictionless_ = frictionless_ && !(laws[c].mu > 0);
     }
   }
 
@@ -515,8 +517,8 @@ class DiscPairKernel {
   // writes nothing and is left out of `done`, for the one-pair path. The discs' data come as their
   // records (a line each, transposed into lanes), the class constants by a permutation of a
   // register holding the classes' values. One body (evaluate_lanes_of) compiled for AVX-512 and
-  // for AVX2. Returns true when every pair of the groups is unbonded and of a frictionless class
-  // (normal_lane_law: forces without moments).
+  // for AVX2. Returns true when every pair of the groups is unbonded and every class of disc pairs
+  // frictionless (normal_lane_law: forces without moments).
   CDEM_LANES8_TARGET bool evaluate_lanes(std::size_t k, std::size_t groups,
                                          PairLanes<8>* out) const {
     return evaluate_lanes_of<Lanes8>(k, groups, out);
@@ -540,7 +542,7 @@ class DiscPairKernel {
       // frictionless class no shear force and no moment): no velocities, no shear history. The
       // generator's packing runs every block this way.
       for (std::size_t q = 0; q < groups; ++q) {
-        PairMotionOf<L> unread;  // its loads and transposes are dropped by the compiler
+        PairMotionOf<L> unread;  // the law reads no velocity
         lane_geometry<L>(k + q * n, g[q], unread);
       }
       for (std::size_t q = 0; q < groups; ++q) normal_lane_law<L>(k + q * n, g[q], out[q]);
@@ -617,9 +619,10 @@ class DiscPairKernel {
     store_group(k, done, g, f, select(keeps_shear, c.slip_work, L{}), out);
   }
 
-  // The law of lane_law for pairs k .. k + n - 1 that are all unbonded and of frictionless
-  // classes: the normal force of the linear law, no shear force (the history stays zero), no
-  // bond moment. The same operations on each pair's normal force as lane_law's, so the same bits.
+  // The law of lane_law (and of linear(), one pair at a time) for pairs k .. k + n - 1 that are
+  // all unbonded and of frictionless classes: the normal force of the linear law, no shear force
+  // (the history stays zero), no bond moment. The same operations on each pair's normal force as
+  // lane_law's, so the same bits.
   template <class L>
   void normal_lane_law(std::size_t k, const PairGeometryOf<L>& g, PairLanes<kLanes<L>>& out) const {
     const LinearNormalOf<L> c = linear_normal(g, lookup<L>(by_class_.emod, contact_class_ + k));
@@ -1008,7 +1011,7 @@ class DiscPairKernel {
   LaneIsa lanes_;
   bool pair_results_;
   bool flat_joint_laws_ = false;  // some class installs flat joints
-  bool frictionless_ = true;      // no class has friction (mu > 0)
+  bool frictionless_ = true;      // no class of disc pairs has friction (mu > 0)
 };
 
 }  // namespace cdem::dem

@@ -12,6 +12,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <tuple>
@@ -316,7 +317,8 @@ TYPED_TEST(PairLanes, ParallelBondLawGivesEachLaneTheBitsOfOnePair) {
 }
 
 // The pass over every pair of `w`, on copies of its discs and contacts: [0] in `lanes`, [1] one
-// pair at a time.
+// pair at a time. Each pair is also added onto its discs' cleared sums and onto the pass totals
+// as the one-thread pass adds it (DiscPairKernel::add), with the force type the kernel hands on.
 struct TwoPasses {
   explicit TwoPasses(const World& w)
       : discs{w.discs(), w.discs()}, store{w.contacts(), w.contacts()} {}
@@ -324,23 +326,47 @@ struct TwoPasses {
   ContactStore store[2];
   ContactForces out[2], wall_out[2];
   std::vector<PairForce> forces[2];
+  ForcePassResult totals[2];
+  std::vector<std::int32_t> broken[2];
   std::size_t bad[2] = {};
 };
 
-TwoPasses pass_in_lanes_and_alone(const World& w, LaneIsa lanes) {
+// `prepare` changes both copies of the contacts alike before the passes.
+TwoPasses pass_in_lanes_and_alone(const World& w, LaneIsa lanes,
+                                  const std::function<void(ContactStore&)>& prepare = {}) {
   TwoPasses p(w);
   const std::size_t count = p.store[0].keys.size();
   for (int c = 0; c < 2; ++c) {
+    if (prepare) prepare(p.store[c]);
     prepare_force_results(p.out[c], p.wall_out[c], p.store[c]);
+    clear_loads(p.discs[c].load.data(), p.discs[c].load.data() + p.discs[c].load.size());
     const DiscPairKernel kernel(p.discs[c], p.store[c], p.out[c], w.settings().laws,
                                 w.settings().bonds, w.time_step(), w.settings().max_overlap_ratio,
                                 PassOptions{.lanes = c == 0 ? lanes : LaneIsa::None});
     std::vector<PairForce>& to = p.forces[c];
     to.resize(count);
-    p.bad[c] = kernel.evaluate_range(
-        0, count, [&](std::size_t k, const auto&, const PairForce& f) { to[k] = f; });
+    p.bad[c] = kernel.evaluate_range(0, count, [&](std::size_t k, const auto& g, const auto& f) {
+      to[k] = f;
+      kernel.add<true>(k, g, f, p.totals[c], p.broken[c]);
+    });
   }
   return p;
+}
+
+// The discs' sums and the totals of the two passes, bit for bit.
+void expect_same_sums(const TwoPasses& p) {
+  ASSERT_EQ(p.discs[0].load.size(), p.discs[1].load.size());
+  for (std::size_t i = 0; i < p.discs[0].load.size(); ++i) {
+    const DiscLoad &a = p.discs[0].load[i], &b = p.discs[1].load[i];
+    ASSERT_EQ(bits(a.fx), bits(b.fx)) << "disc " << i;
+    ASSERT_EQ(bits(a.fy), bits(b.fy)) << "disc " << i;
+    ASSERT_EQ(bits(a.moment), bits(b.moment)) << "disc " << i;
+  }
+  EXPECT_EQ(bits(p.totals[0].virial), bits(p.totals[1].virial));
+  EXPECT_EQ(bits(p.totals[0].slip_work), bits(p.totals[1].slip_work));
+  EXPECT_EQ(bits(p.totals[0].bond_energy_released), bits(p.totals[1].bond_energy_released));
+  EXPECT_EQ(p.totals[0].bonds_broken, p.totals[1].bonds_broken);
+  EXPECT_EQ(p.broken[0], p.broken[1]);
 }
 
 // Pair k's results of the two passes, field by field.
@@ -403,6 +429,7 @@ TEST_P(PairLanesPass, GivesTheBitsOfOnePairAtATime) {
   if (friction > 0) {
     EXPECT_GT(slipped, 0);
   }
+  expect_same_sums(p);
   expect_same_elements(p.out[0].normal, p.out[1].normal);
   expect_same_elements(p.out[0].overlap, p.out[1].overlap);
   expect_same_elements(p.out[0].fx, p.out[1].fx);
@@ -422,52 +449,90 @@ INSTANTIATE_TEST_SUITE_P(FrictionAndLanes, PairLanesPass,
                          testing::Combine(testing::Values(0.5, 0.0),
                                           testing::Values(LaneIsa::Avx2, LaneIsa::Avx512)));
 
-// An unbonded packing of frictionless classes (the generator's): every group of the pass in lanes
-// takes the normal law alone (DiscPairKernel::normal_lane_law) and leaves every per-pair result
-// and state with the bits of evaluating each pair alone, including the shear forces the pairs
-// had under friction before (zeroed by both).
-class FrictionlessLanesPass : public testing::TestWithParam<LaneIsa> {};
+// Frictionless classes: every group of unbonded pairs of the pass in lanes takes the normal law
+// alone (DiscPairKernel::normal_lane_law, whose take adds no moments) and leaves every per-pair
+// result, state and sum with the bits of evaluating each pair alone. Two worlds: an unbonded
+// packing (the generator's), whose pairs had shear forces under friction before (zeroed by both),
+// and a bonded lattice whose odd blocks of pairs have lost their bonds, so that discs take pairs
+// of both kinds of blocks (the zero moments left out among the bonds' moments).
+// Bonded or not, and the lane set.
+class FrictionlessLanesPass : public testing::TestWithParam<std::tuple<bool, LaneIsa>> {};
 
 TEST_P(FrictionlessLanesPass, GivesTheBitsOfOnePairAtATime) {
-  const LaneIsa lanes = GetParam();
+  const auto [bonded, lanes] = GetParam();
   SKIP_WITHOUT_LANE_SET(lanes);
-  WorldSettings s = cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, 0.5}, BondModel{});
+  const LinearContact frictionless{16e9, 1.45, 0.0};
+  WorldSettings s =
+      cdem::test::lattice_settings(1, bonded ? frictionless : LinearContact{16e9, 1.45, 0.5},
+                                   bonded ? cdem::test::weak_parallel_bond() : BondModel{});
   World w(s);
   cdem::test::add_hex_lattice(w);
-  w.scale_radii(1.02);  // neighbours overlapping
-  cdem::test::jostle(w);
-  w.cycle(5);  // contacts slipping: shear forces in the store
-  const ContactStore& store = w.contacts();
-  const std::size_t count = store.keys.size();
-  long sheared = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    ASSERT_EQ(store.state.bond[k], static_cast<std::uint8_t>(BondKind::None));
-    sheared += store.state.shear_force[k] != 0;
+  if (bonded) {
+    install_bonds(w, BondInstallation{0.03});
+  } else {
+    w.scale_radii(1.02);  // neighbours overlapping
   }
-  ASSERT_GT(sheared, 32);
+  cdem::test::jostle(w);
+  w.cycle(5);  // bonds loaded; or contacts slipping, shear forces in the store
+  const std::size_t count = w.contacts().keys.size();
   ASSERT_GT(count, 4 * kGeometryBlock);  // several blocks of groups
-  s.laws.fill(LinearContact{16e9, 1.45, 0.0});
-  w.set_settings(s);
-  const TwoPasses p = pass_in_lanes_and_alone(w, lanes);
+  const auto odd_block = [](std::size_t k) { return k / kGeometryBlock % 2 == 1; };
+  std::function<void(ContactStore&)> prepare;
+  if (bonded) {
+    long bonds_left = 0;
+    for (std::size_t k = 0; k < count; ++k)
+      bonds_left += !odd_block(k) && w.contacts().state.bond[k] != 0;
+    ASSERT_GT(bonds_left, 32);
+    prepare = [&](ContactStore& store) {
+      for (std::size_t k = 0; k < count; ++k)
+        if (odd_block(k)) store.state.break_bond(k);
+    };
+  } else {
+    long sheared = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      ASSERT_EQ(w.contacts().state.bond[k], static_cast<std::uint8_t>(BondKind::None));
+      sheared += w.contacts().state.shear_force[k] != 0;
+    }
+    ASSERT_GT(sheared, 32);
+    s.laws.fill(frictionless);
+    w.set_settings(s);
+  }
+  const TwoPasses p = pass_in_lanes_and_alone(w, lanes, prepare);
   EXPECT_EQ(p.bad[0], p.bad[1]);
   long touching = 0, apart = 0;
   for (std::size_t k = 0; k < count; ++k) {
     expect_same_pair_force(p, k);
-    touching += p.forces[1][k].normal > 0;
-    apart += p.forces[1][k].normal == 0;
+    const bool unbonded_block = !bonded || odd_block(k);
+    touching += unbonded_block && p.forces[1][k].normal > 0;
+    apart += unbonded_block && p.forces[1][k].normal == 0;
   }
-  EXPECT_GT(touching, 0);  // pairs in contact and candidates apart, in the same groups
+  EXPECT_GT(touching, 0);  // pairs in contact and candidates apart, in the unbonded blocks
   EXPECT_GT(apart, 0);
   expect_same_elements(p.out[0].normal, p.out[1].normal);
   expect_same_elements(p.out[0].overlap, p.out[1].overlap);
   expect_same_elements(p.out[0].fx, p.out[1].fx);
   expect_same_elements(p.out[0].fy, p.out[1].fy);
   expect_same_elements(p.store[0].state.shear_force, p.store[1].state.shear_force);
-  for (std::size_t k = 0; k < count; ++k) ASSERT_EQ(p.store[0].state.shear_force[k], 0.0) << k;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!bonded || odd_block(k)) {
+      ASSERT_EQ(p.store[0].state.shear_force[k], 0.0) << k;
+    }
+  }
+  expect_same_sums(p);
+  if (bonded) {
+    // Discs with a bond moment in their sum that are also a disc of an unbonded block's pair.
+    long mixed = 0;
+    for (std::size_t k = 0; k < count; ++k)
+      if (odd_block(k))
+        for (std::int32_t i : {p.store[1].first[k], p.store[1].second[k]})
+          mixed += p.discs[1].load[static_cast<std::size_t>(i)].moment != 0;
+    EXPECT_GT(mixed, 0);
+  }
 }
 
-INSTANTIATE_TEST_SUITE_P(Lanes, FrictionlessLanesPass,
-                         testing::Values(LaneIsa::Avx2, LaneIsa::Avx512));
+INSTANTIATE_TEST_SUITE_P(BondedAndLanes, FrictionlessLanesPass,
+                         testing::Combine(testing::Bool(),
+                                          testing::Values(LaneIsa::Avx2, LaneIsa::Avx512)));
 
 // The same for flat joints (DiscPairKernel::flat_joint_group): a jostled lattice of flat-jointed
 // pairs, some installed slit and some with elements broken before the compared pass, so that
@@ -530,6 +595,7 @@ TEST_P(FlatJointLanesPass, GivesTheBitsOfOnePairAtATime) {
   expect_same_elements(a.theta, b.theta);
   expect_same_elements(a.bonded, b.bonded);
   expect_same_elements(a.element_shear, b.element_shear);
+  expect_same_sums(p);
 }
 
 INSTANTIATE_TEST_SUITE_P(ElementsAndLanes, FlatJointLanesPass,
