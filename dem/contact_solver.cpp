@@ -48,8 +48,8 @@ double wall_slip_velocity(const Discs& d, const Walls& walls, std::int32_t i, st
 }  // namespace
 
 long disc_wall_forces(const Discs& d, const Walls& walls, ContactStore& list, ContactForces& out,
-                      const LinearContact& law, double dt, double guard, double& slip_work,
-                      double* slip_by_pair, std::size_t begin, std::size_t end) {
+                      const LinearContact& law, double dt, double guard, double radius_factor,
+                      double& slip_work, double* slip_by_pair, std::size_t begin, std::size_t end) {
   ContactStates& state = list.wall_state;
   // The slip work of pair k, added to the pass total or stored (every pair: zeros too).
   const auto book_slip = [&](std::size_t k, double work) {
@@ -64,7 +64,7 @@ long disc_wall_forces(const Discs& d, const Walls& walls, ContactStore& list, Co
     const std::int32_t i = list.wall_disc[k], wi = list.wall_index[k];
     double px, py;
     closest_on_wall(walls, wi, d.x[i], d.y[i], px, py);
-    const double dx = d.x[i] - px, dy = d.y[i] - py, ri = d.r[i];
+    const double dx = d.x[i] - px, dy = d.y[i] - py, ri = d.r[i] * radius_factor;
     const double d2 = dx * dx + dy * dy;
     const double mu = walls.friction[wi] >= 0 ? walls.friction[wi] : law.mu;
     if (slip_by_pair) slip_by_pair[k] = 0;
@@ -153,7 +153,7 @@ void add_wall_pairs(Discs& discs, const ContactStore& list, const ContactForces&
 }
 
 void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wall_pair,
-                 const Discs& discs, ForcePassResult& result) {
+                 const Discs& discs, double radius_factor, ForcePassResult& result) {
   for (std::size_t w = 0; w < walls.size(); ++w)
     walls.fx[w] = walls.fy[w] = walls.sxx[w] = walls.sxy[w] = walls.syx[w] = walls.syy[w] = 0;
   for (std::size_t k = 0; k < list.wall_keys.size(); ++k) {
@@ -166,7 +166,8 @@ void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wa
     walls.sxy[wi] -= wall_pair.cx[k] * py;
     walls.syx[wi] -= wall_pair.cy[k] * px;
     walls.syy[wi] -= wall_pair.cy[k] * py;
-    result.virial += wall_pair.normal[k] * (discs.r[i] - 0.5 * wall_pair.overlap[k]);
+    result.virial +=
+        wall_pair.normal[k] * (discs.r[i] * radius_factor - 0.5 * wall_pair.overlap[k]);
     ++result.touching_walls;
   }
 }
@@ -183,9 +184,10 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
       disc_disc_pass(discs, list, pair, laws, bonds, dt, max_overlap_ratio, options, result);
   result.bad_wall_pair =
       disc_wall_forces(discs, walls, list, wall_pair, laws[static_cast<int>(ContactClass::Wall)],
-                       dt, max_overlap_ratio, result.slip_work, nullptr, 0, list.wall_keys.size());
+                       dt, max_overlap_ratio, options.radius_factor, result.slip_work, nullptr, 0,
+                       list.wall_keys.size());
   add_wall_pairs(discs, list, wall_pair, 0, list.wall_keys.size());
-  wall_totals(walls, list, wall_pair, discs, result);
+  wall_totals(walls, list, wall_pair, discs, options.radius_factor, result);
   if (!options.virial) result.virial = std::numeric_limits<double>::quiet_NaN();
   return result;
 }

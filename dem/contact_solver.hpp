@@ -86,6 +86,10 @@ struct PassOptions {
   // Sum the virial (ForcePassResult::virial; else NaN), about 5 of the take's instructions per
   // pair: a packing's stress servo reads it every cycle, a lab test at its records only.
   bool virial = true;
+  // The radii the pass sees are the discs' stored radii times this factor (a radius change
+  // waiting for the step that stores it: World::scale_radii). x * 1 = x in every bit, so the
+  // default changes nothing.
+  double radius_factor = 1.0;
 };
 
 // Evaluates all contacts, updates the persistent shear and bond state (breaking bonds that
@@ -105,11 +109,13 @@ void prepare_force_results(ContactForces& pair, ContactForces& wall_pair, const 
 // disc the second; n points from the closest point of the segment or arc to the disc centre) and
 // updates their shear state. Slip work is added to `slip_work` in pair order, or, with
 // `slip_by_pair`, stored per pair instead. With `slip_by_pair` it reads the pairs' discs and
-// walls and writes only the pairs' entries, so disjoint ranges may run at once. Returns the first
+// walls and writes only the pairs' entries, so disjoint ranges may run at once. Each disc's
+// radius is its stored one times `radius_factor` (PassOptions::radius_factor). Returns the first
 // pair of the range tripping the guard, or -1.
 long disc_wall_forces(const Discs& discs, const Walls& walls, ContactStore& list,
                       ContactForces& wall_pair, const LinearContact& law, double dt, double guard,
-                      double& slip_work, double* slip_by_pair, std::size_t begin, std::size_t end);
+                      double radius_factor, double& slip_work, double* slip_by_pair,
+                      std::size_t begin, std::size_t end);
 // False for a disc-wall pair that puts nothing on its disc (apart): the sums skip it.
 inline bool wall_pair_loaded(const ContactForces& wall_pair, std::size_t k) {
   return wall_pair.normal[k] != 0 || wall_pair.fx[k] != 0 || wall_pair.fy[k] != 0;
@@ -118,8 +124,8 @@ inline bool wall_pair_loaded(const ContactForces& wall_pair, std::size_t k) {
 void add_wall_pairs(Discs& discs, const ContactStore& list, const ContactForces& wall_pair,
                     std::size_t begin, std::size_t end);
 // The walls' force and stress sums (walls.fx ... syy) and the disc-wall part of the virial and
-// of the touching count, in wall-pair order.
+// of the touching count, in wall-pair order; the radii as in disc_wall_forces.
 void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wall_pair,
-                 const Discs& discs, ForcePassResult& result);
+                 const Discs& discs, double radius_factor, ForcePassResult& result);
 
 }  // namespace cdem::dem

@@ -261,8 +261,9 @@ class DiscPairKernel {
     Geometry g;
     g.i = first_[k];
     g.j = second_[k];
-    static_cast<PairGeometryOf<double>&>(g) = pair_geometry(
-        disc_[g.j].x - disc_[g.i].x, disc_[g.j].y - disc_[g.i].y, disc_[g.i].r, disc_[g.j].r);
+    static_cast<PairGeometryOf<double>&>(g) =
+        pair_geometry(disc_[g.j].x - disc_[g.i].x, disc_[g.j].y - disc_[g.i].y,
+                      disc_[g.i].r * radius_factor_, disc_[g.j].r * radius_factor_);
     return g;
   }
 
@@ -304,7 +305,8 @@ class DiscPairKernel {
         dt_(dt),
         guard_(guard),
         lanes_(usable_lanes(options.lanes)),
-        pair_results_(options.pair_results) {
+        pair_results_(options.pair_results),
+        radius_factor_(options.radius_factor) {
     // Lanes4's lookup reads the table's first four entries as one register.
     static_assert(kContactClassCount <= 4);
     for (int c = 0; c < kContactClassCount; ++c) {
@@ -567,7 +569,9 @@ class DiscPairKernel {
     load_records(records, first_ + k, a);
     load_records(records, second_ + k, b);
     using S = DiscState;
-    g = pair_geometry(b[S::kX] - a[S::kX], b[S::kY] - a[S::kY], a[S::kR], b[S::kR]);
+    const L radius_factor = splat<L>(radius_factor_);
+    g = pair_geometry(b[S::kX] - a[S::kX], b[S::kY] - a[S::kY], a[S::kR] * radius_factor,
+                      b[S::kR] * radius_factor);
     m = {a[S::kVx], a[S::kVy], a[S::kOmega], b[S::kVx], b[S::kVy], b[S::kOmega]};
   }
 
@@ -1010,6 +1014,7 @@ class DiscPairKernel {
   double dt_, guard_;
   LaneIsa lanes_;
   bool pair_results_;
+  double radius_factor_;          // the pass's radii: the stored ones times this (PassOptions)
   bool flat_joint_laws_ = false;  // some class installs flat joints
   bool frictionless_ = true;      // no class of disc pairs has friction (mu > 0)
 };

@@ -114,8 +114,9 @@ bool free_discs(const Bodies& b, std::size_t k) {
 // instead of reading them, which gives the same bits. Lane code: called only from the
 // integrate_free_discs below, which inline it.
 template <bool kBook, bool kDamped, bool kApplied, class L>
-void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::size_t k,
-                             const BodyEnergyArrays* per_body, FreeDiscLanes<kLanes<L>>& out) {
+void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, double radius_factor,
+                             std::size_t k, const BodyEnergyArrays* per_body,
+                             FreeDiscLanes<kLanes<L>>& out) {
   using S = DiscState;
   const L dtl = splat<L>(dt), al = splat<L>(alpha);
   double* const records = reinterpret_cast<double*>(d.state.data());
@@ -150,28 +151,34 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, std::
   }
   store(out.position, x + y + theta);
   store(out.speed2, vx * vx + vy * vy);
-  // Back onto the discs' records: position and velocity; radius and offset keep theirs.
+  // Back onto the discs' records: position, velocity and the radius times the waiting factor
+  // (in the line the store writes anyway); the offset keeps its value.
   fields[S::kX] = x;
   fields[S::kY] = y;
+  fields[S::kR] = fields[S::kR] * splat<L>(radius_factor);
   fields[S::kVx] = vx;
   fields[S::kVy] = vy;
   fields[S::kOmega] = w;
   constexpr unsigned kMoved =
-      1u << S::kX | 1u << S::kY | 1u << S::kVx | 1u << S::kVy | 1u << S::kOmega;
+      1u << S::kX | 1u << S::kY | 1u << S::kR | 1u << S::kVx | 1u << S::kVy | 1u << S::kOmega;
   store_records(records, index, fields, kMoved);
 }
 
 template <bool kBook, bool kDamped, bool kApplied>
 CDEM_LANES8_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
-                                             std::size_t k, const BodyEnergyArrays* per_body,
+                                             double radius_factor, std::size_t k,
+                                             const BodyEnergyArrays* per_body,
                                              FreeDiscLanes<8>& out) {
-  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes8>(b, d, dt, alpha, k, per_body, out);
+  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes8>(b, d, dt, alpha, radius_factor, k,
+                                                            per_body, out);
 }
 template <bool kBook, bool kDamped, bool kApplied>
 CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
-                                             std::size_t k, const BodyEnergyArrays* per_body,
+                                             double radius_factor, std::size_t k,
+                                             const BodyEnergyArrays* per_body,
                                              FreeDiscLanes<4>& out) {
-  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes4>(b, d, dt, alpha, k, per_body, out);
+  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes4>(b, d, dt, alpha, radius_factor, k,
+                                                            per_body, out);
 }
 
 // kBook = false is the same loop without the energy terms, kDamped = false without local
@@ -180,8 +187,8 @@ CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, dou
 // energy terms are also stored there (the multi-thread cycle sums them in body order). n > 1:
 // runs of n free discs in lanes (8: AVX-512, 4: AVX2).
 template <bool kBook, bool kDamped, std::size_t n>
-RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::size_t begin,
-                             std::size_t end, const BodyEnergyArrays* per_body) {
+RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, double radius_factor,
+                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body) {
   RangeMotion m;
   // Sum of every position: non-finite exactly when some position is (positions are far from
   // overflow), so the loop carries one addition per body instead of a test and a branch; the
@@ -194,9 +201,11 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
       if (k + n <= end && free_discs<n>(b, k)) {
         FreeDiscLanes<n> out;
         if (b.any_applied)
-          integrate_free_discs<kBook, kDamped, true>(b, d, dt, alpha, k, per_body, out);
+          integrate_free_discs<kBook, kDamped, true>(b, d, dt, alpha, radius_factor, k, per_body,
+                                                     out);
         else
-          integrate_free_discs<kBook, kDamped, false>(b, d, dt, alpha, k, per_body, out);
+          integrate_free_discs<kBook, kDamped, false>(b, d, dt, alpha, radius_factor, k, per_body,
+                                                      out);
         for (std::size_t l = 0; l < n; ++l) {
           if constexpr (kBook) {
             m.damped += out.energy[2 * l];
@@ -249,6 +258,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
       d.vx[first] = b.vx[k];
       d.vy[first] = b.vy[k];
       d.omega[first] = b.omega[k];
+      d.r[first] *= radius_factor;
       continue;
     }
     const double c = std::cos(b.theta[k]), s = std::sin(b.theta[k]);
@@ -266,6 +276,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
       d.vx[i] = b.vx[k] - b.omega[k] * oy;
       d.vy[i] = b.vy[k] + b.omega[k] * ox;
       d.omega[i] = b.omega[k];
+      d.r[i] *= radius_factor;
     }
   }
   m.position_sum = position_sum;
@@ -278,19 +289,22 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, std::
 
 RangeMotion integrate_range(Bodies& b, Discs& d, double dt, double alpha, bool book,
                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
-                            LaneIsa lanes) {
+                            LaneIsa lanes, double radius_factor) {
   // Each combination of energy terms, damping and lane count is its own loop, with no branch on
   // them per body.
   const auto with_lanes = [&]<bool kBook, bool kDamped>() {
     switch (usable_lanes(lanes)) {
       case LaneIsa::Avx512:
-        return integrate_bodies<kBook, kDamped, 8>(b, d, dt, alpha, begin, end, per_body);
+        return integrate_bodies<kBook, kDamped, 8>(b, d, dt, alpha, radius_factor, begin, end,
+                                                   per_body);
       case LaneIsa::Avx2:
-        return integrate_bodies<kBook, kDamped, 4>(b, d, dt, alpha, begin, end, per_body);
+        return integrate_bodies<kBook, kDamped, 4>(b, d, dt, alpha, radius_factor, begin, end,
+                                                   per_body);
       case LaneIsa::None:
         break;
     }
-    return integrate_bodies<kBook, kDamped, 1>(b, d, dt, alpha, begin, end, per_body);
+    return integrate_bodies<kBook, kDamped, 1>(b, d, dt, alpha, radius_factor, begin, end,
+                                               per_body);
   };
   if (alpha != 0)
     return book ? with_lanes.template operator()<true, true>()
@@ -328,9 +342,9 @@ StepMotion step_motion(const Bodies& b, const Discs& d, const RangeMotion& m, do
 }
 
 StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger,
-                     LaneIsa lanes) {
-  const RangeMotion m =
-      integrate_range(b, d, dt, alpha, ledger != nullptr, 0, b.size(), nullptr, lanes);
+                     LaneIsa lanes, double radius_factor) {
+  const RangeMotion m = integrate_range(b, d, dt, alpha, ledger != nullptr, 0, b.size(), nullptr,
+                                        lanes, radius_factor);
   if (ledger) book_step_energy(m, dt, *ledger);
   return step_motion(b, d, m, dt);
 }

@@ -31,7 +31,7 @@ double gap_closure(double disc, double wall) {
 }  // namespace
 
 bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound,
-                                 WorkerTeam* team) {
+                                 WorkerTeam* team, double radius_factor) {
   const std::size_t n = discs.size();
   if (ref_x_.size() != n || wall_ax0_.size() != walls.size()) return true;
   const double wall = largest_wall_move(walls, wall_ax0_, wall_ay0_);
@@ -49,7 +49,7 @@ bool NeighborList::needs_rebuild(const Discs& discs, const Walls& walls, double&
       const std::int32_t i = cell_discs_[k];
       const double dx = discs.x[i] - ref_x_[k], dy = discs.y[i] - ref_y_[k];
       move2 = std::max(move2, dx * dx + dy * dy);
-      grow = std::max(grow, discs.r[i] - ref_r_[k]);
+      grow = std::max(grow, discs.r[i] * radius_factor - ref_r_[k]);
     }
     reach_[static_cast<std::size_t>(t)] = {move2, grow};
   });

@@ -34,9 +34,10 @@ class NeighborList {
   // only if no radius has grown since (infinity: no bound): while the bound alone rules a rebuild
   // out (with a margin of 1e-6 of the skin for rounding), the pass over every disc is skipped;
   // when the pass runs, a finite bound is tightened to the measured displacement. The pass is
-  // shared out on `team` (if any).
+  // shared out on `team` (if any). The radii are the discs' stored ones times `radius_factor`
+  // (a radius change the next step will store: World::scale_radii).
   bool needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound,
-                     WorkerTeam* team = nullptr);
+                     WorkerTeam* team = nullptr, double radius_factor = 1.0);
   // Finds the candidates of the current positions (pair_candidates, wall_candidates). With a
   // team of more than one thread, each member searches the partners of a contiguous range of
   // discs into its own list and the lists are joined in range order: the keys are a sorted

@@ -395,8 +395,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       // The chunk's disc-wall pairs (those of its discs, which this thread integrates): each
       // pair's slip work is stored, summed in pair order after the job.
       const long bad_wall = disc_wall_forces(
-          discs, walls, list, wall_pair, wall_law, s.dt, s.guard, unused_slip, wall_slip_.data(),
-          static_cast<std::size_t>(wall_start_[chunk.disc_begin]),
+          discs, walls, list, wall_pair, wall_law, s.dt, s.guard, s.pass.radius_factor, unused_slip,
+          wall_slip_.data(), static_cast<std::size_t>(wall_start_[chunk.disc_begin]),
           static_cast<std::size_t>(wall_start_[chunk.disc_end]));
       if (lane.bad_wall < 0) lane.bad_wall = bad_wall;
     }
@@ -444,7 +444,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       if (!stop)
         r = integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, chunk.body_begin,
                             chunk.body_end, s.book_energy && c > 0 ? &body_energy : nullptr,
-                            s.pass.lanes);
+                            s.pass.lanes, s.pass.radius_factor);
       if (c == 0) {
         lane.motion = r;
         // The chain's first link: this chunk's slip work and virial (summed as it went) and its
@@ -518,7 +518,9 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;
   r.bad_wall_pair = bad_wall;
-  wall_totals(walls, list, wall_pair, discs, r);
+  // The integration stored the radii times the pass's factor (a step that stopped before it
+  // did not).
+  wall_totals(walls, list, wall_pair, discs, integrated ? 1.0 : s.pass.radius_factor, r);
   out.integrated = integrated;
   if (integrated && chunk_count > 0) {
     RangeMotion& m = out.motion;

@@ -66,7 +66,9 @@ struct ThreadedStepSettings {
   double guard = 0;          // max overlap / radius
   double alpha = 0;          // local damping
   bool book_energy = false;  // form the integration's energy terms
-  PassOptions pass;          // lanes (WorldSettings::lanes), per-pair results, virial
+  // Lanes (WorldSettings::lanes), per-pair results, virial, and the factor of the radii: a
+  // step that integrates (ThreadedStep::integrated) leaves every disc's radius multiplied by it.
+  PassOptions pass;
 };
 
 class ThreadedCycle {

@@ -73,7 +73,7 @@ World::World(WorldSettings s) : settings_(s) {
 }
 
 int World::add_disc(double x, double y, double r, double density, DiscMaterial material) {
-  apply_mass_scale_behind();  // the factors are those of the bodies already there
+  apply_radius_changes_behind();  // the factors are those of the bodies already there
   const int body = static_cast<int>(bodies_.size());
   const double mass = density * std::numbers::pi * r * r * kThickness;
   bodies_.x.push_back(x);
@@ -106,7 +106,7 @@ int World::add_disc(double x, double y, double r, double density, DiscMaterial m
 int World::add_clump(double cx, double cy, double mass, double inertia,
                      const std::vector<double>& px, const std::vector<double>& py,
                      const std::vector<double>& pr, const std::vector<std::uint8_t>& active) {
-  apply_mass_scale_behind();
+  apply_radius_changes_behind();
   clumps_ = true;
   const int body = static_cast<int>(bodies_.size());
   bodies_.x.push_back(cx);
@@ -146,7 +146,7 @@ void World::add_container_walls(const Container& mould, int polygon_sides) {
 
 void World::set_settings(const WorldSettings& s) {
   check_settings(s);
-  apply_mass_scale_behind();  // the masses of the radius changes under the old settings
+  apply_radius_changes_behind();  // the radius changes under the old settings
   const bool unscale = settings_.density_scaling && !s.density_scaling;
   settings_ = s;
   // Density scaling overwrote the integration inertias at every rebuild; the true ones are the
@@ -183,20 +183,23 @@ void World::remove_wall_servos(int wall) {
 // own, so the bits do not depend on the share (the packing calls this every cycle).
 void World::scale_radii(double factor) {
   const double f2 = factor * factor;
-  // Under density scaling no step reads the physical masses (mass_scale_behind_).
+  // Under density scaling no step reads the physical masses (mass_scale_behind_), and the radii
+  // wait for the next step (radius_factor_behind_); an earlier factor is applied first, so each
+  // radius takes the factors one after another.
   const bool defer = settings_.density_scaling;
-  if (!defer) apply_mass_scale_behind();
-  share_out(team(), discs_.size(), [&](int t, int members) {
-    const MemberRange discs = member_range(discs_.size(), t, members);
-    for (std::size_t i = discs.begin; i < discs.end; ++i) discs_.r[i] *= factor;
-    if (defer) return;
-    const MemberRange bodies = member_range(bodies_.size(), t, members);
-    scale_free_body_masses(
-        bodies_, bodies.begin, bodies.end, [f2](std::size_t) { return f2; }, false, clumps_);
-  });
+  apply_radius_factor_behind();
   if (defer) {
+    radius_factor_behind_ = factor;
     mass_scale_behind_.push_back(f2);
     if (mass_scale_behind_.size() >= kMassScaleBehindAtMost) apply_mass_scale_behind();
+  } else {
+    radius_factor_behind_ = factor;
+    apply_radius_changes_behind();
+    share_out(team(), bodies_.size(), [&](int t, int members) {
+      const MemberRange bodies = member_range(bodies_.size(), t, members);
+      scale_free_body_masses(
+          bodies_, bodies.begin, bodies.end, [f2](std::size_t) { return f2; }, false, clumps_);
+    });
   }
   if (grows(factor)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
@@ -208,7 +211,7 @@ void World::scale_radii(double factor) {
 void World::scale_radii(const std::vector<double>& factor) {
   if (factor.size() != discs_.r.size())
     throw std::invalid_argument("World::scale_radii: one factor per disc expected");
-  apply_mass_scale_behind();  // the earlier factors first: each body's products in call order
+  apply_radius_changes_behind();  // the earlier factors first: each one's products in call order
   std::atomic<bool> grew{false};
   share_out(team(), discs_.size(), [&](int t, int members) {
     const MemberRange discs = member_range(discs_.size(), t, members);
@@ -239,6 +242,21 @@ void World::catch_up_bodies() const {
   if (!bodies_behind_) return;
   catch_up_free_bodies(bodies_, discs_);
   bodies_behind_ = false;
+}
+
+void World::apply_radius_factor_behind() const {
+  if (radius_factor_behind_ == 1.0) return;
+  const double factor = radius_factor_behind_;
+  share_out(team(), discs_.size(), [&](int t, int members) {
+    const MemberRange discs = member_range(discs_.size(), t, members);
+    for (std::size_t i = discs.begin; i < discs.end; ++i) discs_.r[i] *= factor;
+  });
+  radius_factor_behind_ = 1.0;
+}
+
+void World::apply_radius_changes_behind() const {
+  apply_radius_factor_behind();
+  apply_mass_scale_behind();
 }
 
 // A block of bodies at a time, so that the block stays in the core's cache while every factor
@@ -291,6 +309,7 @@ void World::set_body_velocity(int b, double vx, double vy, double omega) {
 
 void World::rebuild() {
   check_settings(settings_);
+  apply_radius_factor_behind();  // the search, the contact store and the step read the radii
   if (neighbors_.skin <= 0) {
     neighbors_.skin = settings_.skin;
     if (neighbors_.skin <= 0) {
@@ -418,7 +437,9 @@ void realign_results(ContactForces& f, const StaggeredArray<std::uint64_t>& old_
 // their pairs, so that what reads them before the next step (a lab test's first record) reads
 // each pair's own.
 void World::refresh_neighbors() {
-  if (!rebuild_pending_ && !neighbors_.needs_rebuild(discs_, walls_, moved_bound_, team())) return;
+  if (!rebuild_pending_ &&
+      !neighbors_.needs_rebuild(discs_, walls_, moved_bound_, team(), radius_factor_behind_))
+    return;
   const StaggeredArray<std::uint64_t> pair_keys = contacts_.keys, wall_keys = contacts_.wall_keys;
   rebuild();
   realign_results(pair_forces_, pair_keys, contacts_.keys);
@@ -478,14 +499,20 @@ void World::check_energy() {
 }
 
 void World::step() {
-  if (rebuild_pending_ || neighbors_.needs_rebuild(discs_, walls_, moved_bound_, team())) rebuild();
+  if (rebuild_pending_ ||
+      neighbors_.needs_rebuild(discs_, walls_, moved_bound_, team(), radius_factor_behind_))
+    rebuild();
   const bool book = settings_.energy_tracking;
   // The energy check reads the contacts' strain energy, from the per-pair results.
   const bool pair_results =
       !pair_results_on_request_ || pair_results_requested_ || energy_check_due();
+  // A radius change waiting since the last step: the pass sees the radii times its factor and
+  // the integration stores them (one pass over the discs' records less per cycle of a packing,
+  // which changes every radius every cycle: docs/performance.md "Session 53").
   const PassOptions pass{.lanes = settings_.lanes,
                          .pair_results = pair_results,
-                         .virial = pair_results || virial_every_step_};
+                         .virial = pair_results || virial_every_step_,
+                         .radius_factor = radius_factor_behind_};
   pair_results_requested_ = false;
   ThreadedStep threaded;
   if (WorkerTeam* shared = team()) {
@@ -499,6 +526,7 @@ void World::step() {
     ts.pass = pass;
     threaded =
         threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts, *shared);
+    if (threaded.integrated) radius_factor_behind_ = 1.0;  // its integration stored the radii
     // The region integrated the free discs on their records (dem/integrator.hpp).
     if (threaded.integrated) bodies_behind_ = true;
     last_pass_ = threaded.pass;
@@ -508,6 +536,10 @@ void World::step() {
                                         settings_.max_overlap_ratio, pass);
   }
   pair_results_current_ = pass.pair_results;
+  // A step that stops, or whose crack log reads the radii, stores them now (the step on a team
+  // then has not integrated).
+  if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0 || last_pass_.bonds_broken)
+    apply_radius_factor_behind();
   if (last_pass_.bad_pair >= 0 || last_pass_.bad_wall_pair >= 0) {
     std::ostringstream what;
     long disc;
@@ -545,7 +577,8 @@ void World::step() {
     motion = step_motion(bodies_, discs_, threaded.motion, dt_);
   } else {
     motion = integrate(bodies_, discs_, dt_, settings_.local_damping, book ? &energy_ : nullptr,
-                       settings_.lanes);
+                       settings_.lanes, radius_factor_behind_);
+    radius_factor_behind_ = 1.0;
     bodies_behind_ = true;
   }
   if (motion.bad_body >= 0)

@@ -116,7 +116,9 @@ class World {
 
   // Multiplies every disc radius by `factor` (radius expansion / radius servo of free-disc
   // packings); the mass and inertia of free discs follow (r^2, r^4). Clump pebble offsets and
-  // clump inertias are left alone.
+  // clump inertias are left alone. Under density scaling the radii are stored by the next step
+  // (its pass sees them changed) or by the first read before it (discs(), and every method
+  // that needs them): the bits of changing them at once.
   void scale_radii(double factor);
   // Multiplies disc i's radius by factor[i] (one entry per disc; the packing's cell-by-cell
   // decompression, mesogen/decompression_cells.hpp), with the masses and inertias of free discs
@@ -243,7 +245,13 @@ class World {
   BodyMotion body_motion(int b) const {
     return dem::body_motion(bodies_, discs_, static_cast<std::size_t>(b), bodies_behind_);
   }
-  const Discs& discs() const { return discs_; }
+  // The discs (a radius change waiting under density scaling applied first: scale_radii). A
+  // reference kept across such a change shows the radii of before it until discs() is called
+  // again or a step has run; so does one a thread reads while another calls this.
+  const Discs& discs() const {
+    apply_radius_factor_behind();
+    return discs_;
+  }
   const Walls& walls() const { return walls_; }
   const NeighborList& neighbors() const { return neighbors_; }  // the broad phase
   const ContactStore& contacts() const { return contacts_; }    // contacts and their state
@@ -293,6 +301,10 @@ class World {
   void catch_up_bodies() const;
   // Applies mass_scale_behind_ to the free bodies' masses and inertias and empties it.
   void apply_mass_scale_behind() const;
+  // Multiplies every radius by radius_factor_behind_ (shared out on the team) and sets it to 1.
+  void apply_radius_factor_behind() const;
+  // Both of the above: before a change that needs the radii and masses as the calls left them.
+  void apply_radius_changes_behind() const;
   // The team of a world that runs several threads, else null (dem/worker_team.hpp share_out).
   WorkerTeam* team() const {
     return settings_.threads > 1 ? &team_.get(settings_.threads) : nullptr;
@@ -318,7 +330,12 @@ class World {
   // bodies), and at most kMassScaleBehindAtMost wait.
   mutable std::vector<double> mass_scale_behind_;
   static constexpr std::size_t kMassScaleBehindAtMost = 1024;
-  Discs discs_;
+  // The factor of the last uniform radius change under density scaling that the radii do not
+  // hold yet (1: none). The next step's pass multiplies the radii by it and its integration
+  // stores them, in the records it writes anyway; a read of the discs before that applies it.
+  // Mutable for discs(), which does.
+  mutable double radius_factor_behind_ = 1.0;
+  mutable Discs discs_;
   Walls walls_;
   NeighborList neighbors_;  // reports the candidate pairs
   ContactStore contacts_;   // owns them and their state, merged by key at each rebuild

@@ -172,6 +172,28 @@ TEST(NeighborList, NoTouchingPairIsMissedWhileRadiiShrinkAndGrowDiscByDisc) {
             10);
 }
 
+// The rebuild check with a radius factor (a radius change the next step stores:
+// World::scale_radii under density scaling) decides as it does on radii stored with it. Discs of
+// radius r and the default skin 0.2 r: a rebuild is due once 2 x growth > skin, i.e. beyond a
+// factor of 1.1 (no disc has moved).
+TEST(NeighborList, ARadiusFactorCountsInTheRebuildCheckAsIfStored) {
+  const double r = 1e-3;  // m
+  World w;
+  for (int k = 0; k < 5; ++k) w.add_disc(3 * r * k, 0, r, 2000);
+  w.step();
+  ASSERT_DOUBLE_EQ(w.neighbors().skin, 0.2 * r);
+  for (const double factor : {1.06, 1.12}) {
+    cdem::dem::NeighborList by_factor = w.neighbors(), stored = w.neighbors();
+    cdem::dem::Discs grown = w.discs();
+    for (std::size_t i = 0; i < grown.size(); ++i) grown.r[i] *= factor;
+    double bound = INFINITY;  // m: no bound, so the check passes over the discs
+    const bool due = by_factor.needs_rebuild(w.discs(), w.walls(), bound, nullptr, factor);
+    bound = INFINITY;
+    EXPECT_EQ(due, stored.needs_rebuild(grown, w.walls(), bound)) << factor;
+    EXPECT_EQ(due, factor > 1.1) << factor;
+  }
+}
+
 TEST(NeighborList, OpeningContactForgetsItsShear) {
   const double dt = 1e-7;
   World w(frictional(dt));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -13,7 +14,10 @@
 #include <gtest/gtest.h>
 
 #include "core/specimen.hpp"
+#include "dem/bond_installation.hpp"
+#include "dem/lanes.hpp"
 #include "dem/world.hpp"
+#include "jostled_lattice.hpp"
 
 namespace {
 
@@ -231,5 +235,86 @@ TEST(WorldMethods, FreeingAPrescribedBodyPutsItInTheStepAtTheNextStep) {
   EXPECT_NEAR(w.critical_time_step(), both, 1e-12 * both);
   EXPECT_LE(w.time_step(), s.time_step_safety * big_only);
 }
+
+// Under density scaling a uniform radius change waits for the next step, whose pass multiplies
+// the radii by its factor and whose integration stores them (World::radius_factor_behind_). A
+// world whose discs are read after every change (the read applies it at once, as the change did
+// before) must end with the same bits, on one and two threads, with and without lanes. The world
+// has what every part of the step that reads a radius needs: walls the lattice presses on, a
+// clump (its pebbles are stored by the integration's body-by-body path), a prescribed disc,
+// friction, and weak parallel bonds that break (a step that stops before its integration on two
+// threads, and the crack log before the integration on one). The factors shrink and grow the
+// discs, and one in five is 1.
+class RadiusChangeBehind : public testing::TestWithParam<std::tuple<int, LaneIsa>> {};
+
+World pressed_lattice(int threads, LaneIsa lanes) {
+  WorldSettings s = cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5},
+                                                 cdem::test::weak_parallel_bond());
+  s.lanes = lanes;
+  s.density_scaling = true;
+  s.scaled_time_step = 1e-7;  // s
+  World w(s);
+  const double r = 0.5e-3;  // m
+  const int side = 10;
+  cdem::Container box;
+  box.width = (2 * side + 1) * r;
+  box.height = (2 + (side - 1) * std::sqrt(3.0)) * r;
+  w.add_container_walls(box);
+  // Sites 4 and 5 of row 4 hold the clump's two pebbles; the others a free disc each.
+  const auto site = [&](int ix, int iy) {
+    return std::pair{r + ix * 2 * r + (iy % 2) * r, r + iy * std::sqrt(3.0) * r};
+  };
+  for (int iy = 0; iy < side; ++iy)
+    for (int ix = 0; ix < side; ++ix) {
+      if (iy == 4 && (ix == 4 || ix == 5)) continue;
+      const auto [x, y] = site(ix, iy);
+      w.add_disc(x, y, r * (0.98 + 0.02 * (ix % 2)), 2000);
+    }
+  const auto [x4, y4] = site(4, 4);
+  const auto [x5, y5] = site(5, 4);
+  const double m = 2000 * std::numbers::pi * r * r;  // kg per m, each pebble
+  w.add_clump(0.5 * (x4 + x5), y4, 2 * m, 2 * (0.5 * m * r * r + m * r * r), {x4, x5}, {y4, y5},
+              {r, r}, {1, 1});
+  install_bonds(w, BondInstallation{0.03});
+  cdem::test::jostle(w);
+  w.set_prescribed(7, true);
+  return w;
+}
+
+TEST_P(RadiusChangeBehind, GivesTheBitsOfAChangeAppliedAtOnce) {
+  const auto [threads, lanes] = GetParam();
+  if (usable_lanes(lanes) != lanes) GTEST_SKIP() << "this CPU lacks these lanes";
+  World behind = pressed_lattice(threads, lanes), at_once = pressed_lattice(threads, lanes);
+  long touching_walls = 0;
+  std::vector<double> virial_behind, virial_at_once;  // N m, every step's
+  for (int k = 0; k < 300; ++k) {
+    const double factor = 1 + 1.5e-4 * (k % 5 - 2);
+    behind.scale_radii(factor);
+    at_once.scale_radii(factor);
+    (void)at_once.discs();
+    behind.step();
+    at_once.step();
+    touching_walls = std::max(touching_walls, behind.last_force_pass().touching_walls);
+    virial_behind.push_back(behind.last_force_pass().virial);
+    virial_at_once.push_back(at_once.last_force_pass().virial);
+  }
+  ASSERT_GT(behind.cracks().size(), 0u);
+  ASSERT_GT(touching_walls, 0);
+  cdem::test::expect_same_bits(cdem::test::world_bits(behind), cdem::test::world_bits(at_once));
+  const auto radii = [](const World& w) {
+    return std::vector<double>(w.discs().r.begin(), w.discs().r.end());
+  };
+  cdem::test::expect_same_bits(radii(behind), radii(at_once));
+  cdem::test::expect_same_bits(virial_behind, virial_at_once);
+  // A change the discs are read after, with no step: they show it.
+  const double before = behind.discs().r[0];
+  behind.scale_radii(1.001);
+  EXPECT_EQ(behind.discs().r[0], before * 1.001);
+}
+
+INSTANTIATE_TEST_SUITE_P(ThreadsAndLanes, RadiusChangeBehind,
+                         testing::Combine(testing::Values(1, 2),
+                                          testing::Values(LaneIsa::None, LaneIsa::Avx2,
+                                                          LaneIsa::Avx512)));
 
 }  // namespace
