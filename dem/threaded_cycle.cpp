@@ -93,7 +93,8 @@ void ThreadedCycle::place_bodies(const Bodies& bodies, const Discs& discs,
     return *std::lower_bound(clumps_.begin(), clumps_.end(), static_cast<std::int32_t>(b),
                              [](const ClumpPlace& c, std::int32_t body) { return c.body < body; });
   };
-  for (std::size_t k = 0; k < count; ++k) {
+  // A packing has no clump: no pass over its pairs then.
+  for (std::size_t k = 0; !clumps_.empty() && k < count; ++k) {
     const auto i = list.first[k], j = list.second[k];
     const auto bi = static_cast<std::size_t>(discs.body[static_cast<std::size_t>(i)]),
                bj = static_cast<std::size_t>(discs.body[static_cast<std::size_t>(j)]);

@@ -261,16 +261,22 @@ void World::apply_radius_changes_behind() const {
 
 // A block of bodies at a time, so that the block stays in the core's cache while every factor
 // passes over it; each body takes the factors one after another, in call order, through the
-// function the radius change would have called: the bits of applying each at its call.
+// function the radius change would have called: the bits of applying each at its call. The
+// blocks are shared out on the team (every body on its own: the same bits for any share).
 void World::apply_mass_scale_behind() const {
   if (mass_scale_behind_.empty()) return;
   constexpr std::size_t kBlock = 512;  // bodies: 8 KB of masses and inertias
-  for (std::size_t begin = 0; begin < bodies_.size(); begin += kBlock) {
-    const std::size_t end = std::min(bodies_.size(), begin + kBlock);
-    for (const double f2 : mass_scale_behind_)
-      scale_free_body_masses(
-          bodies_, begin, end, [f2](std::size_t) { return f2; }, true, clumps_);
-  }
+  const std::size_t blocks = (bodies_.size() + kBlock - 1) / kBlock;
+  // Shared out by bodies (share_out's threshold), cut into whole blocks.
+  share_out(team(), bodies_.size(), [&](int t, int members) {
+    const MemberRange mine = member_range(blocks, t, members);
+    for (std::size_t block = mine.begin; block < mine.end; ++block) {
+      const std::size_t begin = block * kBlock, end = std::min(bodies_.size(), begin + kBlock);
+      for (const double f2 : mass_scale_behind_)
+        scale_free_body_masses(
+            bodies_, begin, end, [f2](std::size_t) { return f2; }, true, clumps_);
+    }
+  });
   mass_scale_behind_.clear();
 }
 
