@@ -83,12 +83,15 @@ void WorkerTeam::run(void (*call)(void*, int), void* job) {
   running_.store(static_cast<std::uint32_t>(size_ - 1), std::memory_order_relaxed);
   generation_.fetch_add(1, std::memory_order_release);
   generation_.notify_all();
+  detail::inside_team_job = true;
   call(job, 0);
+  detail::inside_team_job = false;
   for (std::uint32_t left; (left = running_.load(std::memory_order_acquire)) != 0;)
     wait_while_equal(running_, left, size_ <= allowed_cpus());
 }
 
 void WorkerTeam::work(int t) {
+  detail::inside_team_job = true;  // a worker runs nothing but members' parts of jobs
   std::uint32_t seen = 0;
   for (;;) {
     wait_while_equal(generation_, seen, size_ <= allowed_cpus());

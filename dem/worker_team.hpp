@@ -59,6 +59,13 @@ class WorkerTeam {
   std::atomic<std::uint32_t> barrier_generation_{0};
 };
 
+namespace detail {
+// True on a thread while it runs a member's part of a team's job (every worker thread, and the
+// calling thread inside WorkerTeam::run): a team cannot start a job from inside one, so
+// share_out then runs its job alone on that thread.
+inline thread_local bool inside_team_job = false;
+}  // namespace detail
+
 // Member t's share of [0, n) when `members` members cut it into contiguous ranges of (nearly)
 // equal size: [n t / members, n (t + 1) / members).
 struct MemberRange {
@@ -78,9 +85,9 @@ inline constexpr std::size_t kShareOutAbove = 8192;
 // job must not throw; share_out_members tells how many members it will run. For work outside the
 // step whose result does not depend on the share (each member works on its own range,
 // member_range, and nothing is summed across ranges but in the order of one thread), so the bits
-// are those of one thread.
+// are those of one thread. Inside a team's job it runs the job alone (detail::inside_team_job).
 inline int share_out_members(const WorkerTeam* team, std::size_t items) {
-  return team && items >= kShareOutAbove ? team->size() : 1;
+  return team && items >= kShareOutAbove && !detail::inside_team_job ? team->size() : 1;
 }
 template <class Job>
 void share_out(WorkerTeam* team, std::size_t items, Job&& job) {

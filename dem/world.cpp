@@ -179,21 +179,18 @@ void World::remove_wall_servos(int wall) {
              list.end());
 }
 
-// The discs and free bodies are shared out on the team: each radius and mass is scaled on its
-// own, so the bits do not depend on the share (the packing calls this every cycle).
+// Under density scaling (the packing, every cycle) the radii wait for the next step
+// (radius_factor_behind_) and the physical masses, which no step reads, for the next read of the
+// bodies (mass_scale_behind_). Otherwise both change now, shared out on the team: each radius and
+// mass is scaled on its own, so the bits do not depend on the share.
 void World::scale_radii(double factor) {
   const double f2 = factor * factor;
-  // Under density scaling no step reads the physical masses (mass_scale_behind_), and the radii
-  // wait for the next step (radius_factor_behind_); an earlier factor is applied first, so each
-  // radius takes the factors one after another.
-  const bool defer = settings_.density_scaling;
-  apply_radius_factor_behind();
-  if (defer) {
-    radius_factor_behind_ = factor;
+  apply_radius_factor_behind();  // an earlier factor first: each radius takes them in turn
+  radius_factor_behind_ = factor;
+  if (settings_.density_scaling) {
     mass_scale_behind_.push_back(f2);
     if (mass_scale_behind_.size() >= kMassScaleBehindAtMost) apply_mass_scale_behind();
   } else {
-    radius_factor_behind_ = factor;
     apply_radius_changes_behind();
     share_out(team(), bodies_.size(), [&](int t, int members) {
       const MemberRange bodies = member_range(bodies_.size(), t, members);

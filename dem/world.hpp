@@ -249,7 +249,7 @@ class World {
   // reference kept across such a change shows the radii of before it until discs() is called
   // again or a step has run; so does one a thread reads while another calls this.
   const Discs& discs() const {
-    apply_radius_factor_behind();
+    if (radius_factor_behind_ != 1.0) apply_radius_factor_behind();
     return discs_;
   }
   const Walls& walls() const { return walls_; }

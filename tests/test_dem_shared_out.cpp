@@ -290,4 +290,27 @@ TEST(SharedOut, MassesOfRadiusChangesUnderDensityScalingAreThoseOfEachChangeInTu
   }
 }
 
+// A team cannot start a job from inside one: a share_out inside a member's part of a job (a read
+// of the world that applies a waiting radius change, say) runs its job alone on that thread,
+// where handing it to the team would never return. Outside, the team shares out again.
+TEST(SharedOut, AShareOutInsideAJobRunsAloneOnItsThread) {
+  WorkerTeam team(2);
+  std::vector<int> outer_members(2, 0), inner_members(2, 0), inner_calls(2, 0);
+  share_out(&team, kShareOutAbove, [&](int t, int members) {
+    outer_members[static_cast<std::size_t>(t)] = members;
+    share_out(&team, kShareOutAbove, [&](int u, int m) {
+      inner_members[static_cast<std::size_t>(t)] = m;
+      inner_calls[static_cast<std::size_t>(t)] += 1 + u;
+    });
+  });
+  EXPECT_EQ(outer_members, (std::vector<int>{2, 2}));
+  EXPECT_EQ(inner_members, (std::vector<int>{1, 1}));
+  EXPECT_EQ(inner_calls, (std::vector<int>{1, 1}));
+  int after = 0;
+  share_out(&team, kShareOutAbove, [&](int t, int members) {
+    if (t == 0) after = members;
+  });
+  EXPECT_EQ(after, 2);
+}
+
 }  // namespace
