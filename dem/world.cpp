@@ -529,9 +529,12 @@ void World::step() {
     ts.pass = pass;
     threaded =
         threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts, *shared);
-    if (threaded.integrated) radius_factor_behind_ = 1.0;  // its integration stored the radii
-    // The region integrated the free discs on their records (dem/integrator.hpp).
-    if (threaded.integrated) bodies_behind_ = true;
+    // The region integrated the free discs on their records (dem/integrator.hpp) and stored the
+    // radii times the pass's factor.
+    if (threaded.integrated) {
+      bodies_behind_ = true;
+      radius_factor_behind_ = 1.0;
+    }
     last_pass_ = threaded.pass;
   } else {
     last_pass_ = compute_contact_forces(discs_, walls_, contacts_, pair_forces_, wall_forces_,
