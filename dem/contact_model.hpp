@@ -46,13 +46,18 @@ inline const char* contact_class_name(ContactClass c) {
 }
 
 // Extra stiffness a parallel bond adds to its contact (for the critical time step):
-// normal kbn Ab (N/m), shear kbs Ab (N/m), rotation kbn Ib (N m / rad).
-struct BondStiffness {
-  double normal = 0, shear = 0, rotation = 0;
+// normal kbn Ab (N/m), shear kbs Ab (N/m), rotation kbn Ib (N m / rad). T = double for one
+// contact, Lanes8 or Lanes4 for several (dem/lanes.hpp); P: ParallelBondParams or, for several,
+// ParallelBondLanes<T>.
+template <class T>
+struct BondStiffnessOf {
+  T normal{}, shear{}, rotation{};
 };
+using BondStiffness = BondStiffnessOf<double>;
 
-inline BondStiffness parallel_bond_stiffness(const ParallelBondParams& p, double r1, double r2) {
-  const ParallelBondGeometry g = parallel_bond_geometry(p, r1, r2);
+template <class P, class T>
+BondStiffnessOf<T> parallel_bond_stiffness(const P& p, T r1, T r2) {
+  const ParallelBondGeometryOf<T> g = parallel_bond_geometry(p, r1, r2, 1.0 / (r1 + r2));
   return {g.kn * g.area, g.ks * g.area, g.kn * g.inertia};
 }
 
@@ -65,9 +70,28 @@ inline FlatJointGeometry flat_joint_geometry(const FlatJointParams& p, const Lin
 // Stiffness a contact gives the two bodies it joins: normal and shear (N/m) and rotation (N m /
 // rad, bond bending only). The critical time step (World::update_time_step) and the
 // instability diagnosis (dem/instability.cpp) both read it, so they agree.
-struct ContactStiffness {
-  double normal = 0, shear = 0, rotation = 0;
+template <class T>
+struct ContactStiffnessOf {
+  T normal{}, shear{}, rotation{};
 };
+using ContactStiffness = ContactStiffnessOf<double>;
+
+// The linear part of a class of E* `emod` (Pa) and kn/ks `kappa` between discs of radii r1, r2
+// (m), and where `parallel` holds a parallel bond of constants p acting beside it (their
+// stiffnesses add). T = double with a bool, or lanes with their mask (the bond's terms are then
+// evaluated in every lane and kept where the mask is set).
+template <class T, class M, class P>
+ContactStiffnessOf<T> linear_pair_stiffness(T emod, T kappa, const P& p, M parallel, T r1, T r2) {
+  const T kn = disc_normal_stiffness(emod, r1, r2);
+  ContactStiffnessOf<T> s{kn, linear_shear_stiffness(kn, kappa), T{}};
+  if (any_lane(parallel)) {
+    const BondStiffnessOf<T> b = parallel_bond_stiffness(p, r1, r2);
+    s.normal = select(parallel, s.normal + b.normal, s.normal);
+    s.shear = select(parallel, s.shear + b.shear, s.shear);
+    s.rotation = select(parallel, b.rotation, s.rotation);
+  }
+  return s;
+}
 
 // A disc pair of radii r1, r2 (m) of a class with linear part `law` and bond model `bond`,
 // carrying a bond of kind `kind`: a parallel bond acts in parallel with the linear part (its
@@ -79,15 +103,8 @@ inline ContactStiffness pair_stiffness(const LinearContact& law, const BondModel
         flat_joint_stiffness(flat_joint_geometry(bond.flat_joint, law, r1, r2, 1.0 / (r1 + r2)));
     return {j.normal, j.shear, j.rotation};
   }
-  const double kn = law.normal_stiffness(r1, r2);
-  ContactStiffness s{kn, law.shear_stiffness(kn), 0};
-  if (kind == BondKind::Parallel) {
-    const BondStiffness b = parallel_bond_stiffness(bond.parallel, r1, r2);
-    s.normal += b.normal;
-    s.shear += b.shear;
-    s.rotation = b.rotation;
-  }
-  return s;
+  return linear_pair_stiffness(law.emod, law.kappa, bond.parallel, kind == BondKind::Parallel, r1,
+                               r2);
 }
 
 // Smooth joint e: kn A and ks A (N/m) act along the joint's frame, which is not the contact's

@@ -182,12 +182,6 @@ ParallelBondedPairOf<T> parallel_bonded_pair(const PairGeometryOf<T>& g, const P
   return r;
 }
 
-// The class constants of the parallel-bond law for several pairs, one per lane.
-template <class L>
-struct ParallelBondLanes {
-  L modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
-};
-
 // The force of a pair that carries its normal force alone: an unbonded pair of a frictionless
 // class, evaluated in lanes (DiscPairKernel::normal_lane_law). Its moments are zeros (of a finite
 // geometry; a pair with a non-finite overlap trips the guard, which stops the run), which the

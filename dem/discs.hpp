@@ -32,7 +32,8 @@ struct alignas(64) DiscState {
   double vx = 0, vy = 0, omega = 0;   // m/s, rad/s: velocity of the disc centre and spin
   double offset_x = 0, offset_y = 0;  // m, centre in the body frame (0 for free discs)
 
-  static constexpr std::size_t kX = 0, kY = 1, kR = 2, kVx = 3, kVy = 4, kOmega = 5;
+  static constexpr std::size_t kX = 0, kY = 1, kR = 2, kVx = 3, kVy = 4, kOmega = 5, kOffsetX = 6,
+                               kOffsetY = 7;
   static constexpr std::size_t kFields = 8;
 };
 static_assert(sizeof(DiscState) == DiscState::kFields * sizeof(double));

@@ -254,6 +254,17 @@ CDEM_AVX2 inline unsigned lane_bits(LaneMask4 condition) {
   return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(condition.lanes)));
 }
 
+// Whether the condition holds in some lane (for one value: whether it holds).
+inline bool any_lane(bool condition) {
+  return condition;
+}
+inline bool any_lane(LaneMask8 condition) {
+  return lane_bits(condition) != 0;
+}
+CDEM_AVX2 inline bool any_lane(LaneMask4 condition) {
+  return lane_bits(condition) != 0;
+}
+
 // The lanes l < 4 whose bit is set in `lanes`, all 64 bits set in such a lane and none in the
 // others: a blend reads the sign bit, load_where's `and` every bit.
 CDEM_AVX2 inline __m256i lane_mask4(unsigned lanes) {

@@ -18,6 +18,12 @@ inline constexpr int kContactClassCount = 4;
 
 inline constexpr double kThickness = units::thickness;  // m, PFC2D unit thickness
 
+// ks = kn / kappa (N/m), for one contact (T = double) or several (lanes).
+template <class T>
+T linear_shear_stiffness(T kn, T kappa) {
+  return kn / kappa;
+}
+
 struct LinearContact {
   double emod = 16e9;  // Pa, effective modulus E*
   double kappa = 1.0;  // kn / ks
@@ -25,9 +31,7 @@ struct LinearContact {
 
   // Normal stiffness kn = A E* / L with A = 2 r t (N/m per 1 m thickness).
   // Disc-disc: r = min(R1, R2), L = R1 + R2.
-  double normal_stiffness(double r1, double r2) const {
-    return 2.0 * std::min(r1, r2) * kThickness * emod / (r1 + r2);
-  }
+  double normal_stiffness(double r1, double r2) const;
   // The same with 1 / L = 1 / (R1 + R2) given (the contact loop gets it from a reciprocal it
   // shares with the contact normal).
   double normal_stiffness(double r1, double r2, double inverse_length) const;
@@ -40,7 +44,7 @@ struct LinearContact {
   // a division out of its loop. They differ by at most 1 ulp (2.2e-16 relative): in about 22 % of
   // the stiffnesses for kappa = 1.45, never for a power of two. One spelling for all changes every
   // guarded bit either way (docs/architecture.md "The shear stiffness's two spellings").
-  double shear_stiffness(double kn) const { return kn / kappa; }
+  double shear_stiffness(double kn) const { return linear_shear_stiffness(kn, kappa); }
   double shear_per_normal_stiffness() const { return 1.0 / kappa; }
 };
 
@@ -50,6 +54,17 @@ struct LinearContact {
 template <class T>
 T disc_normal_stiffness(T emod, T r1, T r2, T inverse_length) {
   return 2.0 * min_of(r1, r2) * kThickness * emod * inverse_length;
+}
+
+// The same with L divided by (the spelling of the time step and the diagnosis, whose bits differ
+// from the contact loop's by up to an ulp).
+template <class T>
+T disc_normal_stiffness(T emod, T r1, T r2) {
+  return 2.0 * min_of(r1, r2) * kThickness * emod / (r1 + r2);
+}
+
+inline double LinearContact::normal_stiffness(double r1, double r2) const {
+  return disc_normal_stiffness(emod, r1, r2);
 }
 
 inline double LinearContact::normal_stiffness(double r1, double r2, double inverse_length) const {

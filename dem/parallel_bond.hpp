@@ -31,6 +31,13 @@ struct ParallelBondParams {
   double moment_factor = 1;      // beta
 };
 
+// The class constants of the parallel-bond law for several pairs, one per lane (L = Lanes8 or
+// Lanes4); the laws below take it where one pair takes ParallelBondParams.
+template <class L>
+struct ParallelBondLanes {
+  L modulus, stiffness_ratio, tensile_strength, cohesion, radius_multiplier, moment_factor;
+};
+
 // Geometry and stiffness of one bond, fixed at installation. T = double for one bond, Lanes8 or
 // Lanes4 for several (dem/lanes.hpp), as in the functions below.
 template <class T>

@@ -6,6 +6,129 @@
 
 namespace cdem::dem {
 
+namespace {
+
+// A contact of stiffness c whose discs turn their bodies at levers arm_first and arm_second (m):
+// the translational term takes the larger of its normal and shear stiffness (N/m), each
+// rotational one ks arm^2 plus the bond's bending stiffness (N m/rad).
+template <class T>
+ContactStiffnessTermOf<T> term_of(const ContactStiffnessOf<T>& c, T arm_first, T arm_second) {
+  return {max_of(c.normal, c.shear), c.shear * arm_first * arm_first + c.rotation,
+          c.shear * arm_second * arm_second + c.rotation};
+}
+
+// The terms of the kLanes<L> contacts from k, none of which carries a flat or a smooth joint, to
+// out[0 .. kLanes<L> - 1]: the operations of ContactStiffnessTerms::one in the same order, each
+// correctly rounded in every lane (dem/lanes.hpp), so each lane has its bits.
+template <class L>
+[[gnu::always_inline]] inline void lane_terms(const Discs& discs, const ContactStore& contacts,
+                                              const ContactStiffnessTerms::ByClass& c,
+                                              std::size_t k, ContactStiffnessTerm* out) {
+  constexpr std::size_t n = kLanes<L>;
+  const double* records = &discs.state.data()->x;
+  L a[kRecordFields], b[kRecordFields];
+  load_records(records, contacts.first.data() + k, a);
+  load_records(records, contacts.second.data() + k, b);
+  const L r1 = a[DiscState::kR], r2 = b[DiscState::kR];
+  const std::uint8_t* cls = contacts.contact_class.data() + k;
+  ParallelBondLanes<L> p{};
+  p.modulus = lookup<L>(c.modulus, cls);
+  p.stiffness_ratio = lookup<L>(c.stiffness_ratio, cls);
+  p.radius_multiplier = lookup<L>(c.radius_multiplier, cls);
+  const ContactStiffnessOf<L> s = linear_pair_stiffness(
+      lookup<L>(c.emod, cls), lookup<L>(c.kappa, cls), p,
+      lanes_equal<L>(contacts.state.bond.data() + k, static_cast<std::uint8_t>(BondKind::Parallel)),
+      r1, r2);
+  const ContactStiffnessTermOf<L> t =
+      term_of(s, body_arm(a[DiscState::kOffsetX], a[DiscState::kOffsetY], r1),
+              body_arm(b[DiscState::kOffsetX], b[DiscState::kOffsetY], r2));
+  for (std::size_t l = 0; l < n; ++l)
+    out[l] = {t.translational[l], t.rotational_first[l], t.rotational_second[l]};
+}
+
+// Whether none of the kLanes<L> contacts from k carries a flat or a smooth joint.
+template <class L>
+[[gnu::always_inline]] inline bool lanes_take(const ContactStore& contacts, std::size_t k) {
+  const std::uint8_t* bond = contacts.state.bond.data() + k;
+  const auto linear = lanes_equal<L>(bond, static_cast<std::uint8_t>(BondKind::None)) |
+                      lanes_equal<L>(bond, static_cast<std::uint8_t>(BondKind::Parallel));
+  return lane_bits(linear) == (1u << kLanes<L>)-1;
+}
+
+// The whole groups of kLanes<L> contacts of [k, k + n) that lanes_take, in lanes; returns how
+// many contacts from k it wrote (the other groups and the rest are left to one at a time).
+template <class L>
+[[gnu::always_inline]] inline std::size_t groups_in_lanes(const ContactStiffnessTerms& terms,
+                                                          const Discs& discs,
+                                                          const ContactStore& contacts,
+                                                          const ContactStiffnessTerms::ByClass& c,
+                                                          std::size_t k, std::size_t n,
+                                                          ContactStiffnessTerm* out) {
+  constexpr std::size_t width = kLanes<L>;
+  std::size_t q = 0;
+  for (; q + width <= n; q += width) {
+    if (lanes_take<L>(contacts, k + q))
+      lane_terms<L>(discs, contacts, c, k + q, out + q);
+    else
+      for (std::size_t l = 0; l < width; ++l) out[q + l] = terms.one(k + q + l);
+  }
+  return q;
+}
+
+CDEM_LANES8_TARGET std::size_t groups_in_lanes8(const ContactStiffnessTerms& terms,
+                                                const Discs& discs, const ContactStore& contacts,
+                                                const ContactStiffnessTerms::ByClass& c,
+                                                std::size_t k, std::size_t n,
+                                                ContactStiffnessTerm* out) {
+  return groups_in_lanes<Lanes8>(terms, discs, contacts, c, k, n, out);
+}
+CDEM_LANES4_TARGET std::size_t groups_in_lanes4(const ContactStiffnessTerms& terms,
+                                                const Discs& discs, const ContactStore& contacts,
+                                                const ContactStiffnessTerms::ByClass& c,
+                                                std::size_t k, std::size_t n,
+                                                ContactStiffnessTerm* out) {
+  return groups_in_lanes<Lanes4>(terms, discs, contacts, c, k, n, out);
+}
+
+}  // namespace
+
+ContactStiffnessTerms::ContactStiffnessTerms(
+    const Discs& discs, const ContactStore& contacts,
+    const std::array<LinearContact, kContactClassCount>& laws, const BondModels& bonds,
+    LaneIsa lanes)
+    : discs_(discs), contacts_(contacts), laws_(laws), bonds_(bonds), lanes_(usable_lanes(lanes)) {
+  static_assert(kContactClassCount <= 4);  // lookup<Lanes4> reads the first four entries
+  for (int c = 0; c < kContactClassCount; ++c) {
+    const ParallelBondParams& p = bonds[c].parallel;
+    by_class_.emod[c] = laws[c].emod;
+    by_class_.kappa[c] = laws[c].kappa;
+    by_class_.modulus[c] = p.modulus;
+    by_class_.stiffness_ratio[c] = p.stiffness_ratio;
+    by_class_.radius_multiplier[c] = p.radius_multiplier;
+  }
+}
+
+ContactStiffnessTerm ContactStiffnessTerms::one(std::size_t k) const {
+  const std::int32_t i = contacts_.first[k], j = contacts_.second[k];
+  const std::uint8_t cls = contacts_.contact_class[k];
+  const auto kind = static_cast<BondKind>(contacts_.state.bond[k]);
+  const ContactStiffness c =
+      kind == BondKind::SmoothJoint
+          ? smooth_joint_stiffness(contacts_.smooth_joints, contacts_.state.joint[k])
+          : pair_stiffness(laws_[cls], bonds_[cls], kind, discs_.r[i], discs_.r[j]);
+  return term_of(c, body_arm(discs_, i), body_arm(discs_, j));
+}
+
+void ContactStiffnessTerms::operator()(std::size_t k, std::size_t n,
+                                       ContactStiffnessTerm* out) const {
+  std::size_t q = 0;
+  if (lanes_ == LaneIsa::Avx512)
+    q = groups_in_lanes8(*this, discs_, contacts_, by_class_, k, n, out);
+  else if (lanes_ == LaneIsa::Avx2)
+    q = groups_in_lanes4(*this, discs_, contacts_, by_class_, k, n, out);
+  for (; q < n; ++q) out[q] = one(k + q);
+}
+
 void TimeStepStiffness::cut(const Bodies& bodies, const Discs& discs, const ContactStore& contacts,
                             int members) {
   const std::size_t count = contacts.keys.size(), m = static_cast<std::size_t>(members);

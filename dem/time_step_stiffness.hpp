@@ -12,34 +12,80 @@
 // the later members' after them: members 1 and up set theirs aside and they are added once all
 // members are done, in member order. Every other body gets its terms from one member only, which
 // adds them as it goes. On a packing the crossed bodies are about a row of discs per cut.
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <exception>
 #include <vector>
 
 #include "dem/bodies.hpp"
+#include "dem/contact_model.hpp"
 #include "dem/contact_store.hpp"
 #include "dem/discs.hpp"
+#include "dem/lanes.hpp"
 #include "dem/worker_team.hpp"
 
 namespace cdem::dem {
 
-// What one disc-disc contact adds onto its two discs' bodies.
-struct ContactStiffnessTerm {
-  double translational;  // N/m, onto both bodies
-  double rotational_first,
+// What one disc-disc contact adds onto its two discs' bodies (T = double; lanes for several).
+template <class T>
+struct ContactStiffnessTermOf {
+  T translational;  // N/m, onto both bodies
+  T rotational_first,
       rotational_second;  // N m/rad, onto the first disc's body and the second's
+};
+using ContactStiffnessTerm = ContactStiffnessTermOf<double>;
+
+// The lever (m) at which a contact's shear stiffness turns disc d's body: the disc's distance from
+// the body's centre plus its radius (its radius for a free disc). T = double, or lanes.
+template <class T>
+T body_arm(T offset_x, T offset_y, T r) {
+  return sqrt_of(offset_x * offset_x + offset_y * offset_y) + r;
+}
+inline double body_arm(const Discs& discs, std::int32_t d) {
+  return body_arm(discs.offset_x[d], discs.offset_y[d], discs.r[d]);
+}
+
+// The terms of the disc-disc contacts for the time step: max(kn, ks) and ks arm^2 + the bond's
+// bending stiffness (dem/contact_model.hpp pair_stiffness) with each class's laws and bonds.
+// Contacts without a flat joint or a smooth joint go in lanes (up to `lanes`; the bits of one at
+// a time: tests/test_dem_time_step_stiffness.cpp).
+class ContactStiffnessTerms {
+ public:
+  ContactStiffnessTerms(const Discs& discs, const ContactStore& contacts,
+                        const std::array<LinearContact, kContactClassCount>& laws,
+                        const BondModels& bonds, LaneIsa lanes);
+  // out[q] = the term of contact k + q, q < n.
+  void operator()(std::size_t k, std::size_t n, ContactStiffnessTerm* out) const;
+  // The term of contact k alone.
+  ContactStiffnessTerm one(std::size_t k) const;
+
+  // Each class's constants, by contact class code (at most 8, for lookup<L>).
+  struct ByClass {
+    double emod[8] = {}, kappa[8] = {}, modulus[8] = {}, stiffness_ratio[8] = {},
+           radius_multiplier[8] = {};
+  };
+
+ private:
+  const Discs& discs_;
+  const ContactStore& contacts_;
+  const std::array<LinearContact, kContactClassCount>& laws_;
+  const BondModels& bonds_;
+  LaneIsa lanes_;
+  ByClass by_class_;
 };
 
 class TimeStepStiffness {
  public:
   std::vector<double> translational, rotational;  // per body: N/m, N m/rad
 
-  // Zeroes the sums and adds term(k) (a ContactStiffnessTerm) of every disc-disc contact k.
-  // Allocates only when the bodies, the terms set aside or the team grow.
-  template <class Term>
+  // Zeroes the sums and adds the term of every disc-disc contact k, which terms(k, n, out)
+  // writes to out[q] for the n contacts from k (ContactStiffnessTerms). Allocates only when the
+  // bodies, the terms set aside or the team grow.
+  template <class Terms>
   void sum_pairs(const Bodies& bodies, const Discs& discs, const ContactStore& contacts,
-                 Term&& term, WorkerTeam* team);
+                 Terms&& terms, WorkerTeam* team);
 
   // Capacities in bytes (dem/memory_footprint.hpp): of the per-body arrays (the sums, and the
   // marks when shared out), and of the rest (the cuts and the terms set aside).
@@ -60,9 +106,9 @@ class TimeStepStiffness {
   std::vector<std::exception_ptr> failed_;        // per member, what its job threw
 };
 
-template <class Term>
+template <class Terms>
 void TimeStepStiffness::sum_pairs(const Bodies& bodies, const Discs& discs,
-                                  const ContactStore& contacts, Term&& term, WorkerTeam* team) {
+                                  const ContactStore& contacts, Terms&& terms, WorkerTeam* team) {
   const std::size_t count = contacts.keys.size();
   translational.assign(bodies.size(), 0.0);
   rotational.assign(bodies.size(), 0.0);
@@ -97,12 +143,19 @@ void TimeStepStiffness::sum_pairs(const Bodies& bodies, const Discs& discs,
     };
     try {
       aside.clear();
-      for (std::size_t k = begin; k < end; ++k) {
-        const ContactStiffnessTerm s = term(k);
-        // The order of one thread: both translational terms, then both rotational ones; each
-        // body's sums see its own terms in contact order either way.
-        add(discs.body[contacts.first[k]], s.translational, s.rotational_first);
-        add(discs.body[contacts.second[k]], s.translational, s.rotational_second);
+      // The terms a block at a time (in lanes), then added in contact order.
+      constexpr std::size_t kBlock = 64;
+      ContactStiffnessTerm block[kBlock];
+      for (std::size_t start = begin; start < end; start += kBlock) {
+        const std::size_t n = std::min(kBlock, end - start);
+        terms(start, n, block);
+        for (std::size_t q = 0; q < n; ++q) {
+          const std::size_t k = start + q;
+          // The order of one thread: both translational terms, then both rotational ones; each
+          // body's sums see its own terms in contact order either way.
+          add(discs.body[contacts.first[k]], block[q].translational, block[q].rotational_first);
+          add(discs.body[contacts.second[k]], block[q].translational, block[q].rotational_second);
+        }
       }
     } catch (...) {
       failed_[static_cast<std::size_t>(t)] = std::current_exception();

@@ -335,26 +335,10 @@ void World::rebuild() {
 // disc-disc sums and the pass over the bodies are shared out on the team, the same bits as one
 // thread (dem/time_step_stiffness.hpp); the disc-wall terms follow them, in order.
 void World::update_time_step() {
-  const auto arm = [&](std::int32_t d) {
-    return std::sqrt(discs_.offset_x[d] * discs_.offset_x[d] +
-                     discs_.offset_y[d] * discs_.offset_y[d]) +
-           discs_.r[d];
-  };
+  const auto arm = [&](std::int32_t d) { return body_arm(discs_, d); };
   stiffness_.sum_pairs(
       bodies_, discs_, contacts_,
-      [&](std::size_t k) {
-        const std::int32_t i = contacts_.first[k], j = contacts_.second[k];
-        const std::uint8_t cls = contacts_.contact_class[k];
-        const auto kind = static_cast<BondKind>(contacts_.state.bond[k]);
-        const ContactStiffness c =
-            kind == BondKind::SmoothJoint
-                ? smooth_joint_stiffness(contacts_.smooth_joints, contacts_.state.joint[k])
-                : pair_stiffness(settings_.laws[cls], settings_.bonds[cls], kind, discs_.r[i],
-                                 discs_.r[j]);
-        const double ai = arm(i), aj = arm(j);
-        return ContactStiffnessTerm{std::max(c.normal, c.shear), c.shear * ai * ai + c.rotation,
-                                    c.shear * aj * aj + c.rotation};
-      },
+      ContactStiffnessTerms(discs_, contacts_, settings_.laws, settings_.bonds, settings_.lanes),
       team());
   std::vector<double>& stiffness = stiffness_.translational;
   std::vector<double>& rot_stiffness = stiffness_.rotational;

@@ -163,7 +163,9 @@ TEST(SharedOut, TimeStepStiffnessSumsHaveTheBitsOfOneThreadForAnyTeam) {
     if (w.discs().body[c.second[k]] == clump) backwards += terms[k].translational;
   ASSERT_NE(backwards, translational[clump]);
 
-  const auto term = [&](std::size_t k) { return terms[k]; };
+  const auto term = [&](std::size_t k, std::size_t n, ContactStiffnessTerm* out) {
+    std::copy_n(terms.begin() + static_cast<std::ptrdiff_t>(k), n, out);
+  };
   TimeStepStiffness alone;
   alone.sum_pairs(w.bodies(), w.discs(), c, term, nullptr);
   EXPECT_TRUE(same_bits(alone.translational, translational));
