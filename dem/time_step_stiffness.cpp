@@ -52,7 +52,8 @@ template <class L>
   const std::uint8_t* bond = contacts.state.bond.data() + k;
   const auto linear = lanes_equal<L>(bond, static_cast<std::uint8_t>(BondKind::None)) |
                       lanes_equal<L>(bond, static_cast<std::uint8_t>(BondKind::Parallel));
-  return lane_bits(linear) == (1u << kLanes<L>)-1;
+  constexpr unsigned kEveryLane = ~(~0u << kLanes<L>);
+  return lane_bits(linear) == kEveryLane;
 }
 
 // The whole groups of kLanes<L> contacts of [k, k + n) that lanes_take, in lanes; returns how
