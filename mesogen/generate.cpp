@@ -322,9 +322,10 @@ Specimen generate(const GeneratorInput& in, std::uint64_t seed, GenerateReport& 
                         {"neighbour_builds", packing.neighbour_builds},
                         {"expansion_and_calming_builds", packing.expansion_and_calming_builds},
                         {"converged", packing.converged}};
-  // Only a mould decompressed cell by cell (wider than 200 mean diameters) has these, so the
-  // specimen files of narrower moulds keep their bytes.
+  // Only a mould decompressed cell by cell (wider than mortar.cell_decompression_above, 200 mean
+  // diameters by default) has these, so the specimen files of narrower moulds keep their bytes.
   if (packing.decompression_cells > 0) {
+    summary["packing"]["cell_decompression_above"] = packing.cell_decompression_above;
     summary["packing"]["decompression_cells"] = packing.decompression_cells;
     summary["packing"]["decompression_factor_spread"] = packing.decompression_factor_spread;
   }

@@ -169,7 +169,7 @@ GeneratorInput read_generator_input(const InputTable& root) {
   const InputTable m = root.table("mortar");
   m.reject_unknown_keys({"r_mean", "r_ratio", "porosity", "density", "sigma0", "stress_tolerance",
                          "packing_emod", "max_steps", "expansion_steps", "relaxation", "threads",
-                         "time_step_safety"});
+                         "time_step_safety", "cell_decompression_above"});
   auto& mc = in.mortar;
   mc.r_mean = m.quantity("r_mean", Dimension::Length, Range::open(0, 0.1));
   mc.r_ratio = m.number_or("r_ratio", 2.5, Range::closed(1, 20));
@@ -186,6 +186,9 @@ GeneratorInput read_generator_input(const InputTable& root) {
   // The packing's recipe (MortarPackingControls::time_step_safety): inputs of shipped data pin it.
   mc.time_step_safety =
       m.number_or("time_step_safety", mc.time_step_safety, Range::left_open(0, 1));
+  // Also the recipe: the span above which a mould decompresses by cells (opt-in below 200).
+  mc.cell_decompression_above = m.number_or("cell_decompression_above", mc.cell_decompression_above,
+                                            Range::closed(kDecompressionCellDiameters, 1e6));
   // Threads of the packing's DEM cycles; the packing is bitwise the same for any count.
   mc.threads = static_cast<int>(m.integer_or("threads", mc.threads, 1, kMaxMortarThreads));
   if (mc.relaxation == MortarRelaxation::Fire && m.has("time_step_safety"))

@@ -32,24 +32,23 @@ constexpr double kFastDecompressionAbove = 100.0;  // x sigma0
 // The rates above were tuned on the 100 x 200 mm mould at R_mean 0.5 mm (200 mean diameters),
 // where one seed in three came out barely jammed (coordination 3.53 against 3.61-3.62). They
 // hold up to this span and are scaled down in proportion above it, up to
-// kCellDecompressionAboveDiameters: unscaled, R_mean 0.35 mm (286 diameters) unjammed
+// kDefaultCellDecompressionAbove: unscaled, R_mean 0.35 mm (286 diameters) unjammed
 // (coordination 2.7-3.2, 19-32 % floating discs); scaled, every packing measured had 3.60-3.68
 // (C30 moulds at R_mean 0.35-0.7 mm, 3 seeds each; since session 23 those wider than 200
 // diameters decompress cell by cell instead).
 constexpr double kRateSpanDiameters = 100.0;
-// Above this span of its larger side the mould decompresses cell by cell (DecompressionCells, cells
-// of kDecompressionCellDiameters) at the rate of a mould of this span. With one common factor the
-// 500-diameter mould (250 x 500 mm) unjammed at that rate (coordination 3.16, 20 % floating
-// discs; 3.59 and 9.0 % on a second seed) and needed the span-scaled one (24,800 cycles); cell by
-// cell it packed jammed at that rate on 3 seeds (3.68, 7.0-7.1 %, 10,850-11,000 cycles;
-// docs/performance.md "Session 23"). Moulds up to this span (every shipped specimen) pack bit
-// for bit as before.
-constexpr double kCellDecompressionAboveDiameters = 200.0;
-// The side of a decompression cell, in mean diameters: the span up to which the rates hold
-// unscaled. Cells of 50 diameters gave the same statistics (the 500-diameter mould, seed 1:
-// coordination 3.680, 7.04 % floating against 3.681, 7.02 %; measured with an extra term pulling
-// each cell's stress toward the mould's, which changed nothing at 100 diameters: 3.682, 7.02 %).
-constexpr double kDecompressionCellDiameters = 100.0;
+// kDefaultCellDecompressionAbove (mortar_packing.hpp): above this span of its larger side the
+// mould decompresses cell by cell (DecompressionCells, cells of kDecompressionCellDiameters) at
+// the rate of a mould of this span. With one common factor the 500-diameter mould (250 x 500 mm)
+// unjammed at that rate (coordination 3.16, 20 % floating discs; 3.59 and 9.0 % on a second seed)
+// and needed the span-scaled one (24,800 cycles); cell by cell it packed jammed at that rate on 3
+// seeds (3.68, 7.0-7.1 %, 10,850-11,000 cycles; docs/performance.md "Session 23"). Moulds up to
+// this span (every shipped specimen) pack bit for bit as before.
+// kDecompressionCellDiameters (mortar_packing.hpp): the side of a decompression cell, in mean
+// diameters: the span up to which the rates hold unscaled. Cells of 50 diameters gave the same
+// statistics (the 500-diameter mould, seed 1: coordination 3.680, 7.04 % floating against 3.681,
+// 7.02 %; measured with an extra term pulling each cell's stress toward the mould's, which
+// changed nothing at 100 diameters: 3.682, 7.02 %).
 constexpr double kHoldGain = 0.5;     // fraction of the wall-stress error corrected per interval
 constexpr long kCheckEvery = 50;      // cycles between convergence checks
 constexpr long kStiffnessEvery = 10;  // cycles between updates of the servo's stiffness estimate
@@ -87,6 +86,11 @@ void check_controls(const Container& mould, const MortarPackingControls& c) {
   if (!(c.fire_stage_drop > 1)) bad("fire_stage_drop", "must be > 1");
   if (!(c.time_step_safety > 0 && c.time_step_safety <= 1))
     bad("time_step_safety", "must be in (0, 1] (fraction of the critical time step)");
+  if (!(c.cell_decompression_above >= kDecompressionCellDiameters &&
+        c.cell_decompression_above <= 1e6))
+    bad("cell_decompression_above",
+        "must be in [" + std::to_string(static_cast<int>(kDecompressionCellDiameters)) +
+            ", 1e6] (mean diameters of the mould's larger side)");
   if (c.threads < 1 || c.threads > kMaxMortarThreads)
     bad("threads", "must be in [1, " + std::to_string(kMaxMortarThreads) + "]");
   if (c.relaxation == MortarRelaxation::Fire)
@@ -191,7 +195,7 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   //    a constant logarithmic rate. It has to be slow against the relaxation of the whole
   //    packing, else contacts open faster than the discs can follow, the coordination number
   //    collapses and the packing unjams (re-jamming from below then creeps for ~1e5 cycles).
-  //    On a mould whose larger side spans more than kCellDecompressionAboveDiameters each
+  //    On a mould whose larger side spans more than cell_decompression_above each
   //    cell's discs shrink by the factor that drops that cell's own contact stress by the
   //    fraction, from the cell's stress and stiffness read every kStiffnessEvery cycles
   //    (DecompressionCells; the common factor reads the stress every cycle).
@@ -199,8 +203,9 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   //    correction on the wall stress (the reported figure) every check interval.
   const Eigen::Vector2d centre = mould.centre();
   const double span_diameters = mould_span_diameters(mould.width, mould.height, c.r_mean);
-  const bool by_cells = decompresses_by_cells(mould.width, mould.height, c.r_mean);
-  const double rate_span = by_cells ? kCellDecompressionAboveDiameters : span_diameters;
+  const bool by_cells =
+      decompresses_by_cells(mould.width, mould.height, c.r_mean, c.cell_decompression_above);
+  const double rate_span = by_cells ? c.cell_decompression_above : span_diameters;
   const double rate_scale =
       (c.time_step_safety / kRatesTimeStepSafety) * std::min(1.0, kRateSpanDiameters / rate_span);
   DecompressionCells cells(mould, kDecompressionCellDiameters * 2.0 * c.r_mean);
@@ -407,9 +412,8 @@ double mould_span_diameters(double width, double height, double r_mean) {
   return std::max(width, height) / (2.0 * r_mean);
 }
 
-bool decompresses_by_cells(double width, double height, double r_mean) {
-  return mould_span_diameters(width, height, r_mean) >
-         kCellDecompressionAboveDiameters * (1 + 1e-9);
+bool decompresses_by_cells(double width, double height, double r_mean, double above) {
+  return mould_span_diameters(width, height, r_mean) > above * (1 + 1e-9);
 }
 
 double fire_stage_limit(double width, double height, const MortarPackingControls& c) {
@@ -481,6 +485,7 @@ MortarPacking pack_mortar(const Container& mould, const MortarPackingControls& c
   const dem::LinearContact law{c.emod, 1.0, 0.0};
   settings.laws.fill(law);
   out.time_step_safety = settings.time_step_safety;
+  out.cell_decompression_above = c.cell_decompression_above;
   dem::World world(settings);
   // The stress servo reads the virial every cycle and the per-pair results (32 bytes per pair)
   // every few (relax_damped requests them): 0.95-0.98x the C30 packing's time on 1 and 2

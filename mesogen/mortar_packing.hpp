@@ -32,11 +32,19 @@ constexpr double kFireStageSpanDiameters = 200.0;
 // rather than left unproven.
 constexpr double kFireSpanDiameters = 500.0;
 
+// The side of a decompression cell in mean diameters, and the least span above which a mould may
+// decompress by cells (MortarPackingControls::cell_decompression_above): the span up to which the
+// decompression rates hold unscaled.
+inline constexpr double kDecompressionCellDiameters = 100.0;
+// The default of MortarPackingControls::cell_decompression_above (mean diameters).
+inline constexpr double kDefaultCellDecompressionAbove = 200.0;
+
 // Whether relaxation = "damped" decompresses this mould cell by cell (mesogen/
-// decompression_cells.hpp): its larger side spans more than 200 mean diameters; a mould of
-// exactly 200 (the C30 mould, the notched beam), whatever the rounding of its units, keeps the
-// common factor (width, height and r_mean in m).
-bool decompresses_by_cells(double width, double height, double r_mean);
+// decompression_cells.hpp): its larger side spans more than `above` mean diameters (200 by
+// default); a mould of exactly `above` (at 200 the C30 mould, the notched beam), whatever the
+// rounding of its units, keeps the common factor (width, height and r_mean in m).
+bool decompresses_by_cells(double width, double height, double r_mean,
+                           double above = kDefaultCellDecompressionAbove);
 
 // Why `relaxation = "fire"` is refused for this mould (empty: accepted).
 std::string fire_span_refusal(double width, double height, double r_mean);
@@ -84,6 +92,14 @@ struct MortarPackingControls {
   // stability suite that 0.8 passes (a 100x stiffer aggregate's packing unjams: 10.1 % floating;
   // kn/ks 6 gives nu 0.530): docs/performance.md "Session 16", so it is opt-in.
   double time_step_safety = 0.8;
+  // The span (mean diameters) of the larger side above which the mould decompresses cell by cell
+  // (`mortar.cell_decompression_above`, [kDecompressionCellDiameters, 1e6]): cells of 100
+  // diameters at the rate of a mould of this span (relax_damped). It states the packing's recipe
+  // too: moulds up to 200 diameters (every shipped specimen) pack as they did before the key. At
+  // 100 the C30 mould (200 diameters) decompresses by cells at the unscaled rate: 0.57x its
+  // cycles, a looser packing (coordination 3.61-3.62 against 3.65-3.67) that the stability suite
+  // accepts; opt-in (docs/generator.md "Decompression by cells", docs/performance.md "Session 54").
+  double cell_decompression_above = kDefaultCellDecompressionAbove;
   // Threads of the DEM cycles, 1..kMaxMortarThreads (the result does not depend on it):
   // `mortar.threads`, or `cdem generate --threads`.
   int threads = 1;
@@ -132,16 +148,17 @@ constexpr double kMinPackedRatio = 1.2;
 long default_expansion_steps(double r_ratio);
 
 struct MortarPacking {
-  std::vector<double> x, y, r;     // m
-  double r_ratio = 0;              // R_max / R_min of the radii drawn (>= kMinPackedRatio)
-  long disc_count_formula = 0;     // floor(A (1 - n) / (pi R_mean^2))
-  double initial_porosity = 0;     // n0, at half radius
-  double expansion_factor = 0;     // m = sqrt((1 - n) / (1 - n0))
-  long expansion_steps = 0;        // the cycles the expansion took (given or default)
-  double time_step_safety = 0;     // of the expansion and calming cycles (the recipe used)
-  double porosity = 0;             // reached: 1 - sum(pi r^2) / A (overlaps not subtracted)
-  double mean_overlap = 0;         // m, over disc-disc contacts
-  double mean_overlap_ratio = 0;   // mean of overlap / min(R1, R2)
+  std::vector<double> x, y, r;          // m
+  double r_ratio = 0;                   // R_max / R_min of the radii drawn (>= kMinPackedRatio)
+  long disc_count_formula = 0;          // floor(A (1 - n) / (pi R_mean^2))
+  double initial_porosity = 0;          // n0, at half radius
+  double expansion_factor = 0;          // m = sqrt((1 - n) / (1 - n0))
+  long expansion_steps = 0;             // the cycles the expansion took (given or default)
+  double time_step_safety = 0;          // of the expansion and calming cycles (the recipe used)
+  double cell_decompression_above = 0;  // mean diameters (the recipe used)
+  double porosity = 0;                  // reached: 1 - sum(pi r^2) / A (overlaps not subtracted)
+  double mean_overlap = 0;              // m, over disc-disc contacts
+  double mean_overlap_ratio = 0;        // mean of overlap / min(R1, R2)
   double residual_stress = 0;      // Pa, mean isotropic stress on the walls, compression positive
   double contact_stress = 0;       // Pa, the same from the contacts (Love-Weber average)
   double unbalanced_ratio = 0;     // mean |net force| / mean |contact force| at the end
@@ -154,7 +171,8 @@ struct MortarPacking {
   long expansion_and_calming_builds = 0;  // of which in the expansion and the calming
   bool converged = false;                 // stress within tolerance and forces balanced
   int fire_restored_stages = 0;           // relaxation = "fire": stages undone by the jamming check
-  // relaxation = "damped" on a mould wider than 200 mean diameters: the cells it decompressed
+  // relaxation = "damped" on a mould wider than cell_decompression_above (200 mean diameters by
+  // default): the cells it decompressed
   // cell by cell (0: one common factor), and how far the discs' radius factors over the
   // relaxation spread (largest / smallest - 1; a common factor gives 0).
   int decompression_cells = 0;

@@ -49,6 +49,7 @@ expect bad_relaxation 2 "mortar.relaxation.*unknown value 'cg' (allowed: 'damped
 expect fire_wide_mould 2 "relaxation.*'fire' keeps the packing jammed on moulds up to 500 mean diameters across" "$(variant fire_wide_mould 's/^porosity = 0.12/porosity = 0.12\nrelaxation = "fire"/; s/^r_mean_mm = 0.5 /r_mean_mm = 0.15 /')"
 expect time_step_safety_zero 2 "time_step_safety_zero.toml.*mortar.time_step_safety.*(0, 1\]" "$(variant time_step_safety_zero 's/^porosity = 0.12/porosity = 0.12\ntime_step_safety = 0/')"
 expect time_step_safety_above_one 2 "mortar.time_step_safety.*(0, 1\]" "$(variant time_step_safety_above_one 's/^porosity = 0.12/porosity = 0.12\ntime_step_safety = 1.2/')"
+expect cells_above_low 2 "cells_above_low.toml.*mortar.cell_decompression_above.*\[100, 1e+06\]" "$(variant cells_above_low 's/^porosity = 0.12/porosity = 0.12\ncell_decompression_above = 50/')"
 expect threads_key_zero 2 "mortar.threads.*\[1, 1024\]" "$(variant threads_key_zero 's/^porosity = 0.12/porosity = 0.12\nthreads = 0/')"
 expect threads_key_text 2 "mortar.threads" "$(variant threads_key_text 's/^porosity = 0.12/porosity = 0.12\nthreads = "two"/')"
 expect threads_option_zero 2 "cdem generate: key '--threads'.*\[1, 1024\], got 0" "$base" --threads 0

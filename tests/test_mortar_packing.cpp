@@ -436,6 +436,63 @@ TEST(MortarPacking, OnlyMouldsWiderThan200DiametersDecompressByCells) {
   EXPECT_TRUE(decompresses_by_cells(0.25, 0.5, 0.5e-3));  // 500 diameters
   EXPECT_TRUE(decompresses_by_cells(0.1, 0.2, 0.35e-3));  // 286: the finest C30 mortar
   EXPECT_TRUE(decompresses_by_cells(0.201, 0.1, 0.5e-3));
+  // mortar.cell_decompression_above moves the threshold: at 100 the C30 mould goes by cells, a
+  // mould of exactly 100 diameters does not.
+  EXPECT_TRUE(decompresses_by_cells(0.1, 0.2, 0.5e-3, 100));
+  EXPECT_FALSE(decompresses_by_cells(0.05, 0.1, 0.5e-3, 100));
+  EXPECT_TRUE(decompresses_by_cells(0.1002, 0.05, 0.5e-3, 100));
+}
+
+// mortar.cell_decompression_above = 100 (opt-in; docs/generator.md "Decompression by cells"): a
+// mould of 110 x 55 mean diameters decompresses by cells at the unscaled rate, where the default
+// shrinks it by one common factor at the rate scaled by 100 / 110. It takes fewer cycles and
+// still ends jammed at sigma0 (the bounds the stability suite asserts on the C30 mould).
+TEST(MortarPacking, CellDecompressionAboveAHundredDiametersTakesFewerCyclesJammed) {
+  const Container mould = rectangle(0.055, 0.0275);
+  MortarPackingControls c;
+  c.r_mean = 0.25e-3;
+  const MortarPacking common = pack(mould, c, 1);
+  EXPECT_EQ(common.decompression_cells, 0);
+  EXPECT_EQ(common.cell_decompression_above, 200);
+  c.cell_decompression_above = 100;
+  const MortarPacking cells = pack(mould, c, 1);
+  EXPECT_EQ(cells.cell_decompression_above, 100);
+  EXPECT_GT(cells.decompression_cells, 1);
+  EXPECT_LT(cells.steps, common.steps);
+  EXPECT_TRUE(cells.converged);
+  EXPECT_LE(std::abs(cells.residual_stress - c.sigma0), c.stress_tolerance * c.sigma0);
+  EXPECT_GT(cells.coordination_number, 3.5);
+  EXPECT_LT(static_cast<double>(cells.floating_discs), 0.1 * static_cast<double>(cells.r.size()));
+}
+
+// The key read by the generator's input ([100, 1e6] mean diameters) and checked by pack_mortar.
+TEST(MortarPacking, CellDecompressionAboveKeyIsReadAndChecked) {
+  const auto read = [](const std::string& mortar) {
+    return cdem::mesogen::read_generator_input(cdem::InputTable::parse_string(
+        "[specimen]\nshape = \"disc\"\ndiameter_mm = 30\n[mortar]\nr_mean_mm = 0.5\n" + mortar,
+        "cells key"));
+  };
+  EXPECT_EQ(read("").mortar.cell_decompression_above, 200);
+  EXPECT_EQ(read("cell_decompression_above = 100\n").mortar.cell_decompression_above, 100);
+  for (const char* bad : {"99", "0", "2e6", "\"always\""}) {
+    try {
+      (void)read(std::string("cell_decompression_above = ") + bad + "\n");
+      ADD_FAILURE() << "cell_decompression_above = " << bad << " was accepted";
+    } catch (const cdem::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("cells key"), std::string::npos) << what;
+      EXPECT_NE(what.find("mortar.cell_decompression_above"), std::string::npos) << what;
+    }
+  }
+  MortarPackingControls c;
+  c.cell_decompression_above = 50;
+  cdem::Rng rng(1);
+  try {
+    (void)cdem::mesogen::pack_mortar(rectangle(0.012, 0.012), c, rng);
+    ADD_FAILURE() << "pack_mortar accepted cell_decompression_above = 50";
+  } catch (const cdem::InputError& e) {
+    EXPECT_EQ(e.key(), "cell_decompression_above") << e.what();
+  }
 }
 
 }  // namespace
