@@ -195,6 +195,10 @@ GeneratorInput read_generator_input(const InputTable& root) {
     m.fail("time_step_safety",
            "applies to relaxation 'damped' only ('fire' expands at the safety its stages were "
            "measured with, mesogen::kFireExpansionTimeStepSafety; docs/generator.md)");
+  if (mc.relaxation == MortarRelaxation::Fire && m.has("cell_decompression_above"))
+    m.fail("cell_decompression_above",
+           "applies to relaxation 'damped' only ('fire' decompresses in static stages, not by "
+           "cells; docs/generator.md)");
   if (mc.relaxation == MortarRelaxation::Fire)
     if (const std::string why =
             fire_span_refusal(in.container.width, in.container.height, mc.r_mean);

@@ -484,6 +484,14 @@ TEST(MortarPacking, CellDecompressionAboveKeyIsReadAndChecked) {
       EXPECT_NE(what.find("mortar.cell_decompression_above"), std::string::npos) << what;
     }
   }
+  // relaxation = "fire" does not decompress by cells: the key is refused with it.
+  try {
+    (void)read("relaxation = \"fire\"\ncell_decompression_above = 100\n");
+    ADD_FAILURE() << "cell_decompression_above was accepted with relaxation = \"fire\"";
+  } catch (const cdem::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mortar.cell_decompression_above"), std::string::npos)
+        << e.what();
+  }
   MortarPackingControls c;
   c.cell_decompression_above = 50;
   cdem::Rng rng(1);
