@@ -17,35 +17,6 @@ ContactStiffnessTermOf<T> term_of(const ContactStiffnessOf<T>& c, T arm_first, T
           c.shear * arm_second * arm_second + c.rotation};
 }
 
-// The terms of the kLanes<L> contacts from k, none of which carries a flat or a smooth joint, to
-// out[0 .. kLanes<L> - 1]: the operations of ContactStiffnessTerms::one in the same order, each
-// correctly rounded in every lane (dem/lanes.hpp), so each lane has its bits.
-template <class L>
-[[gnu::always_inline]] inline void lane_terms(const Discs& discs, const ContactStore& contacts,
-                                              const ContactStiffnessTerms::ByClass& c,
-                                              std::size_t k, ContactStiffnessTerm* out) {
-  constexpr std::size_t n = kLanes<L>;
-  const double* records = &discs.state.data()->x;
-  L a[kRecordFields], b[kRecordFields];
-  load_records(records, contacts.first.data() + k, a);
-  load_records(records, contacts.second.data() + k, b);
-  const L r1 = a[DiscState::kR], r2 = b[DiscState::kR];
-  const std::uint8_t* cls = contacts.contact_class.data() + k;
-  ParallelBondLanes<L> p{};
-  p.modulus = lookup<L>(c.modulus, cls);
-  p.stiffness_ratio = lookup<L>(c.stiffness_ratio, cls);
-  p.radius_multiplier = lookup<L>(c.radius_multiplier, cls);
-  const ContactStiffnessOf<L> s = linear_pair_stiffness(
-      lookup<L>(c.emod, cls), lookup<L>(c.kappa, cls), p,
-      lanes_equal<L>(contacts.state.bond.data() + k, static_cast<std::uint8_t>(BondKind::Parallel)),
-      r1, r2);
-  const ContactStiffnessTermOf<L> t =
-      term_of(s, body_arm(a[DiscState::kOffsetX], a[DiscState::kOffsetY], r1),
-              body_arm(b[DiscState::kOffsetX], b[DiscState::kOffsetY], r2));
-  for (std::size_t l = 0; l < n; ++l)
-    out[l] = {t.translational[l], t.rotational_first[l], t.rotational_second[l]};
-}
-
 // Whether none of the kLanes<L> contacts from k carries a flat or a smooth joint.
 template <class L>
 [[gnu::always_inline]] inline bool lanes_take(const ContactStore& contacts, std::size_t k) {
@@ -56,42 +27,59 @@ template <class L>
   return lane_bits(linear) == kEveryLane;
 }
 
-// The whole groups of kLanes<L> contacts of [k, k + n) that lanes_take, in lanes; returns how
-// many contacts from k it wrote (the other groups and the rest are left to one at a time).
+}  // namespace
+
+// The terms of the kLanes<L> contacts from k, none of which carries a flat or a smooth joint, to
+// out[0 .. kLanes<L> - 1]: the operations of one() in the same order, each correctly rounded in
+// every lane (dem/lanes.hpp), so each lane has its bits. Lane code: called only from the
+// groups_in_lanes8 / 4 below, which inline it.
 template <class L>
-[[gnu::always_inline]] inline std::size_t groups_in_lanes(const ContactStiffnessTerms& terms,
-                                                          const Discs& discs,
-                                                          const ContactStore& contacts,
-                                                          const ContactStiffnessTerms::ByClass& c,
-                                                          std::size_t k, std::size_t n,
-                                                          ContactStiffnessTerm* out) {
+void ContactStiffnessTerms::lane_terms(std::size_t k, ContactStiffnessTerm* out) const {
+  constexpr std::size_t n = kLanes<L>;
+  const double* records = &discs_.state.data()->x;
+  L a[kRecordFields], b[kRecordFields];
+  load_records(records, contacts_.first.data() + k, a);
+  load_records(records, contacts_.second.data() + k, b);
+  const L r1 = a[DiscState::kR], r2 = b[DiscState::kR];
+  const std::uint8_t* cls = contacts_.contact_class.data() + k;
+  ParallelBondLanes<L> p{};
+  p.modulus = lookup<L>(by_class_.modulus, cls);
+  p.stiffness_ratio = lookup<L>(by_class_.stiffness_ratio, cls);
+  p.radius_multiplier = lookup<L>(by_class_.radius_multiplier, cls);
+  const ContactStiffnessOf<L> s =
+      linear_pair_stiffness(lookup<L>(by_class_.emod, cls), lookup<L>(by_class_.kappa, cls), p,
+                            lanes_equal<L>(contacts_.state.bond.data() + k,
+                                           static_cast<std::uint8_t>(BondKind::Parallel)),
+                            r1, r2);
+  const ContactStiffnessTermOf<L> t =
+      term_of(s, body_arm(a[DiscState::kOffsetX], a[DiscState::kOffsetY], r1),
+              body_arm(b[DiscState::kOffsetX], b[DiscState::kOffsetY], r2));
+  for (std::size_t l = 0; l < n; ++l)
+    out[l] = {t.translational[l], t.rotational_first[l], t.rotational_second[l]};
+}
+
+template <class L>
+std::size_t ContactStiffnessTerms::groups_in_lanes(std::size_t k, std::size_t n,
+                                                   ContactStiffnessTerm* out) const {
   constexpr std::size_t width = kLanes<L>;
   std::size_t q = 0;
   for (; q + width <= n; q += width) {
-    if (lanes_take<L>(contacts, k + q))
-      lane_terms<L>(discs, contacts, c, k + q, out + q);
+    if (lanes_take<L>(contacts_, k + q))
+      lane_terms<L>(k + q, out + q);
     else
-      for (std::size_t l = 0; l < width; ++l) out[q + l] = terms.one(k + q + l);
+      for (std::size_t l = 0; l < width; ++l) out[q + l] = one(k + q + l);
   }
   return q;
 }
 
-CDEM_LANES8_TARGET std::size_t groups_in_lanes8(const ContactStiffnessTerms& terms,
-                                                const Discs& discs, const ContactStore& contacts,
-                                                const ContactStiffnessTerms::ByClass& c,
-                                                std::size_t k, std::size_t n,
-                                                ContactStiffnessTerm* out) {
-  return groups_in_lanes<Lanes8>(terms, discs, contacts, c, k, n, out);
+CDEM_LANES8_TARGET std::size_t ContactStiffnessTerms::groups_in_lanes8(
+    std::size_t k, std::size_t n, ContactStiffnessTerm* out) const {
+  return groups_in_lanes<Lanes8>(k, n, out);
 }
-CDEM_LANES4_TARGET std::size_t groups_in_lanes4(const ContactStiffnessTerms& terms,
-                                                const Discs& discs, const ContactStore& contacts,
-                                                const ContactStiffnessTerms::ByClass& c,
-                                                std::size_t k, std::size_t n,
-                                                ContactStiffnessTerm* out) {
-  return groups_in_lanes<Lanes4>(terms, discs, contacts, c, k, n, out);
+CDEM_LANES4_TARGET std::size_t ContactStiffnessTerms::groups_in_lanes4(
+    std::size_t k, std::size_t n, ContactStiffnessTerm* out) const {
+  return groups_in_lanes<Lanes4>(k, n, out);
 }
-
-}  // namespace
 
 ContactStiffnessTerms::ContactStiffnessTerms(
     const Discs& discs, const ContactStore& contacts,
@@ -124,9 +112,9 @@ void ContactStiffnessTerms::operator()(std::size_t k, std::size_t n,
                                        ContactStiffnessTerm* out) const {
   std::size_t q = 0;
   if (lanes_ == LaneIsa::Avx512)
-    q = groups_in_lanes8(*this, discs_, contacts_, by_class_, k, n, out);
+    q = groups_in_lanes8(k, n, out);
   else if (lanes_ == LaneIsa::Avx2)
-    q = groups_in_lanes4(*this, discs_, contacts_, by_class_, k, n, out);
+    q = groups_in_lanes4(k, n, out);
   for (; q < n; ++q) out[q] = one(k + q);
 }
 

@@ -61,13 +61,25 @@ class ContactStiffnessTerms {
   // The term of contact k alone.
   ContactStiffnessTerm one(std::size_t k) const;
 
+ private:
   // Each class's constants, by contact class code (at most 8, for lookup<L>).
   struct ByClass {
     double emod[8] = {}, kappa[8] = {}, modulus[8] = {}, stiffness_ratio[8] = {},
            radius_multiplier[8] = {};
   };
 
- private:
+  // The whole groups of eight (AVX-512) or four (AVX2) contacts of [k, k + n), each in lanes if
+  // none of its contacts carries a flat or smooth joint, else one at a time; returns how many
+  // contacts from k they wrote (the rest is left to one at a time).
+  CDEM_LANES8_TARGET std::size_t groups_in_lanes8(std::size_t k, std::size_t n,
+                                                  ContactStiffnessTerm* out) const;
+  CDEM_LANES4_TARGET std::size_t groups_in_lanes4(std::size_t k, std::size_t n,
+                                                  ContactStiffnessTerm* out) const;
+  template <class L>
+  std::size_t groups_in_lanes(std::size_t k, std::size_t n, ContactStiffnessTerm* out) const;
+  template <class L>
+  void lane_terms(std::size_t k, ContactStiffnessTerm* out) const;
+
   const Discs& discs_;
   const ContactStore& contacts_;
   const std::array<LinearContact, kContactClassCount>& laws_;

@@ -335,7 +335,6 @@ void World::rebuild() {
 // disc-disc sums and the pass over the bodies are shared out on the team, the same bits as one
 // thread (dem/time_step_stiffness.hpp); the disc-wall terms follow them, in order.
 void World::update_time_step() {
-  const auto arm = [&](std::int32_t d) { return body_arm(discs_, d); };
   stiffness_.sum_pairs(
       bodies_, discs_, contacts_,
       ContactStiffnessTerms(discs_, contacts_, settings_.laws, settings_.bonds, settings_.lanes),
@@ -347,7 +346,7 @@ void World::update_time_step() {
   const double kn_wall = wall.normal, ks_wall = wall.shear;
   for (std::size_t k = 0; k < contacts_.wall_keys.size(); ++k) {
     const std::int32_t i = contacts_.wall_disc[k];
-    const double a = arm(i);
+    const double a = body_arm(discs_, i);
     stiffness[discs_.body[i]] += std::max(kn_wall, ks_wall);
     rot_stiffness[discs_.body[i]] += ks_wall * a * a;
   }
@@ -364,7 +363,7 @@ void World::update_time_step() {
       const double kt = std::max(stiffness[b], k_floor);
       double kr = rot_stiffness[b];
       if (kr <= 0) {
-        const double a = arm(bodies_.first_disc[b]);
+        const double a = body_arm(discs_, bodies_.first_disc[b]);
         kr = ks_wall * a * a;
       }
       if (settings_.density_scaling) {
