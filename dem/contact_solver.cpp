@@ -80,7 +80,7 @@ long disc_wall_forces(const Discs& d, const Walls& walls, ContactStore& list, Co
         book_slip(k, linear_shear_step(old, ks, vt, dt, mu, 0.0).slip_work);
       }
       state.shear_force[k] = 0;
-      out.normal[k] = out.overlap[k] = out.fx[k] = out.fy[k] = out.moment[k] = 0;
+      out.normal[k] = out.overlap[k] = out.fx[k] = out.fy[k] = out.moment[k] = out.branch[k] = 0;
       out.cx[k] = px;
       out.cy[k] = py;
       continue;
@@ -113,6 +113,7 @@ long disc_wall_forces(const Discs& d, const Walls& walls, ContactStore& list, Co
     out.fx[k] = fn * nx - fs * ny;
     out.fy[k] = fn * ny + fs * nx;
     out.moment[k] = -arm * fs;
+    out.branch[k] = arm;
     out.cx[k] = d.x[i] - arm * nx;
     out.cy[k] = d.y[i] - arm * ny;
   }
@@ -135,6 +136,7 @@ void prepare_force_results(ContactForces& pair, ContactForces& wall_pair,
       grow(f.moment);
       grow(f.cx);
       grow(f.cy);
+      grow(f.branch);
     }
   };
   resize(pair, list.keys.size(), false);
@@ -153,12 +155,12 @@ void add_wall_pairs(Discs& discs, const ContactStore& list, const ContactForces&
 }
 
 void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wall_pair,
-                 const Discs& discs, double radius_factor, ForcePassResult& result) {
+                 ForcePassResult& result) {
   for (std::size_t w = 0; w < walls.size(); ++w)
     walls.fx[w] = walls.fy[w] = walls.sxx[w] = walls.sxy[w] = walls.syx[w] = walls.syy[w] = 0;
   for (std::size_t k = 0; k < list.wall_keys.size(); ++k) {
     if (!wall_pair_loaded(wall_pair, k)) continue;
-    const std::int32_t i = list.wall_disc[k], wi = list.wall_index[k];
+    const std::int32_t wi = list.wall_index[k];
     const double px = wall_pair.fx[k], py = wall_pair.fy[k];
     walls.fx[wi] -= px;
     walls.fy[wi] -= py;
@@ -166,8 +168,7 @@ void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wa
     walls.sxy[wi] -= wall_pair.cx[k] * py;
     walls.syx[wi] -= wall_pair.cy[k] * px;
     walls.syy[wi] -= wall_pair.cy[k] * py;
-    result.virial +=
-        wall_pair.normal[k] * (discs.r[i] * radius_factor - 0.5 * wall_pair.overlap[k]);
+    result.virial += wall_pair.normal[k] * wall_pair.branch[k];
     ++result.touching_walls;
   }
 }
@@ -187,7 +188,7 @@ ForcePassResult compute_contact_forces(Discs& discs, Walls& walls, ContactStore&
                        dt, max_overlap_ratio, options.radius_factor, result.slip_work, nullptr, 0,
                        list.wall_keys.size());
   add_wall_pairs(discs, list, wall_pair, 0, list.wall_keys.size());
-  wall_totals(walls, list, wall_pair, discs, options.radius_factor, result);
+  wall_totals(walls, list, wall_pair, result);
   if (!options.virial) result.virial = std::numeric_limits<double>::quiet_NaN();
   return result;
 }

@@ -42,6 +42,9 @@ struct ContactForces {
   StaggeredArray<double> fx, fy;   // N, force on the second disc (on the disc for walls)
   StaggeredArray<double> moment;   // N m, walls only: moment on the disc about its centre
   StaggeredArray<double> cx, cy;   // m, contact point (walls only)
+  // m, walls only: the branch from the disc's centre to the contact point, r - overlap / 2 (the
+  // virial's lever; wall_totals reads it here, not the disc's radius from the disc's record).
+  StaggeredArray<double> branch;
   // Valid for the pairs listed in `broken` only (written when a bond breaks): how it failed,
   // and the strain energy it held (J).
   StaggeredArray<std::uint8_t> failure;
@@ -124,8 +127,8 @@ inline bool wall_pair_loaded(const ContactForces& wall_pair, std::size_t k) {
 void add_wall_pairs(Discs& discs, const ContactStore& list, const ContactForces& wall_pair,
                     std::size_t begin, std::size_t end);
 // The walls' force and stress sums (walls.fx ... syy) and the disc-wall part of the virial and
-// of the touching count, in wall-pair order; the radii as in disc_wall_forces.
+// of the touching count, in wall-pair order, from the pairs' results alone.
 void wall_totals(Walls& walls, const ContactStore& list, const ContactForces& wall_pair,
-                 const Discs& discs, double radius_factor, ForcePassResult& result);
+                 ForcePassResult& result);
 
 }  // namespace cdem::dem

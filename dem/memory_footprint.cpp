@@ -12,7 +12,7 @@ std::size_t state_bytes(const ContactStates& s) {
 }
 
 std::size_t force_bytes(const ContactForces& f) {
-  return capacity_bytes(f.normal, f.overlap, f.fx, f.fy, f.moment, f.cx, f.cy, f.failure,
+  return capacity_bytes(f.normal, f.overlap, f.fx, f.fy, f.moment, f.cx, f.cy, f.branch, f.failure,
                         f.bond_energy_released, f.failed_elements, f.failed_shear, f.broken);
 }
 

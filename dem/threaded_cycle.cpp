@@ -519,9 +519,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
   for (const double work : wall_slip_) r.slip_work += work;
   r.bad_pair = bad;
   r.bad_wall_pair = bad_wall;
-  // The integration stored the radii times the pass's factor (a step that stopped before it
-  // did not).
-  wall_totals(walls, list, wall_pair, discs, integrated ? 1.0 : s.pass.radius_factor, r);
+  wall_totals(walls, list, wall_pair, r);
   out.integrated = integrated;
   if (integrated && chunk_count > 0) {
     RangeMotion& m = out.motion;

@@ -408,8 +408,8 @@ void realign_results(ContactForces& f, const StaggeredArray<std::uint64_t>& old_
     }
     a.swap(moved);
   };
-  for (auto* a :
-       {&f.normal, &f.overlap, &f.fx, &f.fy, &f.moment, &f.cx, &f.cy, &f.bond_energy_released})
+  for (auto* a : {&f.normal, &f.overlap, &f.fx, &f.fy, &f.moment, &f.cx, &f.cy, &f.branch,
+                  &f.bond_energy_released})
     realign(*a);
   realign(f.failure);
   realign(f.failed_elements);

@@ -181,6 +181,35 @@ TEST(DiscWallImpact, ArcPushesAlongItsRadius) {
   EXPECT_NEAR(w.walls().fx[0], f * std::cos(angle), 1e-6 * f);
 }
 
+// The disc-wall part of the virial: f_n times the branch from the centre to the contact point,
+// r - overlap / 2, with a radius change waiting for the step (World::scale_radii under density
+// scaling: the pass sees the stored radius times the factor) and without; a disc short of the
+// wall adds nothing.
+TEST(DiscWallContact, VirialIsTheNormalForceTimesTheBranchToTheContactPoint) {
+  const double r = 1e-3, overlap = 2e-6, shrunk = 0.9995;
+  for (const bool waiting : {false, true}) {
+    World w(undamped(1e-8));
+    w.add_wall(-0.01, 0, 0.01, 0);
+    w.add_disc(0, r - overlap, r, kRho);
+    w.add_disc(0.005, r + 1e-6, r, kRho);  // 1 um short of the wall
+    w.set_virial_every_step(true);
+    if (waiting) w.set_density_scaling(true, 1e-8);
+    w.step();  // the first step builds the neighbour list (which applies a waiting change)
+    const double y = w.discs().y[0];  // m, the centre's height for the next pass
+    double radius = r;                // m, as the next pass sees it
+    if (waiting) {
+      w.scale_radii(shrunk);
+      radius = r * shrunk;
+    }
+    w.step();
+    const double delta = radius - y;   // m
+    const double fn = 2 * kE * delta;  // N per m, the wall stiffness 2 E*
+    EXPECT_EQ(w.last_force_pass().touching_walls, 1) << waiting;
+    EXPECT_NEAR(w.last_force_pass().virial, fn * (radius - 0.5 * delta), 1e-12 * fn * r) << waiting;
+    EXPECT_NEAR(w.walls().fy[0], -fn, 1e-9 * fn) << waiting;
+  }
+}
+
 TEST(DiscWallImpact, BeyondTheArcOnlyItsEndPointCounts) {
   // The same arc: a disc at 140 degrees (beyond the end at 90 + 17.2 degrees) that would overlap
   // the full circle by 1 um feels nothing; one touching the end point is pushed from it.
