@@ -17,63 +17,84 @@ bool carries_force(const World& w, std::size_t k) {
   return w.pair_forces().overlap[k] > 0 || w.contacts().state.bond[k] != 0;
 }
 
-// Calls visit(contact point, branch vector, force on the second body) for every touching
-// contact whose point may lie in a region; disc-wall branches run from the disc centre to the
-// contact point and, the disc being the second body, carry the sign that makes the sum
-// compression positive. may_reach(x, y, reach) is false only if no point within `reach` (m) of
-// (x, y) lies in the region: a disc-disc contact point is the first disc's centre plus the
-// branch scaled by arm / len (|branch| = len), so it lies within |arm| of that centre, and a
-// pair whose first disc is farther from the region is left out before its point is formed (its
-// hypot and divisions were about half the cost of the gauge's stress at each record of a lab
-// test, whose gauge holds the middle half of the specimen). The reach is widened by far more
-// than the rounding of the point's formula, so no pair whose point lies in the region is left
-// out.
-template <class MayReach, class Visit>
-void for_each_contact(const World& w, MayReach&& may_reach, Visit&& visit) {
-  const Discs& d = w.discs();
-  const ContactStore& nl = w.contacts();
-  for (std::size_t k = 0; k < w.pair_forces().normal.size(); ++k) {
-    if (!carries_force(w, k)) continue;
-    const std::int32_t i = nl.first[k], j = nl.second[k];
-    const double arm = d.r[i] - 0.5 * w.pair_forces().overlap[k];
-    const double xi = d.x[i], yi = d.y[i];
-    if (!may_reach(xi, yi, std::abs(arm) * (1 + 1e-9) + 1e-12 * (std::abs(xi) + std::abs(yi))))
-      continue;
-    const double lx = d.x[j] - xi, ly = d.y[j] - yi;
-    const double len = std::hypot(lx, ly);
-    const Eigen::Vector2d point(xi + lx * arm / len, yi + ly * arm / len);
-    visit(point, Eigen::Vector2d(lx, ly),
-          Eigen::Vector2d(w.pair_forces().fx[k], w.pair_forces().fy[k]));
+// The contacts a contact stress counts, numbered k in [0, size()): the disc-disc pairs, then the
+// disc-wall pairs. term(k, ...) gives contact k's branch vector l times the force f on the second
+// body, l (x) f, if it carries force and its contact point lies in the region (may_reach and
+// inside, below); disc-wall branches run from the disc centre to the contact point and, the disc
+// being the second body, carry the sign that makes the sum compression positive.
+// may_reach(x, y, reach) is false only if no point within `reach` (m) of (x, y) lies in the
+// region: a disc-disc contact point is the first disc's centre plus the branch scaled by arm /
+// len (|branch| = len), so it lies within |arm| of that centre, and a pair whose first disc is
+// farther from the region is left out before its point is formed (its hypot and divisions were
+// about half the cost of the gauge's stress at each record of a lab test, whose gauge holds the
+// middle half of the specimen). The reach is widened by far more than the rounding of the
+// point's formula, so no pair whose point lies in the region is left out.
+template <class MayReach, class Inside>
+class ContactStressTerms {
+ public:
+  ContactStressTerms(const World& w, MayReach may_reach, Inside inside)
+      : w_(w), may_reach_(may_reach), inside_(inside) {}
+
+  std::size_t size() const {
+    return w_.pair_forces().normal.size() + w_.wall_forces().normal.size();
   }
-  for (std::size_t k = 0; k < w.wall_forces().normal.size(); ++k) {
-    if (w.wall_forces().overlap[k] <= 0) continue;
-    const std::int32_t i = nl.wall_disc[k];
-    const Eigen::Vector2d point(w.wall_forces().cx[k], w.wall_forces().cy[k]);
-    const Eigen::Vector2d branch(d.x[i] - point.x(), d.y[i] - point.y());
-    visit(point, branch, Eigen::Vector2d(w.wall_forces().fx[k], w.wall_forces().fy[k]));
+
+  bool operator()(std::size_t k, Eigen::Matrix2d& term) const {
+    const Discs& d = w_.discs();
+    const ContactStore& nl = w_.contacts();
+    const std::size_t pairs = w_.pair_forces().normal.size();
+    if (k < pairs) {
+      if (!carries_force(w_, k)) return false;
+      const std::int32_t i = nl.first[k], j = nl.second[k];
+      const double arm = d.r[i] - 0.5 * w_.pair_forces().overlap[k];
+      const double xi = d.x[i], yi = d.y[i];
+      if (!may_reach_(xi, yi, std::abs(arm) * (1 + 1e-9) + 1e-12 * (std::abs(xi) + std::abs(yi))))
+        return false;
+      const double lx = d.x[j] - xi, ly = d.y[j] - yi;
+      const double len = std::hypot(lx, ly);
+      if (!inside_(xi + lx * arm / len, yi + ly * arm / len)) return false;
+      term = Eigen::Vector2d(lx, ly) *
+             Eigen::Vector2d(w_.pair_forces().fx[k], w_.pair_forces().fy[k]).transpose();
+      return true;
+    }
+    const std::size_t q = k - pairs;
+    const ContactForces& wf = w_.wall_forces();
+    if (wf.overlap[q] <= 0 || !inside_(wf.cx[q], wf.cy[q])) return false;
+    const std::int32_t i = nl.wall_disc[q];
+    term = Eigen::Vector2d(d.x[i] - wf.cx[q], d.y[i] - wf.cy[q]) *
+           Eigen::Vector2d(wf.fx[q], wf.fy[q]).transpose();
+    return true;
   }
+
+ private:
+  const World& w_;
+  MayReach may_reach_;
+  Inside inside_;
+};
+
+// The sum of the terms in contact order, shared out on the world's team with the bits of one
+// loop: at each record of a lab test the main thread formed it alone while the other waited.
+template <class MayReach, class Inside>
+Eigen::Matrix2d contact_stress_sum(const World& world, MayReach may_reach, Inside inside) {
+  const ContactStressTerms<MayReach, Inside> terms(world, may_reach, inside);
+  thread_local std::vector<std::vector<Eigen::Matrix2d>> kept;  // reused from call to call
+  return shared_ordered_sum_of_kept(world.measure_team(), terms.size(),
+                                    Eigen::Matrix2d(Eigen::Matrix2d::Zero()), terms, kept);
 }
 
 }  // namespace
 
 Eigen::Matrix2d contact_stress(const World& world, double area) {
-  Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
-  for_each_contact(
-      world, [](double, double, double) { return true; },
-      [&](const Eigen::Vector2d&, const Eigen::Vector2d& l, const Eigen::Vector2d& f) {
-        s += l * f.transpose();
-      });
-  return s / area;
+  const auto everywhere = [](double, double, double = 0) { return true; };
+  return contact_stress_sum(world, everywhere, everywhere) / area;
 }
 
 Eigen::Matrix2d contact_stress(const World& world, const Box& region) {
-  Eigen::Matrix2d s = Eigen::Matrix2d::Zero();
-  for_each_contact(
-      world, [&](double x, double y, double reach) { return region.contains(x, y, reach); },
-      [&](const Eigen::Vector2d& c, const Eigen::Vector2d& l, const Eigen::Vector2d& f) {
-        if (region.contains(c.x(), c.y())) s += l * f.transpose();
-      });
-  return s / region.area();
+  return contact_stress_sum(
+             world,
+             [&region](double x, double y, double reach) { return region.contains(x, y, reach); },
+             [&region](double x, double y) { return region.contains(x, y); }) /
+         region.area();
 }
 
 Eigen::Matrix2d wall_stress(const World& world, double area, const Eigen::Vector2d& origin) {

@@ -132,6 +132,37 @@ double shared_ordered_sum(WorkerTeam* team, std::size_t n, double own_shares, Te
   return sum;
 }
 
+// The sum over k in [0, n) of the terms that term(k, value) keeps (returns true, having written
+// `value`), with the bits of `for (k = 0; k < n; ++k) if (term(k, value)) sum += value;` from
+// `sum`, shared out on `team` (share_out's members, equal ranges): member 0 adds its range's terms
+// as it forms them, every other member appends its range's terms to its own list in `kept`, and
+// member 0 adds the lists after the join, member by member (so in ascending k). For a sum of
+// several numbers (Value with +=, such as a 2 x 2 tensor) over the few items of many that count:
+// the lists hold those alone. term may not throw.
+template <class Value, class Term>
+Value shared_ordered_sum_of_kept(WorkerTeam* team, std::size_t n, Value sum, Term&& term,
+                                 std::vector<std::vector<Value>>& kept) {
+  const int members = share_out_members(team, n);
+  if (kept.size() < static_cast<std::size_t>(members))
+    kept.resize(static_cast<std::size_t>(members));
+  share_out(team, n, [&](int t, int m) {
+    const MemberRange range = member_range(n, t, m);
+    Value value;
+    if (t == 0) {
+      for (std::size_t k = range.begin; k < range.end; ++k)
+        if (term(k, value)) sum += value;
+      return;
+    }
+    std::vector<Value>& list = kept[static_cast<std::size_t>(t)];
+    list.clear();
+    for (std::size_t k = range.begin; k < range.end; ++k)
+      if (term(k, value)) list.push_back(value);
+  });
+  for (int t = 1; t < members; ++t)
+    for (const Value& value : kept[static_cast<std::size_t>(t)]) sum += value;
+  return sum;
+}
+
 // CPU time of the calling thread (s): what a thread's work costs, whatever the machine's load.
 double thread_cpu_seconds();
 

@@ -114,29 +114,33 @@ Eigen::Matrix2d region_stress_by_definition(const World& w, const cdem::dem::Box
 }
 
 // contact_stress over a region leaves out the pairs whose first disc lies too far from it before
-// forming their contact points: on a jostled bonded lattice, boxes whose edges cut through discs
-// and contacts (and one that holds no contact point) give the bits of the definition.
-TEST(Measure, RegionStressHasTheBitsOfItsDefinition) {
-  World w(cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, 0.5},
+// forming their contact points, and sums the rest on the world's team: on a jostled bonded
+// lattice (7,000 candidate pairs and more, so that two threads share the sum out), boxes whose
+// edges cut through discs and contacts (and one that holds no contact point) give the bits of
+// the definition, on one thread and on two.
+class RegionStress : public ::testing::TestWithParam<int> {};
+
+TEST_P(RegionStress, HasTheBitsOfItsDefinition) {
+  World w(cdem::test::lattice_settings(GetParam(), LinearContact{16e9, 1.45, 0.5},
                                        cdem::test::weak_parallel_bond()));
-  cdem::test::add_hex_lattice(w, 20);
+  cdem::test::add_hex_lattice(w, 60);
   cdem::dem::install_bonds(w, cdem::dem::BondInstallation{0.03});
   cdem::test::jostle(w);
   w.cycle(50);
   w.request_pair_results();
   w.step();
+  ASSERT_GT(w.pair_forces().normal.size(), cdem::dem::kShareOutAbove);
   const double r = 0.5e-3;  // m, the lattice's radius
-  const cdem::dem::Box boxes[] = {{-r, -r, 41 * r, 35 * r},
-                                  {2.7 * r, 3.1 * r, 9.3 * r, 11.7 * r},
-                                  {-r, 6.05 * r, 41 * r, 6.95 * r},
-                                  {9.6 * r, -r, 10.6 * r, 40 * r},
-                                  {50 * r, 50 * r, 60 * r, 60 * r}};
+  const cdem::dem::Box boxes[] = {
+      {-r, -r, 121 * r, 105 * r},           {2.7 * r, 3.1 * r, 9.3 * r, 11.7 * r},
+      {-r, 6.05 * r, 121 * r, 6.95 * r},    {9.6 * r, -r, 10.6 * r, 110 * r},
+      {150 * r, 150 * r, 160 * r, 160 * r}, {30.2 * r, 40.3 * r, 90.7 * r, 80.1 * r}};
   // And left edges swept in steps of r / 200 across the contact points between the discs
   // around x = 10 r.
   std::vector<cdem::dem::Box> regions(std::begin(boxes), std::end(boxes));
   for (int step = 0; step < 40; ++step) {
     const double x0 = (9.8 + 0.005 * step) * r;
-    regions.push_back({x0, -r, x0 + 3 * r, 40 * r});
+    regions.push_back({x0, -r, x0 + 3 * r, 110 * r});
   }
   for (const cdem::dem::Box& region : regions) {
     const Eigen::Matrix2d got = cdem::dem::contact_stress(w, region);
@@ -151,6 +155,8 @@ TEST(Measure, RegionStressHasTheBitsOfItsDefinition) {
   EXPECT_NE(cdem::dem::contact_stress(w, boxes[2])(1, 1), 0);
   EXPECT_EQ(cdem::dem::contact_stress(w, boxes[4])(0, 0), 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Threads, RegionStress, ::testing::Values(1, 2));
 
 // The contact point at the edge of the reach: two discs pressed along x, and a region whose
 // left edge lies just inside their contact point, so the first disc's centre is one arm minus
