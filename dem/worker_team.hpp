@@ -13,6 +13,7 @@
 // and, on a virtual machine, the hypervisor); after a long spin that ran out (the partner was
 // descheduled) a thread uses the short spin (60 us) for its next 256 waits
 // (docs/performance.md, "Session 14").
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -132,34 +133,40 @@ double shared_ordered_sum(WorkerTeam* team, std::size_t n, double own_shares, Te
   return sum;
 }
 
-// The sum over k in [0, n) of the terms that term(k, value) keeps (returns true, having written
-// `value`), with the bits of `for (k = 0; k < n; ++k) if (term(k, value)) sum += value;` from
-// `sum`, shared out on `team` (share_out's members, equal ranges): member 0 adds its range's terms
-// as it forms them, every other member appends its range's terms to its own list in `kept`, and
-// member 0 adds the lists after the join, member by member (so in ascending k). For a sum of
-// several numbers (Value with +=, such as a 2 x 2 tensor) over the few items of many that count:
-// the lists hold those alone. term may not throw.
-template <class Value, class Term>
-Value shared_ordered_sum_of_kept(WorkerTeam* team, std::size_t n, Value sum, Term&& term,
-                                 std::vector<std::vector<Value>>& kept) {
-  const int members = share_out_members(team, n);
-  if (kept.size() < static_cast<std::size_t>(members))
-    kept.resize(static_cast<std::size_t>(members));
-  share_out(team, n, [&](int t, int m) {
-    const MemberRange range = member_range(n, t, m);
-    Value value;
-    if (t == 0) {
-      for (std::size_t k = range.begin; k < range.end; ++k)
-        if (term(k, value)) sum += value;
-      return;
-    }
-    std::vector<Value>& list = kept[static_cast<std::size_t>(t)];
-    list.clear();
-    for (std::size_t k = range.begin; k < range.end; ++k)
-      if (term(k, value)) list.push_back(value);
-  });
-  for (int t = 1; t < members; ++t)
-    for (const Value& value : kept[static_cast<std::size_t>(t)]) sum += value;
+// The sum over k in [0, n) of the terms that form(k, term) keeps (returns true, having written
+// `term`), with the bits of `for (k = 0; k < n; ++k) if (form(k, term)) sum += term;` from `sum`,
+// shared out on `team` a block of kKeptBlock items at a time (share_out's members, equal ranges
+// of the block): member 0 adds its range's terms as it forms them, every other member appends
+// its range's terms to its own list in `kept`, and member 0 adds the lists after the join, member
+// by member (so in ascending k). For sums of several numbers (a 2 x 2 tensor, or a sum over cells
+// that each term adds to a few of) over the items of many that count: the lists hold those alone,
+// and a block's at most (at 10^6 discs lists of every item held tens of MB, past the generator's
+// peak). form may not throw.
+inline constexpr std::size_t kKeptBlock = std::size_t{1} << 16;  // items
+template <class Sum, class Term, class Form>
+Sum shared_ordered_sum_of_kept(WorkerTeam* team, std::size_t n, Sum sum, Form&& form,
+                               std::vector<std::vector<Term>>& kept) {
+  for (std::size_t first = 0; first < n; first += kKeptBlock) {
+    const std::size_t count = std::min(kKeptBlock, n - first);
+    const int members = share_out_members(team, count);
+    if (kept.size() < static_cast<std::size_t>(members))
+      kept.resize(static_cast<std::size_t>(members));
+    share_out(team, count, [&](int t, int m) {
+      const MemberRange range = member_range(count, t, m);
+      Term term;
+      if (t == 0) {
+        for (std::size_t k = first + range.begin; k < first + range.end; ++k)
+          if (form(k, term)) sum += term;
+        return;
+      }
+      std::vector<Term>& list = kept[static_cast<std::size_t>(t)];
+      list.clear();
+      for (std::size_t k = first + range.begin; k < first + range.end; ++k)
+        if (form(k, term)) list.push_back(term);
+    });
+    for (int t = 1; t < members; ++t)
+      for (const Term& term : kept[static_cast<std::size_t>(t)]) sum += term;
+  }
   return sum;
 }
 

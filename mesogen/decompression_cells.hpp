@@ -30,6 +30,13 @@ double affine_stiffness(const dem::World& world, double area, AffineContacts whi
 // virial sum f_n |branch| (N m) and S_c its share of sum kn L^2 (N m; the affine stiffness times
 // 2A), each disc-disc contact shared half and half between its discs' cells, a wall contact its
 // disc's. A cell without a touching contact takes the whole mould's ratio.
+// A touching pair's shares of the cells' sums: half its contact virial and half its affine term
+// onto each of its discs' cells (N m).
+struct CellShares {
+  std::int32_t first_cell, second_cell;
+  double virial, stiffness;
+};
+
 class DecompressionCells {
  public:
   // `cell`: the side of a cell (m); the mould's bounding box [0, width] x [0, height] is cut
@@ -52,6 +59,8 @@ class DecompressionCells {
   std::vector<std::int32_t> cell_of_;       // per disc
   std::vector<double> virial_, stiffness_;  // N m, per cell
   std::vector<double> ratio_;               // V_c / S_c, per cell (dimensionless)
+  // The pairs' shares that members other than the first formed at the last update (scratch).
+  std::vector<std::vector<CellShares>> kept_shares_;
 };
 
 }  // namespace cdem::mesogen

@@ -5,6 +5,9 @@
 // sum in contact order.
 #include "mesogen/decompression_cells.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -97,29 +100,38 @@ TEST(DecompressionCells, EachCellShrinksByItsOwnVirialOverAffineStiffness) {
               (pairs_s + wall_s) / (2 * mould.area()), 1e-12 * kn);
 }
 
+constexpr int kSide = 100;              // discs per row and column of the lattice below
+constexpr double kSpacing = 1.98 * kR;  // m: equal discs would overlap by 1 % of a diameter
+
+// A square lattice of discs of scattered radii, about half of them touching, with more candidate
+// pairs than a share-out needs, after one step on `threads` threads.
+std::unique_ptr<cdem::dem::World> scattered_lattice(int threads) {
+  cdem::dem::WorldSettings s;
+  s.laws.fill(cdem::dem::LinearContact{16e9, 1.0, 0.0});
+  s.threads = threads;
+  auto w = std::make_unique<cdem::dem::World>(s);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> radius(0.97 * kR, 1.01 * kR);  // about half touch
+  for (int row = 0; row < kSide; ++row)
+    for (int col = 0; col < kSide; ++col)
+      w->add_disc(col * kSpacing, row * kSpacing, radius(rng), 2500);
+  w->step();
+  return w;
+}
+
 // A packing on two threads asks for the affine stiffness every ten cycles, shared out
 // (affine_stiffness): on a lattice of discs of scattered radii, some touching and some not, long
 // enough to be shared out, it equals the sum over the contacts in contact order written here, to
 // the bit, on one, two and three threads.
 TEST(DecompressionCells, AffineStiffnessOnATeamHasTheBitsOfTheSumInContactOrder) {
-  constexpr int kSide = 100;              // discs per row and column
-  constexpr double kSpacing = 1.98 * kR;  // m: equal discs would overlap by 1 % of a diameter
   const double area = (kSide * kSpacing) * (kSide * kSpacing);  // m^2
   for (const int threads : {1, 2, 3}) {
-    cdem::dem::WorldSettings s;
-    s.laws.fill(cdem::dem::LinearContact{16e9, 1.0, 0.0});
-    s.threads = threads;
-    cdem::dem::World w(s);
-    std::mt19937_64 rng(3);
-    std::uniform_real_distribution<double> radius(0.97 * kR, 1.01 * kR);  // about half touch
-    for (int row = 0; row < kSide; ++row)
-      for (int col = 0; col < kSide; ++col)
-        w.add_disc(col * kSpacing, row * kSpacing, radius(rng), 2500);
-    w.step();
+    const std::unique_ptr<cdem::dem::World> world = scattered_lattice(threads);
+    const cdem::dem::World& w = *world;
     const cdem::dem::Discs& d = w.discs();
     const cdem::dem::ContactStore& c = w.contacts();
     ASSERT_GE(c.keys.size(), cdem::dem::kShareOutAbove) << "too few pairs to be shared out";
-    const cdem::dem::LinearContact& law = s.laws[0];
+    const cdem::dem::LinearContact& law = w.settings().laws[0];
     double touching = 0, candidates = 0;  // N m
     std::size_t touching_pairs = 0;
     for (std::size_t k = 0; k < c.keys.size(); ++k) {
@@ -138,6 +150,54 @@ TEST(DecompressionCells, AffineStiffnessOnATeamHasTheBitsOfTheSumInContactOrder)
         << threads;
     EXPECT_EQ(affine_stiffness(w, area, AffineContacts::Touching), touching / (2.0 * area))
         << threads;
+  }
+}
+
+// The cells' sums on a team (DecompressionCells::update, every tenth cycle of a packing by
+// cells): on the scattered lattice cut into 7 x 7 cells, every disc's factor has the bits of
+// the sums in contact order written here, on one, two and three threads. The fraction 2^40 keeps
+// every bit of each cell's ratio in the factor: 2^40 x ratio is exact, and so is 1 minus it
+// (below 2^53).
+TEST(DecompressionCells, CellSumsOnATeamHaveTheBitsOfTheSumsInContactOrder) {
+  cdem::Container mould;
+  mould.width = mould.height = kSide * kSpacing;
+  const double cell = mould.width / 7, fraction = std::ldexp(1.0, 40);
+  for (const int threads : {1, 2, 3}) {
+    const std::unique_ptr<cdem::dem::World> world = scattered_lattice(threads);
+    const cdem::dem::World& w = *world;
+    const cdem::dem::Discs& d = w.discs();
+    const cdem::dem::ContactStore& c = w.contacts();
+    const cdem::dem::ContactForces& pf = w.pair_forces();
+    ASSERT_GE(c.keys.size(), cdem::dem::kShareOutAbove) << "too few pairs to be shared out";
+    const auto cell_of = [&](std::size_t i) {
+      const auto along = [&](double x) { return static_cast<int>(std::clamp(x / cell, 0.0, 6.0)); };
+      return along(d.y[i]) * 7 + along(d.x[i]);
+    };
+    std::vector<double> virial(49, 0.0), stiffness(49, 0.0);  // N m
+    const cdem::dem::LinearContact& law = w.settings().laws[0];
+    for (std::size_t k = 0; k < c.keys.size(); ++k) {
+      if (!(pf.overlap[k] > 0)) continue;
+      const std::size_t i = c.first[k], j = c.second[k];
+      const double v = 0.5 * pf.normal[k] * (d.r[i] + d.r[j] - pf.overlap[k]);
+      const double l = d.r[i] + d.r[j];
+      const double s = 0.5 * (law.normal_stiffness(d.r[i], d.r[j]) * l * l);
+      virial[cell_of(i)] += v;
+      virial[cell_of(j)] += v;
+      stiffness[cell_of(i)] += s;
+      stiffness[cell_of(j)] += s;
+    }
+    DecompressionCells cells(mould, cell);
+    ASSERT_EQ(cells.count(), 49);
+    cells.update(w);
+    std::vector<double> factor;
+    cells.shrink_factors(fraction, factor);
+    ASSERT_EQ(factor.size(), d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const int ci = cell_of(i);
+      ASSERT_GT(stiffness[ci], 0) << "a cell without a touching contact";
+      EXPECT_EQ(factor[i], 1.0 - fraction * (virial[ci] / stiffness[ci]))
+          << "threads " << threads << " disc " << i;
+    }
   }
 }
 

@@ -315,4 +315,33 @@ TEST(SharedOut, AShareOutInsideAJobRunsAloneOnItsThread) {
   EXPECT_EQ(after, 2);
 }
 
+// The ordered sum of the kept terms (shared_ordered_sum_of_kept, the contact stress and the
+// decompression cells' sums): over 3.2 blocks of items of scattered magnitudes and signs, a third
+// of them left out, teams of 2 and 3 give the bits of the plain loop, and no member's list holds
+// more than a block's terms.
+TEST(SharedOut, OrderedSumOfKeptTermsHasTheBitsOfOneLoopForAnyTeam) {
+  const std::size_t n = 3 * kKeptBlock + kKeptBlock / 5;
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  std::vector<double> value(n);
+  for (double& v : value) v = std::ldexp(mantissa(rng), exponent(rng));
+  const auto form = [&value](std::size_t k, double& term) {
+    term = value[k];
+    return k % 3 != 1;
+  };
+  double plain = 0.25;
+  for (std::size_t k = 0; k < n; ++k) {
+    double term;
+    if (form(k, term)) plain += term;
+  }
+  for (const int members : {1, 2, 3}) {
+    WorkerTeam team(members);
+    std::vector<std::vector<double>> kept;
+    const double shared = shared_ordered_sum_of_kept(&team, n, 0.25, form, kept);
+    EXPECT_EQ(std::memcmp(&shared, &plain, sizeof plain), 0) << members << ": " << shared;
+    for (const auto& list : kept) EXPECT_LE(list.size(), kKeptBlock) << members;
+  }
+}
+
 }  // namespace
