@@ -22,6 +22,13 @@ enum class AffineContacts { Touching, Candidates };
 // candidate sum serves when re-compressing a packing that has few contacts.
 double affine_stiffness(const dem::World& world, double area, AffineContacts which);
 
+// A touching pair's shares of the cells' sums: half its contact virial and half its affine term
+// onto each of its discs' cells (N m).
+struct CellShares {
+  std::int32_t first_cell, second_cell;
+  double virial, stiffness;
+};
+
 // The mould cut into square cells, each of whose discs shrink by the fraction of the cell's own
 // contact stress a decompression sheds. A common factor for the whole mould sheds that fraction
 // of the mean stress, i.e. a larger fraction where the stress is below the mean; on a wide mould
@@ -30,13 +37,6 @@ double affine_stiffness(const dem::World& world, double area, AffineContacts whi
 // virial sum f_n |branch| (N m) and S_c its share of sum kn L^2 (N m; the affine stiffness times
 // 2A), each disc-disc contact shared half and half between its discs' cells, a wall contact its
 // disc's. A cell without a touching contact takes the whole mould's ratio.
-// A touching pair's shares of the cells' sums: half its contact virial and half its affine term
-// onto each of its discs' cells (N m).
-struct CellShares {
-  std::int32_t first_cell, second_cell;
-  double virial, stiffness;
-};
-
 class DecompressionCells {
  public:
   // `cell`: the side of a cell (m); the mould's bounding box [0, width] x [0, height] is cut
