@@ -80,17 +80,23 @@ void advance(T& v, T force, T applied, T inv_inertia, T dt, T alpha, StepEnergyO
 }
 
 // n consecutive free discs (not clumps, not prescribed) integrated at once: their step's
-// terms of the range sums, each summed into the totals in body order by the caller.
+// energy terms, each summed into the totals in body order by the caller, and the running
+// bounds of every group of the range, lane by lane.
 template <std::size_t n>
 struct FreeDiscLanes {
   // J before the factor dt / 2: lane l's damping term at 2 l, its applied work at 2 l + 1
   // (store_interleaved). As two arrays, GCC summed each lane's two terms as one vector whose
   // 16-byte load straddled two of the lane function's vector stores, and the load waited for
   // them to retire: 41 % of the two-thread integration's samples sat behind it
-  // (docs/performance.md "Session 41").
+  // (docs/performance.md "Session 41"). Written by each group.
   alignas(64) double energy[2 * n];
-  alignas(64) double position[n];  // m, x + y + theta after the step
-  alignas(64) double speed2[n];    // m^2/s^2, squared speed
+  // Over the range's groups so far, per lane: the sum of x + y + theta after the step (m; only
+  // its finiteness is read, so the order of its additions is free) and the largest squared
+  // speed (m^2/s^2; a maximum has one value in any order). Summed into the range's totals in
+  // body order, one addition and one maximum per body, they were two serial chains that held
+  // the integration of a step without energy terms (docs/performance.md "Session 56").
+  alignas(64) double position[n] = {};
+  alignas(64) double speed2[n] = {};
 };
 
 // True when bodies k .. k + n - 1 are all free discs, on consecutive discs (as World numbers
@@ -149,8 +155,9 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, doubl
       store(per_body->prescribed + k, L{});
     }
   }
-  store(out.position, x + y + theta);
-  store(out.speed2, vx * vx + vy * vy);
+  store(out.position, load<L>(out.position) + (x + y + theta));
+  // As std::max(bound, speed2): a NaN speed leaves the bound as it was.
+  store(out.speed2, max_of(load<L>(out.speed2), vx * vx + vy * vy));
   // Back onto the discs' records: position, velocity and the radius times the waiting factor
   // (in the line the store writes anyway); the offset keeps its value.
   fields[S::kX] = x;
@@ -192,28 +199,26 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
   RangeMotion m;
   // Sum of every position: non-finite exactly when some position is (positions are far from
   // overflow), so the loop carries one addition per body instead of a test and a branch; the
-  // body is looked for only when the sum says there is one.
+  // body is looked for only when the sum says there is one. Its value is not read, so the lanes
+  // keep their own sums (FreeDiscLanes).
   double position_sum = 0;
   // Largest squared speed of a free disc and largest pebble speed bound of a clump (m/s).
   double disc_speed2 = 0, pebble_speed = 0;
+  FreeDiscLanes<n> out;  // the groups' terms and their running bounds
   for (std::size_t k = begin; k < end; ++k) {
     if constexpr (n > 1) {
       if (k + n <= end && free_discs<n>(b, k)) {
-        FreeDiscLanes<n> out;
         if (b.any_applied)
           integrate_free_discs<kBook, kDamped, true>(b, d, dt, alpha, radius_factor, k, per_body,
                                                      out);
         else
           integrate_free_discs<kBook, kDamped, false>(b, d, dt, alpha, radius_factor, k, per_body,
                                                       out);
-        for (std::size_t l = 0; l < n; ++l) {
-          if constexpr (kBook) {
+        if constexpr (kBook)
+          for (std::size_t l = 0; l < n; ++l) {
             m.damped += out.energy[2 * l];
             m.applied += out.energy[2 * l + 1];
           }
-          position_sum += out.position[l];
-          disc_speed2 = std::max(disc_speed2, out.speed2[l]);
-        }
         k += n - 1;
         continue;
       }
@@ -279,6 +284,11 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
       d.r[i] *= radius_factor;
     }
   }
+  if constexpr (n > 1)
+    for (std::size_t l = 0; l < n; ++l) {
+      position_sum += out.position[l];
+      disc_speed2 = std::max(disc_speed2, out.speed2[l]);
+    }
   m.position_sum = position_sum;
   m.disc_speed2 = disc_speed2;
   m.pebble_speed = pebble_speed;
