@@ -195,8 +195,13 @@ CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, dou
 // runs of n free discs in lanes (8: AVX-512, 4: AVX2).
 template <bool kBook, bool kDamped, std::size_t n>
 RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, double radius_factor,
-                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body) {
+                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
+                             InterleavedSum* side) {
   RangeMotion m;
+  // The side sum's terms per group of n bodies, rounded up, so that the groups add nearly all
+  // of them.
+  const std::size_t side_per_group =
+      side && end > begin ? (side->count * n + (end - begin) - 1) / (end - begin) : 0;
   // Sum of every position: non-finite exactly when some position is (positions are far from
   // overflow), so the loop carries one addition per body instead of a test and a branch; the
   // body is looked for only when the sum says there is one. Its value is not read, so the lanes
@@ -219,6 +224,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
             m.damped += out.energy[2 * l];
             m.applied += out.energy[2 * l + 1];
           }
+        if (side) side->advance(side_per_group);
         k += n - 1;
         continue;
       }
@@ -289,6 +295,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
       position_sum += out.position[l];
       disc_speed2 = std::max(disc_speed2, out.speed2[l]);
     }
+  if (side) side->advance(side->count);
   m.position_sum = position_sum;
   m.disc_speed2 = disc_speed2;
   m.pebble_speed = pebble_speed;
@@ -299,22 +306,22 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
 
 RangeMotion integrate_range(Bodies& b, Discs& d, double dt, double alpha, bool book,
                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
-                            LaneIsa lanes, double radius_factor) {
+                            LaneIsa lanes, double radius_factor, InterleavedSum* side) {
   // Each combination of energy terms, damping and lane count is its own loop, with no branch on
   // them per body.
   const auto with_lanes = [&]<bool kBook, bool kDamped>() {
     switch (usable_lanes(lanes)) {
       case LaneIsa::Avx512:
         return integrate_bodies<kBook, kDamped, 8>(b, d, dt, alpha, radius_factor, begin, end,
-                                                   per_body);
+                                                   per_body, side);
       case LaneIsa::Avx2:
         return integrate_bodies<kBook, kDamped, 4>(b, d, dt, alpha, radius_factor, begin, end,
-                                                   per_body);
+                                                   per_body, side);
       case LaneIsa::None:
         break;
     }
-    return integrate_bodies<kBook, kDamped, 1>(b, d, dt, alpha, radius_factor, begin, end,
-                                               per_body);
+    return integrate_bodies<kBook, kDamped, 1>(b, d, dt, alpha, radius_factor, begin, end, per_body,
+                                               side);
   };
   if (alpha != 0)
     return book ? with_lanes.template operator()<true, true>()

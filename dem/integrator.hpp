@@ -4,7 +4,9 @@
 // over a range of bodies, so the multi-thread cycle (dem/threaded_cycle.hpp) integrates each
 // thread's bodies in the same parallel region as its force pass instead of opening another
 // (every region adds a barrier per cycle, which stalls when another job shares the cores).
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "dem/bodies.hpp"
 #include "dem/discs.hpp"
@@ -67,15 +69,30 @@ struct RangeMotion {
   double damped = 0, applied = 0, prescribed = 0;
   double position_sum = 0, disc_speed2 = 0, pebble_speed = 0;
 };
+// A sum of terms[0], ..., terms[count - 1] onto `sum`, in that order, that a loop doing other
+// work advances a few terms at a time: a serial chain of additions waits for each one (about 3
+// cycles), and spread over the integration its waits overlap the integration's own work (the
+// multi-thread packing's virial over a thread's pairs: docs/performance.md "Session 56").
+struct InterleavedSum {
+  const double* terms = nullptr;
+  std::size_t count = 0;
+  double sum = 0;
+  std::size_t next = 0;  // the first term not yet added
+  void advance(std::size_t n) {
+    const std::size_t stop = std::min(count, next + n);
+    for (; next < stop; ++next) sum += terms[next];
+  }
+};
 // Integrates bodies [begin, end); with `book` it forms the energy terms, and with `per_body` also
 // stores each body's, so that ranges integrated by several threads can be summed in body order
 // afterwards, with the bits of one loop.
 // Runs of eight (AVX-512) or four (AVX2) free discs are integrated at once, the widest set up to
 // `lanes` that the CPU has (dem/lanes.hpp; the same bits). The radii of the bodies' discs are
-// multiplied by `radius_factor`, as in integrate.
+// multiplied by `radius_factor`, as in integrate. With `side`, its sum is completed on the way.
 RangeMotion integrate_range(Bodies& bodies, Discs& discs, double dt, double alpha, bool book,
                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
-                            LaneIsa lanes = LaneIsa::Avx512, double radius_factor = 1.0);
+                            LaneIsa lanes = LaneIsa::Avx512, double radius_factor = 1.0,
+                            InterleavedSum* side = nullptr);
 // Adds the sums of a whole step (all bodies, in body order) to the ledger.
 void book_step_energy(const RangeMotion& step, double dt, EnergyLedger& ledger);
 // The step's result from its sums (the bad body is looked for only if the sum is non-finite).

@@ -401,6 +401,17 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
           static_cast<std::size_t>(wall_start_[chunk.disc_end]));
       if (lane.bad_wall < 0) lane.bad_wall = bad_wall;
     }
+    // Without energy terms the chain's first link is the first chunk's slip work and virial,
+    // complete now: published before the barrier, so that the second chunk's owner can add its
+    // stored virials onto it during its integration, where the additions' latency hides behind
+    // the integration's work. After its integration, a serial chain over half the pairs, they
+    // held the two-thread packing's main thread for 4 % of its time (docs/performance.md
+    // "Session 56").
+    if (!chain_energy && chunk_count > 0 && chunks_[0].thread == t) {
+      links_[0].slip_work = slip_work;
+      links_[0].virial = virial;
+      WorkerTeam::publish(links_[0].stamp, stamp);
+    }
     if (sample) lane.seconds += thread_cpu_seconds() - start;
     team.barrier();
     const double phase2_start = sample ? thread_cpu_seconds() : 0;
@@ -418,7 +429,9 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       const Chunk& chunk = chunks_[c];
       const double* terms = slip_terms_.data() + chunk.pair_begin;
       for (std::size_t q = 0; q < chunk.slip_terms; ++q) sums.slip_work += terms[q];
-      if (keep_virial)
+      if (owner_chains(c) && chunk.virial_chained)
+        sums.virial = chunk.chained_virial;
+      else if (keep_virial)
         for (std::size_t k = chunk.pair_begin; k < chunk.pair_end; ++k) sums.virial += virial_[k];
       if (chain_energy && !stop)
         for (std::size_t b = chunk.body_begin; b < chunk.body_end; ++b) {
@@ -433,27 +446,42 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       return sums;
     };
     for (std::size_t c = 0; c < chunk_count; ++c) {
-      const Chunk& chunk = chunks_[c];
+      Chunk& chunk = chunks_[c];
       if (chunk.thread != t) continue;
       sum_shared_discs(discs, chunk.disc_begin, chunk.disc_end);
       add_wall_pairs(discs, list, wall_pair,
                      static_cast<std::size_t>(wall_start_[chunk.disc_begin]),
                      static_cast<std::size_t>(wall_start_[chunk.disc_end]));
+      // The second chunk's virials onto the first link's (published before the barrier), in
+      // pair order, during the integration. Written and read by the chunk's owner alone.
+      InterleavedSum side;
+      InterleavedSum* spread = nullptr;
+      if (owner_chains(c)) {
+        chunk.virial_chained = c == 1 && keep_virial && !chain_energy && !stop;
+        if (chunk.virial_chained) {
+          side = {virial_.data() + chunk.pair_begin, chunk.pair_end - chunk.pair_begin,
+                  links_[0].virial};
+          spread = &side;
+        }
+      }
       // The first chunk's energy sums are the start of the chain over the bodies; the others'
       // are stored per body.
       RangeMotion r;
       if (!stop)
         r = integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, chunk.body_begin,
                             chunk.body_end, s.book_energy && c > 0 ? &body_energy : nullptr,
-                            s.pass.lanes, s.pass.radius_factor);
+                            s.pass.lanes, s.pass.radius_factor, spread);
+      if (spread) chunk.chained_virial = side.sum;
       if (c == 0) {
         lane.motion = r;
-        // The chain's first link: this chunk's slip work and virial (summed as it went) and its
-        // bodies' energy sums.
-        links_[0].energy = {r.damped, r.applied, r.prescribed};
-        links_[0].slip_work = slip_work;
-        links_[0].virial = virial;
-        WorkerTeam::publish(links_[0].stamp, stamp);
+        // The chain's first link, when it holds energy terms: this chunk's slip work and virial
+        // (summed as it went) and its bodies' energy sums.
+        if (chain_energy) {
+          links_[0].energy = {r.damped, r.applied, r.prescribed};
+          links_[0].slip_work = slip_work;
+          links_[0].virial = virial;
+          WorkerTeam::publish(links_[0].stamp, stamp);
+        }
       } else if (!stop) {
         lane.motion.position_sum += r.position_sum;
         lane.motion.disc_speed2 = std::max(lane.motion.disc_speed2, r.disc_speed2);

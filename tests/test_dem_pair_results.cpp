@@ -125,6 +125,45 @@ TEST(PairResultsOnRequest, VirialEveryStepWithoutThePerPairResults) {
   }
 }
 
+// The same without energy terms, as a packing steps, on an unbonded lattice (no step stops for a
+// crack) whose two threads' halves are large enough that the second thread sums its pairs'
+// virials onto the first's during its integration (ThreadedCycle's InterleavedSum; at least
+// kOwnerChainBodies = 1024 bodies): every step's virial, and the run, have the bits of one
+// thread. In lanes the integration adds the terms group by group, without lanes all at its end.
+TEST(PairResultsOnRequest, VirialWithoutEnergyTermsOnTwoThreadsHasTheBitsOfOne) {
+  for (const LaneIsa lanes : {LaneIsa::None, LaneIsa::Avx2, LaneIsa::Avx512}) {
+    if (usable_lanes(lanes) != lanes) continue;  // the CPU lacks the set
+    const auto servo_world = [lanes](int threads) {
+      WorldSettings s =
+          cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5}, BondModel{});
+      s.energy_tracking = false;
+      s.lanes = lanes;
+      World w(s);
+      cdem::test::add_hex_lattice(w, 50);
+      cdem::test::jostle(w);
+      w.set_pair_results_on_request(true);
+      w.set_virial_every_step(true);
+      return w;
+    };
+    World one = servo_world(1), two = servo_world(2);
+    ASSERT_EQ(one.bodies().size(), 2500u);
+    for (int step = 0; step < 40; ++step) {
+      one.step();
+      two.step();
+      ASSERT_TRUE(std::isfinite(one.last_force_pass().virial))
+          << lane_isa_name(lanes) << " " << step;
+      ASSERT_NE(one.last_force_pass().virial, 0.0) << lane_isa_name(lanes) << " " << step;
+      ASSERT_EQ(bits(one.last_force_pass().virial), bits(two.last_force_pass().virial))
+          << lane_isa_name(lanes) << " " << step;
+    }
+    one.request_pair_results();
+    two.request_pair_results();
+    one.step();
+    two.step();
+    cdem::test::expect_same_bits(cdem::test::world_bits(one), cdem::test::world_bits(two));
+  }
+}
+
 TEST(PairResultsOnRequest, ReadingResultsNotKeptThrows) {
   World w = jostled_world(1, LaneIsa::Avx512);
   w.set_pair_results_on_request(true);
