@@ -33,6 +33,21 @@ void advise_huge_pages(std::byte* begin, std::size_t bytes) {
   if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 }
 
+// Backs the whole pages of [begin, begin + bytes) with memory now, in one call, where the kernel
+// can (MADV_POPULATE_WRITE, Linux 5.14; elsewhere a no-op): a fault per page cost 10.6 us on the
+// project's virtual machine against 5.5 us per page populated (docs/performance.md "Session
+// 56"), and the engine's arrays are written soon after they are allocated.
+void madvise_populate(std::byte* begin, std::size_t bytes) {
+#ifdef MADV_POPULATE_WRITE
+  const auto a = reinterpret_cast<std::uintptr_t>(begin);
+  const std::uintptr_t first = (a + kPage - 1) / kPage * kPage, last = (a + bytes) / kPage * kPage;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+#else
+  (void)begin;
+  (void)bytes;
+#endif
+}
+
 }  // namespace
 
 void* allocate(std::size_t bytes) {
@@ -44,7 +59,10 @@ void* allocate(std::size_t bytes) {
   if (shift < sizeof(std::byte*)) shift += kPage;
   std::byte* array = raw + shift;
   std::memcpy(array - sizeof(std::byte*), &raw, sizeof(std::byte*));
-  if (bytes >= kHugeMinBytes) advise_huge_pages(array, bytes);
+  if (bytes >= kHugeMinBytes)
+    advise_huge_pages(array, bytes);
+  else
+    madvise_populate(raw, bytes + kPage + kLine);
   return array;
 }
 

@@ -35,7 +35,10 @@ std::size_t next_offset();
 // are backed by 2 MB pages where the kernel has them (transparent huge pages, `madvise` mode):
 // a 10^6-disc world's step walks some forty arrays of 8-64 MB, and with 4 KB pages each new
 // page of each array costs a TLB miss, which under a hypervisor is a two-level page walk
-// (docs/performance.md "Session 28": about 5 % of the step time at 10^6 discs).
+// (docs/performance.md "Session 28": about 5 % of the step time at 10^6 discs). Smaller blocks
+// are backed with memory at once, in one call (a fault per page cost twice as much on the
+// project's virtual machine, where the generator's growing contact arrays took some 25,000 of
+// them: docs/performance.md "Session 56").
 void* allocate(std::size_t bytes);
 void deallocate(void* array) noexcept;
 
