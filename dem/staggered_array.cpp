@@ -34,9 +34,10 @@ void advise_huge_pages(std::byte* begin, std::size_t bytes) {
 }
 
 // Backs the whole pages of [begin, begin + bytes) with memory now, in one call, where the kernel
-// can (MADV_POPULATE_WRITE, Linux 5.14; elsewhere a no-op): a fault per page cost 10.6 us on the
-// project's virtual machine against 5.5 us per page populated (docs/performance.md "Session
-// 56"), and the engine's arrays are written soon after they are allocated.
+// can (MADV_POPULATE_WRITE, Linux 5.14; an older kernel refuses the advice and nothing changes): a
+// fault per page cost 10.6 us on the project's virtual machine against 5.5 us per page populated
+// (docs/performance.md "Session 56"), and the engine's arrays are written soon after they are
+// allocated.
 void madvise_populate(std::byte* begin, std::size_t bytes) {
 #ifdef MADV_POPULATE_WRITE
   const auto a = reinterpret_cast<std::uintptr_t>(begin);

@@ -408,6 +408,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // held the two-thread packing's main thread for 4 % of its time (docs/performance.md
     // "Session 56").
     if (!chain_energy && chunk_count > 0 && chunks_[0].thread == t) {
+      links_[0].energy = {};  // not chained in this step
       links_[0].slip_work = slip_work;
       links_[0].virial = virial;
       WorkerTeam::publish(links_[0].stamp, stamp);
@@ -422,9 +423,10 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       const Lane& other = lanes_[static_cast<std::size_t>(u)];
       stop = stop || other.bad >= 0 || other.bad_wall >= 0 || !other.broken.empty();
     }
-    // The chain over chunk c's pairs (its packed slip terms; its stored virials) and, once it
-    // is integrated, its bodies' stored energy terms, from the previous chunk's sums: in pair
-    // and body order, as the one-thread pass adds them.
+    // The chain over chunk c's pairs (its packed slip terms; its stored virials, unless its
+    // owner summed them during its integration: chained_virial) and, once it is integrated, its
+    // bodies' stored energy terms, from the previous chunk's sums: in pair and body order, as
+    // the one-thread pass adds them.
     const auto chain = [&](std::size_t c, ChainLink sums) {
       const Chunk& chunk = chunks_[c];
       const double* terms = slip_terms_.data() + chunk.pair_begin;
@@ -494,7 +496,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // The chain, chunk by chunk as their owners finish them: it overlaps the other threads'
     // integration instead of following the job (where it held thread 0 alone while the others
     // waited: docs/performance.md "Session 37"). Not counted in the phase's time, which
-    // balances the integration. Every link waits only for lower chunks, and thread 0 chains
+    // balances the integration (the second chunk's virial summed during its integration is:
+    // the cuts move, no result does). Every link waits only for lower chunks, and thread 0 chains
     // after its own integration, so no thread waits on one that waits on it.
     if (t != 0)
       for (std::size_t c = 1; c < chunk_count; ++c)

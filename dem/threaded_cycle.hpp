@@ -33,10 +33,10 @@
 // packed non-zero slip terms, stored virials and stored per-body energy terms, which stay in its
 // core's cache; thread 0 chains the other chunks after its own integration, each once its owner
 // marks it done. In a step without energy terms the first link is published before the barrier,
-// and the owner of a large second chunk adds its stored virials onto it during its integration
-// (InterleavedSum, dem/integrator.hpp). In a step where a bond broke or a guard tripped the job
-// stops before the integration: the caller records the cracks (which read the positions of the
-// step) or stops, and integrates afterwards, as the one-thread cycle does.
+// and the owner of a large second chunk (a thread other than 0) adds its stored virials onto it
+// during its integration (InterleavedSum, dem/integrator.hpp). In a step where a bond broke or a
+// guard tripped the job stops before the integration: the caller records the cracks (which read the
+// positions of the step) or stops, and integrates afterwards, as the one-thread cycle does.
 #include <cstdint>
 #include <vector>
 
@@ -118,8 +118,9 @@ class ThreadedCycle {
     std::size_t body_begin, body_end, disc_begin, disc_end, pair_begin, pair_end;
     int thread;
     std::size_t slip_terms;  // chunks but the first: how many slip work terms it packed
-    // A chunk its owner chains (owner_chains), in a step whose chain has no energy terms: its
-    // owner summed the chain's virial through it (N m) during its integration.
+    // The second chunk, when its owner chains it (owner_chains), in a step that integrates,
+    // keeps the virial and chains no energy terms: its owner summed the chain's virial through
+    // it (N m) during its integration. Written and read by that owner alone.
     bool virial_chained = false;
     double chained_virial = 0;
   };

@@ -21,6 +21,7 @@
 #include "dem/world.hpp"
 #include "jostled_lattice.hpp"
 #include "lane_sets.hpp"
+#include "world_test_access.hpp"
 
 namespace {
 
@@ -126,11 +127,12 @@ TEST(PairResultsOnRequest, VirialEveryStepWithoutThePerPairResults) {
 }
 
 // The same without energy terms, as a packing steps, on an unbonded lattice (no step stops for a
-// crack) whose two threads' halves are large enough that the second thread sums its pairs'
-// virials onto the first's during its integration (ThreadedCycle's InterleavedSum; at least
-// kOwnerChainBodies = 1024 bodies): every step's virial, and the run, have the bits of one
-// thread. In lanes the integration adds the terms group by group, without lanes all at its end.
-TEST(PairResultsOnRequest, VirialWithoutEnergyTermsOnTwoThreadsHasTheBitsOfOne) {
+// crack) of 60 x 60 discs, whose threads' parts are large enough (at least kOwnerChainBodies =
+// 1024 bodies each on 2 and 3 threads) that the second thread sums its pairs' virials onto the
+// first's during its integration (ThreadedCycle's InterleavedSum), and on 3 threads the third
+// chains on from that: every step's virial, and the run, have the bits of one thread. In lanes
+// the integration adds the terms group by group, without lanes all at its end.
+TEST(PairResultsOnRequest, VirialWithoutEnergyTermsOnTwoAndThreeThreadsHasTheBitsOfOne) {
   for (const LaneIsa lanes : {LaneIsa::None, LaneIsa::Avx2, LaneIsa::Avx512}) {
     if (usable_lanes(lanes) != lanes) continue;  // the CPU lacks the set
     const auto servo_world = [lanes](int threads) {
@@ -139,28 +141,38 @@ TEST(PairResultsOnRequest, VirialWithoutEnergyTermsOnTwoThreadsHasTheBitsOfOne) 
       s.energy_tracking = false;
       s.lanes = lanes;
       World w(s);
-      cdem::test::add_hex_lattice(w, 50);
+      cdem::test::add_hex_lattice(w, 60);
       cdem::test::jostle(w);
       w.set_pair_results_on_request(true);
       w.set_virial_every_step(true);
       return w;
     };
-    World one = servo_world(1), two = servo_world(2);
-    ASSERT_EQ(one.bodies().size(), 2500u);
+    World one = servo_world(1);
+    ASSERT_EQ(one.bodies().size(), 3600u);
+    std::vector<World> many;
+    many.push_back(servo_world(2));
+    many.push_back(servo_world(3));
     for (int step = 0; step < 40; ++step) {
       one.step();
-      two.step();
       ASSERT_TRUE(std::isfinite(one.last_force_pass().virial))
           << lane_isa_name(lanes) << " " << step;
       ASSERT_NE(one.last_force_pass().virial, 0.0) << lane_isa_name(lanes) << " " << step;
-      ASSERT_EQ(bits(one.last_force_pass().virial), bits(two.last_force_pass().virial))
-          << lane_isa_name(lanes) << " " << step;
+      for (World& w : many) {
+        w.step();
+        ASSERT_EQ(bits(one.last_force_pass().virial), bits(w.last_force_pass().virial))
+            << lane_isa_name(lanes) << " " << w.settings().threads << " threads, step " << step;
+        // The path under test ran.
+        ASSERT_TRUE(WorldTestAccess::virial_chained_during_integration(w))
+            << lane_isa_name(lanes) << " " << w.settings().threads << " threads, step " << step;
+      }
     }
     one.request_pair_results();
-    two.request_pair_results();
     one.step();
-    two.step();
-    cdem::test::expect_same_bits(cdem::test::world_bits(one), cdem::test::world_bits(two));
+    for (World& w : many) {
+      w.request_pair_results();
+      w.step();
+      cdem::test::expect_same_bits(cdem::test::world_bits(one), cdem::test::world_bits(w));
+    }
   }
 }
 

@@ -9,6 +9,7 @@
 #include <set>
 #include <vector>
 
+#include "core/heap_policy.hpp"
 #include "dem/staggered_array.hpp"
 
 namespace {
@@ -28,13 +29,16 @@ TEST(StaggeredArray, LargeArraysStartAtDistinctLineOffsetsWithinAPage) {
   EXPECT_EQ(offsets.size(), arrays.size());
 }
 
-// Whether this kernel populates a private anonymous mapping on request (Linux 5.14 and later).
+// Whether this kernel populates a private anonymous mapping on request (Linux 5.14 and later)
+// and mincore tells which of its pages are resident.
 bool kernel_populates() {
 #ifdef MADV_POPULATE_WRITE
   const std::size_t bytes = 1 << 16;
   void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (p == MAP_FAILED) return false;
-  const bool ok = madvise(p, bytes, MADV_POPULATE_WRITE) == 0;
+  std::vector<unsigned char> in(bytes / static_cast<std::size_t>(sysconf(_SC_PAGESIZE)));
+  const bool ok = madvise(p, bytes, MADV_POPULATE_WRITE) == 0 &&
+                  mincore(p, bytes, in.data()) == 0 && (in[0] & 1) && (in.back() & 1);
   munmap(p, bytes);
   return ok;
 #else
@@ -59,6 +63,8 @@ Pages pages_of(const void* begin, std::size_t bytes) {
 
 TEST(StaggeredArray, ALargeArrayBelowTheHugePageSizeIsBackedBeforeItIsWritten) {
   if (!kernel_populates()) GTEST_SKIP() << "the kernel has no MADV_POPULATE_WRITE";
+  // A block of its own, as in `cdem` (not a reused, already touched part of the heap).
+  cdem::keep_large_arrays_out_of_the_heap();
   StaggeredArray<double> a;
   const std::size_t bytes = 1 << 20;  // 1 MiB: a mapping of its own, below the 4 MiB of huge pages
   a.reserve(bytes / sizeof(double));  // nothing written
