@@ -337,7 +337,11 @@ void book_step_energy(const RangeMotion& m, double dt, EnergyLedger& ledger) {
 }
 
 void catch_up_free_bodies(Bodies& b, const Discs& d) {
-  for (std::size_t k = 0; k < b.size(); ++k) {
+  catch_up_free_bodies(b, d, 0, b.size());
+}
+
+void catch_up_free_bodies(Bodies& b, const Discs& d, std::size_t begin, std::size_t end) {
+  for (std::size_t k = begin; k < end; ++k) {
     if (b.is_clump[k]) continue;
     // What the disc-by-disc integration stores: the same copies and sums, so the same bits.
     catch_up_free_disc(b, d, k);

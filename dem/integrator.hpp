@@ -108,6 +108,8 @@ StepMotion step_motion(const Bodies& bodies, const Discs& discs, const RangeMoti
 // bit for bit, that the integration used to store there (fx = load fx + applied fx, as
 // gather_body_force adds them). Theta, masses and the applied loads stay on the bodies.
 void catch_up_free_bodies(Bodies& bodies, const Discs& discs);
+// The same for bodies [begin, end) (each body's catch-up reads and writes its own data only).
+void catch_up_free_bodies(Bodies& bodies, const Discs& discs, std::size_t begin, std::size_t end);
 // Body k's motion (m, m/s, rad/s) and resultant (N, N m per m of thickness) as a catch-up gives
 // them, read from where a step keeps them (`stepped`: a step ran since the last catch-up; else
 // from the body): for a reader of a few bodies every step (a test's grips), which a catch-up of

@@ -237,7 +237,12 @@ void World::scale_radii(const std::vector<double>& factor) {
 void World::catch_up_bodies() const {
   apply_mass_scale_behind();
   if (!bodies_behind_) return;
-  catch_up_free_bodies(bodies_, discs_);
+  // Shared out: a packing's unbalanced-force check reads every body every 50 cycles, and the
+  // main thread caught them up alone while the other waited (docs/performance.md "Session 56").
+  share_out(team(), bodies_.size(), [this](int t, int members) {
+    const MemberRange range = member_range(bodies_.size(), t, members);
+    catch_up_free_bodies(bodies_, discs_, range.begin, range.end);
+  });
   bodies_behind_ = false;
 }
 
@@ -592,11 +597,17 @@ void World::throw_pair_results_not_kept() const {
 
 double World::sum_body_force() const {
   catch_up_bodies();
-  double sum = 0;
-  for (std::size_t b = 0; b < bodies_.size(); ++b)
-    if (!bodies_.prescribed[b])
-      sum += std::sqrt(bodies_.fx[b] * bodies_.fx[b] + bodies_.fy[b] * bodies_.fy[b]);
-  return sum;
+  // In body order on the team, with the bits of one loop (a prescribed body's +0 leaves the
+  // sum as it is).
+  thread_local std::vector<double> stored;  // N, reused from call to call
+  return shared_ordered_sum(
+      team(), bodies_.size(), 1.0,
+      [this](std::size_t b) {
+        return bodies_.prescribed[b]
+                   ? 0.0
+                   : std::sqrt(bodies_.fx[b] * bodies_.fx[b] + bodies_.fy[b] * bodies_.fy[b]);
+      },
+      [] {}, stored);
 }
 
 }  // namespace cdem::dem

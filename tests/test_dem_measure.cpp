@@ -4,6 +4,7 @@
 #include <cstring>
 #include <iterator>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -157,6 +158,56 @@ TEST_P(RegionStress, HasTheBitsOfItsDefinition) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Threads, RegionStress, ::testing::Values(1, 2));
+
+// unbalanced_force_ratio sums the contact forces' magnitudes and the bodies' resultants on the
+// world's team, and the bodies it reads are caught up from the discs' records on the team: on a
+// jostled, compressed lattice of more bodies than a share-out needs, every body and the ratio
+// have the bits of a one-thread world and of the ratio's definition written out (the mean
+// resultant of the free bodies over the mean contact force, each sum in its loop's order).
+class UnbalancedForce : public ::testing::TestWithParam<int> {};
+
+World compressed_lattice(int threads) {
+  World w(cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5},
+                                       cdem::dem::BondModel{}));
+  // 92 x 92 discs 1 % larger than half their spacing: every neighbour pair overlaps.
+  const double r = 0.5e-3;  // m
+  for (int iy = 0; iy < 92; ++iy)
+    for (int ix = 0; ix < 92; ++ix)
+      w.add_disc(ix * 2 * r + (iy % 2) * r, iy * std::sqrt(3.0) * r, 1.01 * r, 2000);
+  cdem::test::jostle(w);
+  w.cycle(5);
+  w.request_pair_results();
+  w.step();
+  return w;
+}
+
+TEST_P(UnbalancedForce, HasTheBitsOfItsDefinition) {
+  World one = compressed_lattice(1), w = compressed_lattice(GetParam());
+  ASSERT_GT(w.bodies().size(), cdem::dem::kShareOutAbove);
+  const cdem::dem::Bodies &b = w.bodies(), &b1 = one.bodies();
+  for (const auto& [got, want] : {std::pair{&b.x, &b1.x}, std::pair{&b.vy, &b1.vy},
+                                  std::pair{&b.fx, &b1.fx}, std::pair{&b.moment, &b1.moment}})
+    ASSERT_EQ(std::memcmp(got->data(), want->data(), sizeof(double) * got->size()), 0);
+  const cdem::dem::ContactForces& pf = one.pair_forces();
+  double contact = 0;
+  long contacts = 0;
+  for (std::size_t k = 0; k < pf.normal.size(); ++k)
+    if (pf.overlap[k] > 0) {
+      contact += std::sqrt(pf.fx[k] * pf.fx[k] + pf.fy[k] * pf.fy[k]);
+      ++contacts;
+    }
+  ASSERT_GT(contacts, 1000);
+  double net = 0;
+  for (std::size_t k = 0; k < b1.size(); ++k)
+    net += std::sqrt(b1.fx[k] * b1.fx[k] + b1.fy[k] * b1.fy[k]);
+  const double want =
+      (net / static_cast<double>(b1.size())) / (contact / static_cast<double>(contacts));
+  const double got = cdem::dem::unbalanced_force_ratio(w);
+  EXPECT_GT(got, 0);
+  EXPECT_EQ(std::memcmp(&got, &want, sizeof got), 0) << got << " " << want;
+}
+
+INSTANTIATE_TEST_SUITE_P(Threads, UnbalancedForce, ::testing::Values(1, 2));
 
 // The contact point at the edge of the reach: two discs pressed along x, and a region whose
 // left edge lies just inside their contact point, so the first disc's centre is one arm minus
