@@ -161,35 +161,17 @@ long floating_disc_count(const World& world, int min_contacts) {
   return floating;
 }
 
-// The magnitudes of the contact forces added in contact order, and how many there are.
-struct ForceMagnitudes {
-  double sum = 0;  // N
-  long count = 0;
-  ForceMagnitudes& operator+=(double magnitude) {
-    sum += magnitude;
-    ++count;
-    return *this;
-  }
-};
-
 double unbalanced_force_ratio(const World& world) {
-  // The pairs that carry force, then the touching wall pairs, shared out on the team with the
-  // bits of one loop: a packing's check every 50 cycles ran on the main thread alone
-  // (docs/performance.md "Session 56").
-  const ContactForces &pairs = world.pair_forces(), &walls = world.wall_forces();
-  const std::size_t n = pairs.normal.size();
-  const auto form = [&](std::size_t k, double& magnitude) {
-    const ContactForces& f = k < n ? pairs : walls;
-    const std::size_t q = k < n ? k : k - n;
-    if (k < n ? !carries_force(world, q) : !(walls.overlap[q] > 0)) return false;
-    magnitude = std::sqrt(f.fx[q] * f.fx[q] + f.fy[q] * f.fy[q]);
-    return true;
+  double sum_contact = 0;
+  long contacts = 0;
+  const auto add = [&](const ContactForces& f, std::size_t k) {
+    sum_contact += std::sqrt(f.fx[k] * f.fx[k] + f.fy[k] * f.fy[k]);
+    ++contacts;
   };
-  thread_local std::vector<std::vector<double>> kept;  // reused from call to call
-  const ForceMagnitudes contact = shared_ordered_sum_of_kept(
-      world.measure_team(), n + walls.normal.size(), ForceMagnitudes{}, form, kept);
-  const double sum_contact = contact.sum;
-  const long contacts = contact.count;
+  for (std::size_t k = 0; k < world.pair_forces().normal.size(); ++k)
+    if (carries_force(world, k)) add(world.pair_forces(), k);
+  for (std::size_t k = 0; k < world.wall_forces().normal.size(); ++k)
+    if (world.wall_forces().overlap[k] > 0) add(world.wall_forces(), k);
   if (contacts == 0 || sum_contact <= 0) return 0;
   long free_bodies = 0;
   for (auto pr : world.bodies().prescribed) free_bodies += pr ? 0 : 1;
