@@ -1,9 +1,7 @@
 #include "mesogen/decompression_cells.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 
 #include "dem/worker_team.hpp"
 #include "dem/world.hpp"
@@ -30,14 +28,10 @@ class AffinePairTerms {
     const double l = d_.r[i] + d_.r[j];
     return law_.normal_stiffness(d_.r[i], d_.r[j]) * l * l;
   }
-  // The term, or +0 (all bits clear) for a contact not counted (a sum from +0 keeps its bits:
-  // dem::shared_ordered_sum). Formed for every contact and selected by a mask, without a
-  // branch: whether a candidate touches is a coin toss to the branch predictor (a branch cost
-  // the two-thread C30 packing about 3 % of its samples, docs/performance.md "Session 57").
-  double operator()(std::size_t k) const {
-    const std::uint64_t keep = std::uint64_t{0} - static_cast<std::uint64_t>(counts(k));
-    return std::bit_cast<double>(std::bit_cast<std::uint64_t>(term(k)) & keep);
-  }
+  // The term, or +0 for a contact not counted (a sum from +0 keeps its bits:
+  // dem::shared_ordered_sum), without a branch: whether a candidate touches is a coin toss to
+  // the branch predictor (docs/performance.md "Session 57").
+  double operator()(std::size_t k) const { return dem::counted_or_zero(term(k), counts(k)); }
 
  private:
   const dem::Discs& d_;

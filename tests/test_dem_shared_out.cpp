@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <set>
 #include <vector>
@@ -342,6 +344,30 @@ TEST(SharedOut, OrderedSumOfKeptTermsHasTheBitsOfOneLoopForAnyTeam) {
     EXPECT_EQ(std::memcmp(&shared, &plain, sizeof plain), 0) << members << ": " << shared;
     for (const auto& list : kept) EXPECT_LE(list.size(), kKeptBlock) << members;
   }
+}
+
+// counted_or_zero, the terms of the sums that leave items out without a branch: a counted value
+// keeps its bits (-0 and NaN included), anything left out is +0, and a sum from +0 over them has
+// the bits of the sum over the counted items alone, whatever the others hold.
+TEST(SharedOut, CountedOrZeroKeepsACountedValueAndClearsTheRest) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double v : {1.5, -2.25e-300, -0.0, 0.0, inf, -inf, nan}) {
+    const double kept = counted_or_zero(v, true), cleared = counted_or_zero(v, false);
+    EXPECT_EQ(std::memcmp(&kept, &v, sizeof v), 0) << v;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(cleared), 0u) << v;
+  }
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  double plain = 0, masked = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const bool counted = k % 3 != 0;
+    const double v = counted ? std::ldexp(mantissa(rng), exponent(rng)) : (k % 2 ? nan : -0.0);
+    if (counted) plain += v;
+    masked += counted_or_zero(v, counted);
+  }
+  EXPECT_EQ(std::memcmp(&masked, &plain, sizeof plain), 0) << masked << " " << plain;
 }
 
 }  // namespace
