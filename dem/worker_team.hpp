@@ -105,8 +105,8 @@ void share_out(WorkerTeam* team, std::size_t items, Job&& job) {
 // `value` if `counted`, else +0 (every bit clear), without a branch: a sum from +0 that adds
 // this for every item has the bits of the sum of the counted items alone (x + (+0) = x for every
 // x but -0, which a sum from +0 never is). For loops where whether an item counts looks random
-// to a branch predictor (a touching candidate, a pair that carries force); `value` is formed for
-// every item, and may be anything, NaN included, for an item not counted.
+// to a branch predictor (the affine stiffness's touching candidates); `value` is formed for every
+// item, and may be anything, NaN included, for an item not counted.
 inline double counted_or_zero(double value, bool counted) {
   const std::uint64_t keep = std::uint64_t{0} - static_cast<std::uint64_t>(counted);
   return std::bit_cast<double>(std::bit_cast<std::uint64_t>(value) & keep);
