@@ -407,12 +407,15 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // the integration's work. After its integration, a serial chain over half the pairs, they
     // held the two-thread packing's main thread for 4 % of its time (docs/performance.md
     // "Session 56").
-    if (!chain_energy && chunk_count > 0 && chunks_[0].thread == t) {
-      links_[0].energy = {};  // not chained in this step
+    // The chain's first link: the first chunk's slip work and virial (summed as it went) and,
+    // in a step that chains them, its bodies' energy sums.
+    const auto publish_first_link = [&](const BodyStepEnergy& energy) {
+      links_[0].energy = energy;
       links_[0].slip_work = slip_work;
       links_[0].virial = virial;
       WorkerTeam::publish(links_[0].stamp, stamp);
-    }
+    };
+    if (!chain_energy && chunk_count > 0 && chunks_[0].thread == t) publish_first_link({});
     if (sample) lane.seconds += thread_cpu_seconds() - start;
     team.barrier();
     const double phase2_start = sample ? thread_cpu_seconds() : 0;
@@ -476,14 +479,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       if (spread) chunk.chained_virial = side.sum;
       if (c == 0) {
         lane.motion = r;
-        // The chain's first link, when it holds energy terms: this chunk's slip work and virial
-        // (summed as it went) and its bodies' energy sums.
-        if (chain_energy) {
-          links_[0].energy = {r.damped, r.applied, r.prescribed};
-          links_[0].slip_work = slip_work;
-          links_[0].virial = virial;
-          WorkerTeam::publish(links_[0].stamp, stamp);
-        }
+        if (chain_energy) publish_first_link({r.damped, r.applied, r.prescribed});
       } else if (!stop) {
         lane.motion.position_sum += r.position_sum;
         lane.motion.disc_speed2 = std::max(lane.motion.disc_speed2, r.disc_speed2);

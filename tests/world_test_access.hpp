@@ -19,15 +19,15 @@ struct WorldTestAccess {
     w.catch_up_bodies();
     return w.bodies_;
   }
-  // Gives the bodies of a multi-thread world's cycle (it must have stepped once with its team)
-  // the owners a test wants: thread owners[b] evaluates the pairs of body b's discs and
-  // integrates it. They stay until the cycle's next rebalance or neighbour-list rebuild.
   // Whether the last step's second chunk had its virials summed during its owner's integration
   // (ThreadedCycle::Chunk::virial_chained).
   static bool virial_chained_during_integration(const World& w) {
     const ThreadedCycle& c = w.threaded_;
     return c.chunks_.size() > 1 && c.chunks_[1].virial_chained;
   }
+  // Gives the bodies of a multi-thread world's cycle (it must have stepped once with its team)
+  // the owners a test wants: thread owners[b] evaluates the pairs of body b's discs and
+  // integrates it. They stay until the cycle's next rebalance or neighbour-list rebuild.
   static void set_thread_owners(World& w, const std::vector<std::int32_t>& owners) {
     ThreadedCycle& c = w.threaded_;
     c.owner_ = owners;
