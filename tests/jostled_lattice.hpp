@@ -38,12 +38,14 @@ inline dem::BondModel weak_parallel_bond() {
   return bond;
 }
 
-// A hex lattice of side x side discs of radius about 0.5 mm.
-inline void add_hex_lattice(dem::World& w, int side = 12) {
+// A hex lattice of side x side discs at a spacing of 1 mm: radius 0.5 mm times `even` for the
+// discs of even column and times `odd` for the others (by default 0.98 and 1: neighbours just
+// apart or touching; above 1 every neighbour pair overlaps).
+inline void add_hex_lattice(dem::World& w, int side = 12, double even = 0.98, double odd = 1.0) {
   const double r = 0.5e-3;  // m
   for (int iy = 0; iy < side; ++iy)
     for (int ix = 0; ix < side; ++ix)
-      w.add_disc(ix * 2 * r + (iy % 2) * r, iy * std::sqrt(3.0) * r, r * (0.98 + 0.02 * (ix % 2)),
+      w.add_disc(ix * 2 * r + (iy % 2) * r, iy * std::sqrt(3.0) * r, r * (ix % 2 ? odd : even),
                  2000);
 }
 

@@ -170,10 +170,7 @@ World compressed_lattice(int threads) {
   World w(cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5},
                                        cdem::dem::BondModel{}));
   // 92 x 92 discs 1 % larger than half their spacing: every neighbour pair overlaps.
-  const double r = 0.5e-3;  // m
-  for (int iy = 0; iy < 92; ++iy)
-    for (int ix = 0; ix < 92; ++ix)
-      w.add_disc(ix * 2 * r + (iy % 2) * r, iy * std::sqrt(3.0) * r, 1.01 * r, 2000);
+  cdem::test::add_hex_lattice(w, 92, 1.01, 1.01);
   cdem::test::jostle(w);
   w.cycle(5);
   w.request_pair_results();
