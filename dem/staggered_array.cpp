@@ -23,14 +23,19 @@ namespace {
 constexpr std::size_t kHugePage = 2u << 20;      // bytes, a transparent huge page on x86-64
 constexpr std::size_t kHugeMinBytes = 4u << 20;  // blocks from this size on get them
 
+// madvise(advice) over the part of [begin, begin + bytes) made of whole `unit`-aligned units (the
+// advice applies to whole pages of that size).
+void advise_whole_units(std::byte* begin, std::size_t bytes, std::size_t unit, int advice) {
+  const auto a = reinterpret_cast<std::uintptr_t>(begin);
+  const std::uintptr_t first = (a + unit - 1) / unit * unit, last = (a + bytes) / unit * unit;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, advice);
+}
+
 // Asks for huge pages over the 2 MB-aligned part of [begin, begin + bytes), before any of it is
 // touched (the kernel then backs it with huge pages as it faults in). Only a hint: where the
 // kernel does not have them the block keeps its 4 KB pages, and no result depends on which.
 void advise_huge_pages(std::byte* begin, std::size_t bytes) {
-  const auto a = reinterpret_cast<std::uintptr_t>(begin);
-  const std::uintptr_t first = (a + kHugePage - 1) / kHugePage * kHugePage;
-  const std::uintptr_t last = (a + bytes) / kHugePage * kHugePage;
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  advise_whole_units(begin, bytes, kHugePage, MADV_HUGEPAGE);
 }
 
 // Backs the whole pages of [begin, begin + bytes) with memory now, in one call, where the kernel
@@ -40,9 +45,7 @@ void advise_huge_pages(std::byte* begin, std::size_t bytes) {
 // allocated.
 void madvise_populate(std::byte* begin, std::size_t bytes) {
 #ifdef MADV_POPULATE_WRITE
-  const auto a = reinterpret_cast<std::uintptr_t>(begin);
-  const std::uintptr_t first = (a + kPage - 1) / kPage * kPage, last = (a + bytes) / kPage * kPage;
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+  advise_whole_units(begin, bytes, kPage, MADV_POPULATE_WRITE);
 #else
   (void)begin;
   (void)bytes;
