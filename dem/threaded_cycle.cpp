@@ -453,8 +453,8 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // This thread's chunks, ascending on an even thread and from the last on an odd one. A
     // specimen's clumps are numbered after its mortar (world_from_specimen), so they are each
     // thread's last chunks, and this way one thread integrates its clumps while the other
-    // integrates its mortar: on C30 each thread's clumps then took 30-37 instead of 38-42 us a
-    // step, and the two-thread step 0.97x its time (docs/performance.md "Session 58"). No result
+    // integrates its mortar: on C30 each thread's clumps then took 30-37 instead of 38-45 us a
+    // step, and the two-thread step 0.96x its time (docs/performance.md "Session 58"). No result
     // depends on the order: each body is integrated alone, the energy terms of every chunk but
     // the first are stored per body and chained in body order, and the motion's sum and bounds
     // are read for their finiteness and maxima only (RangeMotion).
