@@ -6,6 +6,7 @@
 // before and after keeps its state, a new pair starts from zero state, and a pair with an intact
 // bond stays whatever its gap.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "dem/array_growth.hpp"
@@ -101,6 +102,16 @@ class ContactStore {
   // (the same bits). Allocates only when the lists (or the team) grow.
   void merge(const std::vector<std::uint64_t>& pair_candidates,
              const std::vector<std::uint64_t>& wall_candidates, const Discs& discs,
+             WorkerTeam* team = nullptr) {
+    merge(std::span(&pair_candidates, 1), wall_candidates, discs, team);
+  }
+  // The same with the disc-disc candidates in parts, each sorted and every key of a part below
+  // those of the next (the neighbour search's, one per team member that found them). With as many
+  // parts as the team has members, member t merges part t: the keys it found are in its cache
+  // (docs/performance.md "Session 59"). Otherwise one part is cut into equal shares, several are
+  // merged one after another.
+  void merge(std::span<const std::vector<std::uint64_t>> pair_candidate_parts,
+             const std::vector<std::uint64_t>& wall_candidates, const Discs& discs,
              WorkerTeam* team = nullptr);
 
  private:
@@ -112,6 +123,10 @@ class ContactStore {
   StaggeredArray<std::uint64_t> merged_keys_, merged_wall_keys_;
   ContactStates merged_state_, merged_wall_state_;
   std::vector<std::size_t> member_offsets_;  // where each member's part of a merged list starts
+  // The candidates' runs of a merge (contact_store.cpp MergeRun), kept so a merge allocates
+  // nothing.
+  std::vector<std::span<const std::uint64_t>> merge_runs_;
+  std::vector<std::size_t> merge_run_old_;
 };
 
 }  // namespace cdem::dem

@@ -38,13 +38,14 @@ MemoryFootprint memory_footprint(const World& world) {
   m.joints = capacity_bytes(fj.gap0, fj.theta, fj.bonded, fj.first_element, fj.element_shear,
                             sj.sets, sj.set, sj.nx, sj.ny, sj.area, sj.gap, sj.fs, sj.bonded);
   m.merge_scratch =
-      capacity_bytes(c.merged_keys_, c.member_offsets_) + state_bytes(c.merged_state_);
+      capacity_bytes(c.merged_keys_, c.member_offsets_, c.merge_runs_, c.merge_run_old_) +
+      state_bytes(c.merged_state_);
   m.wall_pairs += capacity_bytes(c.merged_wall_keys_) + state_bytes(c.merged_wall_state_);
   const NeighborList& n = world.neighbors_;
   m.neighbor_list = capacity_bytes(n.ref_x_, n.ref_y_, n.ref_r_, n.wall_ax0_, n.wall_ay0_,
-                                   n.cell_start_, n.cell_discs_, n.disc_cell_, n.pair_keys_,
-                                   n.wall_keys_, n.scratch_, n.member_keys_, n.reach_, n.extent_);
-  for (const auto& keys : n.member_keys_) m.neighbor_list += capacity_bytes(keys);
+                                   n.cell_start_, n.cell_discs_, n.disc_cell_, n.pair_parts_,
+                                   n.wall_keys_, n.scratch_, n.reach_, n.extent_);
+  for (const auto& keys : n.pair_parts_) m.neighbor_list += capacity_bytes(keys);
   const ThreadedCycle& t = world.threaded_;
   m.thread_plan = capacity_bytes(
       t.first_start_, t.wall_start_, t.order_, t.work_, t.cuts_, t.owner_, t.chunks_, t.chunk_done_,

@@ -92,6 +92,7 @@ void NeighborList::build_grid(const Discs& discs, WorkerTeam* team) {
     rmax = std::max(rmax, extent_[t].rmax);
   }
   if (!(xmax >= xmin)) xmin = xmax = ymin = ymax = 0;
+  rmax_ = rmax;
   // A cell at least one contact range wide, so every partner is in the 3x3 block; the grid is
   // kept to about one cell per disc so a few stray discs cannot blow up its size.
   cell_ = std::max(2.0 * rmax + skin, 1e-12);
@@ -144,9 +145,9 @@ void NeighborList::build_grid(const Discs& discs, WorkerTeam* team) {
 
 namespace {
 
-// The grid find_pairs searches, held in locals: member 0's output is pair_keys_, whose end moves
-// at every disc and shares a cache line with the grid's pointers, which the other members read
-// at every disc too. Reached through the list, the line crossed between the cores at every disc:
+// The grid find_pairs searches, held in locals: a member's output, whose end moves at every disc,
+// once shared a cache line with the grid's pointers, which the other members read at every disc
+// too. Reached through the list, the line crossed between the cores at every disc:
 // on two threads each member's search cost about what the one-thread search of all discs did
 // (docs/performance.md "Session 42").
 struct Grid {
@@ -273,22 +274,26 @@ void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t
   keys = std::move(out_keys);
 }
 
+std::vector<std::uint64_t> NeighborList::pair_candidates() const {
+  std::vector<std::uint64_t> keys;
+  for (const auto& part : pair_parts_) keys.insert(keys.end(), part.begin(), part.end());
+  return keys;
+}
+
 void NeighborList::build(const Discs& discs, const Walls& walls, WorkerTeam* team) {
   const std::size_t n = discs.size();
   build_grid(discs, team);
 
-  // Disc-disc: member t searches discs [n t / T, n (t + 1) / T); its keys all follow those of
-  // member t - 1 (their first disc is larger), so joining the lists in member order keeps the
-  // whole sorted. Member 0 writes straight into pair_keys_.
-  pair_keys_.clear();
+  // Disc-disc: member t searches discs [n t / T, n (t + 1) / T) into part t; its keys all follow
+  // those of member t - 1 (their first disc is larger), so the parts in member order are sorted.
   const int members = team ? team->size() : 1;
+  pair_parts_.resize(static_cast<std::size_t>(members));
   if (members > 1) {
-    member_keys_.resize(static_cast<std::size_t>(members - 1));
     // A team's job must not throw: a failed allocation is carried out of it and rethrown.
     std::vector<std::exception_ptr> failed(static_cast<std::size_t>(members));
     auto job = [&](int t) {
       const MemberRange range = member_range(n, t, members);
-      auto& keys = t == 0 ? pair_keys_ : member_keys_[static_cast<std::size_t>(t - 1)];
+      auto& keys = pair_parts_[static_cast<std::size_t>(t)];
       try {
         keys.clear();
         find_pairs(discs, range.begin, range.end, keys);
@@ -299,18 +304,14 @@ void NeighborList::build(const Discs& discs, const Walls& walls, WorkerTeam* tea
     team->run(job);
     for (const auto& e : failed)
       if (e) std::rethrow_exception(e);
-    for (const auto& keys : member_keys_)
-      pair_keys_.insert(pair_keys_.end(), keys.begin(), keys.end());
   } else {
-    find_pairs(discs, 0, n, pair_keys_);
+    pair_parts_[0].clear();
+    find_pairs(discs, 0, n, pair_parts_[0]);
   }
 
   // Disc-wall: the cells under each wall's box widened by the contact range.
   wall_keys_.clear();
-  double rmax = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (discs.active[i]) rmax = std::max(rmax, discs.r[i]);
-  const double reach = rmax + skin;
+  const double reach = rmax_ + skin;
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const auto cell_x = [&](double v) {
       return std::clamp(static_cast<int>(std::floor((v - xmin_) / cell_)), 0, nx_ - 1);

@@ -38,13 +38,21 @@ class NeighborList {
   // (a radius change the next step will store: World::scale_radii).
   bool needs_rebuild(const Discs& discs, const Walls& walls, double& moved_bound,
                      WorkerTeam* team = nullptr, double radius_factor = 1.0);
-  // Finds the candidates of the current positions (pair_candidates, wall_candidates). With a
-  // team of more than one thread, each member searches the partners of a contiguous range of
-  // discs into its own list and the lists are joined in range order: the keys are a sorted
-  // set either way, so the result is the same for any team.
+  // Finds the candidates of the current positions (pair_candidate_parts, wall_candidates).
+  // With a team of more than one thread, each member searches the partners of a contiguous range
+  // of discs into its own part: the parts joined in member order are a sorted set, the same for
+  // any team.
   void build(const Discs& discs, const Walls& walls, WorkerTeam* team = nullptr);
-  // The candidates of the last build, keys sorted ascending (the contact store merges them).
-  const std::vector<std::uint64_t>& pair_candidates() const { return pair_keys_; }
+  // The disc-disc candidates of the last build, one part per member of its team (one without a
+  // team), each sorted ascending and every key of a part below those of the next. Left in parts
+  // for the contact store, whose merge takes part t on member t, the thread that wrote it:
+  // joined on the main thread, the second part crossed between the cores twice a rebuild
+  // (docs/performance.md "Session 59").
+  const std::vector<std::vector<std::uint64_t>>& pair_candidate_parts() const {
+    return pair_parts_;
+  }
+  // The parts joined (a copy): the candidates as one sorted list.
+  std::vector<std::uint64_t> pair_candidates() const;
   const std::vector<std::uint64_t>& wall_candidates() const { return wall_keys_; }
 
  private:
@@ -63,8 +71,9 @@ class NeighborList {
   // needs_rebuild, and the partners' data the search reads in runs (walls: first end point).
   std::vector<double> ref_x_, ref_y_, ref_r_, wall_ax0_, wall_ay0_;
   // The candidates, kept between builds so a rebuild allocates only when the lists grow.
-  std::vector<std::uint64_t> pair_keys_, wall_keys_;
-  std::vector<std::vector<std::uint64_t>> member_keys_;  // per team member but the first
+  std::vector<std::vector<std::uint64_t>> pair_parts_;  // per team member
+  std::vector<std::uint64_t> wall_keys_;
+  double rmax_ = 0;  // m, the largest radius of an active disc at the last build (build_grid)
   std::vector<std::int32_t> scratch_;
   // Per team member, the largest squared displacement (m^2) and radius growth (m) of its share
   // in needs_rebuild; a line each, as each member writes its own.

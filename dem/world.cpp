@@ -328,7 +328,7 @@ void World::rebuild() {
   }
   neighbors_.lanes = settings_.lanes;
   neighbors_.build(discs_, walls_, team());
-  contacts_.merge(neighbors_.pair_candidates(), neighbors_.wall_candidates(), discs_, team());
+  contacts_.merge(neighbors_.pair_candidate_parts(), neighbors_.wall_candidates(), discs_, team());
   moved_bound_ = 0;
   update_time_step();
   rebuild_pending_ = false;

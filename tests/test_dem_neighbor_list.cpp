@@ -210,9 +210,9 @@ TEST(NeighborList, OpeningContactForgetsItsShear) {
 }
 
 // The neighbour search shared out over a team (dem/neighbor_list.hpp) finds the same sorted
-// candidates as one thread, with teams larger than some of the worlds (empty ranges) and with
-// clumps (pebbles of one clump are skipped whatever range they fall in); 9,000 discs are enough
-// for the grid's passes to be shared out too (kShareOutAbove).
+// candidates as one thread, in one part per member, with teams larger than some of the worlds
+// (empty ranges) and with clumps (pebbles of one clump are skipped whatever range they fall in);
+// 9,000 discs are enough for the grid's passes to be shared out too (kShareOutAbove).
 TEST(NeighborList, TeamFindsTheCandidatesOfOneThread) {
   for (const int count : {0, 1, 2, 5, 400, 9000}) {
     const double side = 0.02 * std::sqrt(std::max(count, 400) / 400.0);  // m, the same density
@@ -229,8 +229,16 @@ TEST(NeighborList, TeamFindsTheCandidatesOfOneThread) {
                   {1, 1, 1});
       w.invalidate_neighbors();
       w.refresh_neighbors();
+      // One part per member, each member's keys below the next one's: joined, a sorted set.
+      const auto& parts = w.neighbors().pair_candidate_parts();
+      ASSERT_EQ(parts.size(), static_cast<std::size_t>(threads));
+      for (std::size_t p = 1; p < parts.size(); ++p)
+        if (!parts[p - 1].empty() && !parts[p].empty()) {
+          EXPECT_LT(parts[p - 1].back(), parts[p][0]);
+        }
       keys[threads - 1] = w.neighbors().pair_candidates();
-      ASSERT_TRUE(std::is_sorted(keys[threads - 1].begin(), keys[threads - 1].end()));
+      ASSERT_TRUE(std::adjacent_find(keys[threads - 1].begin(), keys[threads - 1].end(),
+                                     std::greater_equal<>()) == keys[threads - 1].end());
       if (count >= 400) {  // about 0.9 candidates per disc at this density: not a trivial list
         EXPECT_GT(keys[threads - 1].size(), count / 2u);
       }

@@ -12,6 +12,7 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <span>
 #include <vector>
 
 #include "dem/contact_store.hpp"
@@ -41,32 +42,63 @@ std::vector<std::uint64_t> random_keys(std::mt19937_64& rng, std::size_t count,
 
 constexpr std::uint32_t kDiscs = 20000;
 
-TEST(SharedOut, MergedContactListsAreTheUnionWithTheStatesCarriedForAnyTeam) {
-  static_assert(kShareOutAbove < 30000, "the lists below must be long enough to be shared out");
-  std::mt19937_64 rng(7);
+// Discs of two materials, so the pairs' classes vary.
+Discs two_material_discs() {
   Discs discs;
   for (std::uint32_t i = 0; i < kDiscs; ++i)
     discs.material.push_back(i % 3 ? DiscMaterial::Mortar : DiscMaterial::Aggregate);
+  return discs;
+}
+
+// A store of 30,000 random pairs, every state value random and half of them bonded (a bond keeps
+// a pair in the list), and the candidates of a merge into it: about 60 % of the old pairs and
+// 15,000 new ones.
+struct MergeCase {
   ContactStore before;
-  before.merge(random_keys(rng, 30000, kDiscs), {}, discs);
+  std::vector<std::uint64_t> candidates;
+};
+MergeCase merge_case(std::mt19937_64& rng, const Discs& discs) {
+  MergeCase c;
+  c.before.merge(random_keys(rng, 30000, kDiscs), {}, discs);
   std::uniform_real_distribution<double> u(-1, 1);
-  for (std::size_t k = 0; k < before.keys.size(); ++k) {
-    before.state.shear_force[k] = u(rng);
-    if (u(rng) > 0) {  // half the old pairs hold a bond, which keeps them in the list
-      before.state.bond[k] = 1;
-      before.state.bond_normal[k] = u(rng);
-      before.state.bond_shear[k] = u(rng);
-      before.state.bond_moment[k] = u(rng);
-      before.state.bond_gap[k] = u(rng);
-      before.state.joint[k] = static_cast<std::int32_t>(k);
+  ContactStates& state = c.before.state;
+  for (std::size_t k = 0; k < c.before.keys.size(); ++k) {
+    state.shear_force[k] = u(rng);
+    if (u(rng) > 0) {
+      state.bond[k] = 1;
+      state.bond_normal[k] = u(rng);
+      state.bond_shear[k] = u(rng);
+      state.bond_moment[k] = u(rng);
+      state.bond_gap[k] = u(rng);
+      state.joint[k] = static_cast<std::int32_t>(k);
     }
   }
-  // New candidates: about 60 % of the old pairs and as many new ones.
-  std::vector<std::uint64_t> candidates = random_keys(rng, 15000, kDiscs);
-  for (std::uint64_t key : before.keys)
-    if (u(rng) > -0.2) candidates.push_back(key);
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  c.candidates = random_keys(rng, 15000, kDiscs);
+  for (std::uint64_t key : c.before.keys)
+    if (u(rng) > -0.2) c.candidates.push_back(key);
+  std::sort(c.candidates.begin(), c.candidates.end());
+  c.candidates.erase(std::unique(c.candidates.begin(), c.candidates.end()), c.candidates.end());
+  return c;
+}
+
+// Every list of the two stores' disc-disc contacts has the same bits.
+bool same_lists(const ContactStore& a, const ContactStore& b) {
+  const ContactStates &s = a.state, &t = b.state;
+  return same_bits(a.keys, b.keys) && same_bits(a.first, b.first) &&
+         same_bits(a.second, b.second) && same_bits(a.contact_class, b.contact_class) &&
+         same_bits(s.shear_force, t.shear_force) && same_bits(s.bond, t.bond) &&
+         same_bits(s.bond_normal, t.bond_normal) && same_bits(s.bond_shear, t.bond_shear) &&
+         same_bits(s.bond_moment, t.bond_moment) && same_bits(s.bond_gap, t.bond_gap) &&
+         same_bits(s.joint, t.joint);
+}
+
+TEST(SharedOut, MergedContactListsAreTheUnionWithTheStatesCarriedForAnyTeam) {
+  static_assert(kShareOutAbove < 30000, "the lists below must be long enough to be shared out");
+  std::mt19937_64 rng(7);
+  const Discs discs = two_material_discs();
+  const MergeCase c = merge_case(rng, discs);
+  const ContactStore& before = c.before;
+  const std::vector<std::uint64_t>& candidates = c.candidates;
 
   ContactStore one = before;
   one.merge(candidates, {}, discs);
@@ -98,22 +130,38 @@ TEST(SharedOut, MergedContactListsAreTheUnionWithTheStatesCarriedForAnyTeam) {
     WorkerTeam team(members);
     ContactStore shared = before;
     shared.merge(candidates, {}, discs, &team);
-    EXPECT_TRUE(same_bits(shared.keys, one.keys)) << members;
-    EXPECT_TRUE(same_bits(shared.first, one.first)) << members;
-    EXPECT_TRUE(same_bits(shared.second, one.second)) << members;
-    EXPECT_TRUE(same_bits(shared.contact_class, one.contact_class)) << members;
-    const ContactStates &a = shared.state, &b = one.state;
-    EXPECT_TRUE(same_bits(a.shear_force, b.shear_force) && same_bits(a.bond, b.bond) &&
-                same_bits(a.bond_normal, b.bond_normal) && same_bits(a.bond_shear, b.bond_shear) &&
-                same_bits(a.bond_moment, b.bond_moment) && same_bits(a.bond_gap, b.bond_gap) &&
-                same_bits(a.joint, b.joint))
-        << members;
+    EXPECT_TRUE(same_lists(shared, one)) << members;
     shared.merge(again, {}, discs, &team);
-    EXPECT_TRUE(same_bits(shared.keys, twice.keys)) << members;
-    EXPECT_TRUE(same_bits(shared.state.shear_force, twice.state.shear_force) &&
-                same_bits(shared.state.bond, twice.state.bond) &&
-                same_bits(shared.state.joint, twice.state.joint))
-        << members;
+    EXPECT_TRUE(same_lists(shared, twice)) << members;
+  }
+}
+
+// The candidates in parts, as the neighbour search leaves them (one per team member, each sorted,
+// every key below the next part's), merge to the bits of one list: with as many parts as members
+// (each member merges its own), with more (a team of one merges them in turn) or fewer, with
+// empty parts, and with a bonded old pair left between two parts' keys (every old key below a
+// part's first is its predecessor's).
+TEST(SharedOut, CandidatesInPartsMergeAsOneList) {
+  std::mt19937_64 rng(11);
+  const Discs discs = two_material_discs();
+  const MergeCase c = merge_case(rng, discs);
+  ContactStore one = c.before;
+  one.merge(c.candidates, {}, discs);
+  const std::size_t n = c.candidates.size();
+  const std::vector<std::vector<std::size_t>> cuts = {
+      {0, n / 2, n}, {0, n / 3, n / 3, n}, {0, 0, n}, {0, n, n}, {0, n / 4, n / 2, 3 * n / 4, n}};
+  for (const auto& cut : cuts) {
+    std::vector<std::vector<std::uint64_t>> parts;
+    for (std::size_t p = 0; p + 1 < cut.size(); ++p)
+      parts.emplace_back(c.candidates.begin() + static_cast<std::ptrdiff_t>(cut[p]),
+                         c.candidates.begin() + static_cast<std::ptrdiff_t>(cut[p + 1]));
+    for (int members : {1, 2, 3, 4}) {
+      WorkerTeam team(members);
+      ContactStore shared = c.before;
+      shared.merge(std::span<const std::vector<std::uint64_t>>(parts), {}, discs,
+                   members > 1 ? &team : nullptr);
+      EXPECT_TRUE(same_lists(shared, one)) << parts.size() << " parts, " << members << " members";
+    }
   }
 }
 
