@@ -161,17 +161,44 @@ long floating_disc_count(const World& world, int min_contacts) {
   return floating;
 }
 
-double unbalanced_force_ratio(const World& world) {
-  double sum_contact = 0;
+namespace {
+
+// The magnitudes of the contact forces summed in contact order (N), and the contacts counted.
+struct ContactForceSum {
+  double magnitude = 0;  // N
   long contacts = 0;
-  const auto add = [&](const ContactForces& f, std::size_t k) {
-    sum_contact += std::sqrt(f.fx[k] * f.fx[k] + f.fy[k] * f.fy[k]);
+  ContactForceSum& operator+=(double f) {
+    magnitude += f;
     ++contacts;
-  };
-  for (std::size_t k = 0; k < world.pair_forces().normal.size(); ++k)
-    if (carries_force(world, k)) add(world.pair_forces(), k);
-  for (std::size_t k = 0; k < world.wall_forces().normal.size(); ++k)
-    if (world.wall_forces().overlap[k] > 0) add(world.wall_forces(), k);
+    return *this;
+  }
+};
+
+double force_magnitude(const ContactForces& f, std::size_t k) {
+  return std::sqrt(f.fx[k] * f.fx[k] + f.fy[k] * f.fy[k]);
+}
+
+}  // namespace
+
+double unbalanced_force_ratio(const World& world) {
+  // The disc-disc pairs shared out on the world's team, with the bits of one loop: on the main
+  // thread alone this sum held the packing's other thread for 2 % of its run (docs/performance.md
+  // "Session 59").
+  const ContactForces& pairs = world.pair_forces();
+  thread_local std::vector<std::vector<double>> kept;  // reused from call to call
+  ContactForceSum sum = shared_ordered_sum_of_kept(
+      world.measure_team(), pairs.normal.size(), ContactForceSum{},
+      [&](std::size_t k, double& f) {
+        if (!carries_force(world, k)) return false;
+        f = force_magnitude(pairs, k);
+        return true;
+      },
+      kept);
+  const ContactForces& walls = world.wall_forces();
+  for (std::size_t k = 0; k < walls.normal.size(); ++k)
+    if (walls.overlap[k] > 0) sum += force_magnitude(walls, k);
+  const double sum_contact = sum.magnitude;
+  const long contacts = sum.contacts;
   if (contacts == 0 || sum_contact <= 0) return 0;
   long free_bodies = 0;
   for (auto pr : world.bodies().prescribed) free_bodies += pr ? 0 : 1;

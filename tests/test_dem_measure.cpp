@@ -159,11 +159,11 @@ TEST_P(RegionStress, HasTheBitsOfItsDefinition) {
 
 INSTANTIATE_TEST_SUITE_P(Threads, RegionStress, ::testing::Values(1, 2));
 
-// unbalanced_force_ratio sums the bodies' resultants on the world's team, and the bodies it reads
-// are caught up from the discs' records on the team: on a jostled, compressed lattice of more
-// bodies than a share-out needs, every body and the ratio have the bits of a one-thread world and
-// of the ratio's definition written out (the mean resultant of the free bodies over the mean
-// contact force, each sum in its loop's order).
+// unbalanced_force_ratio sums the bodies' resultants and the contact forces on the world's team,
+// and the bodies it reads are caught up from the discs' records on the team: on a jostled,
+// compressed lattice of more bodies and pairs than a share-out needs, every body and the ratio
+// have the bits of a one-thread world and of the ratio's definition written out (the mean
+// resultant of the free bodies over the mean contact force, each sum in its loop's order).
 class UnbalancedForce : public ::testing::TestWithParam<int> {};
 
 World compressed_lattice(int threads) {
