@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "dem/array_growth.hpp"
 #include "dem/disc_pair_kernel.hpp"
 
 namespace cdem::dem {
@@ -261,7 +262,9 @@ void ThreadedCycle::plan_shared(const Bodies& bodies, const Discs& discs,
       shared_terms_[static_cast<std::size_t>(next_term_[g]++)] = static_cast<std::int32_t>(q);
     });
   virial_.resize(count);
-  slip_terms_.reserve(count);
+  // With an eighth to spare: room to the pair count alone was mapped anew at a quarter of the
+  // C30 packing's rebuilds, whose list creeps up (docs/performance.md "Session 59").
+  make_room(slip_terms_, count);
 }
 
 void ThreadedCycle::sum_shared_discs(Discs& discs, std::size_t begin, std::size_t end) const {
