@@ -212,6 +212,11 @@ template <bool kLanes8>
                                           std::size_t end, std::vector<std::uint64_t>& out_keys) {
   constexpr std::size_t kSlack = kLanes8 ? 8 : 0;  // partners_of_lanes8's room
   const int nx = grid.nx, ny = grid.ny;
+  // The keys found so far are out_keys[0, size); the room after them for a disc's block and the
+  // slack grows by an eighth past the need, as the engine's per-pair arrays do (make_room), so
+  // each build zero-fills about its keys once: resized to each disc's need and back, out_keys
+  // zero-filled about 30 slots a disc (docs/performance.md "Session 59").
+  std::size_t size = out_keys.size();
   for (std::size_t i = begin; i < end; ++i) {
     if (grid.disc_cell[i] < 0) continue;
     const int cx = grid.disc_cell[i] % nx, cy = grid.disc_cell[i] / nx;
@@ -226,9 +231,9 @@ template <bool kLanes8>
       row_end[gy - gy0] = grid.cell_start[gy * nx + gx1 + 1];
       block += static_cast<std::size_t>(row_end[gy - gy0] - row_begin[gy - gy0]);
     }
-    const std::size_t start = out_keys.size();
-    out_keys.resize(start + block + kSlack);
-    std::uint64_t* out = out_keys.data() + start;
+    const std::size_t need = size + block + kSlack;
+    if (need > out_keys.size()) out_keys.resize(need + need / 8);
+    std::uint64_t* out = out_keys.data() + size;
     std::size_t found = 0;
     for (int row = 0; row <= gy1 - gy0; ++row) {
       if constexpr (kLanes8)
@@ -243,9 +248,10 @@ template <bool kLanes8>
       out[kept] = out[q];
       kept += discs.body[static_cast<std::uint32_t>(out[q])] != bi;
     }
-    out_keys.resize(start + kept);
-    std::sort(out_keys.begin() + static_cast<std::ptrdiff_t>(start), out_keys.end());
+    std::sort(out, out + kept);
+    size += kept;
   }
+  out_keys.resize(size);
 }
 
 CDEM_LANES8_TARGET void search_lanes8(const Discs& discs, const Grid& grid, std::size_t begin,
