@@ -108,8 +108,8 @@ class ContactStore {
   // The same with the disc-disc candidates in parts, each sorted and every key of a part below
   // those of the next (the neighbour search's, one per team member that found them). With as many
   // parts as the team has members, member t merges part t: the keys it found are in its cache
-  // (docs/performance.md "Session 59"). Otherwise one part is cut into equal shares, several are
-  // merged one after another.
+  // (docs/performance.md "Session 59"). Otherwise a single part is cut into equal shares, and
+  // several are shared out among the members, each merging its own in turn.
   void merge(std::span<const std::vector<std::uint64_t>> pair_candidate_parts,
              const std::vector<std::uint64_t>& wall_candidates, const Discs& discs,
              WorkerTeam* team = nullptr);
@@ -123,8 +123,8 @@ class ContactStore {
   StaggeredArray<std::uint64_t> merged_keys_, merged_wall_keys_;
   ContactStates merged_state_, merged_wall_state_;
   std::vector<std::size_t> member_offsets_;  // where each member's part of a merged list starts
-  // The candidates' runs of a merge (contact_store.cpp MergeRun), kept so a merge allocates
-  // nothing.
+  // The candidates' runs of a merge and each run's first old key (contact_store.cpp cut_runs),
+  // kept so a merge allocates nothing.
   std::vector<std::span<const std::uint64_t>> merge_runs_;
   std::vector<std::size_t> merge_run_old_;
 };
