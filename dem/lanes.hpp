@@ -313,15 +313,19 @@ CDEM_AVX512 inline void transpose(Lanes8 (&v)[8]) {
   }
 }
 
-// Transposes four rows of four lanes held at v[0 .. 3]: afterwards v[a] lane b is what v[b] lane
-// a was (two rounds of shuffles, eight in all).
+// Transposes four rows of four lanes, v0 .. v3, into out[0 .. 3]: afterwards out[a] lane b is
+// what row b lane a was (two rounds of shuffles, eight in all).
+CDEM_AVX2 inline void transpose4(Lanes4 v0, Lanes4 v1, Lanes4 v2, Lanes4 v3, Lanes4* out) {
+  const Lanes4 t0 = _mm256_unpacklo_pd(v0, v1), t1 = _mm256_unpackhi_pd(v0, v1);
+  const Lanes4 t2 = _mm256_unpacklo_pd(v2, v3), t3 = _mm256_unpackhi_pd(v2, v3);
+  out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+  out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+  out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+  out[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+// The same in place, on v[0 .. 3].
 CDEM_AVX2 inline void transpose4(Lanes4* v) {
-  const Lanes4 t0 = _mm256_unpacklo_pd(v[0], v[1]), t1 = _mm256_unpackhi_pd(v[0], v[1]);
-  const Lanes4 t2 = _mm256_unpacklo_pd(v[2], v[3]), t3 = _mm256_unpackhi_pd(v[2], v[3]);
-  v[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
-  v[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
-  v[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
-  v[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+  transpose4(v[0], v[1], v[2], v[3], v);
 }
 
 // field[f] lane l = the f-th double of record index[l], for kLanes<L> consecutive int32 indices
@@ -348,10 +352,13 @@ CDEM_AVX2 inline void load_records(const double* records, const std::int32_t* in
 
 // field[f] lane l = the f-th double of the l-th of kLanes<L> consecutive records of four doubles
 // (32-byte aligned) at `records`: a DiscLoad per lane (dem/discs.hpp). A load per record and a
-// transpose.
+// transpose. The loads named, not into `field`: loaded into the array, GCC 12 copied the 128
+// bytes through the stack in 16-byte halves and read them back as 32-byte vectors, a
+// store-to-load forwarding stall on each (about half of integrate_free_discs' samples on the
+// C30 UCS on Zen 3, docs/performance.md "Session 60").
 CDEM_AVX2 inline void load_quads(const double* records, Lanes4 (&field)[4]) {
-  for (std::size_t l = 0; l < 4; ++l) field[l] = _mm256_load_pd(records + 4 * l);
-  transpose4(field);
+  transpose4(_mm256_load_pd(records), _mm256_load_pd(records + 4), _mm256_load_pd(records + 8),
+             _mm256_load_pd(records + 12), field);
 }
 // The eight records as four lines of two, transposed by two rounds of two-register permutes. As
 // two 4 x 4 transposes of half-line loads joined lane-wise, GCC 12 merged each two loads into
