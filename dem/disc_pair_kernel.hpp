@@ -24,6 +24,14 @@ namespace cdem::dem {
 // a loop with no dependency between iterations, then their laws. 64 geometries fit in L1.
 inline constexpr std::size_t kGeometryBlock = 64;
 
+// The discs' records and force sums (bytes) above which the force pass requests each block's
+// second discs ahead (DiscPairKernel::evaluate_range). Below, they stay in the last-level cache
+// from one step to the next on the CPUs measured (16-32 MB per core cluster), the hardware
+// brings them, and the requests only cost: 3-5 % of a C30 packing on Zen 3, whose 21,305 discs
+// hold 2 MB (docs/performance.md "Session 60"). The operating system's figure for that cache is
+// no guide: glibc reports 256 MB on that guest.
+inline constexpr std::size_t kPrefetchSecondDiscsAbove = std::size_t{8} << 20;
+
 // The law of one pair and of several is written once, over the number type T: double for one
 // pair, Lanes8 or Lanes4 for eight or four (dem/lanes.hpp).
 
@@ -300,7 +308,9 @@ class DiscPairKernel {
         guard_(guard),
         lanes_(usable_lanes(options.lanes)),
         pair_results_(options.pair_results),
-        radius_factor_(options.radius_factor) {
+        radius_factor_(options.radius_factor),
+        prefetch_second_(d.state.size() * (sizeof(DiscState) + sizeof(DiscLoad)) >
+                         kPrefetchSecondDiscsAbove) {
     // Lanes4's lookup reads the table's first four entries as one register.
     static_assert(kContactClassCount <= 4);
     for (int c = 0; c < kContactClassCount; ++c) {
@@ -354,9 +364,10 @@ class DiscPairKernel {
       // the hardware prefetcher does not follow: on the 10^6-disc section the loads of the second
       // disc's position and velocity held 28 % of the pass's samples, and this cut the step to
       // 0.70x (docs/performance.md "Session 21"; within the cache, as on C30, it costs nothing
-      // measurable). The loop stays written out here: GCC 12 drops a call to a function that only
-      // prefetches (it has no side effect), leaving no prefetch instruction in the pass.
-      if (stop + kGeometryBlock <= end)
+      // measurable on Zen 5, 3-5 % of the packing on Zen 3: kPrefetchSecondDiscsAbove). The loop
+      // stays written out here: GCC 12 drops a call to a function that only prefetches (it has
+      // no side effect), leaving no prefetch instruction in the pass.
+      if (prefetch_second_ && stop + kGeometryBlock <= end)
         for (std::size_t k = stop; k < stop + kGeometryBlock; ++k) {
           const std::int32_t j = second_[k];
           __builtin_prefetch(disc_ + j);
@@ -1009,6 +1020,7 @@ class DiscPairKernel {
   LaneIsa lanes_;
   bool pair_results_;
   double radius_factor_;          // the pass's radii: the stored ones times this (PassOptions)
+  bool prefetch_second_;          // request the next block's second discs (evaluate_range)
   bool flat_joint_laws_ = false;  // some class installs flat joints
   bool frictionless_ = true;      // no class of disc pairs has friction (mu > 0)
 };
