@@ -26,10 +26,10 @@ inline constexpr std::size_t kGeometryBlock = 64;
 
 // The discs' records and force sums (bytes) above which the force pass requests each block's
 // second discs ahead (DiscPairKernel::evaluate_range). Below, they stay in the last-level cache
-// from one step to the next on the CPUs measured (16-32 MB per core cluster), the hardware
-// brings them, and the requests only cost: 3-5 % of a C30 packing on Zen 3, whose 21,305 discs
-// hold 2 MB (docs/performance.md "Session 60"). The operating system's figure for that cache is
-// no guide: glibc reports 256 MB on that guest.
+// from one step to the next (32 MB on the Zen 3 measured), the hardware brings them, and the
+// requests only cost: 2-5 % of a C30 packing there, whose 21,305 discs hold 2 MB
+// (docs/performance.md "Session 60"). The operating system's figure for that cache is no guide:
+// glibc reports 256 MB on that guest.
 inline constexpr std::size_t kPrefetchSecondDiscsAbove = std::size_t{8} << 20;
 
 // The law of one pair and of several is written once, over the number type T: double for one
@@ -364,7 +364,7 @@ class DiscPairKernel {
       // the hardware prefetcher does not follow: on the 10^6-disc section the loads of the second
       // disc's position and velocity held 28 % of the pass's samples, and this cut the step to
       // 0.70x (docs/performance.md "Session 21"; within the cache, as on C30, it costs nothing
-      // measurable on Zen 5, 3-5 % of the packing on Zen 3: kPrefetchSecondDiscsAbove). The loop
+      // measurable on Zen 5, 2-5 % of the packing on Zen 3: kPrefetchSecondDiscsAbove). The loop
       // stays written out here: GCC 12 drops a call to a function that only prefetches (it has
       // no side effect), leaving no prefetch instruction in the pass.
       if (prefetch_second_ && stop + kGeometryBlock <= end)
