@@ -79,9 +79,10 @@ inline constexpr std::size_t kLanes<Lanes4> = 4;
 // scheduled, the one-thread C30 UCS ran its first 20,000 steps in 0.96x the time, 8 of 8 paired
 // rounds lower, and the packing unchanged (docs/performance.md "Session 61"). Scheduling only
 // reorders instructions: every result keeps its bits. GCC documents the optimize attribute as
-// meant for debugging; here it is checked that `flatten` still inlines everything (no call in
-// the lane functions) and that the tests of the lanes' bits pass. The AVX-512 code, with 32
-// registers and not measured so on any host, keeps the default.
+// meant for debugging; here it is checked that `flatten` still inlines as before (the lane
+// functions' disassembly holds the same calls: none in evaluate_lanes or the free discs'
+// integration) and that the tests of the lanes' bits pass. The AVX-512 code, with 32 registers
+// and not measured so on any host, keeps the default.
 #define CDEM_LANES8_TARGET __attribute__((target("avx512f"), flatten))
 #if defined(__GNUC__) && !defined(__clang__)
 #define CDEM_LANES4_TARGET \
