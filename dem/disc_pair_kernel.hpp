@@ -190,13 +190,25 @@ ParallelBondedPairOf<T> parallel_bonded_pair(const PairGeometryOf<T>& g, const P
   return r;
 }
 
+// A pair's term of the virial (N m) from its radii and overlap (m) and its normal force (N,
+// compression positive): the force times the centre distance, reach - overlap (a bonded pair
+// may be apart). T = double for one pair, Lanes8 or Lanes4 for several.
+template <class T>
+T virial_term(T ri, T rj, T overlap, T normal) {
+  return normal * (ri + rj - overlap);
+}
+
 // The force of a pair that carries its normal force alone: an unbonded pair of a frictionless
 // class, evaluated in lanes (DiscPairKernel::normal_lane_law). Its moments are zeros (of a finite
 // geometry; a pair with a non-finite overlap trips the guard, which stops the run), which the
 // additions onto the discs' sums leave out: a sum that starts at +0 is never -0 (x + y is -0
 // only if x and y both are), and adding +0 or -0 to any other value leaves its bits as they
-// are, so the sums keep the bits of adding them.
-struct NormalPairForce : PairForce {};
+// are, so the sums keep the bits of adding them. Its slip work is +0, which the sums of slip
+// work leave out likewise. Its virial term (N m) comes from the lanes, formed there as
+// DiscPairKernel::virial forms it for one pair.
+struct NormalPairForce : PairForce {
+  double virial = 0;
+};
 
 template <class F>
 inline constexpr bool kNormalOnly = std::is_same_v<F, NormalPairForce>;
@@ -460,8 +472,9 @@ class DiscPairKernel {
   // A pair's term of the virial (N m): its normal force times its centre distance, reach -
   // overlap (a bonded pair may be apart).
   static double virial(const Geometry& g, const PairForce& f) {
-    return f.normal * (g.ri + g.rj - f.overlap);
+    return virial_term(g.ri, g.rj, f.overlap, f.normal);
   }
+  static double virial(const Geometry&, const NormalPairForce& f) { return f.virial; }
 
   // Adds pair k onto its discs and onto `totals`, the pass totals (a local of the pass, so they
   // stay in registers). Pairs apart carry zeros, so adding them unconditionally keeps the loop
@@ -472,7 +485,7 @@ class DiscPairKernel {
            std::vector<std::int32_t>& broken) const {
     add_onto_discs(disc_load_, g.i, g.j, f);
     if constexpr (kVirial) totals.virial += virial(g, f);
-    totals.slip_work += f.slip_work;
+    if constexpr (!kNormalOnly<F>) totals.slip_work += f.slip_work;
     if (f.failure != BondFailure::None) {
       broken.push_back(static_cast<std::int32_t>(k));
       totals.bond_energy_released += f.released;
@@ -488,6 +501,7 @@ class DiscPairKernel {
   struct PairLanes {
     alignas(64) double ri[n], rj[n], overlap[n], nx[n], ny[n], inverse_length[n];
     alignas(64) double normal[n], fx[n], fy[n], moment_i[n], moment_j[n], slip_work[n];
+    alignas(64) double virial[n];  // N m; the blocks of normal forces alone (normal_lane_law)
     unsigned done = 0, within_guard = 0;  // bit l: lane l
 
     Geometry geometry(std::size_t l, std::int32_t i, std::int32_t j) const {
@@ -512,6 +526,7 @@ class DiscPairKernel {
       f.moment_i = moment_i[l];
       f.moment_j = moment_j[l];
       f.slip_work = slip_work[l];
+      if constexpr (kNormalOnly<F>) f.virial = virial[l];
       return f;
     }
   };
@@ -637,7 +652,9 @@ class DiscPairKernel {
     const LinearNormalOf<L> c = linear_normal(g, lookup<L>(by_class_.emod, contact_class_ + k));
     store(shear_ + k, L{});
     constexpr unsigned all = (1u << kLanes<L>)-1u;
-    store_group(k, all, g, dem::resolve(g, c.fn, L{}, L{}), L{}, out);
+    const ResolvedPairOf<L> f = dem::resolve(g, c.fn, L{}, L{});
+    store_group(k, all, g, f, L{}, out);
+    store(out.virial, virial_term(g.ri, g.rj, f.overlap, f.normal));
   }
 
   // Pairs k .. k + n - 1 of geometry g, force f and slip work (J per m) into `out` with the lanes

@@ -363,14 +363,16 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     const auto take_first = [&](std::size_t k, const Geometry& gk, const auto& f)
         __attribute__((always_inline)) {
       if (pair_virial) virial += DiscPairKernel::virial(gk, f);
-      slip_work += f.slip_work;
+      if constexpr (!kNormalOnly<std::decay_t<decltype(f)>>) slip_work += f.slip_work;
       take(k, gk, f);
     };
     const auto take_other = [&](std::size_t k, const Geometry& gk, const auto& f)
         __attribute__((always_inline)) {
       if (pair_virial) pair_virial[k] = DiscPairKernel::virial(gk, f);
-      slip_out[slip_terms] = f.slip_work;
-      slip_terms += f.slip_work != 0;
+      if constexpr (!kNormalOnly<std::decay_t<decltype(f)>>) {
+        slip_out[slip_terms] = f.slip_work;
+        slip_terms += f.slip_work != 0;
+      }
       take(k, gk, f);
     };
     // Phase 1: the pairs whose first disc is one of this thread's, chunk by chunk, in blocks of
