@@ -469,8 +469,7 @@ class DiscPairKernel {
     return f;
   }
 
-  // A pair's term of the virial (N m): its normal force times its centre distance, reach -
-  // overlap (a bonded pair may be apart).
+  // A pair's term of the virial (N m, virial_term); a NormalPairForce carries its own.
   static double virial(const Geometry& g, const PairForce& f) {
     return virial_term(g.ri, g.rj, f.overlap, f.normal);
   }
