@@ -449,6 +449,68 @@ INSTANTIATE_TEST_SUITE_P(FrictionAndLanes, PairLanesPass,
                          testing::Combine(testing::Values(0.5, 0.0),
                                           testing::Values(LaneIsa::Avx2, LaneIsa::Avx512)));
 
+// A pass over pairs [begin, end) names the first pair beyond the overlap guard (where a run
+// stops as unstable): in lanes as one pair at a time, the first pair in pair order whose overlap
+// exceeds the guard times its smaller radius, worked out here from the discs, wherever in a
+// group of lanes that pair falls. For each start of the range, every pair whose overlap ratio
+// exceeds those of all the range's pairs before it is made the first one beyond the guard by a
+// guard halfway between the two; the starts and such pairs put it on every lane. With friction
+// the groups take the whole law, without it the normal force alone (normal_lane_law).
+// The friction coefficient and the lane set.
+class PairLanesGuard : public testing::TestWithParam<std::tuple<double, LaneIsa>> {};
+
+TEST_P(PairLanesGuard, NamesTheFirstPairBeyondTheGuardAsOnePairAtATime) {
+  const auto [friction, lanes] = GetParam();
+  SKIP_WITHOUT_LANE_SET(lanes);
+  World w(cdem::test::lattice_settings(1, LinearContact{16e9, 1.45, friction}, BondModel{}));
+  cdem::test::add_hex_lattice(w);
+  w.scale_radii(1.02);  // neighbours overlapping
+  cdem::test::jostle(w);
+  w.cycle(5);
+  const Discs& d = w.discs();
+  const ContactStore& store = w.contacts();
+  const std::size_t count = store.keys.size();
+  ASSERT_GT(count, 4 * kGeometryBlock);
+  // Each pair's overlap over its smaller radius.
+  std::vector<double> ratio(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(store.first[k]),
+               j = static_cast<std::size_t>(store.second[k]);
+    const double dist = std::hypot(d.x[j] - d.x[i], d.y[j] - d.y[i]);
+    ratio[k] = (d.r[i] + d.r[j] - dist) / std::min(d.r[i], d.r[j]);
+  }
+  // The pair the pass over [begin, count) names for `guard`, on copies of the discs and contacts.
+  const auto first_beyond = [&](LaneIsa set, std::size_t begin, double guard) {
+    Discs discs = w.discs();
+    ContactStore contacts = w.contacts();
+    ContactForces out, wall_out;
+    prepare_force_results(out, wall_out, contacts);
+    const DiscPairKernel kernel(discs, contacts, out, w.settings().laws, w.settings().bonds,
+                                w.time_step(), guard, PassOptions{.lanes = set});
+    return kernel.evaluate_range(begin, count, [](std::size_t, const auto&, const auto&) {});
+  };
+  const std::size_t n = lanes == LaneIsa::Avx512 ? 8 : 4;
+  std::vector<int> at_lane(n, 0);
+  for (std::size_t begin = 0; begin < 2 * n; ++begin) {
+    double before = -std::numeric_limits<double>::infinity();  // the largest ratio so far
+    for (std::size_t k = begin; k < count; ++k) {
+      const double low = std::max(before, 0.0), high = ratio[k];
+      before = std::max(before, ratio[k]);
+      // A gap within the rounding of the pass's overlap would leave the answer open.
+      if (!(high - low > 1e-9 * high)) continue;
+      const double guard = 0.5 * (low + high);
+      ASSERT_EQ(first_beyond(LaneIsa::None, begin, guard), k) << begin << " " << guard;
+      ASSERT_EQ(first_beyond(lanes, begin, guard), k) << begin << " " << guard;
+      ++at_lane[(k - begin) % n];
+    }
+  }
+  for (std::size_t l = 0; l < n; ++l) EXPECT_GT(at_lane[l], 0) << "lane " << l;
+}
+
+INSTANTIATE_TEST_SUITE_P(FrictionAndLanes, PairLanesGuard,
+                         testing::Combine(testing::Values(0.5, 0.0),
+                                          testing::Values(LaneIsa::Avx2, LaneIsa::Avx512)));
+
 // Frictionless classes: every group of unbonded pairs of the pass in lanes takes the normal law
 // alone (DiscPairKernel::normal_lane_law, whose take adds no moments) and leaves every per-pair
 // result, state and sum with the bits of evaluating each pair alone. Two worlds: an unbonded
