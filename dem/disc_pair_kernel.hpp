@@ -407,16 +407,21 @@ class DiscPairKernel {
     const std::size_t groups = (stop - start) / n;
     const auto take_groups = [&]<class F>() __attribute__((always_inline)) {
       std::size_t k = start;
-      for (std::size_t q = 0; q < groups; ++q, k += n)
+      for (std::size_t q = 0; q < groups; ++q, k += n) {
+        // The first lane evaluated here beyond the guard, if any (a test per group, not per pair).
+        if (const unsigned beyond = out[q].done & ~out[q].within_guard)
+          bad = std::min(bad, k + static_cast<std::size_t>(std::countr_zero(beyond)));
         for (std::size_t l = 0; l < n; ++l) {
-          if (!(out[q].done >> l & 1)) {
-            evaluate_one(k + l, geometry(k + l), bad, take);
-            continue;
-          }
-          if (!(out[q].within_guard >> l & 1)) bad = std::min(bad, k + l);
+          // A block of normal forces alone has every lane evaluated.
+          if constexpr (!kNormalOnly<F>)
+            if (!(out[q].done >> l & 1)) {
+              evaluate_one(k + l, geometry(k + l), bad, take);
+              continue;
+            }
           take(k + l, out[q].geometry(l, first_[k + l], second_[k + l]),
                out[q].template force<F>(l));
         }
+      }
       return k;
     };
     // A block of normal forces alone (evaluate_lanes) is handed on as NormalPairForce.
