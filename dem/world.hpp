@@ -361,4 +361,19 @@ class World {
   std::vector<double> member_dt_;  // s, per team member: scratch of update_time_step
 };
 
+// Per-pair results on request (World::set_pair_results_on_request) for a loop that reads them
+// at its records only, back to every step when the loop ends, also by an exception.
+class PairResultsOnRequestScope {
+ public:
+  explicit PairResultsOnRequestScope(World& world) : world_(world) {
+    world_.set_pair_results_on_request(true);
+  }
+  ~PairResultsOnRequestScope() { world_.set_pair_results_on_request(false); }
+  PairResultsOnRequestScope(const PairResultsOnRequestScope&) = delete;
+  PairResultsOnRequestScope& operator=(const PairResultsOnRequestScope&) = delete;
+
+ private:
+  World& world_;
+};
+
 }  // namespace cdem::dem

@@ -897,18 +897,13 @@ LabTestResult run_lab_test(const Specimen& specimen, const LabTestInput& input,
 
   // The steps after which the loop records and snapshots: only they read the per-pair results
   // (the confining stress, the energies, the snapshots), so only they keep them (32 bytes per
-  // pair and step; docs/performance.md "Session 28"). Back to every step when the loop ends,
-  // also by an exception.
+  // pair and step; docs/performance.md "Session 28").
   const auto records_after = [&](long s) {
     return s % c.history_interval == 0 || s >= c.max_steps;
   };
   const bool snapshots = hooks.snapshot && c.snapshot_interval > 0;
   const auto snapshots_after = [&](long s) { return snapshots && s % c.snapshot_interval == 0; };
-  struct PairResultsOnRequest {
-    World& world;
-    explicit PairResultsOnRequest(World& w) : world(w) { world.set_pair_results_on_request(true); }
-    ~PairResultsOnRequest() { world.set_pair_results_on_request(false); }
-  } on_request(world);
+  const PairResultsOnRequestScope on_request(world);
 
   StopReason reason = record(false);
   if (snapshots) hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
