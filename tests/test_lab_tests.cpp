@@ -3,7 +3,9 @@
 // grips, bad inputs are InputErrors, and a failed run leaves no result file. The scaling checks
 // are in test_lab_scaling.cpp, the biaxial test in test_lab_biaxial.cpp.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -12,7 +14,11 @@
 #include <gtest/gtest.h>
 
 #include "core/input_error.hpp"
+#include "dem/measure.hpp"
+#include "dem/world_from_specimen.hpp"
+#include "io/input_table.hpp"
 #include "io/specimen_file.hpp"
+#include "jostled_lattice.hpp"
 #include "lab/lab_test.hpp"
 #include "lab/material_genesis.hpp"
 #include "lab/material_table.hpp"
@@ -299,6 +305,52 @@ TEST(LabTests, BadInputsAreInputErrorsNamingTheKey) {
   // A corrupt HDF5 specimen.
   write_text(dir / "corrupt.h5", "not an HDF5 file");
   EXPECT_THROW(cdem::read_specimen(dir / "corrupt.h5"), InputError);
+}
+
+// The relaxation after the bonds are installed reads the per-pair results once per hundred
+// steps (the unbalanced-force ratio), and only those steps keep them. The relaxed world, its
+// step count and its ratio have the bits of the relaxation as GenesisOptions describes it,
+// written out here with the results kept every step (chunks of 100 steps until the ratio is
+// reached after at least relax_min_steps), and the steps after it keep them again.
+TEST(LabTests, TheGenesisRelaxationKeepsThePairResultsOnlyWhereItReadsThem) {
+  WorldSettings settings;
+  read_material_table(cdem::InputTable::parse_string(materials(), "materials.toml"))
+      .apply(settings);
+  const GenesisOptions options;
+  GenesisReport report;
+  const Specimen cleaned = remove_floating_discs(rectangle_specimen(), settings, options, report);
+  World relaxed = world_from_specimen(cleaned, settings);
+  World every = world_from_specimen(cleaned, settings);
+  install_test_bonds(relaxed, options, report);
+
+  install_bonds(every, BondInstallation{options.bond_gap_ratio});
+  double ratio = 0;
+  for (;;) {
+    every.cycle(100);
+    ratio = unbalanced_force_ratio(every);
+    if ((every.step_count() >= options.relax_min_steps && ratio <= options.relax_tolerance) ||
+        every.step_count() >= options.relax_max_steps)
+      break;
+  }
+  for (std::size_t b = 0; b < every.bodies().size(); ++b)
+    every.set_body_velocity(static_cast<int>(b), 0, 0, 0);
+  every.clear_cracks();
+
+  ASSERT_GT(report.relaxation_steps, 100);  // more than one request
+  EXPECT_EQ(report.relaxation_steps, every.step_count());
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(report.relaxation_unbalanced_ratio),
+            std::bit_cast<std::uint64_t>(ratio));
+  cdem::test::expect_same_bits(cdem::test::world_bits(relaxed), cdem::test::world_bits(every));
+  // Two steps without a request: the first, after a whole hundred, keeps the results for the
+  // energy check (World::energy_check_due) in any case.
+  relaxed.cycle(2);
+  every.cycle(2);
+  const std::size_t pairs = every.pair_forces().normal.size();
+  ASSERT_EQ(relaxed.pair_forces().normal.size(), pairs);
+  for (std::size_t k = 0; k < pairs; ++k)
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(relaxed.pair_forces().normal[k]),
+              std::bit_cast<std::uint64_t>(every.pair_forces().normal[k]))
+        << "pair " << k;
 }
 
 // Every third mortar disc taken out of a jammed packing: many of the rest lose contacts, the
