@@ -306,7 +306,15 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
   out.gauges.record(bars, world.walls());
   record();
   if (hooks.snapshot && c.snapshot_interval > 0) hooks.snapshot(world, 0, 0.0);
+  // Only the steps the loop records or snapshots keep the per-pair results, as in the
+  // quasi-static loop: a record reads them (the confining stress, the energies), a snapshot
+  // hook may.
+  const bool snapshots = hooks.snapshot && c.snapshot_interval > 0;
+  const PairResultsOnRequestScope on_request(world);
   for (long s = 1; s <= needed; ++s) {
+    const bool records = s % c.history_interval == 0 || s == needed;
+    const bool snapshot = snapshots && (s % c.snapshot_interval == 0 || s == needed);
+    if (records || snapshot) world.request_pair_results();
     world.step();
     // Work of this step: the force of its pass over the faces' displacement in it.
     for (const int f : {incident_face, transmitted_face})
@@ -315,9 +323,8 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
     bars.couple(world);
     out.gauges.record(bars, world.walls());
     in_bars += Clock::now() - t0;
-    if (s % c.history_interval == 0 || s == needed) record();
-    if (hooks.snapshot && c.snapshot_interval > 0 && (s % c.snapshot_interval == 0 || s == needed))
-      hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
+    if (records) record();
+    if (snapshot) hooks.snapshot(world, world.step_count() - step0, world.time() - time0);
   }
   out.bar_wall_time = std::chrono::duration<double>(in_bars).count();
   if (out.coupling_number > kCouplingLimit) {
