@@ -305,11 +305,11 @@ void run_shpb_test(World& world, const Box& e, bool disc_specimen, const LabTest
   Clock::duration in_bars{};
   out.gauges.record(bars, world.walls());
   record();
-  if (hooks.snapshot && c.snapshot_interval > 0) hooks.snapshot(world, 0, 0.0);
+  const bool snapshots = hooks.snapshot && c.snapshot_interval > 0;
+  if (snapshots) hooks.snapshot(world, 0, 0.0);
   // Only the steps the loop records or snapshots keep the per-pair results, as in the
   // quasi-static loop: a record reads them (the confining stress, the energies), a snapshot
   // hook may.
-  const bool snapshots = hooks.snapshot && c.snapshot_interval > 0;
   const PairResultsOnRequestScope on_request(world);
   for (long s = 1; s <= needed; ++s) {
     const bool records = s % c.history_interval == 0 || s == needed;
