@@ -29,6 +29,14 @@ enum class BondKind : std::uint8_t {
   SmoothJoint = 4
 };
 
+// Whether none of the kLanes<L> pairs whose bond kinds start at `bond` carries a flat or a smooth
+// joint: such a group's terms (time-step stiffness, strain energy) are formed in lanes.
+template <class L>
+[[gnu::always_inline]] inline bool no_joint_in_lanes(const std::uint8_t* bond) {
+  return every_lane_one_of<L>(bond, static_cast<std::uint8_t>(BondKind::None),
+                              static_cast<std::uint8_t>(BondKind::Parallel));
+}
+
 struct BondModel {
   BondKind kind = BondKind::None;  // the bond that install_bonds puts on pairs of this class
   ContactBondParams contact;       // used when kind == Contact
@@ -38,6 +46,37 @@ struct BondModel {
 
 // By ContactClass (M, ITZ, A, W); the default is linear everywhere.
 using BondModels = std::array<BondModel, kContactClassCount>;
+
+// The constants of each contact class that the pair terms formed in lanes outside the force pass
+// read (the time step's stiffness, the strain energy), by class code: at most 8 entries, for
+// lookup<L> (dem/lanes.hpp).
+struct ClassLaneConstants {
+  double emod[8] = {}, kappa[8] = {}, modulus[8] = {}, stiffness_ratio[8] = {},
+         radius_multiplier[8] = {};
+
+  ClassLaneConstants(const std::array<LinearContact, kContactClassCount>& laws,
+                     const BondModels& bonds) {
+    static_assert(kContactClassCount <= 4);  // lookup<Lanes4> reads the first four entries
+    for (int c = 0; c < kContactClassCount; ++c) {
+      emod[c] = laws[c].emod;
+      kappa[c] = laws[c].kappa;
+      modulus[c] = bonds[c].parallel.modulus;
+      stiffness_ratio[c] = bonds[c].parallel.stiffness_ratio;
+      radius_multiplier[c] = bonds[c].parallel.radius_multiplier;
+    }
+  }
+
+  // The parallel-bond constants of the geometry and stiffness (parallel_bond_geometry) of the
+  // kLanes<L> pairs whose class codes start at `cls`; the strengths are left at zero.
+  template <class L>
+  [[gnu::always_inline]] ParallelBondLanes<L> parallel_bond(const std::uint8_t* cls) const {
+    ParallelBondLanes<L> p{};
+    p.modulus = lookup<L>(modulus, cls);
+    p.stiffness_ratio = lookup<L>(stiffness_ratio, cls);
+    p.radius_multiplier = lookup<L>(radius_multiplier, cls);
+    return p;
+  }
+};
 
 // Short names used in the crack log and in messages: M, ITZ, A, W.
 inline const char* contact_class_name(ContactClass c) {

@@ -473,6 +473,14 @@ CDEM_AVX2 inline LaneMask4 lanes_equal<Lanes4>(const std::uint8_t* code, std::ui
   return {reinterpret_cast<LaneBits4>(_mm256_cmpeq_epi64(codes4(code), _mm256_set1_epi64x(value)))};
 }
 
+// Whether each of the kLanes<L> consecutive byte codes at `code` is `a` or `b`.
+template <class L>
+[[gnu::always_inline]] inline bool every_lane_one_of(const std::uint8_t* code, std::uint8_t a,
+                                                     std::uint8_t b) {
+  constexpr unsigned kEveryLane = ~(~0u << kLanes<L>);
+  return lane_bits(lanes_equal<L>(code, a) | lanes_equal<L>(code, b)) == kEveryLane;
+}
+
 // at[0 .. kLanes - 1] where `lanes` has the bit, +0 elsewhere. Every slot is read, so all
 // kLanes must exist: the lanes are loaded whole and the others then cleared. As one masked load,
 // on the 10^6-disc section (arrays beyond the cache) the law's three masked loads of the bond

@@ -125,7 +125,9 @@ inline LinearShear linear_shear_step(double old_shear, double ks, double slip_ve
 // Strain energy (J per m of thickness) of a contact's normal and shear springs of stiffnesses
 // kn, ks (N/m) carrying forces fn, fs (N): fn^2 / (2 kn) + fs^2 / (2 ks). The linear part of
 // disc pairs and disc-wall contacts, and a smooth joint's springs (kn A, ks A), store it alike.
-inline double linear_strain_energy(double fn, double fs, double kn, double ks) {
+// T = double for one contact, lanes for several.
+template <class T>
+T linear_strain_energy(T fn, T fs, T kn, T ks) {
   return 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
 }
 

@@ -149,9 +149,10 @@ inline BondFailure parallel_bond_failure(const ParallelBondState& s, const Paral
 }
 
 // Strain energy held by the bond's three springs (J per m of thickness):
-// fn^2 / (2 kbn Ab) + fs^2 / (2 kbs Ab) + m^2 / (2 kbn Ib).
-inline double parallel_bond_strain_energy(const ParallelBondState& s,
-                                          const ParallelBondGeometry& g) {
+// fn^2 / (2 kbn Ab) + fs^2 / (2 kbs Ab) + m^2 / (2 kbn Ib). T = double for one bond, lanes for
+// several.
+template <class T>
+T parallel_bond_strain_energy(const ParallelBondStateOf<T>& s, const ParallelBondGeometryOf<T>& g) {
   return 0.5 * s.fn * s.fn / (g.kn * g.area) + 0.5 * s.fs * s.fs / (g.ks * g.area) +
          0.5 * s.m * s.m / (g.kn * g.inertia);
 }

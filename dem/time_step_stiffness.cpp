@@ -17,16 +17,6 @@ ContactStiffnessTermOf<T> term_of(const ContactStiffnessOf<T>& c, T arm_first, T
           c.shear * arm_second * arm_second + c.rotation};
 }
 
-// Whether none of the kLanes<L> contacts from k carries a flat or a smooth joint.
-template <class L>
-[[gnu::always_inline]] inline bool lanes_take(const ContactStore& contacts, std::size_t k) {
-  const std::uint8_t* bond = contacts.state.bond.data() + k;
-  const auto linear = lanes_equal<L>(bond, static_cast<std::uint8_t>(BondKind::None)) |
-                      lanes_equal<L>(bond, static_cast<std::uint8_t>(BondKind::Parallel));
-  constexpr unsigned kEveryLane = ~(~0u << kLanes<L>);
-  return lane_bits(linear) == kEveryLane;
-}
-
 }  // namespace
 
 // The terms of the kLanes<L> contacts from k, none of which carries a flat or a smooth joint, to
@@ -42,10 +32,7 @@ void ContactStiffnessTerms::lane_terms(std::size_t k, ContactStiffnessTerm* out)
   load_records(records, contacts_.second.data() + k, b);
   const L r1 = a[DiscState::kR], r2 = b[DiscState::kR];
   const std::uint8_t* cls = contacts_.contact_class.data() + k;
-  ParallelBondLanes<L> p{};
-  p.modulus = lookup<L>(by_class_.modulus, cls);
-  p.stiffness_ratio = lookup<L>(by_class_.stiffness_ratio, cls);
-  p.radius_multiplier = lookup<L>(by_class_.radius_multiplier, cls);
+  const ParallelBondLanes<L> p = by_class_.parallel_bond<L>(cls);
   const ContactStiffnessOf<L> s =
       linear_pair_stiffness(lookup<L>(by_class_.emod, cls), lookup<L>(by_class_.kappa, cls), p,
                             lanes_equal<L>(contacts_.state.bond.data() + k,
@@ -64,7 +51,7 @@ std::size_t ContactStiffnessTerms::groups_in_lanes(std::size_t k, std::size_t n,
   constexpr std::size_t width = kLanes<L>;
   std::size_t q = 0;
   for (; q + width <= n; q += width) {
-    if (lanes_take<L>(contacts_, k + q))
+    if (no_joint_in_lanes<L>(contacts_.state.bond.data() + k + q))
       lane_terms<L>(k + q, out + q);
     else
       for (std::size_t l = 0; l < width; ++l) out[q + l] = one(k + q + l);
@@ -85,17 +72,12 @@ ContactStiffnessTerms::ContactStiffnessTerms(
     const Discs& discs, const ContactStore& contacts,
     const std::array<LinearContact, kContactClassCount>& laws, const BondModels& bonds,
     LaneIsa lanes)
-    : discs_(discs), contacts_(contacts), laws_(laws), bonds_(bonds), lanes_(usable_lanes(lanes)) {
-  static_assert(kContactClassCount <= 4);  // lookup<Lanes4> reads the first four entries
-  for (int c = 0; c < kContactClassCount; ++c) {
-    const ParallelBondParams& p = bonds[c].parallel;
-    by_class_.emod[c] = laws[c].emod;
-    by_class_.kappa[c] = laws[c].kappa;
-    by_class_.modulus[c] = p.modulus;
-    by_class_.stiffness_ratio[c] = p.stiffness_ratio;
-    by_class_.radius_multiplier[c] = p.radius_multiplier;
-  }
-}
+    : discs_(discs),
+      contacts_(contacts),
+      laws_(laws),
+      bonds_(bonds),
+      lanes_(usable_lanes(lanes)),
+      by_class_(laws, bonds) {}
 
 ContactStiffnessTerm ContactStiffnessTerms::one(std::size_t k) const {
   const std::int32_t i = contacts_.first[k], j = contacts_.second[k];

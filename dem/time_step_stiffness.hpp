@@ -62,12 +62,6 @@ class ContactStiffnessTerms {
   ContactStiffnessTerm one(std::size_t k) const;
 
  private:
-  // Each class's constants, by contact class code (at most 8, for lookup<L>).
-  struct ByClass {
-    double emod[8] = {}, kappa[8] = {}, modulus[8] = {}, stiffness_ratio[8] = {},
-           radius_multiplier[8] = {};
-  };
-
   // The whole groups of eight (AVX-512) or four (AVX2) contacts of [k, k + n), each in lanes if
   // none of its contacts carries a flat or smooth joint, else one at a time; returns how many
   // contacts from k they wrote (the rest is left to one at a time).
@@ -85,7 +79,7 @@ class ContactStiffnessTerms {
   const std::array<LinearContact, kContactClassCount>& laws_;
   const BondModels& bonds_;
   LaneIsa lanes_;
-  ByClass by_class_;
+  ClassLaneConstants by_class_;
 };
 
 class TimeStepStiffness {

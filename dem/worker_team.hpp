@@ -112,17 +112,19 @@ inline double counted_or_zero(double value, bool counted) {
   return std::bit_cast<double>(std::bit_cast<std::uint64_t>(value) & keep);
 }
 
-// The sum of term(k) over k in [0, n) with the bits of `double sum = 0; for (k = 0; k < n; ++k)
-// sum += term(k);`, shared out on `team` (share_out's members). Member 0 runs own_work(), then
-// adds the terms of [0, own_end) as it forms them; the other members store the terms of
-// [own_end, n) in `stored`, and member 0 goes on over them after the join, in ascending k. Of
-// [0, n), member 0 takes `own_shares` shares (0 to 1: less for more own work) and every other
-// member one. A term that the loop would leave out may be given as +0: a sum that starts at +0
-// is never -0 (x + y is -0 only for x = y = -0), and s + (+0) = s for every other s. Neither
-// own_work nor term may throw.
-template <class Term, class OwnWork>
-double shared_ordered_sum(WorkerTeam* team, std::size_t n, double own_shares, Term&& term,
-                          OwnWork&& own_work, std::vector<double>& stored) {
+// The sum of the terms of items [0, n) with the bits of `double sum = 0; for (k = 0; k < n; ++k)
+// sum += term(k);`, shared out on `team` (share_out's members), the terms formed a block at a
+// time: form(k, count, out) writes the terms of items [k, k + count) to out[0 .. count - 1] (so
+// that a block can be formed in lanes). Member 0 runs own_work(), then adds the terms of
+// [0, own_end) as it forms them; the other members store the terms of [own_end, n) in `stored`,
+// and member 0 goes on over them after the join, in ascending k. Of [0, n), member 0 takes
+// `own_shares` shares (0 to 1: less for more own work) and every other member one. A term that
+// the loop would leave out may be given as +0: a sum that starts at +0 is never -0 (x + y is -0
+// only for x = y = -0), and s + (+0) = s for every other s. Neither own_work nor form may throw.
+inline constexpr std::size_t kTermBlock = 64;  // items member 0 forms before it adds them
+template <class Form, class OwnWork>
+double shared_ordered_block_sum(WorkerTeam* team, std::size_t n, double own_shares, Form&& form,
+                                OwnWork&& own_work, std::vector<double>& stored) {
   const int members = share_out_members(team, n);
   const std::size_t own_end =
       members > 1 ? static_cast<std::size_t>(static_cast<double>(n) * own_shares /
@@ -134,14 +136,31 @@ double shared_ordered_sum(WorkerTeam* team, std::size_t n, double own_shares, Te
   share_out(team, n, [&](int t, int m) {
     if (t == 0) {
       own_work();
-      for (std::size_t k = 0; k < own_end; ++k) sum += term(k);
+      double block[kTermBlock];
+      for (std::size_t k = 0; k < own_end; k += kTermBlock) {
+        const std::size_t count = std::min(kTermBlock, own_end - k);
+        form(k, count, block);
+        for (std::size_t q = 0; q < count; ++q) sum += block[q];
+      }
       return;
     }
     const MemberRange share = member_range(n - own_end, t - 1, m - 1);
-    for (std::size_t q = share.begin; q < share.end; ++q) terms[q] = term(own_end + q);
+    form(own_end + share.begin, share.end - share.begin, terms + share.begin);
   });
   for (const double s : stored) sum += s;
   return sum;
+}
+
+// The same with the terms formed one at a time: term(k).
+template <class Term, class OwnWork>
+double shared_ordered_sum(WorkerTeam* team, std::size_t n, double own_shares, Term&& term,
+                          OwnWork&& own_work, std::vector<double>& stored) {
+  return shared_ordered_block_sum(
+      team, n, own_shares,
+      [&term](std::size_t k, std::size_t count, double* out) {
+        for (std::size_t q = 0; q < count; ++q) out[q] = term(k + q);
+      },
+      own_work, stored);
 }
 
 // The sum over k in [0, n) of the terms that form(k, term) keeps (returns true, having written

@@ -3,7 +3,9 @@
 // system gives the same bits (positions, cracks, energies) run twice and with 1 or 2 threads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numbers>
 #include <vector>
@@ -280,6 +282,64 @@ TEST(BondEnergy, ContactEnergyOnTwoAndThreeThreadsHasTheBitsOfOne) {
         << threads << ": " << a.linear_strain << " " << b.linear_strain << " " << a.bond_strain
         << " " << b.bond_strain;
   }
+}
+
+// The contacts' strain energy written out from its definitions (SPEC 4): per disc pair, in pair
+// order, fn^2 / (2 kn) + fs^2 / (2 ks) of its linear springs (fn the linear part: the total normal
+// force plus the parallel bond's tension) and, for a parallel bond, fn^2 / (2 kbn Ab) + fs^2 /
+// (2 kbs Ab) + m^2 / (2 kbn Ib), with the engine's spellings of the stiffnesses (kn = 2 min(R) t
+// E* / L, kbn = Eb (1 / L)). The lattice has no wall and every pair is of one class.
+ContactEnergy contact_energy_written_out(const World& w) {
+  const Discs& d = w.discs();
+  const ContactStore& list = w.contacts();
+  const ContactForces& pair = w.pair_forces();
+  const LinearContact& law = w.settings().laws[0];
+  const ParallelBondParams& p = w.settings().bonds[0].parallel;
+  ContactEnergy e;
+  for (std::size_t k = 0; k < list.keys.size(); ++k) {
+    const double ri = d.r[list.first[k]], rj = d.r[list.second[k]];
+    const double kn = 2.0 * std::min(ri, rj) * kThickness * law.emod / (ri + rj);
+    const double ks = kn / law.kappa;
+    const double fn = pair.normal[k] + list.state.bond_normal[k], fs = list.state.shear_force[k];
+    e.linear_strain += 0.5 * fn * fn / kn + 0.5 * fs * fs / ks;
+    if (list.state.bond[k] != static_cast<std::uint8_t>(BondKind::Parallel)) continue;
+    const double rb = p.radius_multiplier * std::min(ri, rj);
+    const double area = 2 * rb * kThickness, inertia = (2.0 / 3.0) * rb * rb * rb * kThickness;
+    const double kbn = p.modulus * (1.0 / (ri + rj)), kbs = kbn / p.stiffness_ratio;
+    const double bn = list.state.bond_normal[k], bs = list.state.bond_shear[k],
+                 bm = list.state.bond_moment[k];
+    e.bond_strain += 0.5 * bn * bn / (kbn * area) + 0.5 * bs * bs / (kbs * area) +
+                     0.5 * bm * bm / (kbn * inertia);
+  }
+  e.friction = w.friction_dissipated();
+  e.bond_breakage = w.bond_energy_released();
+  return e;
+}
+
+// contact_energy forms the terms of groups of pairs without joints in lanes: with every lane set
+// the CPU has and without lanes, on one thread and on a team (its sums shared out), it gives the
+// bits of the definitions written out, on a lattice where some bonds broke (pairs with and
+// without a bond in one group).
+TEST(BondEnergy, ContactEnergyWithAndWithoutLanesHasTheBitsOfItsDefinitions) {
+  for (const int threads : {1, 2})
+    for (const LaneIsa lanes : {LaneIsa::None, LaneIsa::Avx2, LaneIsa::Avx512}) {
+      if (usable_lanes(lanes) != lanes) continue;
+      WorldSettings s = cdem::test::lattice_settings(threads, LinearContact{16e9, 1.45, 0.5},
+                                                     cdem::test::weak_parallel_bond());
+      s.lanes = lanes;
+      World w(s);
+      cdem::test::add_hex_lattice(w, 60);
+      install_bonds(w, BondInstallation{0.03});
+      cdem::test::jostle(w);
+      w.cycle(200);
+      ASSERT_GT(w.cracks().size(), 0u);
+      ASSERT_GE(w.contacts().keys.size(), kShareOutAbove);  // a team shares the sums out
+      const ContactEnergy got = contact_energy(w), want = contact_energy_written_out(w);
+      EXPECT_GT(want.bond_strain, 0);
+      EXPECT_EQ(std::memcmp(&got, &want, sizeof(ContactEnergy)), 0)
+          << threads << " threads, " << lane_isa_name(lanes) << ": " << got.linear_strain << " "
+          << want.linear_strain << " " << got.bond_strain << " " << want.bond_strain;
+    }
 }
 
 }  // namespace

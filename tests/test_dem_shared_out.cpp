@@ -13,6 +13,7 @@
 #include <random>
 #include <set>
 #include <span>
+#include <thread>
 #include <vector>
 
 #include "dem/contact_store.hpp"
@@ -392,6 +393,51 @@ TEST(SharedOut, OrderedSumOfKeptTermsHasTheBitsOfOneLoopForAnyTeam) {
     EXPECT_EQ(std::memcmp(&shared, &plain, sizeof plain), 0) << members << ": " << shared;
     for (const auto& list : kept) EXPECT_LE(list.size(), kKeptBlock) << members;
   }
+}
+
+// The ordered sum of terms formed a block at a time (shared_ordered_block_sum, the contacts'
+// strain energy; shared_ordered_sum forms them one at a time through it): over 2.7 share-outs'
+// worth of items of scattered magnitudes and signs, teams of 1, 2 and 3 and several shares for
+// member 0 give the bits of the plain loop; every item is formed exactly once, member 0's in
+// blocks of at most kTermBlock, and member 0's own work runs once.
+TEST(SharedOut, OrderedBlockSumHasTheBitsOfOneLoopForAnyTeam) {
+  const std::size_t n = 2 * kShareOutAbove + 7 * kShareOutAbove / 10;
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  std::vector<double> value(n);
+  for (double& v : value) v = std::ldexp(mantissa(rng), exponent(rng));
+  double plain = 0;
+  for (const double v : value) plain += v;
+  for (const int members : {1, 2, 3})
+    for (const double own_shares : {0.0, 1.0 / 3.0, 1.0}) {
+      WorkerTeam team(members);
+      std::vector<std::uint8_t> formed(n, 0);  // members write disjoint items
+      std::vector<double> stored;
+      int own_work = 0;
+      std::size_t own_block = 0;  // the largest block member 0 (this thread) formed
+      const std::thread::id caller = std::this_thread::get_id();
+      const double shared = shared_ordered_block_sum(
+          &team, n, own_shares,
+          [&](std::size_t k, std::size_t count, double* out) {
+            if (std::this_thread::get_id() == caller) own_block = std::max(own_block, count);
+            for (std::size_t q = 0; q < count; ++q) {
+              out[q] = value[k + q];
+              ++formed[k + q];
+            }
+          },
+          [&] { ++own_work; }, stored);
+      EXPECT_EQ(std::memcmp(&shared, &plain, sizeof plain), 0)
+          << members << " members, " << own_shares << ": " << shared;
+      EXPECT_EQ(own_work, 1);
+      EXPECT_LE(own_block, kTermBlock);
+      EXPECT_TRUE(std::all_of(formed.begin(), formed.end(), [](std::uint8_t f) { return f == 1; }))
+          << members << " members, " << own_shares;
+      // Member 0 takes own_shares of a share, the others one each.
+      const double own = members > 1 ? own_shares / (own_shares + members - 1) : 1.0;
+      EXPECT_NEAR(static_cast<double>(n - stored.size()), own * static_cast<double>(n), 1.0)
+          << members << " members, " << own_shares;
+    }
 }
 
 // counted_or_zero, the terms of the sums that leave items out without a branch: a counted value
