@@ -115,10 +115,8 @@ class PairStrain {
   // so each lane has its bits. Lane code: called only from groups_in_lanes8 / 4, which inline it.
   template <class L>
   void lane_terms(std::size_t k, double* linear, double* bond) const {
-    const double* records = &d_.state.data()->x;
     L a[kRecordFields], b[kRecordFields];
-    load_records(records, list_.first.data() + k, a);
-    load_records(records, list_.second.data() + k, b);
+    load_pair_records(d_, list_, k, a, b);
     const L r1 = a[DiscState::kR], r2 = b[DiscState::kR];
     const std::uint8_t* cls = list_.contact_class.data() + k;
     const L bond_normal = load<L>(state_.bond_normal.data() + k);

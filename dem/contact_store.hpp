@@ -12,6 +12,7 @@
 #include "dem/array_growth.hpp"
 #include "dem/discs.hpp"
 #include "dem/flat_joint_states.hpp"
+#include "dem/lanes.hpp"
 #include "dem/smooth_joint_states.hpp"
 #include "dem/staggered_array.hpp"
 
@@ -128,5 +129,17 @@ class ContactStore {
   std::vector<std::span<const std::uint64_t>> merge_runs_;
   std::vector<std::size_t> merge_run_old_;
 };
+
+// The records (load_records, dem/lanes.hpp) of the first discs and of the second discs of the
+// kLanes<L> disc-disc contacts from k. Lane code: inline it into a function of L's target.
+template <class L>
+[[gnu::always_inline]] inline void load_pair_records(const Discs& discs,
+                                                     const ContactStore& contacts, std::size_t k,
+                                                     L (&first)[kRecordFields],
+                                                     L (&second)[kRecordFields]) {
+  const double* records = &discs.state.data()->x;
+  load_records(records, contacts.first.data() + k, first);
+  load_records(records, contacts.second.data() + k, second);
+}
 
 }  // namespace cdem::dem

@@ -26,10 +26,8 @@ ContactStiffnessTermOf<T> term_of(const ContactStiffnessOf<T>& c, T arm_first, T
 template <class L>
 void ContactStiffnessTerms::lane_terms(std::size_t k, ContactStiffnessTerm* out) const {
   constexpr std::size_t n = kLanes<L>;
-  const double* records = &discs_.state.data()->x;
   L a[kRecordFields], b[kRecordFields];
-  load_records(records, contacts_.first.data() + k, a);
-  load_records(records, contacts_.second.data() + k, b);
+  load_pair_records(discs_, contacts_, k, a, b);
   const L r1 = a[DiscState::kR], r2 = b[DiscState::kR];
   const std::uint8_t* cls = contacts_.contact_class.data() + k;
   const ParallelBondLanes<L> p = by_class_.parallel_bond<L>(cls);
