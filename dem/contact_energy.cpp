@@ -78,8 +78,7 @@ class PairStrain {
       // The total normal force holds the parallel bond's tension with a minus sign.
       *linear = joint(k) ? 0.0
                          : linear_strain_energy(pair_.normal[k] + state_.bond_normal[k],
-                                                static_cast<double>(state_.shear_force[k]), kn,
-                                                law.shear_stiffness(kn));
+                                                state_.shear_force[k], kn, law.shear_stiffness(kn));
     }
     if (!bond) return;
     *bond = 0;
@@ -101,7 +100,7 @@ class PairStrain {
       const double kna = joints.normal_stiffness(joint), ksa = joints.shear_stiffness(joint);
       const double fn =
           joints.bonded[joint] ? -kna * joints.gap[joint] : std::max(-kna * joints.gap[joint], 0.0);
-      *bond = linear_strain_energy(fn, static_cast<double>(joints.fs[joint]), kna, ksa);
+      *bond = linear_strain_energy(fn, joints.fs[joint], kna, ksa);
     } else if (kind == BondKind::Parallel) {
       const ParallelBondGeometry g =
           parallel_bond_geometry(world_.settings().bonds[cls].parallel, d_.r[i], d_.r[j]);
@@ -188,8 +187,8 @@ ContactEnergy contact_energy(const World& world) {
   // and with a third of a share (the split of the terms one at a time, when a bond term cost
   // about twice a linear one: docs/performance.md "Session 48") the first thread took about twice
   // the second's samples (docs/performance.md "Session 64").
-  thread_local std::vector<double> stored;  // J/m, reused from call to call
   if (WorkerTeam* team = world.measure_team(); share_out_members(team, strain.pairs()) > 1) {
+    thread_local std::vector<double> stored;  // J/m, reused from call to call
     e.bond_strain = shared_ordered_block_sum(
         team, strain.pairs(), 1.0 / 8.0,
         [&strain](std::size_t k, std::size_t n, double* out) { strain(k, n, nullptr, out); },
