@@ -204,13 +204,75 @@ CDEM_AVX512 inline std::size_t partners_of_lanes8(const Grid& grid, int k, int e
   return found;
 }
 
+// AVX2 has no compress, so partners_of_lanes4 packs a group's partners with a permutation of
+// its four 64-bit keys (as eight 32-bit halves), looked up by the group's partner bits.
+struct PackPartners4 {
+  std::int32_t halves[16][8];  // for partner bits m: the halves of its partners' keys, in order
+  int count[16];               // the number of partners, popcount(m)
+};
+constexpr PackPartners4 kPackPartners4 = [] {
+  PackPartners4 table{};
+  for (int m = 0; m < 16; ++m) {
+    int n = 0;
+    for (int l = 0; l < 4; ++l)
+      if (m >> l & 1) {
+        table.halves[m][2 * n] = 2 * l;
+        table.halves[m][2 * n + 1] = 2 * l + 1;
+        ++n;
+      }
+    table.count[m] = n;
+  }
+  return table;
+}();
+// Read from position 4 - n: the first n lanes all ones (loaded), the rest zero (not loaded).
+constexpr std::int64_t kFirstLanes64[8] = {-1, -1, -1, -1, 0, 0, 0, 0};
+constexpr std::int32_t kFirstLanes32[8] = {-1, -1, -1, -1, 0, 0, 0, 0};
+
+// The same, four discs at a time (AVX2): the same operations in every lane (so the same
+// partners); a last group of fewer than four loads only its discs (masked loads, which do not
+// fault past the arrays' end). `out` needs room for four keys past the last partner. On the Zen 3
+// host without AVX-512 the one-at-a-time loop was about 60 % of the search's samples
+// (docs/performance.md "Session 65").
+CDEM_AVX2 inline std::size_t partners_of_lanes4(const Grid& grid, int k, int end, std::size_t i,
+                                                double xi, double yi, double ri, std::uint64_t* out,
+                                                std::size_t found) {
+  const __m256d x_i = _mm256_set1_pd(xi), y_i = _mm256_set1_pd(yi), r_i = _mm256_set1_pd(ri);
+  const __m256i index_i = _mm256_set1_epi64x(static_cast<long long>(i));
+  const __m256i key_i =
+      _mm256_set1_epi64x(static_cast<long long>(pair_key(static_cast<std::uint32_t>(i), 0)));
+  for (; k < end; k += 4) {
+    const int first = 4 - std::min(4, end - k);
+    const __m256i lanes =
+        _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kFirstLanes64 + first));
+    const __m128i lanes32 =
+        _mm_loadu_si128(reinterpret_cast<const __m128i*>(kFirstLanes32 + first));
+    // Disc indices below 2^31: zero-extended, compared as signed 64-bit integers.
+    const __m256i j = _mm256_cvtepu32_epi64(_mm_maskload_epi32(grid.cell_discs + k, lanes32));
+    const __m256d dx = _mm256_sub_pd(_mm256_maskload_pd(grid.x + k, lanes), x_i);
+    const __m256d dy = _mm256_sub_pd(_mm256_maskload_pd(grid.y + k, lanes), y_i);
+    const __m256d reach = _mm256_add_pd(r_i, _mm256_maskload_pd(grid.r + k, lanes));
+    const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    const __m256d close = _mm256_cmp_pd(d2, _mm256_mul_pd(reach, reach), _CMP_LT_OQ);
+    const __m256i larger = _mm256_and_si256(_mm256_cmpgt_epi64(j, index_i), lanes);
+    const int partner = _mm256_movemask_pd(_mm256_and_pd(close, _mm256_castsi256_pd(larger)));
+    const __m256i keys = _mm256_or_si256(key_i, j);
+    const __m256i order =
+        _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kPackPartners4.halves[partner]));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + found),
+                        _mm256_permutevar8x32_epi32(keys, order));
+    found += static_cast<std::size_t>(kPackPartners4.count[partner]);
+  }
+  return found;
+}
+
 // For each disc of [begin, end) (ascending) its partners of another body in the 3x3 block of
 // cells around it, sorted, so the concatenation is sorted without a global sort. The three cells
 // of a block row are consecutive in the cell order.
-template <bool kLanes8>
+template <LaneIsa kLanes>
 [[gnu::always_inline]] inline void search(const Discs& discs, const Grid& grid, std::size_t begin,
                                           std::size_t end, std::vector<std::uint64_t>& out_keys) {
-  constexpr std::size_t kSlack = kLanes8 ? 8 : 0;  // partners_of_lanes8's room
+  // partners_of_lanes8's and partners_of_lanes4's room
+  constexpr std::size_t kSlack = kLanes == LaneIsa::Avx512 ? 8 : kLanes == LaneIsa::Avx2 ? 4 : 0;
   const int nx = grid.nx, ny = grid.ny;
   // The keys found so far are out_keys[0, size); the room after them for a disc's block and the
   // slack grows by an eighth past the need, as the engine's per-pair arrays do (make_room), so
@@ -236,8 +298,10 @@ template <bool kLanes8>
     std::uint64_t* out = out_keys.data() + size;
     std::size_t found = 0;
     for (int row = 0; row <= gy1 - gy0; ++row) {
-      if constexpr (kLanes8)
+      if constexpr (kLanes == LaneIsa::Avx512)
         found = partners_of_lanes8(grid, row_begin[row], row_end[row], i, xi, yi, ri, out, found);
+      else if constexpr (kLanes == LaneIsa::Avx2)
+        found = partners_of_lanes4(grid, row_begin[row], row_end[row], i, xi, yi, ri, out, found);
       else
         found = partners_of(grid, row_begin[row], row_end[row], i, xi, yi, ri, out, found);
     }
@@ -256,7 +320,12 @@ template <bool kLanes8>
 
 CDEM_LANES8_TARGET void search_lanes8(const Discs& discs, const Grid& grid, std::size_t begin,
                                       std::size_t end, std::vector<std::uint64_t>& keys) {
-  search<true>(discs, grid, begin, end, keys);
+  search<LaneIsa::Avx512>(discs, grid, begin, end, keys);
+}
+
+CDEM_LANES4_TARGET void search_lanes4(const Discs& discs, const Grid& grid, std::size_t begin,
+                                      std::size_t end, std::vector<std::uint64_t>& keys) {
+  search<LaneIsa::Avx2>(discs, grid, begin, end, keys);
 }
 
 }  // namespace
@@ -273,10 +342,13 @@ void NeighborList::find_pairs(const Discs& discs, std::size_t begin, std::size_t
                   .ny = ny_,
                   .skin = skin};
   std::vector<std::uint64_t> out_keys = std::move(keys);
-  if (usable_lanes(lanes) == LaneIsa::Avx512)
+  const LaneIsa isa = usable_lanes(lanes);
+  if (isa == LaneIsa::Avx512)
     search_lanes8(discs, grid, begin, end, out_keys);
+  else if (isa == LaneIsa::Avx2)
+    search_lanes4(discs, grid, begin, end, out_keys);
   else
-    search<false>(discs, grid, begin, end, out_keys);
+    search<LaneIsa::None>(discs, grid, begin, end, out_keys);
   keys = std::move(out_keys);
 }
 

@@ -22,8 +22,8 @@ struct MemoryFootprint;  // dem/memory_footprint.hpp
 class NeighborList {
  public:
   double skin = 0;  // m, extra gap under which a pair is kept as a candidate
-  // The widest lanes the disc-disc search may use (WorldSettings::lanes): with AVX-512 it tests
-  // eight partners at once. The candidates are the same for any lanes.
+  // The widest lanes the disc-disc search may use (WorldSettings::lanes): it tests eight
+  // partners at once with AVX-512, four with AVX2. The candidates are the same for any lanes.
   LaneIsa lanes = LaneIsa::Avx512;
   long build_count = 0;
 
