@@ -281,10 +281,9 @@ TEST(NeighborList, TeamSeesTheMoveOfEveryDisc) {
 // The search in lanes (eight partners at a time where the CPU has AVX-512, four where it has
 // AVX2: dem/neighbor_list.cpp) finds the candidates of the one-at-a-time search: on a dense random
 // packing whose block rows hold more than eight discs (so some rows take several groups and a
-// partial last one, of every size from one to seven discs for eight lanes), with a
-// clump whose pebbles are skipped and an inactive pebble, and on rows of discs exactly one
-// reach apart (2 r + skin = 1 m with r = 0.25 m and skin = 0.5 m, all exact in binary), which
-// are not candidates (the gap must be below the skin) in either search.
+// partial last one), with a clump whose pebbles are skipped and an inactive pebble, and on rows
+// of discs exactly one reach apart (2 r + skin = 1 m with r = 0.25 m and skin = 0.5 m, all exact
+// in binary), which are not candidates (the gap must be below the skin) in either search.
 TEST(NeighborList, LanesFindTheCandidatesOfTheOneAtATimeSearch) {
   const auto candidates = [](cdem::dem::LaneIsa lanes, bool at_reach) {
     WorldSettings s = frictional(1e-12);
@@ -312,7 +311,7 @@ TEST(NeighborList, LanesFindTheCandidatesOfTheOneAtATimeSearch) {
   EXPECT_FALSE(std::binary_search(one_at_a_time.begin(), one_at_a_time.end(),
                                   cdem::dem::pair_key(1500, 1502)));
   EXPECT_TRUE(candidates(cdem::dem::LaneIsa::None, true).empty());
-  // Each lane set this CPU has (a wider one asked for runs the widest the CPU has).
+  // Each lane set this CPU has finds the same candidates.
   for (const auto lanes : {cdem::dem::LaneIsa::Avx2, cdem::dem::LaneIsa::Avx512}) {
     if (cdem::dem::lane_isa_of_cpu() < lanes) continue;
     SCOPED_TRACE(cdem::dem::lane_isa_name(lanes));
