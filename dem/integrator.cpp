@@ -112,6 +112,14 @@ bool free_discs(const Bodies& b, std::size_t k) {
          b.first_disc[k + n - 1] - b.first_disc[k] == static_cast<std::int32_t>(n - 1);
 }
 
+// Disc i's radius changed as `radii` says, one disc at a time (the lanes below do the same
+// operations).
+void change_radius(const RadiusChange& radii, Discs& d, std::size_t i) {
+  d.r[i] *= radii.factor;
+  if (radii.before) radii.before[i] = d.r[i];
+  if (radii.per_disc) d.r[i] *= radii.per_disc[i];
+}
+
 // The free-disc branch of integrate_bodies on lanes, the same operations in the same order, on
 // the discs' records: a free disc's position, velocity and forces are not copied to its body
 // (catch_up_free_bodies, dem/integrator.hpp), which saves 128 bytes of traffic per free disc and
@@ -120,9 +128,9 @@ bool free_discs(const Bodies& b, std::size_t k) {
 // instead of reading them, which gives the same bits. Lane code: called only from the
 // integrate_free_discs below, which inline it.
 template <bool kBook, bool kDamped, bool kApplied, class L>
-void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, double radius_factor,
-                             std::size_t k, const BodyEnergyArrays* per_body,
-                             FreeDiscLanes<kLanes<L>>& out) {
+void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha,
+                             const RadiusChange& radii, std::size_t k,
+                             const BodyEnergyArrays* per_body, FreeDiscLanes<kLanes<L>>& out) {
   using S = DiscState;
   const L dtl = splat<L>(dt), al = splat<L>(alpha);
   double* const records = reinterpret_cast<double*>(d.state.data());
@@ -158,11 +166,13 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, doubl
   store(out.position, load<L>(out.position) + (x + y + theta));
   // As std::max(bound, speed2): a NaN speed leaves the bound as it was.
   store(out.speed2, max_of(load<L>(out.speed2), vx * vx + vy * vy));
-  // Back onto the discs' records: position, velocity and the radius times the waiting factor
-  // (in the line the store writes anyway); the offset keeps its value.
+  // Back onto the discs' records: position, velocity and the radius changed (in the line the
+  // store writes anyway); the offset keeps its value.
   fields[S::kX] = x;
   fields[S::kY] = y;
-  fields[S::kR] = fields[S::kR] * splat<L>(radius_factor);
+  fields[S::kR] = fields[S::kR] * splat<L>(radii.factor);
+  if (radii.before) store(radii.before + first, fields[S::kR]);
+  if (radii.per_disc) fields[S::kR] = fields[S::kR] * load<L>(radii.per_disc + first);
   fields[S::kVx] = vx;
   fields[S::kVy] = vy;
   fields[S::kOmega] = w;
@@ -173,19 +183,19 @@ void integrate_free_discs_of(Bodies& b, Discs& d, double dt, double alpha, doubl
 
 template <bool kBook, bool kDamped, bool kApplied>
 CDEM_LANES8_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
-                                             double radius_factor, std::size_t k,
+                                             const RadiusChange& radii, std::size_t k,
                                              const BodyEnergyArrays* per_body,
                                              FreeDiscLanes<8>& out) {
-  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes8>(b, d, dt, alpha, radius_factor, k,
-                                                            per_body, out);
+  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes8>(b, d, dt, alpha, radii, k, per_body,
+                                                            out);
 }
 template <bool kBook, bool kDamped, bool kApplied>
 CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, double alpha,
-                                             double radius_factor, std::size_t k,
+                                             const RadiusChange& radii, std::size_t k,
                                              const BodyEnergyArrays* per_body,
                                              FreeDiscLanes<4>& out) {
-  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes4>(b, d, dt, alpha, radius_factor, k,
-                                                            per_body, out);
+  integrate_free_discs_of<kBook, kDamped, kApplied, Lanes4>(b, d, dt, alpha, radii, k, per_body,
+                                                            out);
 }
 
 // kBook = false is the same loop without the energy terms, kDamped = false without local
@@ -194,9 +204,9 @@ CDEM_LANES4_TARGET void integrate_free_discs(Bodies& b, Discs& d, double dt, dou
 // energy terms are also stored there (the multi-thread cycle sums them in body order). n > 1:
 // runs of n free discs in lanes (8: AVX-512, 4: AVX2).
 template <bool kBook, bool kDamped, std::size_t n>
-RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, double radius_factor,
-                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
-                             InterleavedSum* side) {
+RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha,
+                             const RadiusChange& radii, std::size_t begin, std::size_t end,
+                             const BodyEnergyArrays* per_body, InterleavedSum* side) {
   RangeMotion m;
   // The side sum's terms per group of n bodies, rounded up, so that the groups add nearly all
   // of them.
@@ -214,11 +224,9 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
     if constexpr (n > 1) {
       if (k + n <= end && free_discs<n>(b, k)) {
         if (b.any_applied)
-          integrate_free_discs<kBook, kDamped, true>(b, d, dt, alpha, radius_factor, k, per_body,
-                                                     out);
+          integrate_free_discs<kBook, kDamped, true>(b, d, dt, alpha, radii, k, per_body, out);
         else
-          integrate_free_discs<kBook, kDamped, false>(b, d, dt, alpha, radius_factor, k, per_body,
-                                                      out);
+          integrate_free_discs<kBook, kDamped, false>(b, d, dt, alpha, radii, k, per_body, out);
         if constexpr (kBook)
           for (std::size_t l = 0; l < n; ++l) {
             m.damped += out.energy[2 * l];
@@ -269,7 +277,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
       d.vx[first] = b.vx[k];
       d.vy[first] = b.vy[k];
       d.omega[first] = b.omega[k];
-      d.r[first] *= radius_factor;
+      change_radius(radii, d, static_cast<std::size_t>(first));
       continue;
     }
     const double c = std::cos(b.theta[k]), s = std::sin(b.theta[k]);
@@ -287,7 +295,7 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
       d.vx[i] = b.vx[k] - b.omega[k] * oy;
       d.vy[i] = b.vy[k] + b.omega[k] * ox;
       d.omega[i] = b.omega[k];
-      d.r[i] *= radius_factor;
+      change_radius(radii, d, static_cast<std::size_t>(i));
     }
   }
   if constexpr (n > 1)
@@ -306,22 +314,21 @@ RangeMotion integrate_bodies(Bodies& b, Discs& d, double dt, double alpha, doubl
 
 RangeMotion integrate_range(Bodies& b, Discs& d, double dt, double alpha, bool book,
                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
-                            LaneIsa lanes, double radius_factor, InterleavedSum* side) {
+                            LaneIsa lanes, const RadiusChange& radii, InterleavedSum* side) {
   // Each combination of energy terms, damping and lane count is its own loop, with no branch on
   // them per body.
   const auto with_lanes = [&]<bool kBook, bool kDamped>() {
     switch (usable_lanes(lanes)) {
       case LaneIsa::Avx512:
-        return integrate_bodies<kBook, kDamped, 8>(b, d, dt, alpha, radius_factor, begin, end,
-                                                   per_body, side);
+        return integrate_bodies<kBook, kDamped, 8>(b, d, dt, alpha, radii, begin, end, per_body,
+                                                   side);
       case LaneIsa::Avx2:
-        return integrate_bodies<kBook, kDamped, 4>(b, d, dt, alpha, radius_factor, begin, end,
-                                                   per_body, side);
+        return integrate_bodies<kBook, kDamped, 4>(b, d, dt, alpha, radii, begin, end, per_body,
+                                                   side);
       case LaneIsa::None:
         break;
     }
-    return integrate_bodies<kBook, kDamped, 1>(b, d, dt, alpha, radius_factor, begin, end, per_body,
-                                               side);
+    return integrate_bodies<kBook, kDamped, 1>(b, d, dt, alpha, radii, begin, end, per_body, side);
   };
   if (alpha != 0)
     return book ? with_lanes.template operator()<true, true>()
@@ -363,9 +370,9 @@ StepMotion step_motion(const Bodies& b, const Discs& d, const RangeMotion& m, do
 }
 
 StepMotion integrate(Bodies& b, Discs& d, double dt, double alpha, EnergyLedger* ledger,
-                     LaneIsa lanes, double radius_factor) {
-  const RangeMotion m = integrate_range(b, d, dt, alpha, ledger != nullptr, 0, b.size(), nullptr,
-                                        lanes, radius_factor);
+                     LaneIsa lanes, const RadiusChange& radii) {
+  const RangeMotion m =
+      integrate_range(b, d, dt, alpha, ledger != nullptr, 0, b.size(), nullptr, lanes, radii);
   if (ledger) book_step_energy(m, dt, *ledger);
   return step_motion(b, d, m, dt);
 }

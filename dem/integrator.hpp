@@ -43,10 +43,19 @@ struct StepMotion {
   long bad_body = -1;           // the first body whose state became non-finite, or -1
   double max_displacement = 0;  // m, bound on the largest disc displacement of the step
 };
-// Every disc's radius is multiplied by `radius_factor` on the way (a radius change waiting for
-// the step: World::scale_radii; 1 leaves each radius's bits).
+// The radius changes the integration stores with a step, in the records it writes anyway: disc
+// i's radius r becomes r x factor (a uniform change waiting for the step, which its pass saw:
+// World::scale_radii; 1 leaves each radius's bits), and then, with `per_disc`, that times
+// per_disc[i] (a change that follows the step: World::scale_radii_after_each_step). With
+// `before`, before[i] keeps r x factor, the radius the step's pass used.
+struct RadiusChange {
+  double factor = 1.0;
+  const double* per_disc = nullptr;
+  double* before = nullptr;
+};
+// Every disc's radius is changed on the way as `radii` says.
 StepMotion integrate(Bodies& bodies, Discs& discs, double dt, double alpha, EnergyLedger* ledger,
-                     LaneIsa lanes = LaneIsa::Avx512, double radius_factor = 1.0);
+                     LaneIsa lanes = LaneIsa::Avx512, const RadiusChange& radii = {});
 
 // The pieces of integrate for a range of bodies. Energy terms of one body's step before the
 // common factors (damping and applied work: force x (v_old + v_new); prescribed: the work rate
@@ -87,11 +96,11 @@ struct InterleavedSum {
 // stores each body's, so that ranges integrated by several threads can be summed in body order
 // afterwards, with the bits of one loop.
 // Runs of eight (AVX-512) or four (AVX2) free discs are integrated at once, the widest set up to
-// `lanes` that the CPU has (dem/lanes.hpp; the same bits). The radii of the bodies' discs are
-// multiplied by `radius_factor`, as in integrate. With `side`, its sum is completed on the way.
+// `lanes` that the CPU has (dem/lanes.hpp; the same bits). The radii of the bodies' discs change
+// as `radii` says, as in integrate. With `side`, its sum is completed on the way.
 RangeMotion integrate_range(Bodies& bodies, Discs& discs, double dt, double alpha, bool book,
                             std::size_t begin, std::size_t end, const BodyEnergyArrays* per_body,
-                            LaneIsa lanes = LaneIsa::Avx512, double radius_factor = 1.0,
+                            LaneIsa lanes = LaneIsa::Avx512, const RadiusChange& radii = {},
                             InterleavedSum* side = nullptr);
 // Adds the sums of a whole step (all bodies, in body order) to the ledger.
 void book_step_energy(const RangeMotion& step, double dt, EnergyLedger& ledger);

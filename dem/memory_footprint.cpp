@@ -60,7 +60,8 @@ MemoryFootprint memory_footprint(const World& world) {
                            w.sxy, w.syx, w.syy, world.servos_.servos, world.cracks_.cracks,
                            world.energy_.last_dx, world.energy_.last_dy) +
             world.stiffness_.other_bytes() +
-            capacity_bytes(world.member_dt_, world.mass_scale_behind_);
+            capacity_bytes(world.member_dt_, world.mass_scale_behind_, world.step_radius_factor_,
+                           world.step_radius_before_);
   return m;
 }
 

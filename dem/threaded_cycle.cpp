@@ -465,6 +465,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
     // the first are stored per body and chained in body order, and the motion's sum and bounds
     // are read for their finiteness and maxima only (RangeMotion).
     const bool from_last = t % 2 == 1;
+    const RadiusChange radii{s.pass.radius_factor, s.radius_per_disc, s.radius_before};
     for (std::size_t q = 0; q < chunk_count; ++q) {
       const std::size_t c = from_last ? chunk_count - 1 - q : q;
       Chunk& chunk = chunks_[c];
@@ -491,7 +492,7 @@ ThreadedStep ThreadedCycle::step(Bodies& bodies, Discs& discs, Walls& walls, Con
       if (!stop)
         r = integrate_range(bodies, discs, s.dt, s.alpha, s.book_energy, chunk.body_begin,
                             chunk.body_end, s.book_energy && c > 0 ? &body_energy : nullptr,
-                            s.pass.lanes, s.pass.radius_factor, spread);
+                            s.pass.lanes, radii, spread);
       if (spread) chunk.chained_virial = side.sum;
       if (c == 0) {
         lane.motion.damped = r.damped;

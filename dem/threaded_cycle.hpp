@@ -71,6 +71,10 @@ struct ThreadedStepSettings {
   // Lanes (WorldSettings::lanes), per-pair results, virial, and the factor of the radii: a
   // step that integrates (ThreadedStep::integrated) leaves every disc's radius multiplied by it.
   PassOptions pass;
+  // A radius change per disc that follows the step, and where to keep the radii it changed
+  // (RadiusChange::per_disc and ::before, dem/integrator.hpp): a step that integrates stores it.
+  const double* radius_per_disc = nullptr;
+  double* radius_before = nullptr;
 };
 
 class ThreadedCycle {

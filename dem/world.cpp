@@ -55,6 +55,14 @@ void scale_masses(Bodies& bodies, std::size_t begin, std::size_t end, F2&& f2_of
     }
   }
 }
+// Body b's f2 for a radius change per disc: its first disc's factor squared.
+auto squared_disc_factor(const double* factor, const std::int32_t* first_disc) {
+  return [factor, first_disc](std::size_t b) {
+    const double f = factor[static_cast<std::size_t>(first_disc[b])];
+    return f * f;
+  };
+}
+
 template <class F2>
 void scale_free_body_masses(Bodies& bodies, std::size_t begin, std::size_t end, F2&& f2_of,
                             bool density_scaling, bool clumps) {
@@ -188,6 +196,8 @@ void World::scale_radii(double factor) {
   apply_radius_factor_behind();  // an earlier factor first: each radius takes them in turn
   radius_factor_behind_ = factor;
   if (settings_.density_scaling) {
+    // The steps' changes per disc are older than this one: their masses first.
+    if (step_mass_scale_behind_ > 0) apply_mass_scale_behind();
     mass_scale_behind_.push_back(f2);
     if (mass_scale_behind_.size() >= kMassScaleBehindAtMost) apply_mass_scale_behind();
   } else {
@@ -219,14 +229,9 @@ void World::scale_radii(const std::vector<double>& factor) {
     }
     if (grew_here) grew.store(true, std::memory_order_relaxed);
     const MemberRange bodies = member_range(bodies_.size(), t, members);
-    const std::int32_t* const first_disc = bodies_.first_disc.data();
-    scale_free_body_masses(
-        bodies_, bodies.begin, bodies.end,
-        [&factor, first_disc](std::size_t b) {
-          const double f = factor[static_cast<std::size_t>(first_disc[b])];
-          return f * f;
-        },
-        settings_.density_scaling, clumps_);
+    scale_free_body_masses(bodies_, bodies.begin, bodies.end,
+                           squared_disc_factor(factor.data(), bodies_.first_disc.data()),
+                           settings_.density_scaling, clumps_);
   });
   if (grew.load(std::memory_order_relaxed)) moved_bound_ = std::numeric_limits<double>::infinity();
   energy_.reference_pending = true;
@@ -266,7 +271,7 @@ void World::apply_radius_changes_behind() const {
 // function the radius change would have called: the bits of applying each at its call. The
 // blocks are shared out on the team (every body on its own: the same bits for any share).
 void World::apply_mass_scale_behind() const {
-  if (mass_scale_behind_.empty()) return;
+  if (mass_scale_behind_.empty() && step_mass_scale_behind_ == 0) return;
   constexpr std::size_t kBlock = 512;  // bodies: 8 KB of masses and inertias
   const std::size_t blocks = (bodies_.size() + kBlock - 1) / kBlock;
   // Shared out by bodies (share_out's threshold), cut into whole blocks.
@@ -277,9 +282,45 @@ void World::apply_mass_scale_behind() const {
       for (const double f2 : mass_scale_behind_)
         scale_free_body_masses(
             bodies_, begin, end, [f2](std::size_t) { return f2; }, true, clumps_);
+      for (long n = 0; n < step_mass_scale_behind_; ++n)
+        scale_free_body_masses(
+            bodies_, begin, end,
+            squared_disc_factor(step_radius_factor_.data(), bodies_.first_disc.data()), true,
+            clumps_);
     }
   });
   mass_scale_behind_.clear();
+  step_mass_scale_behind_ = 0;
+}
+
+void World::scale_radii_after_each_step(const std::vector<double>* factors) {
+  if (factors && factors->size() != discs_.size())
+    throw std::invalid_argument("World::scale_radii_after_each_step: one factor per disc expected");
+  if (factors && !settings_.density_scaling)
+    throw std::logic_error("World::scale_radii_after_each_step: under density scaling only");
+  apply_radius_changes_behind();  // the masses of the factors that end here
+  last_step_changed_radii_ = false;
+  if (!factors) {
+    step_radius_factor_.clear();
+    return;
+  }
+  step_radius_factor_.assign(factors->begin(), factors->end());
+  step_radius_before_.resize(discs_.size());
+  step_radius_growth_ = std::any_of(factors->begin(), factors->end(), grows);
+}
+
+void World::undo_radius_change_of_last_step() {
+  if (!last_step_changed_radii_)
+    throw std::logic_error("World::undo_radius_change_of_last_step: the last step changed none");
+  if (step_mass_scale_behind_ == 0)
+    throw std::logic_error(
+        "World::undo_radius_change_of_last_step: the bodies were read since the step");
+  share_out(team(), discs_.size(), [&](int t, int members) {
+    const MemberRange discs = member_range(discs_.size(), t, members);
+    for (std::size_t i = discs.begin; i < discs.end; ++i) discs_.r[i] = step_radius_before_[i];
+  });
+  --step_mass_scale_behind_;
+  last_step_changed_radii_ = false;
 }
 
 void World::translate_bodies(const std::vector<double>& dx, const std::vector<double>& dy) {
@@ -490,6 +531,8 @@ void World::check_energy() {
 }
 
 void World::step() {
+  const RadiusChange after = radius_change_after_step();
+  last_step_changed_radii_ = false;
   if (rebuild_pending_ ||
       neighbors_.needs_rebuild(discs_, walls_, moved_bound_, team(), radius_factor_behind_))
     rebuild();
@@ -515,6 +558,8 @@ void World::step() {
     ts.alpha = settings_.local_damping;
     ts.book_energy = book;
     ts.pass = pass;
+    ts.radius_per_disc = after.per_disc;
+    ts.radius_before = after.before;
     threaded =
         threaded_.step(bodies_, discs_, walls_, contacts_, pair_forces_, wall_forces_, ts, *shared);
     // The region integrated the free discs on their records (dem/integrator.hpp) and stored the
@@ -571,17 +616,36 @@ void World::step() {
     motion = step_motion(bodies_, discs_, threaded.motion, dt_);
   } else {
     motion = integrate(bodies_, discs_, dt_, settings_.local_damping, book ? &energy_ : nullptr,
-                       settings_.lanes, radius_factor_behind_);
+                       settings_.lanes, {radius_factor_behind_, after.per_disc, after.before});
     radius_factor_behind_ = 1.0;
     bodies_behind_ = true;
   }
   if (motion.bad_body >= 0)
     fail("has a non-finite position or velocity", bodies_.first_disc[motion.bad_body]);
   moved_bound_ += motion.max_displacement;
+  if (after.per_disc) {
+    ++step_mass_scale_behind_;
+    last_step_changed_radii_ = true;
+    energy_.reference_pending = true;
+    if (step_radius_growth_) moved_bound_ = std::numeric_limits<double>::infinity();
+  }
   check_energy();
   move_walls(walls_, dt_);
   time_ += dt_;
   ++steps_;
+}
+
+// The change per disc the step stores after its own (scale_radii_after_each_step), checked against
+// the world as it is now; its masses wait, at most kMassScaleBehindAtMost steps' worth.
+RadiusChange World::radius_change_after_step() {
+  if (step_radius_factor_.empty()) return {};
+  if (step_radius_factor_.size() != discs_.size() || !settings_.density_scaling)
+    throw std::logic_error(
+        "World::step: the factors of scale_radii_after_each_step no longer fit the world (disc "
+        "count or density scaling changed)");
+  if (step_mass_scale_behind_ >= static_cast<long>(kMassScaleBehindAtMost))
+    apply_mass_scale_behind();
+  return {1.0, step_radius_factor_.data(), step_radius_before_.data()};
 }
 
 void World::set_pair_results_on_request(bool on) {

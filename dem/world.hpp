@@ -126,6 +126,19 @@ class World {
   // next step rebuilds (a full neighbour build), which sets it; the packing cycles under density
   // scaling, where it does not.
   void scale_radii(const std::vector<double>& factor);
+  // Multiplies disc i's radius by factors[i] after every step from the next one on (a copy is
+  // kept; nullptr: no more), with the bits of scale_radii(factors) called after each step,
+  // masses included. The step's integration stores the radii in the records it writes anyway,
+  // where that call reads and writes every record once more (the packing's decompression by
+  // cells on a wide mould, whose factors hold for ten cycles: docs/performance.md "Session 66");
+  // the masses wait for the next read of the bodies. Under density scaling only (std::logic_error
+  // otherwise, and at a step once the disc count or the settings no longer fit the factors).
+  void scale_radii_after_each_step(const std::vector<double>* factors);
+  // Undoes the change that scale_radii_after_each_step made after the last step, the radii and
+  // masses back to their bits before it (the step keeps the radii it changed): for a caller that
+  // learns from the step's results that it wanted no change, or another. std::logic_error if the
+  // last step made none. The neighbour list's displacement bound stays as the change left it.
+  void undo_radius_change_of_last_step();
   // Translates body b and its discs by (dx[b], dy[b]) (m; one entry per body, velocities left
   // alone), so the next force pass sees the new positions; the neighbour list's rebuild check
   // counts the move. For a relaxation that must change the drift the last step() made with a
@@ -237,7 +250,8 @@ class World {
   // kept across either shows a free disc's motion and resultant, or the masses, of before it
   // until bodies() is called again.
   const Bodies& bodies() const {
-    if (bodies_behind_ || !mass_scale_behind_.empty()) catch_up_bodies();
+    if (bodies_behind_ || !mass_scale_behind_.empty() || step_mass_scale_behind_ > 0)
+      catch_up_bodies();
     return bodies_;
   }
   // Body b's motion and resultant as bodies() gives them, without catching up every body (for a
@@ -296,10 +310,13 @@ class World {
 
   void rebuild();
   void update_time_step();
+  // The radius change per disc that this step stores (its factor field unused: 1).
+  RadiusChange radius_change_after_step();
   // Copies the free discs' motion and forces of the last step into bodies_ (const: bodies()
   // does it on a read; the values are the step's, only their place changes).
   void catch_up_bodies() const;
-  // Applies mass_scale_behind_ to the free bodies' masses and inertias and empties it.
+  // Applies mass_scale_behind_ and then step_mass_scale_behind_ to the free bodies' masses and
+  // inertias, and empties both.
   void apply_mass_scale_behind() const;
   // Multiplies every radius by radius_factor_behind_ (shared out on the team) and sets it to 1.
   void apply_radius_factor_behind() const;
@@ -335,6 +352,15 @@ class World {
   // stores them, in the records it writes anyway; a read of the discs before that applies it.
   // Mutable for discs(), which does.
   mutable double radius_factor_behind_ = 1.0;
+  // scale_radii_after_each_step: the factors (empty: none), the radii each step changed, whether
+  // a factor grows a radius (the rebuild check then needs its pass after each step), and whether
+  // the last step changed them.
+  std::vector<double> step_radius_factor_, step_radius_before_;
+  bool step_radius_growth_ = false, last_step_changed_radii_ = false;
+  // Steps whose change by step_radius_factor_ the masses and inertias in bodies_ do not hold yet
+  // (under density scaling no step reads them), newer than those of mass_scale_behind_: a change
+  // of the uniform radius factor applies them first.
+  mutable long step_mass_scale_behind_ = 0;
   mutable Discs discs_;
   Walls walls_;
   NeighborList neighbors_;  // reports the candidate pairs

@@ -219,7 +219,13 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
   const double area = mould.area();
   double wall_sigma = 0, contact_sigma = 0, ratio = 1, stiffness = 0, hold_rate = 0;
   bool holding = false;
+  // Whether the world changes the radii by `factor` after each step (by cells: the factors hold
+  // for kStiffnessEvery cycles, and a step stores them in the records its integration writes, in
+  // place of a pass over every record per cycle; the same bits,
+  // World::scale_radii_after_each_step).
+  bool factors_ahead = false;
   const auto end_state = [&](bool converged) {
+    if (factors_ahead) world.scale_radii_after_each_step(nullptr);
     RelaxedState out{wall_sigma, contact_sigma, ratio, converged};
     if (!by_cells) return out;
     out.decompression_cells = cells.count();
@@ -239,6 +245,13 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
     const long next = world.step_count() + 1;
     if (next % kStiffnessEvery == 0 || stiffness <= 0 || (by_cells && !cells.updated()))
       world.request_pair_results();
+    // By cells, the factors are left to the step unless this cycle reads the cells (below). If
+    // the step's stress then ends the decompression or changes its rate, its change is undone.
+    const bool ahead = by_cells && !holding && cells.updated() && next % kStiffnessEvery != 0;
+    if (ahead != factors_ahead) {
+      world.scale_radii_after_each_step(ahead ? &factor : nullptr);
+      factors_ahead = ahead;
+    }
     world.step();
     const double sigma = world.last_force_pass().virial / (2.0 * area);
     report_progress(world, area, c);
@@ -253,17 +266,25 @@ RelaxedState relax_damped(dem::World& world, const Container& mould,
         const bool read = world.step_count() % kStiffnessEvery == 0 || !cells.updated();
         if (read) cells.update(world);
         if (read || fraction != factor_fraction) {
+          if (ahead) world.undo_radius_change_of_last_step();
+          if (factors_ahead) {  // the world's copy of the factors is about to be out of date
+            world.scale_radii_after_each_step(nullptr);
+            factors_ahead = false;
+          }
           cells.shrink_factors(fraction, factor);
           factor_fraction = fraction;
+          world.scale_radii(factor);
+        } else if (!ahead) {
+          world.scale_radii(factor);
         }
-        world.scale_radii(factor);
       } else {
         if (world.step_count() % kStiffnessEvery == 0 || stiffness <= 0)
           stiffness = affine_stiffness(world, area, AffineContacts::Touching);
         if (stiffness > 0) world.scale_radii(1.0 - fraction * sigma / stiffness);
       }
-    } else if (hold_rate != 0) {
-      world.scale_radii(1.0 + hold_rate);
+    } else {
+      if (ahead) world.undo_radius_change_of_last_step();  // the hold began at this step
+      if (hold_rate != 0) world.scale_radii(1.0 + hold_rate);
     }
     if (world.step_count() % kCheckEvery) continue;
     wall_sigma = dem::mean_stress(dem::wall_stress(world, area, centre));

@@ -319,4 +319,93 @@ INSTANTIATE_TEST_SUITE_P(ThreadsAndLanes, RadiusChangeBehind,
                                           testing::Values(LaneIsa::None, LaneIsa::Avx2,
                                                           LaneIsa::Avx512)));
 
+// A radius change per disc left to the steps (World::scale_radii_after_each_step: each step's
+// integration stores it, the masses wait for a read of the bodies) against the same change called
+// after each step (scale_radii(factors)), in the pressed lattice above: the same bits, on one and
+// two threads, with and without lanes. The factors shrink some discs and grow others; some steps'
+// changes are undone, and then either nothing or other factors follow (the packing's cycles that
+// end its decompression or change its rate); a uniform change of 11 % comes between two steps;
+// the bodies are read now and then (which applies the masses that wait).
+class RadiusChangeAfterEachStep : public testing::TestWithParam<std::tuple<int, LaneIsa>> {};
+
+TEST_P(RadiusChangeAfterEachStep, GivesTheBitsOfTheChangeCalledAfterEachStep) {
+  const auto [threads, lanes] = GetParam();
+  if (usable_lanes(lanes) != lanes) GTEST_SKIP() << "this CPU lacks these lanes";
+  World left = pressed_lattice(threads, lanes), called = pressed_lattice(threads, lanes);
+  const std::size_t n = left.discs().size();
+  const auto factors = [n](int set) {
+    std::vector<double> f(n);
+    for (std::size_t i = 0; i < n; ++i)
+      f[i] = 1 + 2e-4 * (static_cast<double>((i + static_cast<std::size_t>(set)) % 7) - 4.0);
+    return f;
+  };
+  std::vector<double> f = factors(0);
+  left.scale_radii_after_each_step(&f);
+  int undone = 0;
+  for (int k = 0; k < 300; ++k) {
+    left.step();
+    called.step();
+    if (k % 37 == 5) {  // other factors from this step on
+      left.undo_radius_change_of_last_step();
+      f = factors(k);
+      left.scale_radii_after_each_step(&f);
+      left.scale_radii(f);
+      called.scale_radii(f);
+      ++undone;
+    } else if (k % 37 == 20) {  // no change after this step
+      left.undo_radius_change_of_last_step();
+      ++undone;
+    } else {
+      called.scale_radii(f);
+    }
+    if (k == 150) {
+      left.scale_radii(1.11);
+      called.scale_radii(1.11);
+    }
+    if (k % 50 == 7) (void)left.bodies();
+  }
+  left.scale_radii_after_each_step(nullptr);
+  left.step();
+  called.step();
+  ASSERT_GT(undone, 10);
+  ASSERT_GT(left.cracks().size(), 0u);
+  EXPECT_EQ(left.neighbors().build_count, called.neighbors().build_count);
+  cdem::test::expect_same_bits(cdem::test::world_bits(left), cdem::test::world_bits(called));
+  const auto values = [](const auto& field) {
+    return std::vector<double>(field.begin(), field.end());
+  };
+  cdem::test::expect_same_bits(values(left.discs().r), values(called.discs().r));
+  cdem::test::expect_same_bits(values(left.bodies().mass), values(called.bodies().mass));
+  cdem::test::expect_same_bits(values(left.bodies().inertia), values(called.bodies().inertia));
+}
+
+INSTANTIATE_TEST_SUITE_P(ThreadsAndLanes, RadiusChangeAfterEachStep,
+                         testing::Combine(testing::Values(1, 2),
+                                          testing::Values(LaneIsa::None, LaneIsa::Avx2,
+                                                          LaneIsa::Avx512)));
+
+// What it refuses: factors of another count, an undo after a step that changed nothing or once
+// the bodies were read (their masses hold the change then), and a world without density scaling.
+TEST(RadiusChangeAfterEachStep, RefusesWhatItCannotKeepExact) {
+  World w = pressed_lattice(1, LaneIsa::None);
+  const std::vector<double> wrong(w.discs().size() + 1, 0.999), f(w.discs().size(), 0.999);
+  EXPECT_THROW(w.scale_radii_after_each_step(&wrong), std::invalid_argument);
+  w.step();
+  EXPECT_THROW(w.undo_radius_change_of_last_step(), std::logic_error);  // no change made
+  w.scale_radii_after_each_step(&f);
+  w.step();
+  (void)w.bodies();  // applies the step's masses
+  EXPECT_THROW(w.undo_radius_change_of_last_step(), std::logic_error);
+  w.step();
+  w.undo_radius_change_of_last_step();
+  EXPECT_THROW(w.undo_radius_change_of_last_step(), std::logic_error);  // one step, one undo
+  WorldSettings plain = w.settings();
+  plain.density_scaling = false;
+  w.set_settings(plain);
+  EXPECT_THROW(w.step(), std::logic_error);  // the factors need density scaling
+  World unscaled(plain);
+  const std::vector<double> none;  // one factor per disc of a world without discs
+  EXPECT_THROW(unscaled.scale_radii_after_each_step(&none), std::logic_error);
+}
+
 }  // namespace
