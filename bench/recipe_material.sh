@@ -48,8 +48,8 @@ ucs_input() {  # recipe seed -> the UCS input for that specimen
     -e 's#^snapshot_interval = .*#snapshot_interval = 0#' "$src/samples/c30_ucs.toml" \
     > "$out/ucs_$1_$2.toml"
 }
-cpus=($(taskset -pc $$ | sed 's/.*: //' | tr ',' '\n' | while IFS=- read -r a b; do
-  seq "$a" "${b:-$a}"; done))
+mapfile -t cpus < <(taskset -pc $$ | sed 's/.*: //' | tr ',' '\n' |
+  while IFS=- read -r a b; do seq "$a" "${b:-$a}"; done)
 for s in $seeds; do
   for recipe in variant default; do  # the variant first: cdem names a bad key before any long run
     [ -f "$out/${recipe}_$s.json" ] ||
@@ -73,10 +73,10 @@ for s in $seeds; do
   echo "seed $s done $(date -u +%T), load $(cut -d' ' -f1-3 /proc/loadavg)" >&2
 done
 
-/usr/bin/python3 - "$out" $seeds <<'PY'
+/usr/bin/python3 - "$out" "$seeds" <<'PY'
 import json, os, statistics, sys
 from scipy import stats
-out, seeds = sys.argv[1], [int(s) for s in sys.argv[2:]]
+out, seeds = sys.argv[1], [int(s) for s in sys.argv[2].split()]
 def row(recipe, s):
     g = json.load(open(os.path.join(out, f"{recipe}_{s}.json")))
     u = json.load(open(os.path.join(out, f"ucs_{recipe}_{s}.json")))
@@ -96,12 +96,12 @@ for k in d[0]:
     x, y = [r[k] for r in d], [r[k] for r in v]
     diff = [b - a for a, b in zip(x, y)]
     if len(seeds) < 2 or all(t == 0 for t in diff):
-        print(f"  {k:15s} {statistics.mean(x):.4g} {statistics.mean(y):.4g} "
+        print(f"  {k:15s} {statistics.mean(x):.5g} {statistics.mean(y):.5g} "
               f"{statistics.mean(diff):+.4g}")
         continue
     t = stats.ttest_rel(y, x)
     w = f" {stats.wilcoxon(y, x).pvalue:.3g}" if len(seeds) >= 6 else ""
-    print(f"  {k:15s} {statistics.mean(x):.4g} {statistics.mean(y):.4g} "
-          f"{statistics.mean(diff):+.4g} (lower on {sum(t < 0 for t in diff)} of {len(diff)}) "
+    print(f"  {k:15s} {statistics.mean(x):.5g} {statistics.mean(y):.5g} "
+          f"{statistics.mean(diff):+.4g} (variant lower on {sum(t < 0 for t in diff)} of {len(diff)}) "
           f"t {t.statistic:.2f} p {t.pvalue:.3g}{w}")
 PY
