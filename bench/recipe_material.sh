@@ -7,9 +7,9 @@
 #   bash bench/recipe_material.sh BUILD_DIR OUT_DIR "SEEDS" TABLE.KEY=VALUE [TABLE.KEY=VALUE ...]
 #   bash bench/recipe_material.sh build out/recipe "$(seq -s ' ' 10)" mortar.time_step_safety=1.0
 # Each KEY = VALUE is written at the top of its [TABLE] of the variant's generator input. Runs
-# whose summary exists in OUT_DIR are not run again (so an interrupted study resumes). Two UCS
-# runs go side by side, one thread each, when the process may use two CPUs or more. Ten seeds
-# take about 13-17 minutes on two Zen 3 vCPUs.
+# whose summary exists in OUT_DIR are not run again (an interrupted study resumes; another study
+# in the same OUT_DIR is refused, exit 2). Two UCS runs go side by side, one thread each, when
+# the process may use two CPUs or more. Ten seeds take about 13-17 minutes on two Zen 3 vCPUs.
 set -euo pipefail
 if [ $# -lt 4 ]; then
   sed -n '2,12p' "$0" >&2
@@ -28,18 +28,30 @@ done
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 
-cp "$src/samples/c30_specimen.toml" "$out/default.toml"
-cp "$src/samples/c30_specimen.toml" "$out/variant.toml"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+cp "$src/samples/c30_specimen.toml" "$tmp/default.toml"
+cp "$src/samples/c30_specimen.toml" "$tmp/variant.toml"
 for kv in "$@"; do
   if [[ ! "$kv" =~ ^([a-z_]+)\.([a-z_0-9]+)=(.+)$ ]]; then
     echo "recipe_material.sh: '$kv' is not TABLE.KEY=VALUE (for example mortar.time_step_safety=1.0)" >&2
     exit 2
   fi
   table="${BASH_REMATCH[1]}" key="${BASH_REMATCH[2]}" value="${BASH_REMATCH[3]}"
-  grep -q "^\[$table\]" "$out/variant.toml" ||
+  grep -q "^\[$table\]" "$tmp/variant.toml" ||
     { echo "recipe_material.sh: samples/c30_specimen.toml has no [$table] table" >&2; exit 2; }
   value="${value//\\/\\\\}" value="${value//\//\\/}" value="${value//&/\\&}"
-  sed -i "s/^\[$table\]\$/[$table]\n$key = $value/" "$out/variant.toml"
+  sed -i "s/^\[$table\]\$/[$table]\n$key = $value/" "$tmp/variant.toml"
+done
+# A study resumes only with the inputs it was started with: the runs already in OUT_DIR are
+# reused, so other keys (or a changed sample) there would mix two studies.
+for recipe in default variant; do
+  if [ -f "$out/$recipe.toml" ] && ! cmp -s "$tmp/$recipe.toml" "$out/$recipe.toml"; then
+    echo "recipe_material.sh: $out holds a study with another $recipe input ($out/$recipe.toml);" \
+      "give another OUT_DIR" >&2
+    exit 2
+  fi
+  cp "$tmp/$recipe.toml" "$out/$recipe.toml"
 done
 
 ucs_input() {  # recipe seed -> the UCS input for that specimen
