@@ -22,6 +22,7 @@ seeds="$3"
 shift 3
 cdem="$build/bin/cdem"
 [ -x "$cdem" ] || { echo "recipe_material.sh: no $cdem (build first)" >&2; exit 2; }
+[ -n "${seeds// /}" ] || { echo "recipe_material.sh: no seeds given" >&2; exit 2; }
 for s in $seeds; do
   [[ "$s" =~ ^[0-9]+$ ]] || { echo "recipe_material.sh: seed '$s' is not a whole number" >&2; exit 2; }
 done
@@ -107,13 +108,13 @@ print(f"over {len(seeds)} seeds: mean default, mean variant, paired difference, 
 for k in d[0]:
     x, y = [r[k] for r in d], [r[k] for r in v]
     diff = [b - a for a, b in zip(x, y)]
-    if len(seeds) < 2 or all(t == 0 for t in diff):
+    if len(seeds) < 2 or all(dv == 0 for dv in diff):
         print(f"  {k:15s} {statistics.mean(x):.5g} {statistics.mean(y):.5g} "
               f"{statistics.mean(diff):+.4g}")
         continue
     t = stats.ttest_rel(y, x)
     w = f" {stats.wilcoxon(y, x).pvalue:.3g}" if len(seeds) >= 6 else ""
     print(f"  {k:15s} {statistics.mean(x):.5g} {statistics.mean(y):.5g} "
-          f"{statistics.mean(diff):+.4g} (variant lower on {sum(t < 0 for t in diff)} of {len(diff)}) "
+          f"{statistics.mean(diff):+.4g} (variant lower on {sum(dv < 0 for dv in diff)} of {len(diff)}) "
           f"t {t.statistic:.2f} p {t.pvalue:.3g}{w}")
 PY
