@@ -73,9 +73,8 @@ void merge_state(const StaggeredArray<std::uint64_t>& old_keys, const ContactSta
     }
   });
   for (std::size_t r = 1; r < offset.size(); ++r) offset[r] += offset[r - 1];
-  make_room(out_keys, offset.back());
-  out_keys.resize(offset.back());
-  out_state.resize(offset.back());
+  resize_for_overwrite(out_keys, offset.back());
+  out_state.resize_for_overwrite(offset.back());
   share_out(team, items, [&](int t, int m) {
     const MemberRange mine = member_range(run.size(), t, m);
     for (std::size_t r = mine.begin; r < mine.end; ++r) {
@@ -103,10 +102,8 @@ void merge_state(const StaggeredArray<std::uint64_t>& old_keys, const ContactSta
 
 void split_keys(const StaggeredArray<std::uint64_t>& keys, StaggeredArray<std::int32_t>& a,
                 StaggeredArray<std::int32_t>& b, WorkerTeam* team) {
-  make_room(a, keys.size());
-  make_room(b, keys.size());
-  a.resize(keys.size());
-  b.resize(keys.size());
+  resize_for_overwrite(a, keys.size());
+  resize_for_overwrite(b, keys.size());
   share_out(team, keys.size(), [&](int t, int members) {
     const MemberRange range = member_range(keys.size(), t, members);
     for (std::size_t k = range.begin; k < range.end; ++k) {
@@ -126,8 +123,7 @@ void ContactStore::merge(std::span<const std::vector<std::uint64_t>> pair_candid
   std::swap(keys, merged_keys_);
   std::swap(state, merged_state_);
   split_keys(keys, first, second, team);
-  make_room(contact_class, keys.size());
-  contact_class.resize(keys.size());
+  resize_for_overwrite(contact_class, keys.size());
   share_out(team, keys.size(), [&](int t, int members) {
     const MemberRange range = member_range(keys.size(), t, members);
     for (std::size_t k = range.begin; k < range.end; ++k)

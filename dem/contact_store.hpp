@@ -37,15 +37,13 @@ struct ContactStates {
   // its entry in ContactStore::smooth_joints.
   StaggeredArray<std::int32_t> joint;
 
-  // Sizes every array for n contacts, keeping what they hold below n (a merge writes every slot).
-  void resize(std::size_t n) {
+  // Sizes every array for n contacts whose state the caller writes anew, every slot (a merge):
+  // what they hold is kept only while it fits (resize_for_overwrite).
+  void resize_for_overwrite(std::size_t n) {
     for (auto* v : {&shear_force, &bond_normal, &bond_shear, &bond_moment, &bond_gap})
-      make_room(*v, n);
-    make_room(bond, n);
-    make_room(joint, n);
-    for (auto* v : {&shear_force, &bond_normal, &bond_shear, &bond_moment, &bond_gap}) v->resize(n);
-    bond.resize(n);
-    joint.resize(n);
+      dem::resize_for_overwrite(*v, n);
+    dem::resize_for_overwrite(bond, n);
+    dem::resize_for_overwrite(joint, n);
   }
   // Slot k takes the state of a new contact: no shear force, no bond.
   void reset(std::size_t k) {
