@@ -17,8 +17,8 @@ void make_room(V& v, std::size_t n) {
 
 // Sizes v to n elements that the caller then writes anew, every one: when n exceeds the
 // capacity, the old values are dropped before the storage grows instead of being copied into it
-// (the contact store's merge outputs grew some twenty times in the C30 packing, and the copies
-// cost about as much as the allocations: docs/performance.md "Session 69").
+// (the contact store's merge outputs grow some twenty times in the C30 packing:
+// docs/performance.md "Session 69").
 template <class V>
 void resize_for_overwrite(V& v, std::size_t n) {
   if (n > v.capacity()) v.clear();
